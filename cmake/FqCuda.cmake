@@ -1,0 +1,22 @@
+# Decide whether the CUDA engine is built. AUTO builds it whenever nvcc is found, even on a
+# machine without a GPU (CI compiles it; the program picks CPU or GPU at run time).
+set(FQ_WITH_CUDA 0)
+if(NOT FQ_CUDA STREQUAL "OFF")
+  if(NOT DEFINED CMAKE_CUDA_COMPILER AND NOT DEFINED ENV{CUDACXX} AND EXISTS /usr/local/cuda/bin/nvcc)
+    set(CMAKE_CUDA_COMPILER /usr/local/cuda/bin/nvcc)
+  endif()
+  include(CheckLanguage)
+  check_language(CUDA)
+  if(CMAKE_CUDA_COMPILER)
+    if(NOT DEFINED CMAKE_CUDA_ARCHITECTURES)
+      # H100 machine code plus portable PTX that any newer GPU can JIT.
+      set(CMAKE_CUDA_ARCHITECTURES "90-real;75-virtual")
+    endif()
+    enable_language(CUDA)
+    find_package(CUDAToolkit REQUIRED)
+    set(FQ_WITH_CUDA 1)
+  elseif(FQ_CUDA STREQUAL "ON")
+    message(FATAL_ERROR "FQ_CUDA=ON but no CUDA compiler was found (set CUDACXX or put nvcc on PATH)")
+  endif()
+endif()
+message(STATUS "fq: CUDA engine ${FQ_WITH_CUDA} (FQ_CUDA=${FQ_CUDA})")

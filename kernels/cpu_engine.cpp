@@ -1,0 +1,82 @@
+#include "cpu_engine.h"
+
+#include <chrono>
+#include <exception>
+
+#include "cpu_stages.h"
+#include "parallel_for.h"
+
+namespace fq {
+
+namespace {
+
+// Appends the wall time of each pass to the frame's timings.
+class PassClock {
+ public:
+  explicit PassClock(std::vector<PassTiming>& out) : out_(out), t0_(Clock::now()) {}
+  void lap(const char* name) {
+    const auto t = Clock::now();
+    out_.push_back({name, std::chrono::duration<double, std::milli>(t - t0_).count()});
+    t0_ = t;
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  std::vector<PassTiming>& out_;
+  Clock::time_point t0_;
+};
+
+}  // namespace
+
+CpuEngine::CpuEngine(int threads) : threads_(threads > 0 ? threads : hardware_threads()) {}
+
+Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResult& out) {
+  out.timings.clear();
+  out.labels.clear();
+  out.num_clusters = 0;
+  if (Status s = validate(params); !s.ok()) return s;
+  if (Status s = check_mesh(mesh); !s.ok()) return s;
+  if (Status s = compute_normalization(mesh, f_.norm); !s.ok()) return s;
+  out.mean_edge = f_.norm.mean_edge;
+  PassClock clock(out.timings);
+  const FilterParams& fp = params.f;
+  const bool need_quadrics = params.cluster || fp.method == FilterMethod::kQuadric;
+
+  cpu::sort_into_grid(mesh, fp.sigma_s, f_);
+  clock.lap("grid");
+  cpu::base_quadrics(f_, threads_);
+  clock.lap("base_quadrics");
+  if (need_quadrics) {
+    cpu::neighbourhood_quadrics(f_, fp.effective_sigma_b(), threads_);
+    clock.lap("neighbourhood_quadrics");
+    cpu::diffuse_quadrics(f_, fp, threads_);
+    clock.lap("diffusion");
+  }
+  if (params.filter) {
+    if (fp.method == FilterMethod::kQuadric) {
+      cpu::update_positions(f_, fp, threads_);
+    } else {
+      cpu::bilateral_filter(f_, fp, threads_);
+    }
+    clock.lap(fp.method == FilterMethod::kQuadric ? "update" : "bilateral_filter");
+  }
+  if (params.cluster) {
+    cpu::cluster_scores(f_, params.c, threads_);
+    clock.lap("score");
+    cpu::cluster_links(f_, params.c, threads_);
+    clock.lap("link");
+    out.num_clusters = cpu::cluster_labels(f_, out.labels, threads_);
+    clock.lap("modes");
+  }
+  const uint32_t n = mesh.num_vertices;
+  out.positions.resize(3 * size_t(n));
+  if (params.filter) {
+    parallel_for(n, threads_, [&](uint32_t i) { f_.norm.to_input(f_.moved[f_.rank[i]], &out.positions[3 * size_t(i)]); });
+  } else {
+    std::copy(mesh.positions, mesh.positions + 3 * size_t(n), out.positions.begin());
+  }
+  clock.lap("output");
+  return {};
+}
+
+}  // namespace fq

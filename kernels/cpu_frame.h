@@ -1,0 +1,38 @@
+// Scratch state of the CPU engine for one frame, kept between frames so that a steady
+// stream of same-sized frames reuses its allocations. All per-vertex arrays are in grid
+// (cell) order: neighbours of a vertex sit close in memory.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "frame_prep.h"
+#include "grid_build.h"
+#include "quadric.h"
+#include "triangle_math.h"
+#include "vec3.h"
+
+namespace fq {
+
+struct CpuFrame {
+  Normalization norm;
+  std::vector<Vec3> normalized;      ///< input order
+  CpuGrid grid;                      ///< grid.order: sorted -> input index
+  std::vector<uint32_t> rank;        ///< input -> sorted index
+  std::vector<Point4> points;        ///< sorted positions, w = barycentric area
+  std::vector<uint32_t> tris;        ///< triangles with sorted indices
+  std::vector<TriangleGeom> tri_geom;
+  std::vector<uint32_t> vf_offsets;  ///< vertex -> incident triangles (CSR, sorted ids)
+  std::vector<uint32_t> vf_faces;
+  std::vector<Quadric> base, nbhd, bl;
+  std::vector<Vec3> vnormal, moved;
+  // Bilateral baseline: triangles in centroid-grid order.
+  CpuGrid tri_grid;
+  std::vector<Point4> tri_points;    ///< centroid, w = area
+  std::vector<Vec3> tri_normals, tri_mollified;
+  // Clustering.
+  std::vector<float> score;
+  std::vector<uint32_t> next;
+};
+
+}  // namespace fq

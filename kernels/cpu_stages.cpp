@@ -1,0 +1,160 @@
+#include "cpu_stages.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bilateral_math.h"
+#include "cluster_math.h"
+#include "filter_math.h"
+#include "gaussian.h"
+#include "parallel_for.h"
+
+namespace fq::cpu {
+
+void sort_into_grid(const MeshView& mesh, float cell, CpuFrame& f) {
+  const uint32_t n = mesh.num_vertices, m = mesh.num_triangles;
+  f.normalized.resize(n);
+  for (uint32_t i = 0; i < n; ++i) f.normalized[i] = f.norm.to_normalized(mesh.positions + 3 * size_t(i));
+  build_grid(f.normalized.data(), n, cell, f.grid);
+  f.rank.resize(n);
+  f.points.resize(n);
+  for (uint32_t k = 0; k < n; ++k) {
+    const uint32_t i = f.grid.order[k];
+    f.rank[i] = k;
+    const Vec3 p = f.normalized[i];
+    f.points[k] = {p.x, p.y, p.z, 0.f};
+  }
+  f.tris.resize(3 * size_t(m));
+  for (size_t t = 0; t < 3 * size_t(m); ++t) f.tris[t] = f.rank[mesh.triangles[t]];
+}
+
+namespace {
+
+// Vertex -> incident triangles by counting sort; triangles stay in increasing order per
+// vertex, so per-vertex sums are reproducible.
+void build_vertex_faces(CpuFrame& f, uint32_t n) {
+  const size_t m = f.tris.size() / 3;
+  f.vf_offsets.assign(n + 1, 0);
+  for (uint32_t v : f.tris) ++f.vf_offsets[v + 1];
+  for (uint32_t i = 0; i < n; ++i) f.vf_offsets[i + 1] += f.vf_offsets[i];
+  f.vf_faces.resize(f.tris.size());
+  std::vector<uint32_t> cursor(f.vf_offsets.begin(), f.vf_offsets.end() - 1);
+  for (size_t t = 0; t < m; ++t) {
+    for (int k = 0; k < 3; ++k) f.vf_faces[cursor[f.tris[3 * t + k]]++] = static_cast<uint32_t>(t);
+  }
+}
+
+}  // namespace
+
+void base_quadrics(CpuFrame& f, int threads) {
+  const uint32_t n = static_cast<uint32_t>(f.points.size());
+  const uint32_t m = static_cast<uint32_t>(f.tris.size() / 3);
+  f.tri_geom.resize(m);
+  parallel_for(m, threads, [&](uint32_t t) {
+    const uint32_t* tri = &f.tris[3 * size_t(t)];
+    f.tri_geom[t] = triangle_geom(xyz(f.points[tri[0]]), xyz(f.points[tri[1]]), xyz(f.points[tri[2]]));
+  });
+  build_vertex_faces(f, n);
+  f.base.resize(n);
+  f.vnormal.resize(n);
+  parallel_for(n, threads, [&](uint32_t v) {
+    const Vec3 x = xyz(f.points[v]);
+    VertexAccum acc = zero_vertex_accum();
+    for (uint32_t k = f.vf_offsets[v]; k < f.vf_offsets[v + 1]; ++k) add_triangle(acc, f.tri_geom[f.vf_faces[k]], x);
+    f.base[v] = base_quadric(acc);
+    f.points[v].w = acc.area;
+    f.vnormal[v] = acc.normal;
+  });
+}
+
+void neighbourhood_quadrics(CpuFrame& f, float sigma_b, int threads) {
+  const GridView g = f.grid.view(f.points.data());
+  const Gaussian gb = Gaussian::with_sigma(sigma_b);
+  f.nbhd.resize(g.count);
+  parallel_for(g.count, threads, [&](uint32_t i) {
+    f.nbhd[i] = neighbourhood_quadric(g, f.base.data(), i, gb, 2.f * sigma_b);
+  });
+}
+
+void diffuse_quadrics(CpuFrame& f, const FilterParams& p, int threads) {
+  const GridView g = f.grid.view(f.points.data());
+  const Gaussian gs = Gaussian::with_sigma(p.sigma_s), gr = Gaussian::with_sigma(p.sigma_r);
+  f.bl.resize(g.count);
+  parallel_for(g.count, threads, [&](uint32_t i) {
+    f.bl[i] = bilateral_quadric(g, f.nbhd.data(), i, gs, gr, 2.f * p.sigma_s);
+  });
+}
+
+void update_positions(CpuFrame& f, const FilterParams& p, int threads) {
+  const GridView g = f.grid.view(f.points.data());
+  const float sn = p.effective_sigma_n();
+  const Gaussian gn = Gaussian::with_sigma(sn);
+  f.moved.resize(g.count);
+  parallel_for(g.count, threads, [&](uint32_t i) {
+    const Vec3 n = p.constrained ? smoothed_normal(g, f.vnormal.data(), i, gn, 2.f * sn) : Vec3{0, 0, 0};
+    f.moved[i] = updated_position(xyz(f.points[i]), f.bl[i], p.constrained, n, p.tikhonov);
+  });
+}
+
+void bilateral_filter(CpuFrame& f, const FilterParams& p, int threads) {
+  const uint32_t m = static_cast<uint32_t>(f.tri_geom.size());
+  std::vector<Vec3> centroids(m);
+  for (uint32_t t = 0; t < m; ++t) centroids[t] = f.tri_geom[t].centroid;
+  build_grid(centroids.data(), m, p.sigma_s, f.tri_grid);
+  f.tri_points.resize(m);
+  f.tri_normals.resize(m);
+  for (uint32_t k = 0; k < m; ++k) {
+    const TriangleGeom& t = f.tri_geom[f.tri_grid.order[k]];
+    f.tri_points[k] = {t.centroid.x, t.centroid.y, t.centroid.z, t.area};
+    f.tri_normals[k] = t.normal;
+  }
+  const GridView tg = f.tri_grid.view(f.tri_points.data());
+  const float sm = 0.5f * p.sigma_s;  // Jones et al.: normals mollified with sigma_s / 2
+  const Gaussian gm = Gaussian::with_sigma(sm);
+  f.tri_mollified.resize(m);
+  parallel_for(m, threads, [&](uint32_t t) {
+    f.tri_mollified[t] = mollified_face_normal(tg, f.tri_normals.data(), t, gm, 2.f * sm);
+  });
+  const Gaussian gs = Gaussian::with_sigma(p.sigma_s), gr = Gaussian::with_sigma(p.sigma_r);
+  f.moved.resize(f.points.size());
+  parallel_for(static_cast<uint32_t>(f.points.size()), threads, [&](uint32_t i) {
+    f.moved[i] = jones_bilateral_position(tg, f.tri_mollified.data(), xyz(f.points[i]), gs, gr, 2.f * p.sigma_s);
+  });
+}
+
+void cluster_scores(CpuFrame& f, const ClusterParams& p, int threads) {
+  const GridView g = f.grid.view(f.points.data());
+  const Gaussian gd = Gaussian::with_sigma(p.sigma_d), gq = Gaussian::with_sigma(p.sigma_q);
+  const bool euclid = p.method == ClusterMethod::kEuclidean;
+  f.score.resize(g.count);
+  parallel_for(g.count, threads, [&](uint32_t i) {
+    f.score[i] = representativity(g, f.bl.data(), i, gd, gq, 2.f * p.sigma_d, euclid);
+  });
+}
+
+void cluster_links(CpuFrame& f, const ClusterParams& p, int threads) {
+  const GridView g = f.grid.view(f.points.data());
+  const Gaussian gd = Gaussian::with_sigma(p.sigma_d), gq = Gaussian::with_sigma(p.sigma_q);
+  const bool euclid = p.method == ClusterMethod::kEuclidean;
+  const float cut = 1.0f - p.theta;
+  f.next.resize(g.count);
+  parallel_for(g.count, threads, [&](uint32_t i) {
+    f.next[i] = quick_shift_link(g, f.bl.data(), f.score.data(), i, gd, gq, 2.f * p.sigma_d, euclid, cut);
+  });
+}
+
+uint32_t cluster_labels(CpuFrame& f, std::vector<uint32_t>& labels, int threads) {
+  const uint32_t n = static_cast<uint32_t>(f.next.size());
+  std::vector<uint32_t> roots;
+  for (uint32_t k = 0; k < n; ++k) {
+    if (f.next[k] == k) roots.push_back(k);
+  }
+  std::sort(roots.begin(), roots.end(), [&](uint32_t a, uint32_t b) { return f.grid.order[a] < f.grid.order[b]; });
+  std::vector<uint32_t> label_of(n, 0);
+  for (uint32_t r = 0; r < roots.size(); ++r) label_of[roots[r]] = r;
+  labels.resize(n);
+  parallel_for(n, threads, [&](uint32_t i) { labels[i] = label_of[find_root(f.next.data(), f.rank[i])]; });
+  return static_cast<uint32_t>(roots.size());
+}
+
+}  // namespace fq::cpu

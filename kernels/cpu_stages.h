@@ -1,0 +1,24 @@
+// The stages of the CPU engine, one function per pass (see cpu_engine.cpp for the order).
+#pragma once
+
+#include "cpu_frame.h"
+#include "mesh_view.h"
+#include "params.h"
+
+namespace fq::cpu {
+
+/// Normalized positions, grid (cell ~ `cell`), sorted points, sorted triangles.
+void sort_into_grid(const MeshView& mesh, float cell, CpuFrame& f);
+/// Triangle geometry, vertex->triangle CSR, per-vertex area, base quadric, normal.
+void base_quadrics(CpuFrame& f, int threads);
+void neighbourhood_quadrics(CpuFrame& f, float sigma_b, int threads);
+void diffuse_quadrics(CpuFrame& f, const FilterParams& p, int threads);
+void update_positions(CpuFrame& f, const FilterParams& p, int threads);
+/// Jones et al. 2003 (positions into f.moved).
+void bilateral_filter(CpuFrame& f, const FilterParams& p, int threads);
+void cluster_scores(CpuFrame& f, const ClusterParams& p, int threads);
+void cluster_links(CpuFrame& f, const ClusterParams& p, int threads);
+/// Roots, compacted to labels 0..K-1 in input order of the root vertices; returns K.
+uint32_t cluster_labels(CpuFrame& f, std::vector<uint32_t>& labels, int threads);
+
+}  // namespace fq::cpu

@@ -1,0 +1,53 @@
+#include "engine.h"
+
+#include <thread>
+
+#include "cpu_engine.h"
+#include "fq_features.h"
+#include "parallel_for.h"
+
+#if FQ_WITH_CUDA
+#include "cuda_engine.h"
+#endif
+
+namespace fq {
+
+double FrameResult::total_ms() const {
+  double t = 0.0;
+  for (const PassTiming& p : timings) t += p.ms;
+  return t;
+}
+
+int hardware_threads() {
+  const unsigned n = std::thread::hardware_concurrency();
+  return n > 0 ? static_cast<int>(n) : 1;
+}
+
+bool parse_engine_kind(const std::string& s, EngineKind& out) {
+  if (s == "auto") out = EngineKind::kAuto;
+  else if (s == "cpu") out = EngineKind::kCpu;
+  else if (s == "cuda") out = EngineKind::kCuda;
+  else return false;
+  return true;
+}
+
+std::unique_ptr<Engine> make_engine(const EngineOptions& options, Status* why) {
+  if (why) *why = {};
+  if (options.kind == EngineKind::kCpu) return std::make_unique<CpuEngine>(options.threads);
+#if FQ_WITH_CUDA
+  Status s;
+  if (auto e = make_cuda_engine(options.device, &s)) return e;
+  if (options.kind == EngineKind::kCuda) {
+    if (why) *why = s;
+    return nullptr;
+  }
+#else
+  if (options.kind == EngineKind::kCuda) {
+    if (why) *why = {StatusCode::kUnavailable, "this build of fq has no CUDA support (configure with FQ_CUDA=ON)"};
+    return nullptr;
+  }
+#endif
+  return std::make_unique<CpuEngine>(options.threads);
+}
+
+}  // namespace fq

@@ -1,0 +1,57 @@
+// The engine interface: one frame in, filtered positions and/or cluster labels out.
+// Implementations: the CPU engine (threads) and the CUDA engine (persistent device buffers).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mesh_view.h"
+#include "params.h"
+#include "status.h"
+
+namespace fq {
+
+struct PassTiming {
+  std::string name;
+  double ms = 0.0;
+};
+
+/// Output of one frame. Buffers are reused (grow-only) when the same object is passed again.
+struct FrameResult {
+  std::vector<float> positions;   ///< 3 per vertex, input order; the input when !filter
+  std::vector<uint32_t> labels;   ///< one per vertex in 0..num_clusters-1; empty when !cluster
+  uint32_t num_clusters = 0;
+  double mean_edge = 0.0;         ///< the unit of every sigma, in input units
+  std::vector<PassTiming> timings;
+
+  double total_ms() const;
+};
+
+class Engine {
+ public:
+  virtual ~Engine() = default;
+  /// "cpu" or "cuda:<device name>".
+  virtual std::string name() const = 0;
+  /// Processes one frame. Bad parameters or a bad mesh give a non-ok status and leave the
+  /// engine usable for the next frame.
+  virtual Status process(const MeshView& mesh, const Params& params, FrameResult& out) = 0;
+};
+
+enum class EngineKind { kAuto, kCpu, kCuda };
+
+struct EngineOptions {
+  EngineKind kind = EngineKind::kAuto;
+  int threads = 0;  ///< CPU threads; 0 = all hardware threads
+  int device = 0;   ///< CUDA device ordinal
+};
+
+/// Parses "auto" | "cpu" | "cuda".
+bool parse_engine_kind(const std::string& s, EngineKind& out);
+
+/// CUDA when asked for or (auto) when a device is present, the CPU engine otherwise.
+/// Null with a status when an explicitly requested engine is unavailable.
+std::unique_ptr<Engine> make_engine(const EngineOptions& options, Status* why = nullptr);
+
+}  // namespace fq

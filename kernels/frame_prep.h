@@ -1,0 +1,40 @@
+// Host-side checks and normalization shared by the engines: a frame is validated, then
+// moved to normalized units (bounding-box centre at the origin, mean edge length = 1) so
+// that every sigma is a plain number and float32 keeps its precision.
+#pragma once
+
+#include <cstdint>
+
+#include "mesh_view.h"
+#include "status.h"
+#include "vec3.h"
+
+namespace fq {
+
+struct Normalization {
+  double center[3] = {0, 0, 0};
+  double mean_edge = 1.0;  ///< input units per normalized unit
+
+  Vec3 to_normalized(const float* p) const {
+    const double s = 1.0 / mean_edge;
+    return {float((p[0] - center[0]) * s), float((p[1] - center[1]) * s), float((p[2] - center[2]) * s)};
+  }
+  void to_input(Vec3 q, float* out) const {
+    out[0] = float(center[0] + q.x * mean_edge);
+    out[1] = float(center[1] + q.y * mean_edge);
+    out[2] = float(center[2] + q.z * mean_edge);
+  }
+};
+
+/// Non-empty, finite coordinates, every index in range, at least one triangle.
+Status check_mesh(const MeshView& mesh);
+
+/// Bounding-box centre and mean edge length (over the three edges of every triangle, so
+/// interior edges of a closed mesh count once per side; a mesh whose edges all have zero
+/// length is rejected).
+Status compute_normalization(const MeshView& mesh, Normalization& out);
+
+/// Mean edge length of a mesh in its own units (0 when it has no non-degenerate edge).
+double mean_edge_length(const MeshView& mesh);
+
+}  // namespace fq

@@ -1,0 +1,44 @@
+// Parameters of the filter and the clustering. Every sigma is in units of the frame's
+// mean edge length, as in the paper; neighbourhoods have radius 2 sigma.
+#pragma once
+
+#include "status.h"
+
+namespace fq {
+
+enum class FilterMethod { kQuadric, kBilateral };   ///< "qf" (the paper) | "bf" (Jones 2003)
+enum class ClusterMethod { kQuadric, kEuclidean };  ///< the paper | plain quick shift (Fig. 17)
+
+struct FilterParams {
+  FilterMethod method = FilterMethod::kQuadric;
+  float sigma_s = 2.0f;  ///< spatial extent of the quadric diffusion (BF: of the filter)
+  float sigma_r = 1.0f;  ///< range extent (RMS quadric distance; BF: prediction distance)
+  float sigma_b = 0.0f;  ///< finest detail captured by Q'; 0 means sigma_s / 2
+  float sigma_n = 0.0f;  ///< normal smoothing for constrained mode; 0 means sigma_s / 2
+  bool constrained = false;  ///< move along the smoothed normal instead of to the minimizer
+  /// Tikhonov pull toward the current position, relative to tr(A)/3. 0.05 keeps a clean
+  /// mesh intact and improves noisy ones (see docs/QUALITY.md); 0 is the paper's solver.
+  float tikhonov = 0.05f;
+
+  float effective_sigma_b() const { return sigma_b > 0.f ? sigma_b : 0.5f * sigma_s; }
+  float effective_sigma_n() const { return sigma_n > 0.f ? sigma_n : 0.5f * sigma_s; }
+};
+
+struct ClusterParams {
+  ClusterMethod method = ClusterMethod::kQuadric;
+  float sigma_d = 5.0f;  ///< spatial extent of score and proximity
+  float sigma_q = 1.0f;  ///< range extent (RMS quadric distance)
+  float theta = 0.9f;    ///< in (0, 1]; higher gives fewer, larger clusters (cut p < 1 - theta)
+};
+
+struct Params {
+  bool filter = true;    ///< move the vertices
+  bool cluster = false;  ///< compute labels (on the input positions, from the same Q^bl)
+  FilterParams f;
+  ClusterParams c;
+};
+
+/// Clear message for the first bad value (sigma <= 0, NaN, theta outside (0, 1], ...).
+Status validate(const Params& p);
+
+}  // namespace fq
