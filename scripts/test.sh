@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# README command 2: install what is missing, build, run every test.
+# GPU tests skip cleanly on a machine without a GPU.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+bash "$root/scripts/setup-deps.sh"
+bash "$root/scripts/build.sh"
+build=${BUILD_DIR:-$root/build}
+export FQ_MESH_DIR=${FQ_MESH_DIR:-$root/../shared/meshes}
+ctest --test-dir "$build" --output-on-failure -j "${JOBS:-$(nproc)}" --timeout 900
