@@ -1,0 +1,46 @@
+// Frames on the wire: a mesh as N spatially coherent Draco chunks that can be encoded and
+// decoded in parallel and merged back by global vertex id (see docs/PROTOCOL.md).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mesh_view.h"
+#include "status.h"
+
+namespace fq::wire {
+
+/// Upper bound on the chunks of a frame (FrameHeader.chunk_count, encode_frame's `chunks`).
+inline constexpr uint32_t kMaxChunks = 256;
+
+/// Metadata name ("name" entry) of the GENERIC uint32 attribute holding the global vertex id.
+inline constexpr const char* kVertexIdAttribute = "fq_vid";
+/// Metadata name of the GENERIC uint32 attribute holding the per-vertex cluster label.
+inline constexpr const char* kLabelAttribute = "fq_label";
+
+struct CodecOptions {
+  int position_bits = 16;  ///< Draco position quantization bits (1..30), on the frame's bbox
+  int encode_speed = 5;    ///< Draco encoding speed 0 (best compression) .. 10 (fastest)
+  int decode_speed = 5;    ///< Draco decoding speed 0 .. 10
+  int threads = 1;         ///< chunks encoded / decoded concurrently (>= 1)
+};
+
+/// Encodes `mesh` (and per-vertex `labels`, nullable) as `chunks` Draco meshes into `out`.
+/// Triangles are sorted by the Morton code of their centroid and cut into equal counts; every
+/// chunk carries "fq_vid" (and "fq_label") and is quantized on the whole frame's bounding box,
+/// so vertices shared by chunks decode identically. Every vertex must be used by a triangle.
+/// `chunks` is clamped to the triangle count: out.size() is the number of chunks written.
+/// kInvalidArgument for bad options or chunk counts, kInvalidInput for a bad mesh.
+fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32_t chunks,
+                        const CodecOptions& options, std::vector<std::string>& out);
+
+/// Decodes `chunks` and merges them by "fq_vid" into `vertex_count` vertices (0 = infer:
+/// the largest id + 1, or the point count of a plain mesh). A single chunk without
+/// "fq_vid" (a plain Draco mesh) is taken in Draco point order. `labels` (nullable) is filled
+/// when every chunk has "fq_label", cleared otherwise. kInvalidInput for any malformed input.
+fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t vertex_count,
+                        const CodecOptions& options, fq::Mesh& out, std::vector<uint32_t>* labels);
+
+}  // namespace fq::wire

@@ -1,0 +1,171 @@
+// decode_frame: decode the chunks concurrently, then merge them by global vertex id.
+#include <draco/compression/decode.h>
+#include <draco/mesh/mesh.h>
+
+#include <algorithm>
+#include <string>
+
+#include "frame_codec.h"
+#include "frame_split.h"
+
+namespace fq::wire {
+namespace {
+
+/// One decoded chunk, per Draco point.
+struct Chunk {
+  fq::Status status;
+  std::vector<float> positions;     ///< 3 per point
+  std::vector<uint32_t> ids;        ///< fq_vid per point; empty when the chunk has none
+  std::vector<uint32_t> labels;     ///< fq_label per point; empty when the chunk has none
+  std::vector<uint32_t> triangles;  ///< point indices
+};
+
+/// Values of the single-component integer attribute named `name` (false when it is malformed).
+bool read_uint_attribute(const draco::Mesh& m, const char* name, bool& present, std::vector<uint32_t>& out) {
+  const int id = m.GetAttributeIdByMetadataEntry("name", name);
+  present = id >= 0;
+  if (!present) return true;
+  const draco::PointAttribute* pa = m.attribute(id);
+  if (pa->num_components() != 1 || pa->data_type() != draco::DT_UINT32) return false;
+  out.resize(m.num_points());
+  for (uint32_t p = 0; p < m.num_points(); ++p) {
+    if (!pa->ConvertValue<uint32_t>(pa->mapped_index(draco::PointIndex(p)), 1, &out[p])) return false;
+  }
+  return true;
+}
+
+fq::Status read_mesh(const draco::Mesh& m, Chunk& c) {
+  const draco::PointAttribute* pos = m.GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  if (pos == nullptr || pos->num_components() != 3) return invalid_input("no 3D position attribute");
+  if (m.num_faces() == 0) return invalid_input("mesh has no faces");
+  c.positions.resize(3 * size_t(m.num_points()));
+  for (uint32_t p = 0; p < m.num_points(); ++p) {
+    if (!pos->ConvertValue<float>(pos->mapped_index(draco::PointIndex(p)), 3, &c.positions[3 * size_t(p)])) {
+      return invalid_input("unreadable position of point " + std::to_string(p));
+    }
+  }
+  bool has = false;
+  if (!read_uint_attribute(m, kVertexIdAttribute, has, c.ids)) {
+    return invalid_input(std::string(kVertexIdAttribute) + " is not a single uint32 per point");
+  }
+  if (!read_uint_attribute(m, kLabelAttribute, has, c.labels)) {
+    return invalid_input(std::string(kLabelAttribute) + " is not a single uint32 per point");
+  }
+  c.triangles.resize(3 * size_t(m.num_faces()));
+  for (uint32_t f = 0; f < m.num_faces(); ++f) {
+    const auto& face = m.face(draco::FaceIndex(f));
+    for (int k = 0; k < 3; ++k) c.triangles[3 * size_t(f) + k] = face[k].value();
+  }
+  return {};
+}
+
+void decode_chunk(std::string_view bytes, Chunk& c) {
+  draco::DecoderBuffer buf;
+  buf.Init(bytes.data(), bytes.size());
+  auto type = draco::Decoder::GetEncodedGeometryType(&buf);
+  if (!type.ok()) {
+    c.status = invalid_input("undecodable Draco data: " + type.status().error_msg_string());
+    return;
+  }
+  if (type.value() != draco::TRIANGULAR_MESH) {
+    c.status = invalid_input("a Draco point cloud, not a triangle mesh");
+    return;
+  }
+  draco::Decoder dec;
+  auto mesh = dec.DecodeMeshFromBuffer(&buf);
+  if (!mesh.ok()) {
+    c.status = invalid_input("undecodable Draco data: " + mesh.status().error_msg_string());
+    return;
+  }
+  c.status = read_mesh(*mesh.value(), c);
+}
+
+/// A single chunk without fq_vid: a plain Draco mesh, taken in Draco's point order.
+fq::Status take_plain(Chunk& c, uint32_t vertex_count, fq::Mesh& out, std::vector<uint32_t>* labels) {
+  const auto n = static_cast<uint32_t>(c.positions.size() / 3);
+  if (vertex_count != 0 && vertex_count != n) {
+    return invalid_input("frame header says " + std::to_string(vertex_count) + " vertices, the Draco mesh has " +
+                         std::to_string(n));
+  }
+  out.positions = std::move(c.positions);
+  out.triangles = std::move(c.triangles);
+  if (labels) *labels = std::move(c.labels);
+  return {};
+}
+
+/// Number of vertices of the merged frame: `vertex_count`, or inferred from the largest id.
+/// Bounded by the points the chunks carry, so a forged count cannot trigger a huge allocation.
+fq::Status merged_count(const std::vector<Chunk>& cs, uint32_t vertex_count, uint32_t& n) {
+  size_t points = 0;
+  uint32_t max_id = 0;
+  for (const auto& c : cs) {
+    points += c.ids.size();
+    for (uint32_t id : c.ids) max_id = std::max(max_id, id);
+  }
+  n = vertex_count != 0 ? vertex_count : max_id + 1;
+  if (n > points) {
+    return invalid_input("frame has " + std::to_string(n) + " vertices but its chunks carry only " +
+                         std::to_string(points) + " points");
+  }
+  return {};
+}
+
+fq::Status merge(std::vector<Chunk>& cs, uint32_t n, fq::Mesh& out, std::vector<uint32_t>* labels) {
+  const bool with_labels = labels && std::all_of(cs.begin(), cs.end(), [](const Chunk& c) { return !c.labels.empty(); });
+  out.positions.assign(3 * size_t(n), 0.f);
+  out.triangles.clear();
+  if (with_labels) labels->assign(n, 0);
+  std::vector<uint8_t> covered(n, 0);
+  for (size_t i = 0; i < cs.size(); ++i) {
+    const Chunk& c = cs[i];
+    for (size_t p = 0; p < c.ids.size(); ++p) {
+      const uint32_t g = c.ids[p];
+      if (g >= n) {
+        return invalid_input("chunk " + std::to_string(i) + ": vertex id " + std::to_string(g) +
+                             " out of range (frame has " + std::to_string(n) + " vertices)");
+      }
+      std::copy_n(&c.positions[3 * p], 3, &out.positions[3 * size_t(g)]);
+      if (with_labels) (*labels)[g] = c.labels[p];
+      covered[g] = 1;
+    }
+    for (uint32_t local : c.triangles) out.triangles.push_back(c.ids[local]);
+  }
+  const auto hole = std::find(covered.begin(), covered.end(), uint8_t{0});
+  if (hole != covered.end()) {
+    return invalid_input("vertex " + std::to_string(hole - covered.begin()) + " is in no chunk (missing chunk?)");
+  }
+  return {};
+}
+
+}  // namespace
+
+fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t vertex_count,
+                        const CodecOptions& options, fq::Mesh& out, std::vector<uint32_t>* labels) {
+  out = {};
+  if (labels) labels->clear();
+  if (chunks.empty()) return invalid_input("frame has no Draco chunks");
+  if (chunks.size() > kMaxChunks) return invalid_input("frame has more than " + std::to_string(kMaxChunks) + " chunks");
+
+  std::vector<Chunk> cs(chunks.size());
+  detail::for_each_chunk(chunks.size(), options.threads, [&](size_t i) { decode_chunk(chunks[i], cs[i]); });
+  for (size_t i = 0; i < cs.size(); ++i) {
+    if (!cs[i].status.ok()) return invalid_input("chunk " + std::to_string(i) + ": " + cs[i].status.message());
+  }
+  if (cs.size() == 1 && cs[0].ids.empty()) return take_plain(cs[0], vertex_count, out, labels);
+  for (size_t i = 0; i < cs.size(); ++i) {
+    if (cs[i].ids.empty()) {
+      return invalid_input("chunk " + std::to_string(i) + " has no " + kVertexIdAttribute +
+                           " attribute (required in a multi-chunk frame)");
+    }
+  }
+  uint32_t n = 0;
+  if (auto s = merged_count(cs, vertex_count, n); !s.ok()) return s;
+  if (auto s = merge(cs, n, out, labels); !s.ok()) {
+    out = {};
+    if (labels) labels->clear();
+    return s;
+  }
+  return {};
+}
+
+}  // namespace fq::wire

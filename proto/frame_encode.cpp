@@ -1,0 +1,129 @@
+// encode_frame: split, build one draco::Mesh per chunk (positions + fq_vid [+ fq_label]),
+// encode the chunks concurrently on one shared quantization grid.
+#include <draco/compression/encode.h>
+#include <draco/mesh/mesh.h>
+#include <draco/metadata/geometry_metadata.h>
+
+#include <algorithm>
+#include <memory>
+#include <string>
+
+#include "frame_codec.h"
+#include "frame_prep.h"
+#include "frame_split.h"
+
+namespace fq::wire {
+namespace {
+
+fq::Status check_options(const CodecOptions& o) {
+  if (o.position_bits < 1 || o.position_bits > 30) {
+    return invalid_argument("position_bits " + std::to_string(o.position_bits) + " outside [1, 30]");
+  }
+  if (o.encode_speed < 0 || o.encode_speed > 10 || o.decode_speed < 0 || o.decode_speed > 10) {
+    return invalid_argument("Draco speeds must be in [0, 10]");
+  }
+  if (o.threads < 1) return invalid_argument("codec threads must be >= 1");
+  return {};
+}
+
+/// The codec can only carry vertices that some triangle uses (Draco drops the others).
+fq::Status check_all_used(const fq::MeshView& mesh) {
+  std::vector<uint8_t> used(mesh.num_vertices, 0);
+  for (size_t i = 0; i < size_t(mesh.num_triangles) * 3; ++i) used[mesh.triangles[i]] = 1;
+  const auto it = std::find(used.begin(), used.end(), uint8_t{0});
+  if (it == used.end()) return {};
+  return invalid_input("vertex " + std::to_string(it - used.begin()) +
+                       " is used by no triangle (the frame codec carries only vertices of triangles)");
+}
+
+/// Adds a per-point GENERIC uint32 attribute named `name` (attribute metadata) with the values
+/// values[global[i]] (or global[i] itself when values is null).
+void add_uint_attribute(draco::Mesh& m, const char* name, const std::vector<uint32_t>& global,
+                        const uint32_t* values) {
+  draco::GeometryAttribute ga;
+  ga.Init(draco::GeometryAttribute::GENERIC, nullptr, 1, draco::DT_UINT32, false, sizeof(uint32_t), 0);
+  const int id = m.AddAttribute(ga, true, static_cast<uint32_t>(global.size()));
+  draco::PointAttribute* pa = m.attribute(id);
+  for (size_t i = 0; i < global.size(); ++i) {
+    const uint32_t v = values ? values[global[i]] : global[i];
+    pa->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(i)), &v);
+  }
+  auto md = std::make_unique<draco::AttributeMetadata>();
+  md->AddEntryString("name", name);
+  m.AddAttributeMetadata(id, std::move(md));
+}
+
+/// One chunk as a draco::Mesh whose points are the chunk's vertices in ascending global id.
+/// Built directly (not with a mesh builder) so that no deduplication can merge two vertices.
+void build_chunk(const fq::MeshView& mesh, const uint32_t* labels, const std::vector<uint32_t>& tris,
+                 draco::Mesh& m) {
+  std::vector<uint32_t> global;
+  global.reserve(tris.size() * 3);
+  for (uint32_t t : tris) global.insert(global.end(), mesh.triangles + 3 * size_t(t), mesh.triangles + 3 * size_t(t) + 3);
+  std::sort(global.begin(), global.end());
+  global.erase(std::unique(global.begin(), global.end()), global.end());
+
+  const auto n = static_cast<uint32_t>(global.size());
+  m.set_num_points(n);
+  draco::GeometryAttribute ga;
+  ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 3 * sizeof(float), 0);
+  draco::PointAttribute* pos = m.attribute(m.AddAttribute(ga, true, n));
+  for (uint32_t i = 0; i < n; ++i) {
+    pos->SetAttributeValue(draco::AttributeValueIndex(i), mesh.positions + 3 * size_t(global[i]));
+  }
+  add_uint_attribute(m, kVertexIdAttribute, global, nullptr);
+  if (labels) add_uint_attribute(m, kLabelAttribute, global, labels);
+
+  auto local = [&](uint32_t g) {
+    return draco::PointIndex(static_cast<uint32_t>(std::lower_bound(global.begin(), global.end(), g) - global.begin()));
+  };
+  for (uint32_t t : tris) {
+    const uint32_t* f = mesh.triangles + 3 * size_t(t);
+    m.AddFace({local(f[0]), local(f[1]), local(f[2])});
+  }
+}
+
+fq::Status encode_chunk(const draco::Mesh& m, const CodecOptions& o, const detail::Box& box,
+                        std::string& out) {
+  draco::Encoder enc;
+  enc.SetSpeedOptions(o.encode_speed, o.decode_speed);
+  // One explicit grid for every chunk: a vertex on a chunk border decodes identically in both.
+  const float extent = box.max_extent();
+  enc.SetAttributeExplicitQuantization(draco::GeometryAttribute::POSITION, o.position_bits, 3, box.lo,
+                                       extent > 0.f ? extent : 1.f);
+  draco::EncoderBuffer buf;
+  const draco::Status s = enc.EncodeMeshToBuffer(m, &buf);
+  if (!s.ok()) return {fq::StatusCode::kInternal, "Draco encoding failed: " + s.error_msg_string()};
+  out.assign(buf.data(), buf.size());
+  return {};
+}
+
+}  // namespace
+
+fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32_t chunks,
+                        const CodecOptions& options, std::vector<std::string>& out) {
+  out.clear();
+  if (auto s = check_options(options); !s.ok()) return s;
+  if (chunks == 0 || chunks > kMaxChunks) {
+    return invalid_argument("chunk count " + std::to_string(chunks) + " outside [1, " + std::to_string(kMaxChunks) + "]");
+  }
+  if (auto s = fq::check_mesh(mesh); !s.ok()) return s;
+  if (auto s = check_all_used(mesh); !s.ok()) return s;
+
+  const detail::Box box = detail::bounding_box(mesh);
+  const auto parts = detail::split_triangles(mesh, box, std::min(chunks, mesh.num_triangles));
+  std::vector<std::string> encoded(parts.size());
+  std::vector<fq::Status> status(parts.size());
+  detail::for_each_chunk(parts.size(), options.threads, [&](size_t i) {
+    draco::Mesh m;
+    build_chunk(mesh, labels, parts[i], m);
+    status[i] = encode_chunk(m, options, box, encoded[i]);
+  });
+  for (size_t i = 0; i < parts.size(); ++i) {
+    if (!status[i].ok()) return {status[i].code(), "chunk " + std::to_string(i) + ": " + status[i].message()};
+  }
+  out = std::move(encoded);
+  return {};
+}
+
+}  // namespace fq::wire

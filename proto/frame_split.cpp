@@ -1,0 +1,89 @@
+// Spatial split of a frame into chunks, and the chunk-parallel loop.
+#include "frame_split.h"
+
+#include <algorithm>
+#include <atomic>
+#include <numeric>
+#include <thread>
+
+namespace fq::wire::detail {
+namespace {
+
+/// Spreads the low 10 bits of v so that two zero bits separate each (for 30-bit Morton codes).
+uint32_t spread_bits(uint32_t v) {
+  v &= 0x3ffu;
+  v = (v | (v << 16)) & 0x030000ffu;
+  v = (v | (v << 8)) & 0x0300f00fu;
+  v = (v | (v << 4)) & 0x030c30c3u;
+  v = (v | (v << 2)) & 0x09249249u;
+  return v;
+}
+
+uint32_t morton_of_centroid(const fq::MeshView& mesh, uint32_t t, const Box& box, float scale) {
+  uint32_t cell[3];
+  for (int a = 0; a < 3; ++a) {
+    float c = 0.f;
+    for (int k = 0; k < 3; ++k) c += mesh.positions[3 * size_t(mesh.triangles[3 * size_t(t) + k]) + a];
+    const float u = (c / 3.f - box.lo[a]) * scale;
+    cell[a] = static_cast<uint32_t>(std::clamp(u, 0.f, 1023.f));
+  }
+  return spread_bits(cell[0]) | (spread_bits(cell[1]) << 1) | (spread_bits(cell[2]) << 2);
+}
+
+}  // namespace
+
+float Box::max_extent() const {
+  return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+}
+
+Box bounding_box(const fq::MeshView& mesh) {
+  Box b;
+  if (mesh.num_vertices == 0) return b;
+  for (int a = 0; a < 3; ++a) b.lo[a] = b.hi[a] = mesh.positions[a];
+  for (uint32_t v = 1; v < mesh.num_vertices; ++v) {
+    for (int a = 0; a < 3; ++a) {
+      b.lo[a] = std::min(b.lo[a], mesh.positions[3 * size_t(v) + a]);
+      b.hi[a] = std::max(b.hi[a], mesh.positions[3 * size_t(v) + a]);
+    }
+  }
+  return b;
+}
+
+std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box,
+                                                   uint32_t chunks) {
+  const uint32_t n = mesh.num_triangles;
+  std::vector<uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  if (chunks > 1) {
+    const float extent = box.max_extent();
+    const float scale = extent > 0.f ? 1023.f / extent : 0.f;
+    std::vector<uint32_t> code(n);
+    for (uint32_t t = 0; t < n; ++t) code[t] = morton_of_centroid(mesh, t, box, scale);
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return code[a] < code[b]; });
+  }
+  std::vector<std::vector<uint32_t>> parts(chunks);
+  for (uint32_t c = 0; c < chunks; ++c) {
+    const size_t begin = size_t(n) * c / chunks, end = size_t(n) * (c + 1) / chunks;
+    parts[c].assign(order.begin() + begin, order.begin() + end);
+  }
+  return parts;
+}
+
+void for_each_chunk(size_t count, int threads, const std::function<void(size_t)>& fn) {
+  const size_t workers = std::min<size_t>(count, size_t(std::max(threads, 1)));
+  if (workers <= 1) {
+    for (size_t i = 0; i < count; ++i) fn(i);
+    return;
+  }
+  std::atomic<size_t> next{0};
+  std::vector<std::thread> pool;
+  pool.reserve(workers);
+  for (size_t w = 0; w < workers; ++w) {
+    pool.emplace_back([&] {
+      for (size_t i = next++; i < count; i = next++) fn(i);
+    });
+  }
+  for (auto& t : pool) t.join();
+}
+
+}  // namespace fq::wire::detail

@@ -1,0 +1,33 @@
+// Internals of the frame codec shared by encoder and decoder: the spatial split of a
+// mesh into chunks, the frame's bounding box and a small chunk-parallel loop.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "mesh_view.h"
+
+namespace fq::wire::detail {
+
+/// Axis-aligned bounding box of the vertices.
+struct Box {
+  float lo[3] = {0, 0, 0};
+  float hi[3] = {0, 0, 0};
+  /// Largest side (the range of Draco's explicit quantization).
+  float max_extent() const;
+};
+
+Box bounding_box(const fq::MeshView& mesh);
+
+/// Triangle ids of each of `chunks` parts: triangles sorted by the Morton code of their
+/// centroid (10 bits per axis on `box`) and cut into equal counts, so each part is a
+/// spatially coherent patch. Ties keep the input order, so the split is deterministic.
+std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box,
+                                                   uint32_t chunks);
+
+/// Calls fn(i) for every i in [0, count) on min(threads, count) std::threads (inline when 1).
+/// fn must not throw and must write only the outputs of item i.
+void for_each_chunk(size_t count, int threads, const std::function<void(size_t)>& fn);
+
+}  // namespace fq::wire::detail

@@ -1,0 +1,121 @@
+// ParamOverrides / StreamParams / Compute <-> fq::Params.
+#include <string>
+
+#include "header_codec.h"
+
+namespace fq::wire {
+namespace {
+
+fq::Status set_mode(FilterMode m, fq::FilterParams& f) {
+  switch (m) {
+    case MODE_DEFAULT: return {};
+    case QF: f.method = fq::FilterMethod::kQuadric; return {};
+    case BF: f.method = fq::FilterMethod::kBilateral; return {};
+    default: return invalid_argument("filter mode " + std::to_string(m) + " is not a FilterMode");
+  }
+}
+
+fq::Status set_method(ClusterMethodWire m, fq::ClusterParams& c) {
+  switch (m) {
+    case METHOD_DEFAULT: return {};
+    case QUADRIC: c.method = fq::ClusterMethod::kQuadric; return {};
+    case EUCLIDEAN: c.method = fq::ClusterMethod::kEuclidean; return {};
+    default:
+      return invalid_argument("cluster method " + std::to_string(m) + " is not a ClusterMethodWire");
+  }
+}
+
+FilterMode mode_of(const fq::FilterParams& f) {
+  return f.method == fq::FilterMethod::kBilateral ? BF : QF;
+}
+
+ClusterMethodWire method_of(const fq::ClusterParams& c) {
+  return c.method == fq::ClusterMethod::kEuclidean ? EUCLIDEAN : QUADRIC;
+}
+
+}  // namespace
+
+fq::Status apply_overrides(const ParamOverrides& o, fq::Params& inout) {
+  fq::Params p = inout;  // all or nothing: a bad enum leaves `inout` untouched
+  if (o.has_sigma_s()) p.f.sigma_s = o.sigma_s();
+  if (o.has_sigma_r()) p.f.sigma_r = o.sigma_r();
+  if (o.has_sigma_b()) p.f.sigma_b = o.sigma_b();
+  if (o.has_sigma_n()) p.f.sigma_n = o.sigma_n();
+  if (o.has_constrained()) p.f.constrained = o.constrained();
+  if (o.has_tikhonov()) p.f.tikhonov = o.tikhonov();
+  if (o.has_mode()) {
+    if (auto s = set_mode(o.mode(), p.f); !s.ok()) return s;
+  }
+  if (o.has_sigma_d()) p.c.sigma_d = o.sigma_d();
+  if (o.has_sigma_q()) p.c.sigma_q = o.sigma_q();
+  if (o.has_theta()) p.c.theta = o.theta();
+  if (o.has_cluster_method()) {
+    if (auto s = set_method(o.cluster_method(), p.c); !s.ok()) return s;
+  }
+  inout = p;
+  return {};
+}
+
+fq::Status apply_compute(Compute c, fq::Params& inout) {
+  switch (c) {
+    case COMPUTE_DEFAULT: return {};
+    case FILTER: inout.filter = true; inout.cluster = false; return {};
+    case CLUSTER: inout.filter = false; inout.cluster = true; return {};
+    case FILTER_AND_CLUSTER: inout.filter = true; inout.cluster = true; return {};
+    default: return invalid_argument("compute " + std::to_string(c) + " is not a Compute");
+  }
+}
+
+Compute compute_of(const fq::Params& p) {
+  if (p.filter && p.cluster) return FILTER_AND_CLUSTER;
+  return p.cluster ? CLUSTER : FILTER;
+}
+
+void params_to_wire(const fq::Params& p, StreamParams& out) {
+  out.set_sigma_s(p.f.sigma_s);
+  out.set_sigma_r(p.f.sigma_r);
+  out.set_sigma_b(p.f.sigma_b);
+  out.set_sigma_n(p.f.sigma_n);
+  out.set_constrained(p.f.constrained);
+  out.set_tikhonov(p.f.tikhonov);
+  out.set_mode(mode_of(p.f));
+  out.set_sigma_d(p.c.sigma_d);
+  out.set_sigma_q(p.c.sigma_q);
+  out.set_theta(p.c.theta);
+  out.set_cluster_method(method_of(p.c));
+  out.set_compute(compute_of(p));
+}
+
+fq::Status params_from_wire(const StreamParams& w, fq::Params& out) {
+  fq::Params p = out;
+  p.f.sigma_s = w.sigma_s();
+  p.f.sigma_r = w.sigma_r();
+  p.f.sigma_b = w.sigma_b();
+  p.f.sigma_n = w.sigma_n();
+  p.f.constrained = w.constrained();
+  p.f.tikhonov = w.tikhonov();
+  if (auto s = set_mode(w.mode(), p.f); !s.ok()) return s;
+  p.c.sigma_d = w.sigma_d();
+  p.c.sigma_q = w.sigma_q();
+  p.c.theta = w.theta();
+  if (auto s = set_method(w.cluster_method(), p.c); !s.ok()) return s;
+  if (auto s = apply_compute(w.compute(), p); !s.ok()) return s;
+  out = p;
+  return {};
+}
+
+void params_to_overrides(const fq::Params& p, ParamOverrides& out) {
+  out.set_sigma_s(p.f.sigma_s);
+  out.set_sigma_r(p.f.sigma_r);
+  out.set_sigma_b(p.f.sigma_b);
+  out.set_sigma_n(p.f.sigma_n);
+  out.set_constrained(p.f.constrained);
+  out.set_tikhonov(p.f.tikhonov);
+  out.set_mode(mode_of(p.f));
+  out.set_sigma_d(p.c.sigma_d);
+  out.set_sigma_q(p.c.sigma_q);
+  out.set_theta(p.c.theta);
+  out.set_cluster_method(method_of(p.c));
+}
+
+}  // namespace fq::wire

@@ -1,0 +1,24 @@
+# fq_proto: the wire protocol. Protobuf headers (fq.proto, generated into the build dir by
+# Debian's protoc 3.21) and the chunked Draco frame codec.
+find_package(Protobuf REQUIRED)
+find_package(Threads REQUIRED)
+
+add_library(fq_proto STATIC
+  ${CMAKE_CURRENT_LIST_DIR}/fq.proto
+  ${CMAKE_CURRENT_LIST_DIR}/header_codec.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/param_wire.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/frame_split.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/frame_encode.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/frame_decode.cpp)
+
+# Generated fq.pb.h / fq.pb.cc land in <build>/generated/proto (never in the source tree).
+set(FQ_PROTO_GEN_DIR "${PROJECT_BINARY_DIR}/generated/proto")
+file(MAKE_DIRECTORY "${FQ_PROTO_GEN_DIR}")
+protobuf_generate(TARGET fq_proto LANGUAGE cpp
+  IMPORT_DIRS "${CMAKE_CURRENT_LIST_DIR}"
+  PROTOC_OUT_DIR "${FQ_PROTO_GEN_DIR}")
+
+target_include_directories(fq_proto PUBLIC "${CMAKE_CURRENT_LIST_DIR}" "${FQ_PROTO_GEN_DIR}")
+target_link_libraries(fq_proto
+  PUBLIC fq_kernels fq_options protobuf::libprotobuf draco::draco
+  PRIVATE Threads::Threads)
