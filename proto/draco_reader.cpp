@@ -1,0 +1,101 @@
+#include "draco_reader.h"
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+
+#include "draco/compression/decode.h"
+#include "draco/io/mesh_io.h"
+#include "mesh_io.h"
+
+namespace fq::io {
+
+namespace {
+
+/// Copies Draco's points (positions per point, through the point-to-value map) and faces.
+Status from_draco(const std::string& path, const draco::Mesh& dm, Mesh& out) {
+  const draco::PointAttribute* pos = dm.GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  if (!pos) return invalid_input("'" + path + "' has no vertex positions");
+  if (pos->num_components() < 3)
+    return invalid_input("'" + path + "' has " + std::to_string(pos->num_components()) + "-D positions, not 3-D");
+  const uint32_t n = dm.num_points();
+  out.positions.resize(3 * size_t(n));
+  for (uint32_t p = 0; p < n; ++p) {
+    // ConvertValue reads any stored type (float, or integers in some files).
+    if (!pos->ConvertValue<float>(pos->mapped_index(draco::PointIndex(p)), 3, &out.positions[3 * size_t(p)]))
+      return invalid_input("'" + path + "': cannot convert the position of vertex " + std::to_string(p));
+  }
+  out.triangles.resize(3 * size_t(dm.num_faces()));
+  for (uint32_t f = 0; f < dm.num_faces(); ++f) {
+    const draco::Mesh::Face& face = dm.face(draco::FaceIndex(f));
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = face[k].value();
+      if (v >= n)
+        return invalid_input("cannot decode '" + path + "': face " + std::to_string(f) + " references vertex " +
+                             std::to_string(v) + " of " + std::to_string(n));
+      out.triangles[3 * size_t(f) + k] = v;
+    }
+  }
+  return {};
+}
+
+std::string draco_message(const draco::Status& s) {
+  return s.error_msg_string().empty() ? std::string("unknown Draco error") : s.error_msg_string();
+}
+
+/// Binary STL: 80-byte header, uint32 count, 50 bytes per triangle. ASCII STL starts with
+/// "solid" (a binary header may too, so the size test decides).
+Status check_stl_size(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  char head[84] = {};
+  f.read(head, sizeof head);
+  const auto got = f.gcount();
+  const uint64_t size = std::filesystem::file_size(path);
+  const bool says_solid = got >= 5 && std::memcmp(head, "solid", 5) == 0;
+  if (got < 84) return says_solid ? Status{} : invalid_input("cannot decode '" + path + "': too short for an STL file");
+  uint32_t count = 0;
+  for (int i = 0; i < 4; ++i) count |= uint32_t(static_cast<unsigned char>(head[80 + i])) << (8 * i);
+  if (84 + 50 * uint64_t(count) == size || says_solid) return {};
+  return invalid_input("cannot decode '" + path + "': binary STL header announces " + std::to_string(count) +
+                       " triangles but the file has " + std::to_string(size) + " bytes");
+}
+
+}  // namespace
+
+Status read_file_bytes(const std::string& path, std::vector<char>& bytes) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return invalid_argument("cannot open '" + path + "' for reading");
+  bytes.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  if (f.bad()) return invalid_argument("cannot read '" + path + "': read error");
+  return {};
+}
+
+Status read_drc(const std::string& path, Mesh& out) {
+  std::vector<char> bytes;
+  if (Status s = read_file_bytes(path, bytes); !s.ok()) return s;
+  draco::DecoderBuffer buffer;
+  buffer.Init(bytes.data(), bytes.size());
+  auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
+  if (!type.ok()) return invalid_input("cannot decode '" + path + "': " + draco_message(type.status()));
+  if (type.value() != draco::TRIANGULAR_MESH)
+    return invalid_input("'" + path + "' is not a triangle mesh (Draco point cloud)");
+  draco::Decoder decoder;
+  auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
+  if (!decoded.ok()) return invalid_input("cannot decode '" + path + "': " + draco_message(decoded.status()));
+  return from_draco(path, *decoded.value(), out);
+}
+
+Status read_obj_or_stl(const std::string& path, Mesh& out) {
+  if (lower_extension(path) == ".stl") {
+    if (Status s = check_stl_size(path); !s.ok()) return s;
+  }
+  auto decoded = draco::ReadMeshFromFile(path);
+  if (!decoded.ok()) return invalid_input("cannot decode '" + path + "': " + draco_message(decoded.status()));
+  const std::unique_ptr<draco::Mesh> dm = std::move(decoded).value();
+  if (!dm) return invalid_input("cannot decode '" + path + "': Draco returned no mesh");
+  return from_draco(path, *dm, out);
+}
+
+}  // namespace fq::io

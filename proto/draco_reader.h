@@ -1,0 +1,23 @@
+// Readers for .drc, .obj and .stl through Draco (internal to fq_meshio; use read_mesh).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mesh_view.h"
+#include "status.h"
+
+namespace fq::io {
+
+/// Whole file into `bytes`; a status naming the file when it cannot be read.
+Status read_file_bytes(const std::string& path, std::vector<char>& bytes);
+
+/// Draco bitstream: a triangle mesh (a Draco point cloud is "not a triangle mesh").
+Status read_drc(const std::string& path, Mesh& out);
+
+/// OBJ or STL through draco::ReadMeshFromFile (which fan-triangulates OBJ polygons and
+/// merges duplicate points). A binary STL whose triangle count disagrees with its size is
+/// rejected first: Draco would trust the count and read far past the data.
+Status read_obj_or_stl(const std::string& path, Mesh& out);
+
+}  // namespace fq::io

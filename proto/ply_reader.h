@@ -1,0 +1,19 @@
+// PLY reading that keeps the file's vertices (internal to fq_meshio; use read_mesh).
+#pragma once
+
+#include <string>
+
+#include "mesh_view.h"
+#include "status.h"
+
+namespace fq::io {
+
+/// Reads a PLY with Draco's PlyReader (ASCII or binary little-endian). We do not use
+/// draco::ReadMeshFromFile for PLY because its PlyDecoder deduplicates attribute values
+/// and point ids, which merges coincident vertices (dragon.ply: 435,545 -> 383,559) and
+/// reorders them; filtered output must keep the input's vertex count and order.
+/// Faces must be triangles ("not a triangle mesh" otherwise); a file without a face
+/// element reads as zero triangles.
+Status read_ply(const std::string& path, Mesh& out);
+
+}  // namespace fq::io
