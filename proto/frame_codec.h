@@ -15,6 +15,11 @@ namespace fq::wire {
 /// Upper bound on the chunks of a frame (FrameHeader.chunk_count, encode_frame's `chunks`).
 inline constexpr uint32_t kMaxChunks = 256;
 
+/// Vertex ids and labels must be below this. Draco codes integer attributes exactly only for
+/// moderate values: its symbol coder allocates tables in proportion to the largest value
+/// (2^28 needs gigabytes) and values near 2^31 come back wrong.
+inline constexpr uint32_t kMaxAttributeValue = 1u << 24;
+
 /// Metadata name ("name" entry) of the GENERIC uint32 attribute holding the global vertex id.
 inline constexpr const char* kVertexIdAttribute = "fq_vid";
 /// Metadata name of the GENERIC uint32 attribute holding the per-vertex cluster label.
@@ -32,6 +37,7 @@ struct CodecOptions {
 /// chunk carries "fq_vid" (and "fq_label") and is quantized on the whole frame's bounding box,
 /// so vertices shared by chunks decode identically. Every vertex must be used by a triangle.
 /// `chunks` is clamped to the triangle count: out.size() is the number of chunks written.
+/// At most kMaxAttributeValue vertices; labels below kMaxAttributeValue.
 /// kInvalidArgument for bad options or chunk counts, kInvalidInput for a bad mesh.
 fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32_t chunks,
                         const CodecOptions& options, std::vector<std::string>& out);

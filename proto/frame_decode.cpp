@@ -3,6 +3,7 @@
 #include <draco/mesh/mesh.h>
 
 #include <algorithm>
+#include <exception>
 #include <string>
 
 #include "frame_codec.h"
@@ -147,7 +148,13 @@ fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t ve
   if (chunks.size() > kMaxChunks) return invalid_input("frame has more than " + std::to_string(kMaxChunks) + " chunks");
 
   std::vector<Chunk> cs(chunks.size());
-  detail::for_each_chunk(chunks.size(), options.threads, [&](size_t i) { decode_chunk(chunks[i], cs[i]); });
+  detail::for_each_chunk(chunks.size(), options.threads, [&](size_t i) {
+    try {
+      decode_chunk(chunks[i], cs[i]);
+    } catch (const std::exception& e) {  // bad_alloc on a forged chunk: this frame fails, not fqd
+      cs[i].status = invalid_input(std::string("decoding failed: ") + e.what());
+    }
+  });
   for (size_t i = 0; i < cs.size(); ++i) {
     if (!cs[i].status.ok()) return invalid_input("chunk " + std::to_string(i) + ": " + cs[i].status.message());
   }

@@ -5,6 +5,7 @@
 #include <draco/metadata/geometry_metadata.h>
 
 #include <algorithm>
+#include <exception>
 #include <memory>
 #include <string>
 
@@ -34,6 +35,20 @@ fq::Status check_all_used(const fq::MeshView& mesh) {
   if (it == used.end()) return {};
   return invalid_input("vertex " + std::to_string(it - used.begin()) +
                        " is used by no triangle (the frame codec carries only vertices of triangles)");
+}
+
+fq::Status check_ranges(const fq::MeshView& mesh, const uint32_t* labels) {
+  if (mesh.num_vertices > kMaxAttributeValue) {
+    return invalid_input(std::to_string(mesh.num_vertices) + " vertices: the frame codec carries at most " +
+                         std::to_string(kMaxAttributeValue));
+  }
+  for (uint32_t v = 0; labels && v < mesh.num_vertices; ++v) {
+    if (labels[v] >= kMaxAttributeValue) {
+      return invalid_argument("label " + std::to_string(labels[v]) + " of vertex " + std::to_string(v) +
+                              " is not below " + std::to_string(kMaxAttributeValue));
+    }
+  }
+  return {};
 }
 
 /// Adds a per-point GENERIC uint32 attribute named `name` (attribute metadata) with the values
@@ -109,15 +124,20 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
   }
   if (auto s = fq::check_mesh(mesh); !s.ok()) return s;
   if (auto s = check_all_used(mesh); !s.ok()) return s;
+  if (auto s = check_ranges(mesh, labels); !s.ok()) return s;
 
   const detail::Box box = detail::bounding_box(mesh);
   const auto parts = detail::split_triangles(mesh, box, std::min(chunks, mesh.num_triangles));
   std::vector<std::string> encoded(parts.size());
   std::vector<fq::Status> status(parts.size());
   detail::for_each_chunk(parts.size(), options.threads, [&](size_t i) {
-    draco::Mesh m;
-    build_chunk(mesh, labels, parts[i], m);
-    status[i] = encode_chunk(m, options, box, encoded[i]);
+    try {
+      draco::Mesh m;
+      build_chunk(mesh, labels, parts[i], m);
+      status[i] = encode_chunk(m, options, box, encoded[i]);
+    } catch (const std::exception& e) {  // bad_alloc: a fault of this frame, not of the process
+      status[i] = {fq::StatusCode::kInternal, std::string("encoding failed: ") + e.what()};
+    }
   });
   for (size_t i = 0; i < parts.size(); ++i) {
     if (!status[i].ok()) return {status[i].code(), "chunk " + std::to_string(i) + ": " + status[i].message()};

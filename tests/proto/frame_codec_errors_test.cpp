@@ -1,0 +1,160 @@
+// Frames the codec must refuse, and plain Draco meshes from other producers.
+#include <draco/compression/encode.h>
+#include <draco/mesh/mesh.h>
+#include <draco/point_cloud/point_cloud.h>
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+
+#include "frame_codec.h"
+#include "proto_test_meshes.h"
+
+namespace fq::wire {
+namespace {
+
+using test_proto::triangle_set;
+
+std::vector<std::string> encode(const Mesh& m, uint32_t chunks) {
+  std::vector<std::string> out;
+  const Status s = encode_frame(m.view(), nullptr, chunks, CodecOptions{}, out);
+  EXPECT_TRUE(s.ok()) << s.message();
+  return out;
+}
+
+Status decode(const std::vector<std::string>& chunks, uint32_t vertex_count, Mesh& out) {
+  std::vector<std::string_view> v(chunks.begin(), chunks.end());
+  CodecOptions o;
+  o.threads = 2;
+  return decode_frame(v, vertex_count, o, out, nullptr);
+}
+
+/// `m` as a plain Draco mesh (no fq attributes, float positions kept exactly), as any
+/// producer using draco::Encoder would send it. With `cloud`, a point cloud instead.
+std::string plain_draco(const Mesh& m, bool cloud = false) {
+  draco::Mesh dm;
+  dm.set_num_points(m.num_vertices());
+  draco::GeometryAttribute ga;
+  ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 12, 0);
+  auto* pa = dm.attribute(dm.AddAttribute(ga, true, m.num_vertices()));
+  for (uint32_t v = 0; v < m.num_vertices(); ++v) pa->SetAttributeValue(draco::AttributeValueIndex(v), &m.positions[3 * v]);
+  for (uint32_t t = 0; t < m.num_triangles(); ++t) {
+    dm.AddFace({draco::PointIndex(m.triangles[3 * t]), draco::PointIndex(m.triangles[3 * t + 1]),
+                draco::PointIndex(m.triangles[3 * t + 2])});
+  }
+  draco::Encoder enc;
+  draco::EncoderBuffer buf;
+  const draco::Status s = cloud ? enc.EncodePointCloudToBuffer(dm, &buf) : enc.EncodeMeshToBuffer(dm, &buf);
+  EXPECT_TRUE(s.ok()) << s.error_msg_string();
+  return {buf.data(), buf.size()};
+}
+
+TEST(FrameCodecErrors, PlainDracoMeshIsASingleChunkFrame) {
+  const Mesh m = test_proto::make_bumpy_grid(12, 9);
+  const std::vector<std::string> chunks{plain_draco(m)};
+  Mesh out;
+  ASSERT_TRUE(decode(chunks, 0, out).ok());
+  ASSERT_EQ(out.num_vertices(), m.num_vertices());
+  ASSERT_EQ(out.num_triangles(), m.num_triangles());
+  // Draco reorders points: map decoded vertices back through their (exact) positions.
+  std::map<std::array<float, 3>, uint32_t> by_position;
+  for (uint32_t v = 0; v < m.num_vertices(); ++v) by_position[{m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]}] = v;
+  std::vector<uint32_t> mapped;
+  for (uint32_t v : out.triangles) {
+    const auto it = by_position.find({out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]});
+    ASSERT_NE(it, by_position.end());
+    mapped.push_back(it->second);
+  }
+  EXPECT_EQ(triangle_set(mapped), triangle_set(m.triangles));
+  EXPECT_TRUE(decode(chunks, m.num_vertices(), out).ok());
+  EXPECT_EQ(decode(chunks, m.num_vertices() + 1, out).code(), StatusCode::kInvalidInput);
+}
+
+TEST(FrameCodecErrors, PlainMeshCannotJoinAMultiChunkFrame) {
+  const Mesh m = test_proto::make_bumpy_grid(8, 8);
+  std::vector<std::string> chunks = encode(m, 2);
+  chunks[1] = plain_draco(m);
+  Mesh out;
+  const Status s = decode(chunks, m.num_vertices(), out);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(s.message().find("fq_vid"), std::string::npos) << s.message();
+}
+
+TEST(FrameCodecErrors, PointCloudRejected) {
+  Mesh out;
+  const Status s = decode({plain_draco(test_proto::make_bumpy_grid(3, 3), true)}, 0, out);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(s.message().find("point cloud"), std::string::npos) << s.message();
+}
+
+TEST(FrameCodecErrors, TruncatedOrGarbageChunkRejected) {
+  const Mesh m = test_proto::make_bumpy_grid(10, 10);
+  const std::vector<std::string> chunks = encode(m, 2);
+  Mesh out;
+  for (size_t keep : {size_t(0), size_t(5), size_t(20), chunks[1].size() / 2, chunks[1].size() - 1}) {
+    std::vector<std::string> cut = chunks;
+    cut[1].resize(keep);
+    const Status s = decode(cut, m.num_vertices(), out);
+    EXPECT_EQ(s.code(), StatusCode::kInvalidInput) << "kept " << keep << " bytes";
+    EXPECT_NE(s.message().find("chunk 1"), std::string::npos) << s.message();
+  }
+  EXPECT_EQ(decode({std::string("not draco at all")}, 0, out).code(), StatusCode::kInvalidInput);
+  EXPECT_EQ(decode({}, 0, out).code(), StatusCode::kInvalidInput);
+}
+
+TEST(FrameCodecErrors, VertexIdOutOfRangeRejected) {
+  const Mesh m = test_proto::make_bumpy_grid(10, 10);
+  Mesh out;
+  const Status s = decode(encode(m, 3), m.num_vertices() - 1, out);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(s.message().find("out of range"), std::string::npos) << s.message();
+}
+
+TEST(FrameCodecErrors, MissingChunkRejected) {
+  const Mesh m = test_proto::make_bumpy_grid(16, 16);
+  std::vector<std::string> chunks = encode(m, 4);
+  Mesh out;
+  ASSERT_TRUE(decode(chunks, m.num_vertices(), out).ok());
+  chunks.erase(chunks.begin() + 1);
+  EXPECT_EQ(decode(chunks, m.num_vertices(), out).code(), StatusCode::kInvalidInput);
+  EXPECT_EQ(decode(chunks, 0, out).code(), StatusCode::kInvalidInput);
+  // With a huge count, too: the check must not allocate for a forged vertex_count.
+  EXPECT_EQ(decode(chunks, 0xffffffffu, out).code(), StatusCode::kInvalidInput);
+}
+
+TEST(FrameCodecErrors, VertexNeverCoveredNamesTheVertex) {
+  // Two chunks that together cover every vertex but one, with vertex_count saying so.
+  const Mesh m = test_proto::make_bumpy_grid(16, 16);
+  std::vector<std::string> chunks = encode(m, 2);
+  chunks.push_back(chunks[0]);  // a repeated chunk adds points but covers nothing new
+  chunks.erase(chunks.begin() + 1);
+  Mesh out;
+  const Status s = decode(chunks, m.num_vertices(), out);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(s.message().find("in no chunk"), std::string::npos) << s.message();
+}
+
+TEST(FrameCodecErrors, BadEncodeInputRejected) {
+  Mesh m = test_proto::make_bumpy_grid(4, 4);
+  std::vector<std::string> out;
+  EXPECT_EQ(encode_frame(m.view(), nullptr, 0, CodecOptions{}, out).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(encode_frame(m.view(), nullptr, kMaxChunks + 1, CodecOptions{}, out).code(), StatusCode::kInvalidArgument);
+  CodecOptions bad;
+  bad.position_bits = 31;
+  EXPECT_EQ(encode_frame(m.view(), nullptr, 1, bad, out).code(), StatusCode::kInvalidArgument);
+  Mesh isolated = m;
+  isolated.positions.insert(isolated.positions.end(), {9.f, 9.f, 9.f});
+  const Status s = encode_frame(isolated.view(), nullptr, 1, CodecOptions{}, out);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(s.message().find("used by no triangle"), std::string::npos) << s.message();
+  std::vector<uint32_t> labels(m.num_vertices(), 0);
+  labels[3] = kMaxAttributeValue;
+  EXPECT_EQ(encode_frame(m.view(), labels.data(), 1, CodecOptions{}, out).code(), StatusCode::kInvalidArgument);
+  Mesh broken = m;
+  broken.triangles[4] = 1000;
+  EXPECT_EQ(encode_frame(broken.view(), nullptr, 2, CodecOptions{}, out).code(), StatusCode::kInvalidInput);
+  EXPECT_TRUE(out.empty());
+}
+
+}  // namespace
+}  // namespace fq::wire

@@ -1,0 +1,143 @@
+// Chunked Draco frames: split, encode, decode and merge give back the input mesh.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "frame_codec.h"
+#include "frame_split.h"
+#include "proto_test_meshes.h"
+
+namespace fq::wire {
+namespace {
+
+using test_proto::triangle_set;
+
+std::vector<std::string_view> views(const std::vector<std::string>& chunks) {
+  return {chunks.begin(), chunks.end()};
+}
+
+/// Encodes `m` in `chunks` chunks and decodes it back (on `threads` threads both ways).
+Mesh round_trip(const Mesh& m, uint32_t chunks, int threads = 2, const uint32_t* labels = nullptr,
+                std::vector<uint32_t>* labels_out = nullptr) {
+  CodecOptions o;
+  o.threads = threads;
+  std::vector<std::string> encoded;
+  const Status es = encode_frame(m.view(), labels, chunks, o, encoded);
+  EXPECT_TRUE(es.ok()) << es.message();
+  EXPECT_EQ(encoded.size(), std::min(chunks, m.num_triangles()));
+  Mesh out;
+  const Status ds = decode_frame(views(encoded), m.num_vertices(), o, out, labels_out);
+  EXPECT_TRUE(ds.ok()) << ds.message();
+  return out;
+}
+
+/// Same vertex count, same triangles (by global id, orientation kept), positions within half a
+/// 16-bit quantization step of the frame's bounding box.
+void expect_same_mesh(const Mesh& in, const Mesh& out) {
+  ASSERT_EQ(out.num_vertices(), in.num_vertices());
+  EXPECT_EQ(triangle_set(out.triangles), triangle_set(in.triangles));
+  float lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) lo[a] = hi[a] = in.positions[a];
+  for (size_t i = 0; i < in.positions.size(); ++i) {
+    lo[i % 3] = std::min(lo[i % 3], in.positions[i]);
+    hi[i % 3] = std::max(hi[i % 3], in.positions[i]);
+  }
+  const float extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  const float tolerance = 0.5f * extent / 65535.f * 1.01f + 1e-6f * extent;
+  float worst = 0.f;
+  for (size_t i = 0; i < in.positions.size(); ++i) worst = std::max(worst, std::abs(in.positions[i] - out.positions[i]));
+  EXPECT_LE(worst, tolerance);
+}
+
+void check_chunk_counts(const Mesh& m) {
+  const Mesh whole = round_trip(m, 1);
+  expect_same_mesh(m, whole);
+  for (uint32_t chunks : {2u, 4u, 7u}) {
+    SCOPED_TRACE("chunks " + std::to_string(chunks));
+    const Mesh split = round_trip(m, chunks);
+    expect_same_mesh(m, split);
+    EXPECT_EQ(split.positions, whole.positions);  // one quantization grid: bit for bit
+  }
+}
+
+TEST(FrameCodec, MeshMadeInCodeAnyChunkCount) {
+  check_chunk_counts(test_proto::make_bumpy_grid(40, 30));
+}
+
+TEST(FrameCodec, RealMeshAnyChunkCount) {
+  const auto m = test_proto::load_shared_mesh("bunny.ply");
+  if (!m) GTEST_SKIP() << "bunny.ply not found (set FQ_MESH_DIR)";
+  check_chunk_counts(*m);
+}
+
+TEST(FrameCodec, ThreadCountDoesNotChangeTheResult) {
+  const Mesh m = test_proto::make_bumpy_grid(30, 30);
+  const Mesh a = round_trip(m, 5, 1);
+  const Mesh b = round_trip(m, 5, 3);
+  EXPECT_EQ(a.positions, b.positions);
+  EXPECT_EQ(a.triangles, b.triangles);
+}
+
+TEST(FrameCodec, ChunksAreSpatiallyCoherent) {
+  // Border vertices appear in every chunk that uses them: a coherent split of a 64 x 8 strip
+  // into 4 repeats only the 3 cut lines, a scattered one would repeat most vertices.
+  const Mesh m = test_proto::make_bumpy_grid(64, 8);
+  const auto parts = detail::split_triangles(m.view(), detail::bounding_box(m.view()), 4);
+  ASSERT_EQ(parts.size(), 4u);
+  size_t triangles = 0, vertices = 0;
+  for (const auto& part : parts) {
+    EXPECT_EQ(part.size(), m.num_triangles() / 4);
+    triangles += part.size();
+    std::vector<uint32_t> used;
+    for (uint32_t t : part) used.insert(used.end(), &m.triangles[3 * t], &m.triangles[3 * t] + 3);
+    std::sort(used.begin(), used.end());
+    vertices += std::unique(used.begin(), used.end()) - used.begin();
+  }
+  EXPECT_EQ(triangles, m.num_triangles());
+  EXPECT_LE(vertices, m.num_vertices() + 3 * 9 + 6);
+}
+
+TEST(FrameCodec, LabelsRoundTrip) {
+  const Mesh m = test_proto::make_bumpy_grid(20, 20);
+  std::vector<uint32_t> labels(m.num_vertices());
+  for (uint32_t v = 0; v < labels.size(); ++v) labels[v] = v % 3 == 0 ? kMaxAttributeValue - 1 - v : (v * 7919u) % 1000003u;
+  for (uint32_t chunks : {1u, 3u}) {
+    std::vector<uint32_t> out;
+    const Mesh back = round_trip(m, chunks, 2, labels.data(), &out);
+    EXPECT_EQ(out, labels) << chunks << " chunks";
+  }
+  std::vector<uint32_t> none{1, 2, 3};
+  round_trip(m, 2, 2, nullptr, &none);
+  EXPECT_TRUE(none.empty());  // no fq_label: labels cleared, not stale
+}
+
+TEST(FrameCodec, DuplicatePositionsStayDistinctVertices) {
+  const Mesh soup = test_proto::make_soup(test_proto::make_bumpy_grid(6, 5));
+  for (uint32_t chunks : {1u, 3u}) {
+    const Mesh back = round_trip(soup, chunks);
+    expect_same_mesh(soup, back);
+  }
+  // Two vertices at exactly the same point, both used, like dragon.ply.
+  Mesh pair = test_proto::make_bumpy_grid(2, 2);
+  pair.positions.insert(pair.positions.end(), pair.positions.begin() + 3 * 4, pair.positions.begin() + 3 * 4 + 3);
+  pair.triangles[0] = 9;  // triangle 0 now uses the twin of vertex 0 ... at vertex 4's position
+  const Mesh back = round_trip(pair, 1);
+  expect_same_mesh(pair, back);
+}
+
+TEST(FrameCodec, NonManifoldFinRoundTrips) {
+  Mesh fin;
+  fin.positions = {0, 0, 0, 1, 0, 0, 0.5f, 1, 0, 0.5f, -1, 0, 0.5f, 0, 1};
+  fin.triangles = {0, 1, 2, 1, 0, 3, 0, 1, 4};
+  for (uint32_t chunks : {1u, 2u, 3u}) expect_same_mesh(fin, round_trip(fin, chunks));
+}
+
+TEST(FrameCodec, MoreChunksThanTrianglesIsClamped) {
+  const Mesh m = test_proto::make_bumpy_grid(1, 1);
+  expect_same_mesh(m, round_trip(m, 9));
+}
+
+}  // namespace
+}  // namespace fq::wire
