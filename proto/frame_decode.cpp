@@ -55,7 +55,10 @@ fq::Status read_mesh(const draco::Mesh& m, Chunk& c) {
   c.triangles.resize(3 * size_t(m.num_faces()));
   for (uint32_t f = 0; f < m.num_faces(); ++f) {
     const auto& face = m.face(draco::FaceIndex(f));
-    for (int k = 0; k < 3; ++k) c.triangles[3 * size_t(f) + k] = face[k].value();
+    for (int k = 0; k < 3; ++k) {
+      if (face[k].value() >= m.num_points()) return invalid_input("face " + std::to_string(f) + " out of range");
+      c.triangles[3 * size_t(f) + k] = face[k].value();
+    }
   }
   return {};
 }

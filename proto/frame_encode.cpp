@@ -70,7 +70,8 @@ void add_uint_attribute(draco::Mesh& m, const char* name, const std::vector<uint
 
 /// One chunk as a draco::Mesh whose points are the chunk's vertices in ascending global id.
 /// Built directly (not with a mesh builder) so that no deduplication can merge two vertices.
-void build_chunk(const fq::MeshView& mesh, const uint32_t* labels, const std::vector<uint32_t>& tris,
+/// Returns whether a face repeats a vertex (edgebreaker would silently drop it).
+bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, const std::vector<uint32_t>& tris,
                  draco::Mesh& m) {
   std::vector<uint32_t> global;
   global.reserve(tris.size() * 3);
@@ -92,16 +93,21 @@ void build_chunk(const fq::MeshView& mesh, const uint32_t* labels, const std::ve
   auto local = [&](uint32_t g) {
     return draco::PointIndex(static_cast<uint32_t>(std::lower_bound(global.begin(), global.end(), g) - global.begin()));
   };
+  bool repeated_index = false;
   for (uint32_t t : tris) {
     const uint32_t* f = mesh.triangles + 3 * size_t(t);
+    repeated_index |= f[0] == f[1] || f[1] == f[2] || f[2] == f[0];
     m.AddFace({local(f[0]), local(f[1]), local(f[2])});
   }
+  return repeated_index;
 }
 
-fq::Status encode_chunk(const draco::Mesh& m, const CodecOptions& o, const detail::Box& box,
-                        std::string& out) {
+fq::Status encode_chunk(const draco::Mesh& m, bool repeated_index, const CodecOptions& o,
+                        const detail::Box& box, std::string& out) {
   draco::Encoder enc;
   enc.SetSpeedOptions(o.encode_speed, o.decode_speed);
+  // Edgebreaker drops faces with a repeated vertex; the sequential coder keeps every face as is.
+  if (repeated_index) enc.SetEncodingMethod(draco::MESH_SEQUENTIAL_ENCODING);
   // One explicit grid for every chunk: a vertex on a chunk border decodes identically in both.
   const float extent = box.max_extent();
   enc.SetAttributeExplicitQuantization(draco::GeometryAttribute::POSITION, o.position_bits, 3, box.lo,
@@ -133,8 +139,8 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
   detail::for_each_chunk(parts.size(), options.threads, [&](size_t i) {
     try {
       draco::Mesh m;
-      build_chunk(mesh, labels, parts[i], m);
-      status[i] = encode_chunk(m, options, box, encoded[i]);
+      const bool repeated_index = build_chunk(mesh, labels, parts[i], m);
+      status[i] = encode_chunk(m, repeated_index, options, box, encoded[i]);
     } catch (const std::exception& e) {  // bad_alloc: a fault of this frame, not of the process
       status[i] = {fq::StatusCode::kInternal, std::string("encoding failed: ") + e.what()};
     }

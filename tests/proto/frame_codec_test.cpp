@@ -122,7 +122,7 @@ TEST(FrameCodec, DuplicatePositionsStayDistinctVertices) {
   // Two vertices at exactly the same point, both used, like dragon.ply.
   Mesh pair = test_proto::make_bumpy_grid(2, 2);
   pair.positions.insert(pair.positions.end(), pair.positions.begin() + 3 * 4, pair.positions.begin() + 3 * 4 + 3);
-  pair.triangles[0] = 9;  // triangle 0 now uses the twin of vertex 0 ... at vertex 4's position
+  pair.triangles[0] = 9;  // triangle 0 now uses vertex 9, at exactly vertex 4's position
   const Mesh back = round_trip(pair, 1);
   expect_same_mesh(pair, back);
 }
@@ -137,6 +137,31 @@ TEST(FrameCodec, NonManifoldFinRoundTrips) {
 TEST(FrameCodec, MoreChunksThanTrianglesIsClamped) {
   const Mesh m = test_proto::make_bumpy_grid(1, 1);
   expect_same_mesh(m, round_trip(m, 9));
+}
+
+}  // namespace
+}  // namespace fq::wire
+
+namespace fq::wire {
+namespace {
+
+TEST(FrameCodec, ZeroAreaAndRepeatedTrianglesAreKept) {
+  // Draco's edgebreaker drops a face with a repeated index: the codec must not lose it, nor a
+  // collinear face, nor a face given twice (once each way).
+  Mesh m = test_proto::make_bumpy_grid(4, 4);
+  m.positions.insert(m.positions.end(), {0.05f, 0.f, 0.f});  // midpoint of edge (0, 1)
+  const uint32_t mid = m.num_vertices() - 1;
+  m.triangles.insert(m.triangles.end(), {0, 0, 1, 0, mid, 1, 7, 8, 13, 7, 13, 8});
+  for (uint32_t chunks : {1u, 2u, 5u}) {
+    CodecOptions o;
+    std::vector<std::string> encoded;
+    ASSERT_TRUE(encode_frame(m.view(), nullptr, chunks, o, encoded).ok());
+    Mesh out;
+    std::vector<std::string_view> v(encoded.begin(), encoded.end());
+    const Status s = decode_frame(v, m.num_vertices(), o, out, nullptr);
+    ASSERT_TRUE(s.ok()) << s.message();
+    EXPECT_EQ(test_proto::triangle_set(out.triangles), test_proto::triangle_set(m.triangles)) << chunks;
+  }
 }
 
 }  // namespace
