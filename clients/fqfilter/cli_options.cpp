@@ -1,0 +1,120 @@
+#include "cli_options.h"
+
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+namespace fq::cli {
+
+namespace {
+
+void add_filter_options(CLI::App& app, Options& o, std::string& mode) {
+  FilterParams& f = o.params.f;
+  const std::string g = "Filter";
+  app.add_option("--mode", mode, "Filter: qf (filtered quadrics, the paper) or bf (bilateral baseline)")
+      ->check(CLI::IsMember({"qf", "bf"}))
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--sigma-s", f.sigma_s, "Spatial extent of the diffusion, in mean edge lengths")
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--sigma-r", f.sigma_r, "Range extent (RMS quadric distance), in mean edge lengths")
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--sigma-b", f.sigma_b, "Finest detail captured by the neighbourhood quadrics; 0 = sigma-s/2")
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--sigma-n", f.sigma_n, "Normal smoothing of --constrained; 0 = sigma-s/2")
+      ->capture_default_str()
+      ->group(g);
+  app.add_flag("--constrained", f.constrained, "Move vertices along the smoothed normal only")->group(g);
+  app.add_option("--tikhonov", f.tikhonov, "Pull toward the current position, relative to tr(A)/3; 0 = paper")
+      ->capture_default_str()
+      ->group(g);
+}
+
+void add_cluster_options(CLI::App& app, Options& o, std::string& method, bool& no_filter) {
+  ClusterParams& c = o.params.c;
+  const std::string g = "Clustering";
+  app.add_flag("--cluster", o.params.cluster, "Compute a cluster label per vertex (written with the output)")
+      ->group(g);
+  app.add_flag("--no-filter", no_filter, "Cluster only: keep the input positions (implies --cluster)")->group(g);
+  app.add_option("--cluster-method", method, "quadric (the paper) or euclidean (plain quick shift)")
+      ->check(CLI::IsMember({"quadric", "euclidean"}))
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--sigma-d", c.sigma_d, "Spatial extent of score and proximity, in mean edge lengths")
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--sigma-q", c.sigma_q, "Range extent of the clustering (RMS quadric distance)")
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--theta", c.theta, "In (0, 1]; higher gives fewer, larger clusters")
+      ->capture_default_str()
+      ->group(g);
+}
+
+void add_run_options(CLI::App& app, Options& o, std::string& engine) {
+  app.add_option("IN", o.input, "Mesh file (.ply .obj .stl .drc) or folder of them")->required();
+  app.add_option("OUT", o.output, "Output file (.ply or .drc), or folder when IN is a folder; none: write nothing");
+  app.add_option("--engine", engine, "auto (CUDA when a GPU is present), cpu or cuda")
+      ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
+      ->capture_default_str();
+  app.add_option("--threads", o.engine.threads, "CPU engine threads; 0 = all hardware threads")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
+  app.add_option("--noise", o.noise_sigma, "Add Gaussian noise of this std (mean edge lengths) before filtering")
+      ->check(CLI::Range(0.0, 100.0));
+  app.add_option("--seed", o.seed, "Seed of --noise")->capture_default_str();
+  app.add_option("--reference", o.reference, "Clean mesh (same vertices and faces) to measure errors against");
+  app.add_option("--repeat", o.repeat, "Run the engine N times per mesh; timings are medians")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  app.add_option("--drc-bits", o.drc_bits, "Position quantization bits of .drc outputs (0 = lossless)")
+      ->check(CLI::Range(0, 30))
+      ->capture_default_str();
+  app.add_flag("--json", o.json, "One JSON object per mesh on stdout (see docs/FQFILTER.md)");
+}
+
+/// Checks that need several options together; empty when consistent.
+std::string cross_check(const Options& o) {
+  if (Status s = validate(o.params); !s.ok()) return s.message();
+  if (!o.reference.empty() && o.reference == o.input) return "--reference must differ from the input";
+  return {};
+}
+
+}  // namespace
+
+const char* filter_method_name(FilterMethod m) { return m == FilterMethod::kQuadric ? "qf" : "bf"; }
+const char* cluster_method_name(ClusterMethod m) { return m == ClusterMethod::kQuadric ? "quadric" : "euclidean"; }
+
+ParseOutcome parse_options(int argc, char** argv, Options& o) {
+  CLI::App app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)", "fqfilter"};
+  std::string mode = "qf", method = "quadric", engine = "auto";
+  bool no_filter = false;
+  add_run_options(app, o, engine);
+  add_filter_options(app, o, mode);
+  add_cluster_options(app, o, method, no_filter);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return {false, app.exit(e)};
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "fqfilter: error: " << e.what() << " (see fqfilter --help)\n";
+    return {false, 2};
+  }
+  o.params.f.method = mode == "qf" ? FilterMethod::kQuadric : FilterMethod::kBilateral;
+  o.params.c.method = method == "quadric" ? ClusterMethod::kQuadric : ClusterMethod::kEuclidean;
+  parse_engine_kind(engine, o.engine.kind);
+  if (no_filter) {
+    o.params.filter = false;
+    o.params.cluster = true;
+  }
+  if (const std::string why = cross_check(o); !why.empty()) {
+    std::cerr << "fqfilter: error: " << why << "\n";
+    return {false, 2};
+  }
+  return {true, 0};
+}
+
+}  // namespace fq::cli

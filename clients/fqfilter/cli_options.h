@@ -1,0 +1,41 @@
+// fqfilter's command line: every option, its default and its checks (CLI11).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "engine.h"
+#include "params.h"
+
+namespace fq::cli {
+
+struct Options {
+  std::string input;       ///< a mesh file or a folder of them
+  std::string output;      ///< file (.ply/.drc) or folder; empty: write nothing
+  EngineOptions engine;
+  Params params;           ///< defaults from fq::Params
+  double noise_sigma = 0;  ///< in mean edge lengths; 0: no noise
+  uint64_t seed = 1;
+  std::string reference;   ///< clean mesh for the metrics; empty: the input when noise is added
+  int repeat = 1;          ///< engine runs per frame; timings are medians
+  int drc_bits = 16;       ///< position quantization of .drc outputs
+  bool json = false;
+
+  bool has_metrics() const { return noise_sigma > 0 || !reference.empty(); }
+};
+
+/// Outcome of parsing: run, or exit with `exit_code` (help printed, or an error line).
+struct ParseOutcome {
+  bool run = false;
+  int exit_code = 0;
+};
+
+/// Parses argv into `out`. Prints help to stdout, or one "fqfilter: error: ..." line to
+/// stderr (exit code 2) for a bad option, a bad value or inconsistent options.
+ParseOutcome parse_options(int argc, char** argv, Options& out);
+
+/// "qf" / "bf", "quadric" / "euclidean": the names used on the command line and in JSON.
+const char* filter_method_name(FilterMethod m);
+const char* cluster_method_name(ClusterMethod m);
+
+}  // namespace fq::cli

@@ -1,0 +1,141 @@
+#include "file_report.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cstdlib>
+#include <cmath>
+#include <iomanip>
+#include <numbers>
+#include <ostream>
+
+#include "cli_options.h"
+
+namespace fq::cli {
+
+namespace {
+
+/// A float parameter as the double with the same shortest decimal form (0.9f -> 0.9,
+/// not 0.8999999761581421), so JSON shows the value the user typed.
+double as_typed(float v) {
+  char buf[32];
+  const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
+  return std::strtod(std::string(buf, end).c_str(), nullptr);
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+nlohmann::json params_json(const Params& p) {
+  const FilterParams& f = p.f;
+  return {{"filter", p.filter},
+          {"cluster", p.cluster},
+          {"mode", filter_method_name(f.method)},
+          {"sigma_s", as_typed(f.sigma_s)},
+          {"sigma_r", as_typed(f.sigma_r)},
+          {"sigma_b", as_typed(f.effective_sigma_b())},
+          {"sigma_n", as_typed(f.effective_sigma_n())},
+          {"constrained", f.constrained},
+          {"tikhonov", as_typed(f.tikhonov)},
+          {"cluster_method", cluster_method_name(p.c.method)},
+          {"sigma_d", as_typed(p.c.sigma_d)},
+          {"sigma_q", as_typed(p.c.sigma_q)},
+          {"theta", as_typed(p.c.theta)}};
+}
+
+nlohmann::json error_json(const std::optional<MeshError>& e) {
+  if (!e) return nullptr;
+  return {{"rmse_over_diagonal", e->rmse_over_diagonal},
+          {"mfne_rad", e->mfne.mean_radians},
+          {"mfne_deg", e->mfne.mean_radians * 180.0 / std::numbers::pi},
+          {"faces_skipped", e->mfne.faces_skipped}};
+}
+
+void print_error_row(std::ostream& os, const char* what, const std::optional<MeshError>& e) {
+  if (!e) return;
+  os << "  " << std::left << std::setw(14) << what << std::right << std::scientific << std::setprecision(3)
+     << std::setw(12) << e->rmse_over_diagonal << std::fixed << std::setprecision(3) << std::setw(12)
+     << e->mfne.mean_radians * 180.0 / std::numbers::pi << "\n";
+}
+
+}  // namespace
+
+void summarize_timings(const std::vector<std::vector<PassTiming>>& runs, FileReport& report) {
+  report.passes.clear();
+  std::vector<double> totals;
+  for (const auto& run : runs) {
+    double t = 0.0;
+    for (const PassTiming& p : run) t += p.ms;
+    totals.push_back(t);
+  }
+  report.total_ms = median(totals);
+  if (runs.empty()) return;
+  for (const PassTiming& first : runs.front()) {
+    std::vector<double> ms;
+    for (const auto& run : runs) {
+      for (const PassTiming& p : run) {
+        if (p.name == first.name) ms.push_back(p.ms);
+      }
+    }
+    report.passes.push_back({first.name, median(ms)});
+  }
+}
+
+nlohmann::json to_json(const FileReport& r) {
+  nlohmann::json j = {{"file", r.file}};
+  if (!r.error.empty()) {
+    j["error"] = r.error;
+    return j;
+  }
+  nlohmann::json passes = nlohmann::json::array();
+  for (const PassTiming& p : r.passes) passes.push_back({{"name", p.name}, {"ms", p.ms}});
+  j.update({{"output", r.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.output)},
+            {"engine", r.engine},
+            {"threads", r.threads},
+            {"vertices", r.vertices},
+            {"triangles", r.triangles},
+            {"mean_edge", r.mean_edge},
+            {"params", params_json(r.params)},
+            {"noise", r.noise_sigma > 0 ? nlohmann::json{{"sigma", r.noise_sigma}, {"seed", r.seed}}
+                                        : nlohmann::json(nullptr)},
+            {"repeat", r.repeat},
+            {"timings_ms", {{"passes", passes}, {"total", r.total_ms}}},
+            {"clusters", r.clusters ? nlohmann::json(*r.clusters) : nlohmann::json(nullptr)}});
+  if (r.reference.empty()) {
+    j["metrics"] = nullptr;
+  } else {
+    j["metrics"] = {{"reference", r.reference}, {"input", error_json(r.input_error)},
+                    {"output", error_json(r.output_error)}};
+  }
+  return j;
+}
+
+void print_human(const FileReport& r, std::ostream& os) {
+  const auto flags = os.flags();
+  os << r.file << ": " << r.vertices << " V, " << r.triangles << " T, mean edge " << std::setprecision(5)
+     << r.mean_edge << ", engine " << r.engine;
+  if (r.threads > 0) os << " (" << r.threads << " threads)";
+  os << "\n";
+  os << "  " << std::left << std::setw(24) << "pass" << std::right << std::setw(10) << "ms" << "\n" << std::fixed;
+  for (const PassTiming& p : r.passes)
+    os << "  " << std::left << std::setw(24) << p.name << std::right << std::setw(10) << std::setprecision(2) << p.ms
+       << "\n";
+  os << "  " << std::left << std::setw(24) << "total" << std::right << std::setw(10) << std::setprecision(2)
+     << r.total_ms;
+  if (r.repeat > 1) os << "  (median of " << r.repeat << " runs)";
+  os << "\n";
+  if (r.clusters) os << "  clusters: " << *r.clusters << "\n";
+  if (!r.reference.empty()) {
+    os << "  error vs " << r.reference << "\n  " << std::left << std::setw(14) << "" << std::right << std::setw(12)
+       << "RMSE/diag" << std::setw(12) << "MFNE (deg)" << "\n";
+    print_error_row(os, r.noise_sigma > 0 ? "noisy input" : "input", r.input_error);
+    print_error_row(os, "result", r.output_error);
+  }
+  if (!r.output.empty()) os << "  wrote " << r.output << "\n";
+  os.flags(flags);
+}
+
+}  // namespace fq::cli

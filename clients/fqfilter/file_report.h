@@ -1,0 +1,54 @@
+// What fqfilter measured for one mesh, printed as a table or as one JSON object.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine.h"
+#include "metrics.h"
+#include "params.h"
+
+namespace fq::cli {
+
+/// Error of one vertex set against the reference.
+struct MeshError {
+  double rmse_over_diagonal = 0.0;
+  MfneResult mfne;
+};
+
+struct FileReport {
+  std::string file;
+  std::string output;      ///< written file; empty when none
+  std::string engine;      ///< Engine::name()
+  int threads = 0;         ///< CPU engine threads; 0 for other engines
+  uint32_t vertices = 0;
+  uint32_t triangles = 0;
+  double mean_edge = 0.0;  ///< of the engine's input, in input units
+  Params params;
+  double noise_sigma = 0.0;
+  uint64_t seed = 0;
+  int repeat = 1;
+  std::vector<PassTiming> passes;  ///< median ms of each pass over the repeats
+  double total_ms = 0.0;           ///< median of the per-run totals
+  std::optional<uint32_t> clusters;
+  std::string reference;           ///< what the metrics compare to; empty: no metrics
+  std::optional<MeshError> input_error;   ///< engine input (noisy) vs reference
+  std::optional<MeshError> output_error;  ///< result vs reference (when filtering)
+  std::string error;                      ///< non-empty when the file failed
+};
+
+/// Per pass (by name, in the first run's order) the median over runs, and the median total.
+void summarize_timings(const std::vector<std::vector<PassTiming>>& runs, FileReport& report);
+
+/// The JSON object documented in docs/FQFILTER.md (NaN values become null).
+nlohmann::json to_json(const FileReport& report);
+
+/// Compact human-readable table: header line, pass timings, clusters, metrics.
+void print_human(const FileReport& report, std::ostream& os);
+
+}  // namespace fq::cli

@@ -1,0 +1,76 @@
+// fqfilter: offline front end of the fq engines. See docs/FQFILTER.md.
+#include <exception>
+#include <filesystem>
+#include <iostream>
+
+#include "cli_options.h"
+#include "engine.h"
+#include "file_job.h"
+#include "folder_mode.h"
+#include "mesh_io.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using fq::cli::Options;
+
+/// Output path for a single input: OUT itself, or OUT/<name>.ply when OUT is a folder.
+std::string single_output_path(const Options& o) {
+  std::error_code ec;
+  if (!o.output.empty() && fs::is_directory(o.output, ec))
+    return (fs::path(o.output) / (fs::path(o.input).stem().string() + ".ply")).string();
+  return o.output;
+}
+
+int run_single(const Options& o, fq::Engine& engine) {
+  const std::string output = single_output_path(o);
+  const std::string ext = fq::io::lower_extension(output);
+  if (!output.empty() && ext != ".ply" && ext != ".drc") {
+    std::cerr << "fqfilter: error: OUT '" << output << "' must end in .ply or .drc\n";
+    return 2;
+  }
+  fq::cli::FileReport report;
+  const fq::Status s = fq::cli::run_file_job(o.input, output, o, engine, report);
+  if (o.json) std::cout << fq::cli::to_json(report).dump() << std::endl;
+  if (!s.ok()) {
+    std::cerr << "fqfilter: error: " << s.message() << "\n";
+    return 1;
+  }
+  if (!o.json) fq::cli::print_human(report, std::cout);
+  return 0;
+}
+
+int run(int argc, char** argv) {
+  Options o;
+  const fq::cli::ParseOutcome parsed = fq::cli::parse_options(argc, argv, o);
+  if (!parsed.run) return parsed.exit_code;
+  std::error_code ec;
+  const bool folder = fs::is_directory(o.input, ec);
+  if (!folder && !o.reference.empty() && fs::is_directory(o.reference, ec)) {
+    std::cerr << "fqfilter: error: --reference must be a mesh file\n";
+    return 2;
+  }
+  if (folder && !o.reference.empty()) {
+    std::cerr << "fqfilter: error: --reference needs a single input file, not a folder\n";
+    return 2;
+  }
+  fq::Status why;
+  const std::unique_ptr<fq::Engine> engine = fq::make_engine(o.engine, &why);
+  if (!engine) {
+    std::cerr << "fqfilter: error: " << why.message() << "\n";
+    return 1;
+  }
+  return folder ? fq::cli::run_folder(o, *engine) : run_single(o, *engine);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    // Faults (out of memory, a filesystem error) end the run with one line, not a trace.
+    std::cerr << "fqfilter: error: " << e.what() << "\n";
+    return 1;
+  }
+}
