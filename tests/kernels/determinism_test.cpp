@@ -1,0 +1,84 @@
+// Results do not depend on the thread count nor on what the engine processed before:
+// every per-vertex sum runs over neighbours in grid order, so positions and labels must be
+// bit-identical, not merely close.
+#include "cpu_engine.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+
+#include "noise.h"
+#include "support/test_meshes.h"
+
+namespace fq {
+namespace {
+
+Mesh noisy(Mesh m, uint64_t seed) {
+  add_gaussian_noise(m, 0.25, seed);
+  return m;
+}
+
+FrameResult run(CpuEngine& engine, const Mesh& mesh, const Params& p) {
+  FrameResult out;
+  const Status s = engine.process(mesh.view(), p, out);
+  EXPECT_TRUE(s.ok()) << s.message();
+  return out;
+}
+
+void expect_identical(const FrameResult& a, const FrameResult& b, const std::string& what) {
+  ASSERT_EQ(a.positions.size(), b.positions.size()) << what;
+  EXPECT_EQ(std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(float)), 0)
+      << what << ": positions differ";
+  EXPECT_EQ(a.labels, b.labels) << what;
+  EXPECT_EQ(a.num_clusters, b.num_clusters) << what;
+}
+
+std::vector<std::pair<std::string, Params>> modes() {
+  Params quadric;
+  quadric.cluster = true;
+  quadric.c.sigma_d = 2.f;  // enough clusters for the labels to mean something
+  quadric.c.sigma_q = 1.f;
+  Params constrained = quadric;
+  constrained.f.constrained = true;
+  Params bilateral = quadric;
+  bilateral.f.method = FilterMethod::kBilateral;
+  bilateral.f.sigma_r = 1.5f;
+  Params euclidean = quadric;
+  euclidean.c.method = ClusterMethod::kEuclidean;
+  return {{"quadric", quadric}, {"constrained", constrained}, {"bilateral", bilateral}, {"euclidean", euclidean}};
+}
+
+TEST(KernelDeterminism, ThreadCountDoesNotChangeResults) {
+  const Mesh meshes[] = {noisy(test::make_icosphere(4), 1), noisy(test::make_cube(10), 2)};
+  CpuEngine one(1), two(2), three(3);
+  ASSERT_EQ(three.threads(), 3);
+  for (const Mesh& m : meshes) {
+    for (const auto& [name, p] : modes()) {
+      const FrameResult a = run(one, m, p);
+      ASSERT_GT(a.num_clusters, 3u) << name;
+      expect_identical(a, run(two, m, p), name + " 1 vs 2 threads");
+      expect_identical(a, run(three, m, p), name + " 1 vs 3 threads");
+    }
+  }
+}
+
+// The engine keeps its buffers between frames; a frame after a bigger or a smaller one
+// must come out exactly as on a fresh engine.
+TEST(KernelDeterminism, ReusedEngineMatchesAFreshOne) {
+  const Mesh small = noisy(test::make_cube(5), 3), big = noisy(test::make_icosphere(4), 4);
+  Params p;
+  p.cluster = true;
+  CpuEngine fresh_small(2), fresh_big(2), reused(2);
+  const FrameResult want_small = run(fresh_small, small, p), want_big = run(fresh_big, big, p);
+  expect_identical(run(reused, small, p), want_small, "small first");
+  expect_identical(run(reused, big, p), want_big, "big after small");
+  expect_identical(run(reused, small, p), want_small, "small after big");
+  Params bf = p;
+  bf.f.method = FilterMethod::kBilateral;
+  run(reused, big, bf);
+  expect_identical(run(reused, small, p), want_small, "quadric after bilateral");
+}
+
+}  // namespace
+}  // namespace fq
