@@ -1,0 +1,52 @@
+#include "frame_sender.h"
+
+#include <chrono>
+
+#include <zmq_addon.hpp>
+
+#include "header_codec.h"
+
+namespace fq::client {
+
+int64_t now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+Status build_frame(const MeshView& mesh, const FrameSpec& spec, uint64_t sequence, std::vector<std::string>& parts) {
+  std::vector<std::string> chunks;
+  wire::CodecOptions opt;
+  opt.position_bits = spec.position_bits;
+  opt.threads = spec.encode_threads;
+  if (Status s = wire::encode_frame(mesh, nullptr, spec.chunks, opt, chunks); !s.ok()) return s;
+  wire::FrameHeader h;
+  h.set_version(wire::kWireVersion);
+  h.set_stream_id(spec.stream_id);
+  h.set_sequence(sequence);
+  h.set_capture_time_ns(now_ns());
+  h.set_send_time_ns(now_ns());
+  *h.mutable_params() = spec.overrides;
+  h.set_compute(spec.compute);
+  h.set_chunk_count(static_cast<uint32_t>(chunks.size()));
+  h.set_vertex_count(mesh.num_vertices);
+  parts.clear();
+  parts.push_back(spec.stream_id);
+  parts.push_back(h.SerializeAsString());
+  for (std::string& c : chunks) parts.push_back(std::move(c));
+  return {};
+}
+
+void restamp_send_time(std::vector<std::string>& parts) {
+  wire::FrameHeader h;
+  if (parts.size() < 2 || !h.ParseFromString(parts[1])) return;
+  h.set_send_time_ns(now_ns());
+  parts[1] = h.SerializeAsString();
+}
+
+void send_parts(zmq::socket_t& push, const std::vector<std::string>& parts) {
+  std::vector<zmq::const_buffer> buffers;
+  for (const std::string& p : parts) buffers.push_back(zmq::buffer(p));
+  zmq::send_multipart(push, buffers);
+}
+
+}  // namespace fq::client

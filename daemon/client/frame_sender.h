@@ -1,0 +1,39 @@
+// Producer side of the wire protocol, shared by fqpub, fqstreambench and the tests:
+// a mesh becomes [stream id][FrameHeader][draco chunk]... on a PUSH socket.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <zmq.hpp>
+
+#include "fq.pb.h"
+#include "frame_codec.h"
+#include "mesh_view.h"
+#include "status.h"
+
+namespace fq::client {
+
+struct FrameSpec {
+  std::string stream_id = "default";
+  uint32_t chunks = 1;
+  int position_bits = 16;
+  int encode_threads = 1;
+  wire::ParamOverrides overrides;  ///< per-frame parameter overrides (unset = stream's)
+  wire::Compute compute = wire::COMPUTE_DEFAULT;
+};
+
+/// The message parts of one frame: topic, header (send_time_ns stamped now), chunks.
+Status build_frame(const MeshView& mesh, const FrameSpec& spec, uint64_t sequence, std::vector<std::string>& parts);
+
+/// Restamps send_time_ns in an already built frame (parts[1]) to now.
+void restamp_send_time(std::vector<std::string>& parts);
+
+/// Sends the parts as one multipart message (blocking while the socket's queue is full).
+void send_parts(zmq::socket_t& push, const std::vector<std::string>& parts);
+
+/// Wall-clock nanoseconds since the epoch (the clock of every *_time_ns field).
+int64_t now_ns();
+
+}  // namespace fq::client

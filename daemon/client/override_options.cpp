@@ -1,0 +1,48 @@
+#include "override_options.h"
+
+namespace fq::client {
+
+void add_override_options(CLI::App& app, OverrideArgs& a) {
+  const std::string g = "Parameter overrides (sigmas in mean edge lengths; unset = the stream's)";
+  app.add_option("--sigma-s", a.sigma_s, "spatial extent of the quadric diffusion")->group(g);
+  app.add_option("--sigma-r", a.sigma_r, "range extent (feature threshold)")->group(g);
+  app.add_option("--sigma-b", a.sigma_b, "finest detail of Q' (0 = sigma_s / 2)")->group(g);
+  app.add_option("--sigma-n", a.sigma_n, "normal smoothing of the constrained update")->group(g);
+  app.add_option("--constrained", a.constrained, "normal-constrained update (true/false)")->group(g);
+  app.add_option("--tikhonov", a.tikhonov, "pull toward the current position")->group(g);
+  app.add_option("--mode", a.mode, "filter: qf | bf")->group(g);
+  app.add_option("--sigma-d", a.sigma_d, "clustering spatial extent")->group(g);
+  app.add_option("--sigma-q", a.sigma_q, "clustering range extent")->group(g);
+  app.add_option("--theta", a.theta, "clustering threshold in (0, 1]")->group(g);
+  app.add_option("--cluster-method", a.cluster_method, "quadric | euclidean")->group(g);
+  app.add_option("--compute", a.compute, "filter | cluster | filter_and_cluster")->group(g);
+}
+
+Status to_wire(const OverrideArgs& a, wire::ParamOverrides& o, wire::Compute& compute) {
+  o.Clear();
+  if (a.sigma_s) o.set_sigma_s(*a.sigma_s);
+  if (a.sigma_r) o.set_sigma_r(*a.sigma_r);
+  if (a.sigma_b) o.set_sigma_b(*a.sigma_b);
+  if (a.sigma_n) o.set_sigma_n(*a.sigma_n);
+  if (a.constrained) o.set_constrained(*a.constrained);
+  if (a.tikhonov) o.set_tikhonov(*a.tikhonov);
+  if (a.sigma_d) o.set_sigma_d(*a.sigma_d);
+  if (a.sigma_q) o.set_sigma_q(*a.sigma_q);
+  if (a.theta) o.set_theta(*a.theta);
+  if (a.mode == "qf") o.set_mode(wire::QF);
+  else if (a.mode == "bf") o.set_mode(wire::BF);
+  else if (!a.mode.empty()) return invalid_argument("--mode must be qf or bf (got " + a.mode + ")");
+  if (a.cluster_method == "quadric") o.set_cluster_method(wire::QUADRIC);
+  else if (a.cluster_method == "euclidean") o.set_cluster_method(wire::EUCLIDEAN);
+  else if (!a.cluster_method.empty())
+    return invalid_argument("--cluster-method must be quadric or euclidean (got " + a.cluster_method + ")");
+  compute = wire::COMPUTE_DEFAULT;
+  if (a.compute == "filter") compute = wire::FILTER;
+  else if (a.compute == "cluster") compute = wire::CLUSTER;
+  else if (a.compute == "filter_and_cluster") compute = wire::FILTER_AND_CLUSTER;
+  else if (!a.compute.empty())
+    return invalid_argument("--compute must be filter, cluster or filter_and_cluster (got " + a.compute + ")");
+  return {};
+}
+
+}  // namespace fq::client

@@ -1,0 +1,27 @@
+// Command-line options for per-frame parameter overrides (--sigma-s ... --compute), shared
+// by fqpub and fqstreambench. Only the options given on the command line are set.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "fq.pb.h"
+#include "status.h"
+
+namespace fq::client {
+
+struct OverrideArgs {
+  std::optional<float> sigma_s, sigma_r, sigma_b, sigma_n, tikhonov, sigma_d, sigma_q, theta;
+  std::optional<bool> constrained;
+  std::string mode, cluster_method, compute;
+};
+
+/// Registers the options on `app` (in an "Parameter overrides" group).
+void add_override_options(CLI::App& app, OverrideArgs& args);
+
+/// The wire form of the given options; kInvalidArgument for an unknown mode/method/compute.
+Status to_wire(const OverrideArgs& args, wire::ParamOverrides& out, wire::Compute& compute);
+
+}  // namespace fq::client

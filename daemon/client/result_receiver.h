@@ -1,0 +1,40 @@
+// Consumer side of the wire protocol, shared by fqsub, fqstreambench and the tests:
+// receive [stream id][ResultHeader][chunks...], decode and check it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <zmq.hpp>
+
+#include "fq.pb.h"
+#include "mesh_view.h"
+#include "status.h"
+
+namespace fq::client {
+
+struct ReceivedResult {
+  std::string topic;
+  wire::ResultHeader header;
+  std::vector<zmq::message_t> chunks;
+  int64_t receive_ns = 0;   ///< when this process got it
+  Mesh mesh;                ///< after decode_result
+  std::vector<uint32_t> labels;
+};
+
+/// Blocks for one published message (honours the socket's receive timeout: false when it
+/// expires). A message that is not a valid result gets a non-ok status in `why`.
+bool receive_result(zmq::socket_t& sub, ReceivedResult& out, Status& why);
+
+/// Decodes the chunks of an OK/LATE result (threads: chunks decoded at once).
+Status decode_result(ReceivedResult& r, int threads = 1);
+
+/// The consumer's checks on a decoded result: vertex count as announced, finite
+/// positions, every label below cluster_count, labels present iff cluster_count > 0.
+Status check_result(const ReceivedResult& r);
+
+/// Milliseconds from the producer's send time to this process's receive time.
+double send_to_receive_ms(const ReceivedResult& r);
+
+}  // namespace fq::client

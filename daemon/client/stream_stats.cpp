@@ -1,0 +1,70 @@
+#include "stream_stats.h"
+
+#include <cstdio>
+
+#include "metrics.h"
+
+namespace fq::client {
+namespace {
+
+nlohmann::json summary(const std::vector<double>& v) {
+  using fq::daemon::percentile;
+  return {{"p50_ms", percentile(v, 0.50)}, {"p95_ms", percentile(v, 0.95)}, {"p99_ms", percentile(v, 0.99)},
+          {"count", v.size()}};
+}
+
+}  // namespace
+
+void StreamStats::add(const ReceivedResult& r, bool ok) {
+  const wire::ResultHeader& h = r.header;
+  if (results_ == 0) first_ns_ = r.receive_ns;
+  last_ns_ = r.receive_ns;
+  ++results_;
+  // A gap in a stream's sequence numbers is a frame fqd dropped (superseded or stale).
+  auto [it, fresh] = next_seq_.try_emplace(h.stream_id(), h.sequence());
+  if (!fresh && h.sequence() > it->second) drops_ += h.sequence() - it->second;
+  it->second = h.sequence() + 1;
+  if (!ok) ++bad_;
+  if (h.status() == wire::ERROR) {
+    ++errors_;
+    return;
+  }
+  if (h.late()) ++late_;
+  latency_.push_back(h.latency_ms());
+  if (h.send_time_ns() > 0) send_to_receive_.push_back(send_to_receive_ms(r));
+  for (const wire::StageTiming& t : h.timings()) stages_[t.name()].push_back(t.ms());
+}
+
+double StreamStats::fps() const {
+  if (results_ < 2 || last_ns_ <= first_ns_) return 0.0;
+  return static_cast<double>(results_ - 1) / (static_cast<double>(last_ns_ - first_ns_) * 1e-9);
+}
+
+std::string StreamStats::status_line() const {
+  using fq::daemon::percentile;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "%llu results  %.1f fps  latency p50 %.1f p99 %.1f ms  send->recv p50 %.1f p99 %.1f ms  drops %llu  "
+                "errors %llu  late %llu  bad %llu",
+                static_cast<unsigned long long>(results_), fps(), percentile(latency_, 0.5),
+                percentile(latency_, 0.99), percentile(send_to_receive_, 0.5), percentile(send_to_receive_, 0.99),
+                static_cast<unsigned long long>(drops_), static_cast<unsigned long long>(errors_),
+                static_cast<unsigned long long>(late_), static_cast<unsigned long long>(bad_));
+  return line;
+}
+
+nlohmann::json StreamStats::to_json() const {
+  nlohmann::json stages = nlohmann::json::object();
+  for (const auto& [name, v] : stages_) stages[name] = summary(v);
+  return {{"results", results_},
+          {"errors", errors_},
+          {"bad", bad_},
+          {"drops", drops_},
+          {"late", late_},
+          {"fps", fps()},
+          {"receive_to_publish", summary(latency_)},
+          {"send_to_receive", summary(send_to_receive_)},
+          {"stages", stages}};
+}
+
+}  // namespace fq::client

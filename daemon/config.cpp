@@ -1,0 +1,184 @@
+#include "config.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "toml_reader.h"
+
+namespace fq::daemon {
+namespace {
+
+constexpr int64_t kMaxThreads = 256;
+
+void read_filter(TomlReader& r, FilterParams& f) {
+  std::string method = filter_method_name(f.method);
+  r.read("method", method);
+  if (!parse_filter_method(method, f.method)) r.fail("method", "must be \"qf\" or \"bf\" (got \"" + method + "\")");
+  r.read("sigma_s", f.sigma_s);
+  r.read("sigma_r", f.sigma_r);
+  r.read("sigma_b", f.sigma_b);
+  r.read("sigma_n", f.sigma_n);
+  r.read("constrained", f.constrained);
+  r.read("tikhonov", f.tikhonov);
+}
+
+void read_cluster(TomlReader& r, ClusterParams& c) {
+  std::string method = cluster_method_name(c.method);
+  r.read("method", method);
+  if (!parse_cluster_method(method, c.method))
+    r.fail("method", "must be \"quadric\" or \"euclidean\" (got \"" + method + "\")");
+  r.read("sigma_d", c.sigma_d);
+  r.read("sigma_q", c.sigma_q);
+  r.read("theta", c.theta);
+}
+
+void read_output(TomlReader& r, OutputEncoding& o) {
+  r.read("position_bits", o.position_bits, 8, 30);
+  const toml::node* c = r.raw("chunks");
+  if (!c) return;
+  if (auto str = c->value_exact<std::string>(); str && *str == "same") o.chunks = 0;
+  else if (auto v = c->value_exact<int64_t>(); v && *v >= 1 && *v <= 256) o.chunks = static_cast<uint32_t>(*v);
+  else r.fail("chunks", "must be \"same\" or an integer in [1, 256]");
+}
+
+// Reads a stream table ([defaults] or [streams.<id>]) over `s`.
+Status read_stream(const toml::table& t, const std::string& source, const std::string& path, StreamSettings& s) {
+  TomlReader r(t, source, path);
+  std::string compute = compute_name(s.params);
+  r.read("compute", compute);
+  if (!parse_compute(compute, s.params))
+    r.fail("compute", "must be \"filter\", \"cluster\" or \"filter_and_cluster\" (got \"" + compute + "\")");
+  r.read("budget_ms", s.budget_ms, 0.001, 1e6);
+  struct Sub {
+    const char* key;
+    void (*fn)(TomlReader&, StreamSettings&);
+  };
+  const Sub subs[] = {
+      {"filter", [](TomlReader& x, StreamSettings& st) { read_filter(x, st.params.f); }},
+      {"cluster", [](TomlReader& x, StreamSettings& st) { read_cluster(x, st.params.c); }},
+      {"output", [](TomlReader& x, StreamSettings& st) { read_output(x, st.output); }},
+  };
+  for (const Sub& sub : subs) {
+    const toml::table* st = r.table(sub.key);
+    if (!st) continue;
+    TomlReader sr(*st, source, r.name(sub.key));
+    sub.fn(sr, s);
+    if (Status e = sr.finish(); !e.ok()) return e;
+  }
+  if (Status st = r.finish(); !st.ok()) return st;
+  if (Status v = validate(s); !v.ok())
+    return invalid_argument(source + ": [" + path + "] " + v.message());
+  return {};
+}
+
+Status read_endpoints(TomlReader& root, Endpoints& e) {
+  const toml::table* t = root.table("endpoints");
+  if (!t) return {};
+  TomlReader r(*t, root.source(), "endpoints");
+  r.read("ingest", e.ingest);
+  r.read("publish", e.publish);
+  r.read("control", e.control);
+  if (Status s = r.finish(); !s.ok()) return s;
+  for (const std::string* ep : {&e.ingest, &e.publish, &e.control}) {
+    if (ep->find("://") == std::string::npos)
+      return invalid_argument(root.source() + ": endpoint \"" + *ep + "\" is not a ZeroMQ address like tcp://127.0.0.1:5555");
+  }
+  const bool fixed_dup = (e.ingest == e.publish || e.ingest == e.control || e.publish == e.control) &&
+                         e.ingest.find(":*") == std::string::npos;
+  if (fixed_dup) return invalid_argument(root.source() + ": the ingest, publish and control endpoints must differ");
+  return {};
+}
+
+Status read_engine(TomlReader& root, EngineConfig& e) {
+  const toml::table* t = root.table("engine");
+  if (!t) return {};
+  TomlReader r(*t, root.source(), "engine");
+  std::string kind = e.kind == EngineKind::kCpu ? "cpu" : e.kind == EngineKind::kCuda ? "cuda" : "auto";
+  r.read("kind", kind);
+  if (!parse_engine_kind(kind, e.kind)) r.fail("kind", "must be \"auto\", \"cuda\" or \"cpu\" (got \"" + kind + "\")");
+  r.read("gpus", e.gpus, 0, 63);
+  r.read("cpu_alongside_gpus", e.cpu_alongside_gpus);
+  r.read("cpu_threads", e.cpu_threads, 0, kMaxThreads);
+  if (Status s = r.finish(); !s.ok()) return s;
+  if (e.kind == EngineKind::kCuda && e.gpus.empty())
+    return invalid_argument(root.source() + ": engine.kind = \"cuda\" needs at least one entry in engine.gpus");
+  return {};
+}
+
+Status read_sections(TomlReader& root, DaemonConfig& c) {
+  if (Status s = read_endpoints(root, c.endpoints); !s.ok()) return s;
+  if (Status s = read_engine(root, c.engine); !s.ok()) return s;
+  if (const toml::table* t = root.table("threads")) {
+    TomlReader r(*t, root.source(), "threads");
+    r.read("decode", c.decode_threads, 1, kMaxThreads);
+    r.read("encode", c.encode_threads, 1, kMaxThreads);
+    if (Status s = r.finish(); !s.ok()) return s;
+  }
+  if (const toml::table* t = root.table("caps")) {
+    TomlReader r(*t, root.source(), "caps");
+    r.read("max_vertices", c.caps.max_vertices, 3, 1ll << 31);
+    r.read("max_frame_bytes", c.caps.max_frame_bytes, 64, 1ll << 40);
+    r.read("max_streams", c.caps.max_streams, 1, 1 << 20);
+    if (Status s = r.finish(); !s.ok()) return s;
+  }
+  return {};
+}
+
+Status read_streams(TomlReader& root, DaemonConfig& c) {
+  if (const toml::table* t = root.table("defaults")) {
+    if (Status s = read_stream(*t, root.source(), "defaults", c.defaults); !s.ok()) return s;
+  }
+  const toml::table* streams = root.table("streams");
+  if (!streams) return {};
+  for (const auto& [k, v] : *streams) {
+    const std::string id(k.str());
+    const toml::table* st = v.as_table();
+    if (!st) return invalid_argument(root.source() + ": streams." + id + " must be a table");
+    StreamSettings s = c.defaults;
+    if (Status e = read_stream(*st, root.source(), "streams." + id, s); !e.ok()) return e;
+    c.streams[id] = s;
+  }
+  return {};
+}
+
+}  // namespace
+
+const StreamSettings& DaemonConfig::settings_for(const std::string& stream_id) const {
+  auto it = streams.find(stream_id);
+  return it != streams.end() ? it->second : defaults;
+}
+
+bool valid_log_level(const std::string& l) {
+  for (const char* n : {"trace", "debug", "info", "warn", "error", "critical", "off"})
+    if (l == n) return true;
+  return false;
+}
+
+Status parse_config(std::string_view text, const std::string& source, DaemonConfig& out) {
+  toml::table root_table;
+  try {
+    root_table = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    return invalid_argument(source + ":" + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
+  }
+  DaemonConfig c;
+  TomlReader root(root_table, source, "");
+  root.read("log_level", c.log_level);
+  if (!valid_log_level(c.log_level))
+    root.fail("log_level", "must be one of trace, debug, info, warn, error, critical, off");
+  if (Status s = read_sections(root, c); !s.ok()) return s;
+  if (Status s = read_streams(root, c); !s.ok()) return s;
+  if (Status s = root.finish(); !s.ok()) return s;
+  out = std::move(c);
+  return {};
+}
+
+Status load_config(const std::string& path, DaemonConfig& out) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return invalid_argument("cannot open config file " + path);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return parse_config(ss.str(), path, out);
+}
+
+}  // namespace fq::daemon

@@ -1,0 +1,60 @@
+// fqd's configuration: one TOML file (see configs/fqd.toml for every key), validated
+// completely at start so that a typo or a bad value stops the daemon with a clear message.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine.h"
+#include "status.h"
+#include "stream_settings.h"
+
+namespace fq::daemon {
+
+struct Endpoints {
+  std::string ingest = "tcp://127.0.0.1:5555";   ///< PULL, bound; producers PUSH-connect
+  std::string publish = "tcp://127.0.0.1:5556";  ///< PUB, bound; consumers SUB-connect
+  std::string control = "tcp://127.0.0.1:5557";  ///< REP, bound; fqctl-style REQ clients
+};
+
+struct EngineConfig {
+  EngineKind kind = EngineKind::kAuto;
+  std::vector<int> gpus{0};        ///< one CUDA engine per listed device
+  bool cpu_alongside_gpus = false; ///< also run the CPU engine when GPU engines exist
+  int cpu_threads = 0;             ///< CPU engine threads; 0 = all hardware threads
+};
+
+struct Caps {
+  uint32_t max_vertices = 4'000'000;
+  uint64_t max_frame_bytes = 256ull << 20;  ///< sum of all parts of one ingest message
+  uint32_t max_streams = 64;
+};
+
+struct DaemonConfig {
+  Endpoints endpoints;
+  EngineConfig engine;
+  int decode_threads = 2;
+  int encode_threads = 2;
+  Caps caps;
+  StreamSettings defaults;
+  std::map<std::string, StreamSettings> streams;  ///< per-stream overrides, resolved
+  std::string log_level = "info";
+
+  /// The settings a stream starts with: its [streams.<id>] entry or the defaults.
+  const StreamSettings& settings_for(const std::string& stream_id) const;
+};
+
+/// Parses TOML text (`source` names it in messages). Unknown keys, wrong types and
+/// out-of-range values are errors naming the key and line.
+Status parse_config(std::string_view text, const std::string& source, DaemonConfig& out);
+
+/// Reads and parses a file.
+Status load_config(const std::string& path, DaemonConfig& out);
+
+/// True for spdlog's level names: trace, debug, info, warn, error, critical, off.
+bool valid_log_level(const std::string& level);
+
+}  // namespace fq::daemon

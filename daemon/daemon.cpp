@@ -1,0 +1,115 @@
+#include "daemon.h"
+
+#include <spdlog/spdlog.h>
+
+#include "control_server.h"
+#include "ingest.h"
+#include "publisher.h"
+
+namespace fq::daemon {
+namespace {
+
+// Lets the publisher flush what it has queued when the daemon stops.
+constexpr int kPublishLingerMs = 2000;
+
+void join_all(std::vector<std::thread>& threads) {
+  for (std::thread& t : threads)
+    if (t.joinable()) t.join();
+  threads.clear();
+}
+
+Status bind_one(zmq::socket_t& s, const std::string& endpoint, const char* role, std::string& bound) {
+  try {
+    s.bind(endpoint);
+  } catch (const zmq::error_t& e) {
+    return invalid_argument(std::string("cannot bind the ") + role + " endpoint " + endpoint + ": " + e.what());
+  }
+  bound = s.get(zmq::sockopt::last_endpoint);
+  return {};
+}
+
+}  // namespace
+
+Status make_engines(const EngineConfig& c, std::vector<std::unique_ptr<Engine>>& out) {
+  out.clear();
+  if (c.kind != EngineKind::kCpu) {
+    for (int gpu : c.gpus) {
+      Status why;
+      auto e = make_engine({EngineKind::kCuda, c.cpu_threads, gpu}, &why);
+      if (e) out.push_back(std::move(e));
+      else if (c.kind == EngineKind::kCuda) return {StatusCode::kUnavailable, "GPU " + std::to_string(gpu) + ": " + why.message()};
+      else spdlog::info("engine auto: no CUDA engine on GPU {} ({})", gpu, why.message());
+    }
+  }
+  if (out.empty() || c.cpu_alongside_gpus) out.push_back(make_engine({EngineKind::kCpu, c.cpu_threads, 0}));
+  return {};
+}
+
+Daemon::Daemon(DaemonConfig config)
+    : config_(std::move(config)), registry_(config_), pipeline_(config_, registry_), input_context_(1),
+      output_context_(1) {}
+
+Daemon::~Daemon() { stop(); }
+
+std::vector<std::string> Daemon::engine_names() const {
+  std::vector<std::string> names;
+  for (const auto& e : engines_) names.push_back(e->name());
+  return names;
+}
+
+Status Daemon::bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::socket_t& control) {
+  ingest = zmq::socket_t(input_context_, zmq::socket_type::pull);
+  control = zmq::socket_t(input_context_, zmq::socket_type::rep);
+  publish = zmq::socket_t(output_context_, zmq::socket_type::pub);
+  ingest.set(zmq::sockopt::linger, 0);
+  control.set(zmq::sockopt::linger, 0);
+  publish.set(zmq::sockopt::linger, kPublishLingerMs);
+  if (Status s = bind_one(ingest, config_.endpoints.ingest, "ingest", endpoints_.ingest); !s.ok()) return s;
+  if (Status s = bind_one(publish, config_.endpoints.publish, "publish", endpoints_.publish); !s.ok()) return s;
+  return bind_one(control, config_.endpoints.control, "control", endpoints_.control);
+}
+
+Status Daemon::start() {
+  if (running_) return {};
+  if (Status s = make_engines(config_.engine, engines_); !s.ok()) return s;
+  zmq::socket_t ingest, publish, control;
+  if (Status s = bind_sockets(ingest, publish, control); !s.ok()) return s;
+  // Sockets were made on this thread and are handed over whole to their owner threads.
+  publisher_thread_ = std::thread([this, s = std::move(publish)]() mutable { Publisher(std::move(s), pipeline_).run(); });
+  for (int i = 0; i < config_.encode_threads; ++i) encoders_.emplace_back([this] { run_encode_worker(pipeline_); });
+  for (auto& e : engines_) workers_.emplace_back([this, eng = e.get()] { run_engine_worker(pipeline_, *eng); });
+  for (int i = 0; i < config_.decode_threads; ++i) decoders_.emplace_back([this] { run_decode_worker(pipeline_); });
+  control_thread_ = std::thread([this, s = std::move(control)]() mutable { run_control(std::move(s), registry_); });
+  ingest_thread_ = std::thread([this, s = std::move(ingest)]() mutable { run_ingest(std::move(s), pipeline_); });
+  running_ = true;
+  std::string names;
+  for (const std::string& n : engine_names()) names += (names.empty() ? "" : ", ") + n;
+  spdlog::info("fqd: engines [{}], {} decode / {} encode threads", names, config_.decode_threads,
+               config_.encode_threads);
+  spdlog::info("fqd: ingest {} (PULL), publish {} (PUB), control {} (REP)", endpoints_.ingest, endpoints_.publish,
+               endpoints_.control);
+  return {};
+}
+
+void Daemon::stop() {
+  if (!running_) return;
+  running_ = false;
+  // Blocking receives on the input sockets return ETERM; their threads close them.
+  input_context_.shutdown();
+  if (ingest_thread_.joinable()) ingest_thread_.join();
+  if (control_thread_.joinable()) control_thread_.join();
+  input_context_.close();
+  // Drain stage by stage: each queue closes once everything before it has finished.
+  pipeline_.decode_queue.close();
+  join_all(decoders_);
+  pipeline_.slots.close();
+  join_all(workers_);
+  pipeline_.encode_queue.close();
+  join_all(encoders_);
+  pipeline_.publish_queue.close();
+  if (publisher_thread_.joinable()) publisher_thread_.join();
+  output_context_.close();
+  spdlog::info("fqd: stopped");
+}
+
+}  // namespace fq::daemon

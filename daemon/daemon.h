@@ -1,0 +1,62 @@
+// fqd as an object: binds its sockets, starts its threads, and drains them on stop().
+// main.cpp runs one; tests and fqstreambench run one in-process on ephemeral ports.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <zmq.hpp>
+
+#include "config.h"
+#include "engine.h"
+#include "pipeline.h"
+#include "stream_registry.h"
+
+namespace fq::daemon {
+
+/// The addresses actually bound (a "*" port in the config is resolved here).
+struct BoundEndpoints {
+  std::string ingest, publish, control;
+};
+
+/// One engine per listed GPU (CUDA), plus or else the CPU engine, as the config says.
+/// kUnavailable when an explicitly requested CUDA engine cannot be made.
+Status make_engines(const EngineConfig& config, std::vector<std::unique_ptr<Engine>>& out);
+
+class Daemon {
+ public:
+  explicit Daemon(DaemonConfig config);
+  ~Daemon();
+  Daemon(const Daemon&) = delete;
+  Daemon& operator=(const Daemon&) = delete;
+
+  /// Makes the engines, binds the three sockets and starts every thread.
+  Status start();
+  /// Stops receiving, finishes every frame already received (results are published),
+  /// and joins all threads. Idempotent; also called by the destructor.
+  void stop();
+
+  const BoundEndpoints& endpoints() const { return endpoints_; }
+  const DaemonConfig& config() const { return config_; }
+  StreamRegistry& registry() { return registry_; }
+  /// Names of the engines in use ("cpu", "cuda:<device>").
+  std::vector<std::string> engine_names() const;
+
+ private:
+  Status bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::socket_t& control);
+
+  DaemonConfig config_;
+  StreamRegistry registry_;
+  Pipeline pipeline_;
+  std::vector<std::unique_ptr<Engine>> engines_;
+  zmq::context_t input_context_;   // ingest + control: shut down first
+  zmq::context_t output_context_;  // publish: closed after the pipeline drained
+  BoundEndpoints endpoints_;
+  std::thread ingest_thread_, control_thread_, publisher_thread_;
+  std::vector<std::thread> decoders_, workers_, encoders_;
+  bool running_ = false;
+};
+
+}  // namespace fq::daemon

@@ -1,0 +1,118 @@
+// The three CPU/engine stages of the pipeline (see pipeline.h).
+#include <chrono>
+#include <exception>
+
+#include <spdlog/spdlog.h>
+
+#include "frame_codec.h"
+#include "frame_prep.h"
+#include "header_codec.h"
+#include "pipeline.h"
+
+namespace fq::daemon {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The stream's settings with the frame's own overrides and compute mode applied.
+Status resolve_settings(FrameJob& f) {
+  if (Status s = wire::apply_overrides(f.header.params(), f.settings.params); !s.ok()) return s;
+  if (Status s = wire::apply_compute(f.header.compute(), f.settings.params); !s.ok()) return s;
+  if (Status s = fq::validate(f.settings.params); !s.ok()) return invalid_argument("invalid parameters: " + s.message());
+  return {};
+}
+
+Status decode(FrameJob& f, const DaemonConfig& c) {
+  std::vector<std::string_view> views;
+  for (const zmq::message_t& m : f.chunks) views.emplace_back(m.data<char>(), m.size());
+  wire::CodecOptions opt;
+  opt.threads = std::max(1, std::min<int>(c.decode_threads, static_cast<int>(views.size())));
+  if (Status s = wire::decode_frame(views, f.header.vertex_count(), opt, f.mesh, nullptr); !s.ok()) return s;
+  f.chunks.clear();
+  if (f.mesh.num_vertices() > c.caps.max_vertices)
+    return invalid_input("frame has " + std::to_string(f.mesh.num_vertices()) + " vertices, over the cap of " +
+                         std::to_string(c.caps.max_vertices));
+  return check_mesh(f.mesh.view());
+}
+
+}  // namespace
+
+void Pipeline::fail(FramePtr frame, Status why) {
+  spdlog::warn("stream '{}' frame {}: {}", frame->stream_id, frame->header.sequence(), why.message());
+  frame->error = std::move(why);
+  publish_queue.push(std::move(frame));
+}
+
+void run_decode_worker(Pipeline& p) {
+  while (auto item = p.decode_queue.pop()) {
+    FramePtr f = std::move(*item);
+    // Decoding a frame that is already too old would be wasted work under overload.
+    if (is_stale(f->receive_ns, wall_ns(), f->settings.budget_ms)) {
+      p.registry.count(f->stream_id, Counter::kDroppedStale);
+      spdlog::debug("stream '{}' frame {}: stale before decode", f->stream_id, f->header.sequence());
+      continue;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    Status s = decode(*f, p.config);
+    if (s.ok()) s = resolve_settings(*f);
+    f->timings.push_back({"decode", ms_since(t0)});
+    if (!s.ok()) {
+      p.fail(std::move(f), s);
+      continue;
+    }
+    f->decoded_ns = wall_ns();
+    if (FramePtr loser = p.slots.offer(std::move(f))) {
+      p.registry.count(loser->stream_id, Counter::kSuperseded);
+      spdlog::debug("stream '{}' frame {}: superseded", loser->stream_id, loser->header.sequence());
+    }
+  }
+}
+
+void run_engine_worker(Pipeline& p, Engine& engine) {
+  FramePtr f;
+  std::vector<FramePtr> stale;
+  while (p.slots.take(f, stale)) {
+    for (FramePtr& s : stale) {
+      p.registry.count(s->stream_id, Counter::kDroppedStale);
+      spdlog::debug("stream '{}' frame {}: dropped stale", s->stream_id, s->header.sequence());
+    }
+    stale.clear();
+    if (!f) continue;
+    f->timings.push_back({"wait", ms_between(f->decoded_ns, wall_ns())});
+    f->engine = engine.name();
+    const auto t0 = std::chrono::steady_clock::now();
+    Status s;
+    try {
+      s = engine.process(f->mesh.view(), f->settings.params, f->result);
+    } catch (const std::exception& e) {
+      s = {StatusCode::kInternal, std::string("engine fault: ") + e.what()};
+    }
+    const double total = ms_since(t0);
+    for (const PassTiming& t : f->result.timings) f->timings.push_back({"engine." + t.name, t.ms});
+    f->timings.push_back({"engine", total});
+    if (!s.ok()) p.fail(std::move(f), s);
+    else p.encode_queue.push(std::move(f));
+  }
+}
+
+void run_encode_worker(Pipeline& p) {
+  while (auto item = p.encode_queue.pop()) {
+    FramePtr f = std::move(*item);
+    const auto t0 = std::chrono::steady_clock::now();
+    const MeshView view{f->result.positions.data(), f->mesh.num_vertices(), f->mesh.triangles.data(),
+                        f->mesh.num_triangles()};
+    const uint32_t* labels = f->settings.params.cluster && !f->result.labels.empty() ? f->result.labels.data() : nullptr;
+    const uint32_t chunks = f->settings.output.chunks > 0 ? f->settings.output.chunks : f->header.chunk_count();
+    wire::CodecOptions opt;
+    opt.position_bits = f->settings.output.position_bits;
+    opt.threads = std::max(1, std::min<int>(p.config.encode_threads, static_cast<int>(chunks)));
+    Status s = wire::encode_frame(view, labels, std::max(1u, chunks), opt, f->out_chunks);
+    f->timings.push_back({"encode", ms_since(t0)});
+    if (!s.ok()) p.fail(std::move(f), s);
+    else p.publish_queue.push(std::move(f));
+  }
+}
+
+}  // namespace fq::daemon

@@ -1,0 +1,54 @@
+#include "latency_policy.h"
+
+namespace fq::daemon {
+
+FramePtr FrameSlots::offer(FramePtr frame) {
+  FramePtr loser;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    Stream& s = streams_[frame->stream_id];
+    const bool behind_taken = s.taken_any && frame->arrival <= s.last_taken_arrival;
+    if (behind_taken || (s.waiting && s.waiting->arrival > frame->arrival)) return frame;
+    if (s.waiting) loser = std::move(s.waiting);
+    else ++waiting_;
+    s.waiting = std::move(frame);
+  }
+  ready_.notify_one();
+  return loser;
+}
+
+bool FrameSlots::take(FramePtr& out, std::vector<FramePtr>& stale) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  ready_.wait(lock, [&] { return closed_ || waiting_ > 0; });
+  if (waiting_ == 0) return false;
+  while (waiting_ > 0) {
+    // Oldest frame first, so that no stream starves another.
+    Stream* best = nullptr;
+    for (auto& [id, s] : streams_) {
+      if (s.waiting && (!best || s.waiting->receive_ns < best->waiting->receive_ns)) best = &s;
+    }
+    FramePtr f = std::move(best->waiting);
+    --waiting_;
+    best->last_taken_arrival = f->arrival;
+    best->taken_any = true;
+    if (is_stale(f->receive_ns, wall_ns(), f->settings.budget_ms)) {
+      stale.push_back(std::move(f));
+      continue;
+    }
+    f->ticket = best->next_ticket++;
+    f->ticketed = true;
+    out = std::move(f);
+    return true;
+  }
+  return true;  // only stale frames this time
+}
+
+void FrameSlots::close() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    closed_ = true;
+  }
+  ready_.notify_all();
+}
+
+}  // namespace fq::daemon

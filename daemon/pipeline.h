@@ -1,0 +1,41 @@
+// The queues and shared state between fqd's threads:
+//   ingest thread -> decode_queue -> decode pool -> slots (latency policy)
+//   -> engine workers (one per engine) -> encode_queue -> encode pool
+//   -> publish_queue -> publisher thread (owns the PUB socket).
+// Error results skip ahead to publish_queue from whichever stage found the problem.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "config.h"
+#include "frame_job.h"
+#include "latency_policy.h"
+#include "stream_registry.h"
+#include "work_queue.h"
+
+namespace fq::daemon {
+
+struct Pipeline {
+  Pipeline(const DaemonConfig& c, StreamRegistry& r) : config(c), registry(r) {}
+
+  const DaemonConfig& config;
+  StreamRegistry& registry;
+  WorkQueue<FramePtr> decode_queue;
+  FrameSlots slots;
+  WorkQueue<FramePtr> encode_queue;
+  WorkQueue<FramePtr> publish_queue;
+  std::map<std::string, uint64_t> arrivals;  ///< per-stream arrival counter, ingest thread only
+
+  /// Marks `frame` failed (message logged) and sends it straight to the publisher.
+  void fail(FramePtr frame, Status why);
+};
+
+/// Decode pool worker: decode, check the mesh and the parameters, offer to the slots.
+void run_decode_worker(Pipeline& p);
+/// Engine worker: take from the slots, run the engine, hand to the encode pool.
+void run_engine_worker(Pipeline& p, Engine& engine);
+/// Encode pool worker: encode the result chunks, hand to the publisher.
+void run_encode_worker(Pipeline& p);
+
+}  // namespace fq::daemon

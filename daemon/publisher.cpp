@@ -1,0 +1,88 @@
+#include "publisher.h"
+
+#include <zmq_addon.hpp>
+#include <spdlog/spdlog.h>
+
+#include "header_codec.h"
+
+namespace fq::daemon {
+
+wire::ResultHeader make_result_header(const FrameJob& f, int64_t publish_ns) {
+  wire::ResultHeader h;
+  h.set_version(wire::kWireVersion);
+  h.set_stream_id(f.stream_id);
+  h.set_sequence(f.header.sequence());
+  h.set_capture_time_ns(f.header.capture_time_ns());
+  h.set_send_time_ns(f.header.send_time_ns());
+  h.set_receive_time_ns(f.receive_ns);
+  h.set_publish_time_ns(publish_ns);
+  h.set_latency_ms(ms_between(f.receive_ns, publish_ns));
+  h.set_late(h.latency_ms() > f.settings.budget_ms);
+  for (const PassTiming& t : f.timings) {
+    wire::StageTiming* st = h.add_timings();
+    st->set_name(t.name);
+    st->set_ms(t.ms);
+  }
+  h.set_engine(f.engine);
+  if (!f.error.ok()) {
+    h.set_status(wire::ERROR);
+    h.set_error(f.error.message());
+    return h;
+  }
+  h.set_status(h.late() ? wire::LATE : wire::OK);
+  h.set_cluster_count(f.result.num_clusters);
+  h.set_chunk_count(static_cast<uint32_t>(f.out_chunks.size()));
+  h.set_vertex_count(f.mesh.num_vertices());
+  return h;
+}
+
+void Publisher::run() {
+  while (auto item = p_.publish_queue.pop()) accept(std::move(*item));
+  // Everything ticketed has arrived by now; anything still held would be a bug upstream.
+  for (auto& [id, o] : order_)
+    for (auto& [t, f] : o.held) publish(*f);
+  socket_.close();
+}
+
+void Publisher::accept(FramePtr f) {
+  if (!f->ticketed) return publish(*f);
+  Order& o = order_[f->stream_id];
+  if (f->ticket != o.next) {
+    o.held.emplace(f->ticket, std::move(f));
+    return;
+  }
+  publish(*f);
+  ++o.next;
+  for (auto it = o.held.begin(); it != o.held.end() && it->first == o.next; it = o.held.erase(it), ++o.next)
+    publish(*it->second);
+}
+
+void Publisher::publish(FrameJob& f) {
+  const wire::ResultHeader h = make_result_header(f, wall_ns());
+  const std::string header = h.SerializeAsString();
+  std::vector<zmq::const_buffer> parts;
+  parts.push_back(zmq::buffer(f.stream_id));
+  parts.push_back(zmq::buffer(header));
+  for (const std::string& c : f.out_chunks) parts.push_back(zmq::buffer(c));
+  try {
+    zmq::send_multipart(socket_, parts);
+  } catch (const zmq::error_t& e) {
+    spdlog::error("publish of stream '{}' frame {} failed: {}", f.stream_id, h.sequence(), e.what());
+  }
+  account(f, h);
+}
+
+void Publisher::account(const FrameJob& f, const wire::ResultHeader& h) {
+  StreamRegistry& r = p_.registry;
+  if (h.status() == wire::ERROR) {
+    r.count(f.stream_id, Counter::kErrors);
+    return;
+  }
+  r.count(f.stream_id, Counter::kOut);
+  if (h.late()) r.count(f.stream_id, Counter::kLate);
+  for (const PassTiming& t : f.timings) r.record(f.stream_id, t.name, t.ms);
+  r.record(f.stream_id, "receive_to_publish", h.latency_ms());
+  if (h.send_time_ns() > 0) r.record(f.stream_id, "send_to_publish", ms_between(h.send_time_ns(), h.publish_time_ns()));
+}
+
+}  // namespace fq::daemon

@@ -1,0 +1,40 @@
+// The publisher thread: owns the PUB socket, stamps each result's publish time and
+// latency, publishes [stream id][ResultHeader][chunks...] and keeps each stream's results
+// in arrival order (ticketed frames can finish out of order on several engines).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include <zmq.hpp>
+
+#include "pipeline.h"
+
+namespace fq::daemon {
+
+class Publisher {
+ public:
+  Publisher(zmq::socket_t socket, Pipeline& p) : socket_(std::move(socket)), p_(p) {}
+
+  /// Publishes until the publish queue is closed and drained, then closes the socket.
+  void run();
+
+ private:
+  struct Order {
+    uint64_t next = 0;
+    std::map<uint64_t, FramePtr> held;
+  };
+  void accept(FramePtr f);
+  void publish(FrameJob& f);
+  void account(const FrameJob& f, const wire::ResultHeader& h);
+
+  zmq::socket_t socket_;
+  Pipeline& p_;
+  std::map<std::string, Order> order_;
+};
+
+/// The ResultHeader of `f` as published at `publish_ns`.
+wire::ResultHeader make_result_header(const FrameJob& f, int64_t publish_ns);
+
+}  // namespace fq::daemon

@@ -1,0 +1,14 @@
+// SIGINT/SIGTERM handling without async-signal-unsafe handlers: the signals are blocked in
+// every thread (call block_stop_signals() before starting any), and the main thread waits
+// for one synchronously, then stops the daemon in ordinary code.
+#pragma once
+
+namespace fq::daemon {
+
+/// Blocks SIGINT and SIGTERM in the calling thread and every thread it starts later.
+void block_stop_signals();
+
+/// Waits for SIGINT or SIGTERM (blocked by block_stop_signals) and returns its number.
+int wait_for_stop_signal();
+
+}  // namespace fq::daemon

@@ -1,0 +1,86 @@
+#include "stream_registry.h"
+
+namespace fq::daemon {
+
+StreamRegistry::StreamRegistry(const DaemonConfig& config) : config_(config) {
+  // Configured streams are listed (and controllable) before their first frame.
+  for (const auto& [id, s] : config.streams) streams_[id].settings = s;
+}
+
+StreamRegistry::Entry* StreamRegistry::entry(const std::string& stream_id) {
+  auto it = streams_.find(stream_id);
+  if (it != streams_.end()) return &it->second;
+  if (streams_.size() >= config_.caps.max_streams) return nullptr;
+  Entry& e = streams_[stream_id];
+  e.settings = config_.settings_for(stream_id);
+  return &e;
+}
+
+bool StreamRegistry::settings(const std::string& stream_id, StreamSettings& out) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Entry* e = entry(stream_id);
+  if (!e) return false;
+  out = e->settings;
+  return true;
+}
+
+bool StreamRegistry::set_settings(const std::string& stream_id, const StreamSettings& s) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Entry* e = entry(stream_id);
+  if (!e) return false;
+  e->settings = s;
+  return true;
+}
+
+bool StreamRegistry::find(const std::string& stream_id, StreamSettings& out) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto it = streams_.find(stream_id);
+  if (it == streams_.end()) return false;
+  out = it->second.settings;
+  return true;
+}
+
+void StreamRegistry::count(const std::string& stream_id, Counter c, uint64_t n) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Entry* e = entry(stream_id);
+  if (!e) return;
+  StreamCounters& k = e->counters;
+  switch (c) {
+    case Counter::kIn: k.frames_in += n; break;
+    case Counter::kOut: k.frames_out += n; break;
+    case Counter::kSuperseded: k.superseded += n; break;
+    case Counter::kDroppedStale: k.dropped_stale += n; break;
+    case Counter::kLate: k.late += n; break;
+    case Counter::kErrors: k.errors += n; break;
+  }
+}
+
+void StreamRegistry::record(const std::string& stream_id, const std::string& stage, double ms) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (Entry* e = entry(stream_id)) e->metrics.add(stage, ms);
+}
+
+std::vector<std::string> StreamRegistry::list() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<std::string> ids;
+  for (const auto& [id, e] : streams_) ids.push_back(id);
+  return ids;
+}
+
+StreamSnapshot StreamRegistry::snapshot_of(const std::string& id, const Entry& e) const {
+  return {id, e.counters, e.metrics.summary()};
+}
+
+bool StreamRegistry::snapshot(const std::string& stream_id, std::vector<StreamSnapshot>& out) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (stream_id.empty()) {
+    for (const auto& [id, e] : streams_) out.push_back(snapshot_of(id, e));
+    return true;
+  }
+  auto it = streams_.find(stream_id);
+  if (it == streams_.end()) return false;
+  out.push_back(snapshot_of(stream_id, it->second));
+  return true;
+}
+
+}  // namespace fq::daemon

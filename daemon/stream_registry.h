@@ -1,0 +1,69 @@
+// Every stream fqd has seen or been configured with: its current settings (changeable at
+// run time through the control socket), its counters and its latency metrics.
+// Thread-safe: the ingest, worker, publisher and control threads all use it.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "config.h"
+#include "metrics.h"
+
+namespace fq::daemon {
+
+/// What happened to a stream's frames. Once the pipeline is idle,
+/// frames_in == frames_out + errors + superseded + dropped_stale.
+struct StreamCounters {
+  uint64_t frames_in = 0;      ///< ingest messages attributed to the stream
+  uint64_t frames_out = 0;     ///< results published with status OK or LATE
+  uint64_t superseded = 0;     ///< replaced in the waiting slot by a newer frame
+  uint64_t dropped_stale = 0;  ///< older than the budget when a worker was free
+  uint64_t late = 0;           ///< published after the budget (also in frames_out)
+  uint64_t errors = 0;         ///< error results published
+};
+
+enum class Counter { kIn, kOut, kSuperseded, kDroppedStale, kLate, kErrors };
+
+struct StreamSnapshot {
+  std::string stream_id;
+  StreamCounters counters;
+  std::map<std::string, Percentiles> stages;
+};
+
+class StreamRegistry {
+ public:
+  explicit StreamRegistry(const DaemonConfig& config);
+
+  /// The stream's settings, registering it (from its config entry or the defaults) on
+  /// first sight. False when the stream is new and max_streams are already registered.
+  bool settings(const std::string& stream_id, StreamSettings& out);
+  /// Replaces a stream's settings (registering it); the caller has validated them.
+  bool set_settings(const std::string& stream_id, const StreamSettings& s);
+  /// The settings of a registered stream; false when unknown.
+  bool find(const std::string& stream_id, StreamSettings& out) const;
+
+  void count(const std::string& stream_id, Counter c, uint64_t n = 1);
+  void record(const std::string& stream_id, const std::string& stage, double ms);
+
+  std::vector<std::string> list() const;
+  /// One stream (false when unknown) or, with an empty id, every stream.
+  bool snapshot(const std::string& stream_id, std::vector<StreamSnapshot>& out) const;
+
+ private:
+  struct Entry {
+    StreamSettings settings;
+    StreamCounters counters;
+    StageMetrics metrics;
+  };
+  Entry* entry(const std::string& stream_id);  // registers; null when full
+  StreamSnapshot snapshot_of(const std::string& id, const Entry& e) const;
+
+  const DaemonConfig& config_;
+  mutable std::mutex mutex_;
+  std::map<std::string, Entry> streams_;
+};
+
+}  // namespace fq::daemon

@@ -1,0 +1,40 @@
+// What fqd does with one stream's frames: the filter/cluster parameters and compute mode,
+// the latency budget and the output encoding. Defaults come from the config file; every
+// key can be overridden per stream (config) and the parameters changed at run time.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "params.h"
+#include "status.h"
+
+namespace fq::daemon {
+
+/// How results are encoded on the publish socket.
+struct OutputEncoding {
+  int position_bits = 16;  ///< Draco position quantization; high enough not to undo smoothing
+  uint32_t chunks = 0;     ///< result chunk count; 0 = same as the input frame
+};
+
+struct StreamSettings {
+  Params params;            ///< params.filter / params.cluster are the compute mode
+  double budget_ms = 100.0; ///< receive -> publish budget; older frames are dropped, results flagged late
+  OutputEncoding output;
+};
+
+/// "filter" | "cluster" | "filter_and_cluster" into params.filter / params.cluster.
+bool parse_compute(const std::string& s, Params& inout);
+/// The name parse_compute accepts for the params' compute mode.
+const char* compute_name(const Params& p);
+
+/// "qf" | "bf" and "quadric" | "euclidean".
+bool parse_filter_method(const std::string& s, FilterMethod& out);
+bool parse_cluster_method(const std::string& s, ClusterMethod& out);
+const char* filter_method_name(FilterMethod m);
+const char* cluster_method_name(ClusterMethod m);
+
+/// fq::validate plus the budget and the encoding ranges.
+Status validate(const StreamSettings& s);
+
+}  // namespace fq::daemon
