@@ -1,0 +1,152 @@
+// fq_meshio on bad input: every failure is a one-line status naming the file, never a crash.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "draco/compression/encode.h"
+#include "draco/point_cloud/point_cloud.h"
+#include "io_test_util.h"
+#include "mesh_io.h"
+#include "support/test_meshes.h"
+
+namespace fq::io {
+namespace {
+
+std::string garbage(size_t n, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::string s(n, '\0');
+  for (char& c : s) c = static_cast<char>(rng() & 0xff);
+  return s;
+}
+
+void expect_read_error(const std::string& path, const std::string& needle) {
+  Mesh m;
+  m.positions = {1, 2, 3};
+  const Status s = read_mesh(path, m);
+  EXPECT_FALSE(s.ok()) << path;
+  EXPECT_NE(s.message().find(needle), std::string::npos) << s.message();
+  EXPECT_EQ(s.message().find('\n'), std::string::npos) << "one line: " << s.message();
+  EXPECT_TRUE(m.positions.empty()) << "out is cleared on failure";
+}
+
+TEST(MeshIoErrors, MissingFile) { expect_read_error("/nonexistent/dir/mesh.ply", "no such file"); }
+
+TEST(MeshIoErrors, FolderIsNotAFile) {
+  test::ScratchDir dir;
+  expect_read_error(dir.path().string(), "is a folder");
+}
+
+TEST(MeshIoErrors, UnsupportedExtension) {
+  test::ScratchDir dir;
+  test::write_bytes(dir.file("mesh.xyz"), "0 0 0\n");
+  expect_read_error(dir.file("mesh.xyz"), "unsupported extension '.xyz'");
+  test::write_bytes(dir.file("noext"), "ply\n");
+  expect_read_error(dir.file("noext"), "unsupported extension");
+}
+
+TEST(MeshIoErrors, GarbageBytesInEveryFormat) {
+  test::ScratchDir dir;
+  uint32_t seed = 1;
+  for (const char* name : {"g.ply", "g.drc", "g.obj", "g.stl"}) {
+    for (size_t size : {size_t(0), size_t(7), size_t(5000)}) {
+      const std::string path = dir.file(std::to_string(size) + name);
+      test::write_bytes(path, garbage(size, seed++));
+      Mesh m;
+      const Status s = read_mesh(path, m);
+      // Random bytes may happen to form a (meaningless) STL or OBJ; what matters is no crash,
+      // no hang, and a clear message when it fails.
+      if (!s.ok()) {
+        EXPECT_NE(s.message().find(path), std::string::npos) << s.message();
+        EXPECT_EQ(s.message().find('\n'), std::string::npos) << s.message();
+      }
+    }
+  }
+  expect_read_error(dir.file("5000g.ply"), "cannot decode");
+  expect_read_error(dir.file("5000g.drc"), "cannot decode");
+}
+
+TEST(MeshIoErrors, BinaryStlWithLyingTriangleCount) {
+  test::ScratchDir dir;
+  std::string bytes(84, '\0');
+  bytes[80] = '\xff';
+  bytes[81] = '\xff';  // 65535 triangles announced, none present
+  test::write_bytes(dir.file("short.stl"), bytes);
+  expect_read_error(dir.file("short.stl"), "announces 65535 triangles");
+}
+
+TEST(MeshIoErrors, PlyWithQuadsIsNotATriangleMesh) {
+  test::ScratchDir dir;
+  test::write_bytes(dir.file("quad.ply"),
+                    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                    "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+  expect_read_error(dir.file("quad.ply"), "not a triangle mesh");
+}
+
+TEST(MeshIoErrors, PlyIndexOutOfRange) {
+  test::ScratchDir dir;
+  test::write_bytes(dir.file("bad.ply"),
+                    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                    "0 0 0\n1 0 0\n1 1 0\n3 0 1 7\n");
+  expect_read_error(dir.file("bad.ply"), "references vertex 7");
+}
+
+TEST(MeshIoErrors, DracoPointCloudIsNotATriangleMesh) {
+  test::ScratchDir dir;
+  draco::PointCloud pc;
+  pc.set_num_points(3);
+  draco::GeometryAttribute ga;
+  ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 12, 0);
+  const int id = pc.AddAttribute(ga, true, 3);
+  const float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  for (int i = 0; i < 3; ++i) pc.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(i), p + 3 * i);
+  draco::Encoder encoder;
+  draco::EncoderBuffer buffer;
+  ASSERT_TRUE(encoder.EncodePointCloudToBuffer(pc, &buffer).ok());
+  test::write_bytes(dir.file("pc.drc"), std::string(buffer.data(), buffer.size()));
+  expect_read_error(dir.file("pc.drc"), "not a triangle mesh");
+}
+
+TEST(MeshIoErrors, WriteUnknownExtension) {
+  test::ScratchDir dir;
+  const Mesh m = test::make_single_triangle();
+  const Status s = write_mesh(dir.file("out.obj"), m.view(), nullptr, 0);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("unsupported output extension '.obj'"), std::string::npos) << s.message();
+}
+
+TEST(MeshIoErrors, WriteUnwritablePath) {
+  test::ScratchDir dir;
+  const Mesh m = test::make_single_triangle();
+  for (const std::string& path : {std::string("/nonexistent/dir/out.ply"), std::string("/nonexistent/dir/out.drc")}) {
+    const Status s = write_mesh(path, m.view(), nullptr, 0);
+    EXPECT_FALSE(s.ok()) << path;
+    EXPECT_NE(s.message().find("cannot open"), std::string::npos) << s.message();
+  }
+  std::filesystem::create_directories(dir.file("taken.ply"));  // a folder where the file should go
+  EXPECT_FALSE(write_mesh(dir.file("taken.ply"), m.view(), nullptr, 0).ok());
+}
+
+TEST(MeshIoErrors, WriteRejectsBadLabelsIndicesAndBits) {
+  test::ScratchDir dir;
+  const Mesh m = test::make_single_triangle();
+  const uint32_t labels[3] = {0, 1, 2};
+  Status s = write_mesh(dir.file("l.ply"), m.view(), labels, 2);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("label 2"), std::string::npos) << s.message();
+
+  Mesh broken = m;
+  broken.triangles[2] = 9;
+  EXPECT_FALSE(write_mesh(dir.file("b.ply"), broken.view(), nullptr, 0).ok());
+  EXPECT_FALSE(write_mesh(dir.file("b.drc"), broken.view(), nullptr, 0).ok());
+
+  s = write_mesh(dir.file("q.drc"), m.view(), nullptr, 0, 31);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("0..30"), std::string::npos) << s.message();
+}
+
+}  // namespace
+}  // namespace fq::io
