@@ -151,7 +151,7 @@ fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t ve
   if (chunks.size() > kMaxChunks) return invalid_input("frame has more than " + std::to_string(kMaxChunks) + " chunks");
 
   std::vector<Chunk> cs(chunks.size());
-  detail::for_each_chunk(chunks.size(), options.threads, [&](size_t i) {
+  detail::for_each_chunk(chunks.size(), options.threads, [&](size_t i, size_t) {
     try {
       decode_chunk(chunks[i], cs[i]);
     } catch (const std::exception& e) {  // bad_alloc on a forged chunk: this frame fails, not fqd

@@ -68,16 +68,32 @@ void add_uint_attribute(draco::Mesh& m, const char* name, const std::vector<uint
   m.AddAttributeMetadata(id, std::move(md));
 }
 
-/// One chunk as a draco::Mesh whose points are the chunk's vertices in ascending global id.
+constexpr uint32_t kNoLocal = ~0u;
+
+/// One chunk as a draco::Mesh whose points are the chunk's vertices in first-use order.
 /// Built directly (not with a mesh builder) so that no deduplication can merge two vertices.
-/// Returns whether a face repeats a vertex (edgebreaker would silently drop it).
+/// `local` is the worker's global -> local map (num_vertices entries, all kNoLocal on entry
+/// and on return). Returns whether a face repeats a vertex (edgebreaker would drop it).
 bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, const std::vector<uint32_t>& tris,
-                 draco::Mesh& m) {
+                 std::vector<uint32_t>& local, draco::Mesh& m) {
   std::vector<uint32_t> global;
-  global.reserve(tris.size() * 3);
-  for (uint32_t t : tris) global.insert(global.end(), mesh.triangles + 3 * size_t(t), mesh.triangles + 3 * size_t(t) + 3);
-  std::sort(global.begin(), global.end());
-  global.erase(std::unique(global.begin(), global.end()), global.end());
+  global.reserve(tris.size() / 2 + 16);
+  m.SetNumFaces(tris.size());
+  bool repeated_index = false;
+  for (size_t t = 0; t < tris.size(); ++t) {
+    const uint32_t* f = mesh.triangles + 3 * size_t(tris[t]);
+    draco::Mesh::Face face;
+    for (int k = 0; k < 3; ++k) {
+      if (local[f[k]] == kNoLocal) {
+        local[f[k]] = static_cast<uint32_t>(global.size());
+        global.push_back(f[k]);
+      }
+      face[k] = draco::PointIndex(local[f[k]]);
+    }
+    repeated_index |= f[0] == f[1] || f[1] == f[2] || f[2] == f[0];
+    m.SetFace(draco::FaceIndex(static_cast<uint32_t>(t)), face);
+  }
+  for (uint32_t g : global) local[g] = kNoLocal;
 
   const auto n = static_cast<uint32_t>(global.size());
   m.set_num_points(n);
@@ -89,16 +105,6 @@ bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, const std::ve
   }
   add_uint_attribute(m, kVertexIdAttribute, global, nullptr);
   if (labels) add_uint_attribute(m, kLabelAttribute, global, labels);
-
-  auto local = [&](uint32_t g) {
-    return draco::PointIndex(static_cast<uint32_t>(std::lower_bound(global.begin(), global.end(), g) - global.begin()));
-  };
-  bool repeated_index = false;
-  for (uint32_t t : tris) {
-    const uint32_t* f = mesh.triangles + 3 * size_t(t);
-    repeated_index |= f[0] == f[1] || f[1] == f[2] || f[2] == f[0];
-    m.AddFace({local(f[0]), local(f[1]), local(f[2])});
-  }
   return repeated_index;
 }
 
@@ -136,10 +142,13 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
   const auto parts = detail::split_triangles(mesh, box, std::min(chunks, mesh.num_triangles));
   std::vector<std::string> encoded(parts.size());
   std::vector<fq::Status> status(parts.size());
-  detail::for_each_chunk(parts.size(), options.threads, [&](size_t i) {
+  // Per worker, a dense global -> local vertex map: cheaper than sorting each chunk's ids.
+  std::vector<std::vector<uint32_t>> local(detail::chunk_workers(parts.size(), options.threads));
+  detail::for_each_chunk(parts.size(), options.threads, [&](size_t i, size_t w) {
     try {
+      if (local[w].empty()) local[w].assign(mesh.num_vertices, kNoLocal);
       draco::Mesh m;
-      const bool repeated_index = build_chunk(mesh, labels, parts[i], m);
+      const bool repeated_index = build_chunk(mesh, labels, parts[i], local[w], m);
       status[i] = encode_chunk(m, repeated_index, options, box, encoded[i]);
     } catch (const std::exception& e) {  // bad_alloc: a fault of this frame, not of the process
       status[i] = {fq::StatusCode::kInternal, std::string("encoding failed: ") + e.what()};

@@ -69,18 +69,22 @@ std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, con
   return parts;
 }
 
-void for_each_chunk(size_t count, int threads, const std::function<void(size_t)>& fn) {
-  const size_t workers = std::min<size_t>(count, size_t(std::max(threads, 1)));
-  if (workers <= 1) {
-    for (size_t i = 0; i < count; ++i) fn(i);
+size_t chunk_workers(size_t count, int threads) {
+  return std::max<size_t>(1, std::min<size_t>(count, size_t(std::max(threads, 1))));
+}
+
+void for_each_chunk(size_t count, int threads, const std::function<void(size_t, size_t)>& fn) {
+  const size_t workers = chunk_workers(count, threads);
+  if (workers == 1) {
+    for (size_t i = 0; i < count; ++i) fn(i, 0);
     return;
   }
   std::atomic<size_t> next{0};
   std::vector<std::thread> pool;
   pool.reserve(workers);
   for (size_t w = 0; w < workers; ++w) {
-    pool.emplace_back([&] {
-      for (size_t i = next++; i < count; i = next++) fn(i);
+    pool.emplace_back([&, w] {
+      for (size_t i = next++; i < count; i = next++) fn(i, w);
     });
   }
   for (auto& t : pool) t.join();

@@ -1,0 +1,78 @@
+// Encode/decode time of the chunked frame codec on the shared meshes (a benchmark, not a test).
+// Prints a Markdown table (median of --repeats runs per row); see --help.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "frame_codec.h"
+#include "proto_test_meshes.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+void bench(const std::string& name, const fq::Mesh& m, const fq::wire::CodecOptions& o,
+           const std::vector<uint32_t>& chunk_counts, int repeats) {
+  for (uint32_t chunks : chunk_counts) {
+    std::vector<double> enc_ms, dec_ms;
+    size_t bytes = 0;
+    for (int r = 0; r < repeats; ++r) {
+      std::vector<std::string> encoded;
+      auto t0 = Clock::now();
+      if (!fq::wire::encode_frame(m.view(), nullptr, chunks, o, encoded).ok()) std::exit(1);
+      enc_ms.push_back(ms_since(t0));
+      bytes = 0;
+      for (const auto& c : encoded) bytes += c.size();
+      std::vector<std::string_view> views(encoded.begin(), encoded.end());
+      fq::Mesh out;
+      t0 = Clock::now();
+      if (!fq::wire::decode_frame(views, m.num_vertices(), o, out, nullptr).ok()) std::exit(1);
+      dec_ms.push_back(ms_since(t0));
+    }
+    std::printf("| %s | %u | %u | %u | %d | %d | %.1f | %.1f | %zu |\n", name.c_str(), m.num_vertices(),
+                m.num_triangles(), chunks, o.threads, o.encode_speed, median(enc_ms), median(dec_ms), bytes);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Encode/decode time of the chunked Draco frame codec on the shared meshes"};
+  fq::wire::CodecOptions o;
+  o.threads = 2;
+  int repeats = 5;
+  std::vector<uint32_t> chunk_counts{1, 2, 4};
+  std::vector<std::string> meshes{"bunny.ply", "igea.ply"};
+  app.add_option("--threads", o.threads, "codec threads")->check(CLI::Range(1, 256));
+  app.add_option("--speed", o.encode_speed, "Draco encode and decode speed")->check(CLI::Range(0, 10));
+  app.add_option("--bits", o.position_bits, "position quantization bits")->check(CLI::Range(1, 30));
+  app.add_option("--repeats", repeats, "runs per row (median reported)")->check(CLI::Range(1, 1000));
+  app.add_option("--chunks", chunk_counts, "chunk counts")->check(CLI::Range(1u, fq::wire::kMaxChunks));
+  app.add_option("meshes", meshes, "PLY files in FQ_MESH_DIR");
+  CLI11_PARSE(app, argc, argv);
+  o.decode_speed = o.encode_speed;
+  std::printf("| mesh | V | F | chunks | threads | speed | encode ms | decode ms | bytes |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const auto& file : meshes) {
+    const auto m = fq::test_proto::load_shared_mesh(file);
+    if (!m) {
+      std::fprintf(stderr, "%s not found (set FQ_MESH_DIR)\n", file.c_str());
+      return 1;
+    }
+    bench(file, *m, o, chunk_counts, repeats);
+  }
+  return 0;
+}
