@@ -1,0 +1,161 @@
+// The built fqfilter binary, run as a user would: exit codes, error lines, JSON, folders.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "io_test_util.h"
+#include "mesh_io.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kFandisk = std::string(FQ_DATA_DIR) + "/fandisk.ply";
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+/// Single-quoted for the shell (built with append: GCC 12 gives a false -Wrestrict
+/// warning on "literal" + std::string).
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  q.append(s).append("'");
+  return q;
+}
+
+/// Runs fqfilter with `args` (each passed as one shell word), capturing both streams.
+RunResult run_fqfilter(const std::vector<std::string>& args, const fq::test::ScratchDir& dir) {
+  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
+  std::string cmd = quote(FQFILTER_BIN);
+  for (const std::string& a : args) cmd.append(" ").append(quote(a));
+  cmd.append(" >").append(quote(out)).append(" 2>").append(quote(err));
+  const int status = std::system(cmd.c_str());
+  RunResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.out = fq::test::read_bytes(out);
+  r.err = fq::test::read_bytes(err);
+  return r;
+}
+
+size_t count_lines(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
+
+/// Every number anywhere in `j` is finite (NaN would be serialized as null, not a number).
+void expect_finite_numbers(const nlohmann::json& j, const std::string& where = "") {
+  if (j.is_number()) {
+    EXPECT_TRUE(std::isfinite(j.get<double>())) << where;
+  } else if (j.is_object()) {
+    for (auto it = j.begin(); it != j.end(); ++it) expect_finite_numbers(it.value(), where + "." + it.key());
+  } else if (j.is_array()) {
+    for (size_t i = 0; i < j.size(); ++i) expect_finite_numbers(j[i], where + "[" + std::to_string(i) + "]");
+  }
+}
+
+TEST(FqfilterCli, BadOptionIsOneErrorLine) {
+  fq::test::ScratchDir dir;
+  const RunResult r = run_fqfilter({kFandisk, "--no-such-option"}, dir);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("--no-such-option"), std::string::npos) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+}
+
+TEST(FqfilterCli, BadValuesAreRejected) {
+  fq::test::ScratchDir dir;
+  const std::vector<std::vector<std::string>> cases = {
+      {"--sigma-s", "-1"}, {"--theta", "1.5", "--cluster"}, {"--mode", "xx"}, {"--repeat", "0"}, {"--threads", "abc"}};
+  for (const auto& opt : cases) {
+    std::vector<std::string> args = {kFandisk};
+    args.insert(args.end(), opt.begin(), opt.end());
+    const RunResult r = run_fqfilter(args, dir);
+    EXPECT_NE(r.exit_code, 0) << opt[0];
+    EXPECT_EQ(count_lines(r.err), 1u) << opt[0] << ": " << r.err;
+  }
+}
+
+TEST(FqfilterCli, MissingInputFails) {
+  fq::test::ScratchDir dir;
+  const RunResult r = run_fqfilter({dir.file("missing.ply")}, dir);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("missing.ply"), std::string::npos) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+}
+
+TEST(FqfilterCli, JsonOnFandisk) {
+  fq::test::ScratchDir dir;
+  const RunResult r =
+      run_fqfilter({kFandisk, "--engine", "cpu", "--threads", "2", "--noise", "0.2", "--seed", "5", "--cluster", "--json"}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);  // throws (fails the test) if not JSON
+  EXPECT_EQ(j.at("vertices").get<uint32_t>(), 6475u);
+  EXPECT_EQ(j.at("triangles").get<uint32_t>(), 12946u);
+  EXPECT_EQ(j.at("engine").get<std::string>(), "cpu");
+  EXPECT_GT(j.at("mean_edge").get<double>(), 0.0);
+  EXPECT_GE(j.at("clusters").get<uint32_t>(), 1u);
+  EXPECT_GT(j.at("timings_ms").at("total").get<double>(), 0.0);
+  EXPECT_FALSE(j.at("timings_ms").at("passes").empty());
+  const nlohmann::json& m = j.at("metrics");
+  EXPECT_GT(m.at("input").at("rmse_over_diagonal").get<double>(), 0.0);
+  // Noise of 0.2 edges tilts faces by many degrees; filtering must bring them back.
+  EXPECT_LT(m.at("output").at("mfne_rad").get<double>(), m.at("input").at("mfne_rad").get<double>());
+  expect_finite_numbers(j);
+}
+
+TEST(FqfilterCli, WritesLabelledPly) {
+  fq::test::ScratchDir dir;
+  const std::string out = dir.file("out.ply");
+  const RunResult r = run_fqfilter({kFandisk, out, "--engine", "cpu", "--threads", "2", "--no-filter"}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(fq::test::read_bytes(out).find("property uint label"), std::string::npos);
+  fq::Mesh in, back;
+  ASSERT_TRUE(fq::io::read_mesh(kFandisk, in).ok());
+  ASSERT_TRUE(fq::io::read_mesh(out, back).ok());
+  EXPECT_EQ(back.positions, in.positions) << "--no-filter keeps the positions";
+  EXPECT_NE(r.out.find("clusters:"), std::string::npos) << r.out;
+}
+
+TEST(FqfilterCli, MismatchedReferenceFails) {
+  fq::test::ScratchDir dir;
+  fq::Mesh tri;
+  tri.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  tri.triangles = {0, 1, 2};
+  ASSERT_TRUE(fq::io::write_mesh(dir.file("tri.ply"), tri.view(), nullptr, 0).ok());
+  const RunResult r = run_fqfilter({kFandisk, "--reference", dir.file("tri.ply")}, dir);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("vertex counts differ"), std::string::npos) << r.err;
+}
+
+TEST(FqfilterCli, FolderWithOneBadFile) {
+  fq::test::ScratchDir dir;
+  const fs::path in = dir.path() / "in", out = dir.path() / "out";
+  fs::create_directories(in);
+  fs::copy_file(kFandisk, in / "a_fandisk.ply");
+  fq::test::write_bytes((in / "b_garbage.ply").string(), "this is not a mesh");
+  fq::test::write_bytes((in / "notes.txt").string(), "ignored");
+  const RunResult r = run_fqfilter({in.string(), out.string(), "--engine", "cpu", "--threads", "2"}, dir);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("[1/2] a_fandisk.ply: 6475 V"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("[2/2] b_garbage.ply: FAILED"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("1 of 2 files done, 1 failed"), std::string::npos) << r.err;
+  fq::Mesh written;
+  ASSERT_TRUE(fq::io::read_mesh((out / "a_fandisk.ply").string(), written).ok());
+  EXPECT_EQ(written.num_vertices(), 6475u);
+  EXPECT_FALSE(fs::exists(out / "b_garbage.ply"));
+}
+
+TEST(FqfilterCli, FolderOutputMustNotBeTheInput) {
+  fq::test::ScratchDir dir;
+  fs::copy_file(kFandisk, dir.path() / "fandisk.ply");
+  const RunResult r = run_fqfilter({dir.path().string(), dir.path().string()}, dir);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("OUT must differ from IN"), std::string::npos) << r.err;
+}
+
+}  // namespace
