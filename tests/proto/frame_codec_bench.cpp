@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -19,6 +20,13 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
+/// CPU time of the whole process (all threads), in ms: less sensitive to a loaded machine than wall time.
+double cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
@@ -27,23 +35,28 @@ double median(std::vector<double> v) {
 void bench(const std::string& name, const fq::Mesh& m, const fq::wire::CodecOptions& o,
            const std::vector<uint32_t>& chunk_counts, int repeats) {
   for (uint32_t chunks : chunk_counts) {
-    std::vector<double> enc_ms, dec_ms;
+    std::vector<double> enc_ms, dec_ms, enc_cpu, dec_cpu;
     size_t bytes = 0;
     for (int r = 0; r < repeats; ++r) {
       std::vector<std::string> encoded;
       auto t0 = Clock::now();
+      double c0 = cpu_ms();
       if (!fq::wire::encode_frame(m.view(), nullptr, chunks, o, encoded).ok()) std::exit(1);
       enc_ms.push_back(ms_since(t0));
+      enc_cpu.push_back(cpu_ms() - c0);
       bytes = 0;
       for (const auto& c : encoded) bytes += c.size();
       std::vector<std::string_view> views(encoded.begin(), encoded.end());
       fq::Mesh out;
       t0 = Clock::now();
+      c0 = cpu_ms();
       if (!fq::wire::decode_frame(views, m.num_vertices(), o, out, nullptr).ok()) std::exit(1);
       dec_ms.push_back(ms_since(t0));
+      dec_cpu.push_back(cpu_ms() - c0);
     }
-    std::printf("| %s | %u | %u | %u | %d | %d | %.1f | %.1f | %zu |\n", name.c_str(), m.num_vertices(),
-                m.num_triangles(), chunks, o.threads, o.encode_speed, median(enc_ms), median(dec_ms), bytes);
+    std::printf("| %s | %u | %u | %u | %d | %d | %.1f | %.1f | %.1f | %.1f | %zu |\n", name.c_str(), m.num_vertices(),
+                m.num_triangles(), chunks, o.threads, o.encode_speed, median(enc_ms), median(enc_cpu), median(dec_ms),
+                median(dec_cpu), bytes);
   }
 }
 
@@ -64,8 +77,8 @@ int main(int argc, char** argv) {
   app.add_option("meshes", meshes, "PLY files in FQ_MESH_DIR");
   CLI11_PARSE(app, argc, argv);
   o.decode_speed = o.encode_speed;
-  std::printf("| mesh | V | F | chunks | threads | speed | encode ms | decode ms | bytes |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::printf("| mesh | V | F | chunks | threads | speed | encode wall ms | encode CPU ms | decode wall ms | decode CPU ms | bytes |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const auto& file : meshes) {
     const auto m = fq::test_proto::load_shared_mesh(file);
     if (!m) {
