@@ -1,10 +1,13 @@
 // Frames the codec must refuse, and plain Draco meshes from other producers.
 #include <draco/compression/encode.h>
+#include <draco/core/draco_types.h>
 #include <draco/mesh/mesh.h>
+#include <draco/metadata/geometry_metadata.h>
 #include <draco/point_cloud/point_cloud.h>
 #include <gtest/gtest.h>
 
 #include <map>
+#include <memory>
 #include <string>
 
 #include "frame_codec.h"
@@ -30,14 +33,28 @@ Status decode(const std::vector<std::string>& chunks, uint32_t vertex_count, Mes
 }
 
 /// `m` as a plain Draco mesh (no fq attributes, float positions kept exactly), as any
-/// producer using draco::Encoder would send it. With `cloud`, a point cloud instead.
-std::string plain_draco(const Mesh& m, bool cloud = false) {
+/// producer using draco::Encoder would send it. With `cloud`, a point cloud instead. With
+/// `vid`, also an "fq_vid" attribute of type `vid_type` holding vid[v] for vertex v.
+std::string plain_draco(const Mesh& m, bool cloud = false, const std::vector<uint32_t>* vid = nullptr,
+                        draco::DataType vid_type = draco::DT_UINT32) {
   draco::Mesh dm;
   dm.set_num_points(m.num_vertices());
   draco::GeometryAttribute ga;
   ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 12, 0);
   auto* pa = dm.attribute(dm.AddAttribute(ga, true, m.num_vertices()));
   for (uint32_t v = 0; v < m.num_vertices(); ++v) pa->SetAttributeValue(draco::AttributeValueIndex(v), &m.positions[3 * v]);
+  if (vid) {
+    ga.Init(draco::GeometryAttribute::GENERIC, nullptr, 1, vid_type, false, draco::DataTypeLength(vid_type), 0);
+    const int id = dm.AddAttribute(ga, true, m.num_vertices());
+    for (uint32_t v = 0; v < m.num_vertices(); ++v) {
+      const uint32_t u = (*vid)[v];
+      const float f = float(u);
+      dm.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(v), vid_type == draco::DT_FLOAT32 ? (const void*)&f : &u);
+    }
+    auto md = std::make_unique<draco::AttributeMetadata>();
+    md->AddEntryString("name", kVertexIdAttribute);
+    dm.AddAttributeMetadata(id, std::move(md));
+  }
   for (uint32_t t = 0; t < m.num_triangles(); ++t) {
     dm.AddFace({draco::PointIndex(m.triangles[3 * t]), draco::PointIndex(m.triangles[3 * t + 1]),
                 draco::PointIndex(m.triangles[3 * t + 2])});
@@ -132,6 +149,48 @@ TEST(FrameCodecErrors, VertexNeverCoveredNamesTheVertex) {
   const Status s = decode(chunks, m.num_vertices(), out);
   EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
   EXPECT_NE(s.message().find("in no chunk"), std::string::npos) << s.message();
+}
+
+TEST(FrameCodecErrors, VertexCountZeroIsInferredFromTheIds) {
+  const Mesh m = test_proto::make_bumpy_grid(9, 7);
+  Mesh out;
+  ASSERT_TRUE(decode(encode(m, 3), 0, out).ok());
+  EXPECT_EQ(out.num_vertices(), m.num_vertices());
+  EXPECT_EQ(triangle_set(out.triangles), triangle_set(m.triangles));
+}
+
+TEST(FrameCodecErrors, ForeignFqVidChunks) {
+  // Chunks from another producer that uses fq_vid: ids are honoured, bad ones are caught.
+  const Mesh m = test_proto::make_bumpy_grid(3, 3);
+  std::vector<uint32_t> vid(m.num_vertices());
+  for (uint32_t v = 0; v < vid.size(); ++v) vid[v] = uint32_t(vid.size()) - 1 - v;  // reversed
+  Mesh out;
+  ASSERT_TRUE(decode({plain_draco(m, false, &vid)}, m.num_vertices(), out).ok());
+  for (uint32_t v = 0; v < m.num_vertices(); ++v) EXPECT_EQ(out.positions[3 * vid[v]], m.positions[3 * v]);
+  vid[5] = 1000;  // out of range, with the count inferred: more vertices than points
+  Status s = decode({plain_draco(m, false, &vid)}, 0, out);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+  vid[5] = vid[6];  // two points claim one id: one id is never covered
+  s = decode({plain_draco(m, false, &vid)}, m.num_vertices(), out);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(s.message().find("in no chunk"), std::string::npos) << s.message();
+  for (uint32_t v = 0; v < vid.size(); ++v) vid[v] = v;
+  s = decode({plain_draco(m, false, &vid, draco::DT_FLOAT32)}, 0, out);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(s.message().find("uint32"), std::string::npos) << s.message();
+}
+
+TEST(FrameCodecErrors, LabelsOnlyWhenEveryChunkHasThem) {
+  const Mesh m = test_proto::make_bumpy_grid(8, 8);
+  std::vector<uint32_t> labels(m.num_vertices(), 4);
+  std::vector<std::string> with, without;
+  ASSERT_TRUE(encode_frame(m.view(), labels.data(), 2, CodecOptions{}, with).ok());
+  ASSERT_TRUE(encode_frame(m.view(), nullptr, 2, CodecOptions{}, without).ok());
+  std::vector<std::string_view> mixed{with[0], without[1]};
+  Mesh out;
+  std::vector<uint32_t> got{9};
+  ASSERT_TRUE(decode_frame(mixed, m.num_vertices(), CodecOptions{}, out, &got).ok());
+  EXPECT_TRUE(got.empty());
 }
 
 TEST(FrameCodecErrors, BadEncodeInputRejected) {
