@@ -26,9 +26,9 @@ double rmse_over_diagonal(const MeshView& reference, const float* positions);
 
 /// Mean face normal error.
 struct MfneResult {
-  double mean_radians = 0.0;     ///< mean over the faces used; NaN when none was used
+  double mean_radians = 0.0;  ///< mean over the faces used; NaN when none was used
   uint32_t faces_used = 0;
-  uint32_t faces_skipped = 0;    ///< degenerate (no normal) in the reference or the candidate
+  uint32_t faces_skipped = 0;  ///< degenerate (no normal) in the reference or the candidate
 };
 
 /// Mean over triangles of the angle, in radians in [0, pi], between the reference face

@@ -19,12 +19,18 @@ Rgb8 hsv_to_rgb(double h, double s, double v) {
   const double f = h6 - std::floor(h6);
   const double p = v * (1.0 - s), q = v * (1.0 - s * f), t = v * (1.0 - s * (1.0 - f));
   switch (sector) {
-    case 0: return {to_byte(v), to_byte(t), to_byte(p)};
-    case 1: return {to_byte(q), to_byte(v), to_byte(p)};
-    case 2: return {to_byte(p), to_byte(v), to_byte(t)};
-    case 3: return {to_byte(p), to_byte(q), to_byte(v)};
-    case 4: return {to_byte(t), to_byte(p), to_byte(v)};
-    default: return {to_byte(v), to_byte(p), to_byte(q)};
+    case 0:
+      return {to_byte(v), to_byte(t), to_byte(p)};
+    case 1:
+      return {to_byte(q), to_byte(v), to_byte(p)};
+    case 2:
+      return {to_byte(p), to_byte(v), to_byte(t)};
+    case 3:
+      return {to_byte(p), to_byte(q), to_byte(v)};
+    case 4:
+      return {to_byte(t), to_byte(p), to_byte(v)};
+    default:
+      return {to_byte(v), to_byte(p), to_byte(q)};
   }
 }
 

@@ -19,7 +19,8 @@ Status from_draco(const std::string& path, const draco::Mesh& dm, Mesh& out) {
   const draco::PointAttribute* pos = dm.GetNamedAttribute(draco::GeometryAttribute::POSITION);
   if (!pos) return invalid_input("'" + path + "' has no vertex positions");
   if (pos->num_components() < 3)
-    return invalid_input("'" + path + "' has " + std::to_string(pos->num_components()) + "-D positions, not 3-D");
+    return invalid_input("'" + path + "' has " + std::to_string(pos->num_components()) +
+                         "-D positions, not 3-D");
   const uint32_t n = dm.num_points();
   out.positions.resize(3 * size_t(n));
   for (uint32_t p = 0; p < n; ++p) {
@@ -33,8 +34,8 @@ Status from_draco(const std::string& path, const draco::Mesh& dm, Mesh& out) {
     for (int k = 0; k < 3; ++k) {
       const uint32_t v = face[k].value();
       if (v >= n)
-        return invalid_input("cannot decode '" + path + "': face " + std::to_string(f) + " references vertex " +
-                             std::to_string(v) + " of " + std::to_string(n));
+        return invalid_input("cannot decode '" + path + "': face " + std::to_string(f) +
+                             " references vertex " + std::to_string(v) + " of " + std::to_string(n));
       out.triangles[3 * size_t(f) + k] = v;
     }
   }
@@ -54,7 +55,8 @@ Status check_stl_size(const std::string& path) {
   const auto got = f.gcount();
   const uint64_t size = std::filesystem::file_size(path);
   const bool says_solid = got >= 5 && std::memcmp(head, "solid", 5) == 0;
-  if (got < 84) return says_solid ? Status{} : invalid_input("cannot decode '" + path + "': too short for an STL file");
+  if (got < 84)
+    return says_solid ? Status{} : invalid_input("cannot decode '" + path + "': too short for an STL file");
   uint32_t count = 0;
   for (int i = 0; i < 4; ++i) count |= uint32_t(static_cast<unsigned char>(head[80 + i])) << (8 * i);
   if (84 + 50 * uint64_t(count) == size || says_solid) return {};

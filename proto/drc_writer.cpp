@@ -33,7 +33,8 @@ std::unique_ptr<draco::Mesh> to_draco(const MeshView& mesh, const uint32_t* labe
   dm->SetNumFaces(mesh.num_triangles);
   for (uint32_t t = 0; t < mesh.num_triangles; ++t) {
     const uint32_t* tri = mesh.triangles + 3 * size_t(t);
-    dm->SetFace(draco::FaceIndex(t), {draco::PointIndex(tri[0]), draco::PointIndex(tri[1]), draco::PointIndex(tri[2])});
+    dm->SetFace(draco::FaceIndex(t),
+                {draco::PointIndex(tri[0]), draco::PointIndex(tri[1]), draco::PointIndex(tri[2])});
   }
   add_point_attribute(*dm, draco::GeometryAttribute::POSITION, draco::DT_FLOAT32, 3, mesh.positions);
   if (labels) {

@@ -58,7 +58,8 @@ Status read_mesh(const std::string& path, Mesh& out) {
   out = Mesh{};
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return invalid_argument("cannot read '" + path + "': no such file");
-  if (std::filesystem::is_directory(path, ec)) return invalid_argument("cannot read '" + path + "': is a folder");
+  if (std::filesystem::is_directory(path, ec))
+    return invalid_argument("cannot read '" + path + "': is a folder");
   if (!is_readable_mesh_file(path))
     return invalid_argument("cannot read '" + path + "': unsupported extension '" + lower_extension(path) +
                             "' (expected .ply, .obj, .stl or .drc)");
@@ -73,8 +74,8 @@ Status read_mesh(const std::string& path, Mesh& out) {
   return s;
 }
 
-Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t* labels, uint32_t num_clusters,
-                  int drc_position_bits) {
+Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t* labels,
+                  uint32_t num_clusters, int drc_position_bits) {
   const std::string ext = lower_extension(path);
   if (ext != ".ply" && ext != ".drc")
     return invalid_argument("cannot write '" + path + "': unsupported output extension '" + ext +
@@ -82,7 +83,8 @@ Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t*
   if (Status s = check_for_writing(path, mesh, labels, num_clusters); !s.ok()) return s;
   if (ext == ".ply") return write_ply(path, mesh, labels);
   if (drc_position_bits < 0 || drc_position_bits > 30)
-    return invalid_argument("Draco position bits must be in 0..30 (got " + std::to_string(drc_position_bits) + ")");
+    return invalid_argument("Draco position bits must be in 0..30 (got " + std::to_string(drc_position_bits) +
+                            ")");
   try {
     return write_drc(path, mesh, labels, num_clusters, drc_position_bits);
   } catch (const std::exception& e) {

@@ -35,8 +35,8 @@ Status read_mesh(const std::string& path, Mesh& out);
 ///    name = "fq_label", and the geometry metadata entry "fq_num_clusters".
 /// `labels` is null or holds one label per vertex, each < num_clusters (checked).
 /// Errors: other extensions, bad labels or bits, unopenable or unwritable output.
-Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t* labels, uint32_t num_clusters,
-                  int drc_position_bits = 16);
+Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t* labels,
+                  uint32_t num_clusters, int drc_position_bits = 16);
 
 /// Metadata key and value that name the labels attribute in .drc files.
 inline constexpr const char* kLabelMetadataKey = "name";

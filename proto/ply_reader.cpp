@@ -46,8 +46,9 @@ Status read_faces(const std::string& path, const draco::PlyElement* face, Mesh& 
     for (int k = 0; k < 3; ++k) {
       const int64_t v = reader.ReadValue(static_cast<int>(offset + k));
       if (v < 0 || v >= num_vertices)
-        return invalid_input("cannot decode '" + path + "': face " + std::to_string(f) + " references vertex " +
-                             std::to_string(v) + " of " + std::to_string(num_vertices));
+        return invalid_input("cannot decode '" + path + "': face " + std::to_string(f) +
+                             " references vertex " + std::to_string(v) + " of " +
+                             std::to_string(num_vertices));
       out.triangles[3 * size_t(f) + k] = static_cast<uint32_t>(v);
     }
   }

@@ -30,7 +30,8 @@ std::string header(const MeshView& mesh, bool with_labels) {
   h << "ply\nformat binary_little_endian 1.0\ncomment written by fq\n"
     << "element vertex " << mesh.num_vertices << "\n"
     << "property float x\nproperty float y\nproperty float z\n";
-  if (with_labels) h << "property uint label\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n";
+  if (with_labels)
+    h << "property uint label\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n";
   h << "element face " << mesh.num_triangles << "\n"
     << "property list uchar int vertex_indices\nend_header\n";
   return h.str();

@@ -1,8 +1,7 @@
 #include "cli_options.h"
 
-#include <iostream>
-
 #include <CLI/CLI.hpp>
+#include <iostream>
 
 namespace fq::cli {
 
@@ -21,7 +20,8 @@ void add_filter_options(CLI::App& app, Options& o, std::string& mode) {
   app.add_option("--sigma-r", f.sigma_r, "Range extent (RMS quadric distance), in mean edge lengths")
       ->capture_default_str()
       ->group(g);
-  app.add_option("--sigma-b", f.sigma_b, "Finest detail captured by the neighbourhood quadrics; 0 = sigma-s/2")
+  app.add_option("--sigma-b", f.sigma_b,
+                 "Finest detail captured by the neighbourhood quadrics; 0 = sigma-s/2")
       ->capture_default_str()
       ->group(g);
   app.add_option("--sigma-n", f.sigma_n, "Normal smoothing of --constrained; 0 = sigma-s/2")
@@ -38,7 +38,8 @@ void add_cluster_options(CLI::App& app, Options& o, std::string& method, bool& n
   const std::string g = "Clustering";
   app.add_flag("--cluster", o.params.cluster, "Compute a cluster label per vertex (written with the output)")
       ->group(g);
-  app.add_flag("--no-filter", no_filter, "Cluster only: keep the input positions (implies --cluster)")->group(g);
+  app.add_flag("--no-filter", no_filter, "Cluster only: keep the input positions (implies --cluster)")
+      ->group(g);
   app.add_option("--cluster-method", method, "quadric (the paper) or euclidean (plain quick shift)")
       ->check(CLI::IsMember({"quadric", "euclidean"}))
       ->capture_default_str()
@@ -56,17 +57,20 @@ void add_cluster_options(CLI::App& app, Options& o, std::string& method, bool& n
 
 void add_run_options(CLI::App& app, Options& o, std::string& engine) {
   app.add_option("IN", o.input, "Mesh file (.ply .obj .stl .drc) or folder of them")->required();
-  app.add_option("OUT", o.output, "Output file (.ply or .drc), or folder when IN is a folder; none: write nothing");
+  app.add_option("OUT", o.output,
+                 "Output file (.ply or .drc), or folder when IN is a folder; none: write nothing");
   app.add_option("--engine", engine, "auto (CUDA when a GPU is present), cpu or cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
       ->capture_default_str();
   app.add_option("--threads", o.engine.threads, "CPU engine threads; 0 = all hardware threads")
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();
-  app.add_option("--noise", o.noise_sigma, "Add Gaussian noise of this std (mean edge lengths) before filtering")
+  app.add_option("--noise", o.noise_sigma,
+                 "Add Gaussian noise of this std (mean edge lengths) before filtering")
       ->check(CLI::Range(0.0, 100.0));
   app.add_option("--seed", o.seed, "Seed of --noise")->capture_default_str();
-  app.add_option("--reference", o.reference, "Clean mesh (same vertices and faces) to measure errors against");
+  app.add_option("--reference", o.reference,
+                 "Clean mesh (same vertices and faces) to measure errors against");
   app.add_option("--repeat", o.repeat, "Run the engine N times per mesh; timings are medians")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
@@ -86,10 +90,13 @@ std::string cross_check(const Options& o) {
 }  // namespace
 
 const char* filter_method_name(FilterMethod m) { return m == FilterMethod::kQuadric ? "qf" : "bf"; }
-const char* cluster_method_name(ClusterMethod m) { return m == ClusterMethod::kQuadric ? "quadric" : "euclidean"; }
+const char* cluster_method_name(ClusterMethod m) {
+  return m == ClusterMethod::kQuadric ? "quadric" : "euclidean";
+}
 
 ParseOutcome parse_options(int argc, char** argv, Options& o) {
-  CLI::App app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)", "fqfilter"};
+  CLI::App app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
+               "fqfilter"};
   std::string mode = "qf", method = "quadric", engine = "auto";
   bool no_filter = false;
   add_run_options(app, o, engine);

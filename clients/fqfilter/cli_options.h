@@ -10,15 +10,15 @@
 namespace fq::cli {
 
 struct Options {
-  std::string input;       ///< a mesh file or a folder of them
-  std::string output;      ///< file (.ply/.drc) or folder; empty: write nothing
+  std::string input;   ///< a mesh file or a folder of them
+  std::string output;  ///< file (.ply/.drc) or folder; empty: write nothing
   EngineOptions engine;
   Params params;           ///< defaults from fq::Params
   double noise_sigma = 0;  ///< in mean edge lengths; 0: no noise
   uint64_t seed = 1;
-  std::string reference;   ///< clean mesh for the metrics; empty: the input when noise is added
-  int repeat = 1;          ///< engine runs per frame; timings are medians
-  int drc_bits = 16;       ///< position quantization of .drc outputs
+  std::string reference;  ///< clean mesh for the metrics; empty: the input when noise is added
+  int repeat = 1;         ///< engine runs per frame; timings are medians
+  int drc_bits = 16;      ///< position quantization of .drc outputs
   bool json = false;
 
   bool has_metrics() const { return noise_sigma > 0 || !reference.empty(); }

@@ -28,7 +28,8 @@ Status load_reference(const Options& o, const std::string& input, Mesh& clean, s
   return {};
 }
 
-Status run_engine(const Options& o, Engine& engine, const MeshView& view, FrameResult& result, FileReport& report) {
+Status run_engine(const Options& o, Engine& engine, const MeshView& view, FrameResult& result,
+                  FileReport& report) {
   std::vector<std::vector<PassTiming>> runs;
   for (int i = 0; i < o.repeat; ++i) {
     if (Status s = engine.process(view, o.params, result); !s.ok()) return s;
@@ -72,7 +73,8 @@ Status run_file_job(const std::string& input, const std::string& output, const O
   }
   if (!r.reference.empty()) {
     if (Status s = check_same_connectivity(clean.view(), mesh.view()); !s.ok())
-      return fail(r, invalid_input("reference '" + o.reference + "' does not match '" + input + "': " + s.message()));
+      return fail(
+          r, invalid_input("reference '" + o.reference + "' does not match '" + input + "': " + s.message()));
   }
   FrameResult result;
   if (Status s = run_engine(o, engine, mesh.view(), result, r); !s.ok())
@@ -85,7 +87,8 @@ Status run_file_job(const std::string& input, const std::string& output, const O
     MeshView out = mesh.view();
     out.positions = result.positions.data();
     const uint32_t* labels = o.params.cluster ? result.labels.data() : nullptr;
-    if (Status s = io::write_mesh(output, out, labels, result.num_clusters, o.drc_bits); !s.ok()) return fail(r, s);
+    if (Status s = io::write_mesh(output, out, labels, result.num_clusters, o.drc_bits); !s.ok())
+      return fail(r, s);
     r.output = output;
   }
   return {};

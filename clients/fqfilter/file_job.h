@@ -14,7 +14,7 @@ namespace fq::cli {
 /// empty): filtered positions (or the input's when clustering only) and, with
 /// clustering, the labels. Fills `report`; on failure also report.error, and the
 /// returned status says what went wrong in one line naming the file.
-Status run_file_job(const std::string& input, const std::string& output, const Options& options, Engine& engine,
-                    FileReport& report);
+Status run_file_job(const std::string& input, const std::string& output, const Options& options,
+                    Engine& engine, FileReport& report);
 
 }  // namespace fq::cli

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <iomanip>
 #include <numbers>
 #include <ostream>
@@ -107,7 +107,8 @@ nlohmann::json to_json(const FileReport& r) {
   if (r.reference.empty()) {
     j["metrics"] = nullptr;
   } else {
-    j["metrics"] = {{"reference", r.reference}, {"input", error_json(r.input_error)},
+    j["metrics"] = {{"reference", r.reference},
+                    {"input", error_json(r.input_error)},
                     {"output", error_json(r.output_error)}};
   }
   return j;
@@ -119,18 +120,21 @@ void print_human(const FileReport& r, std::ostream& os) {
      << r.mean_edge << ", engine " << r.engine;
   if (r.threads > 0) os << " (" << r.threads << " threads)";
   os << "\n";
-  os << "  " << std::left << std::setw(24) << "pass" << std::right << std::setw(10) << "ms" << "\n" << std::fixed;
+  os << "  " << std::left << std::setw(24) << "pass" << std::right << std::setw(10) << "ms"
+     << "\n"
+     << std::fixed;
   for (const PassTiming& p : r.passes)
-    os << "  " << std::left << std::setw(24) << p.name << std::right << std::setw(10) << std::setprecision(2) << p.ms
-       << "\n";
+    os << "  " << std::left << std::setw(24) << p.name << std::right << std::setw(10) << std::setprecision(2)
+       << p.ms << "\n";
   os << "  " << std::left << std::setw(24) << "total" << std::right << std::setw(10) << std::setprecision(2)
      << r.total_ms;
   if (r.repeat > 1) os << "  (median of " << r.repeat << " runs)";
   os << "\n";
   if (r.clusters) os << "  clusters: " << *r.clusters << "\n";
   if (!r.reference.empty()) {
-    os << "  error vs " << r.reference << "\n  " << std::left << std::setw(14) << "" << std::right << std::setw(12)
-       << "RMSE/diag" << std::setw(12) << "MFNE (deg)" << "\n";
+    os << "  error vs " << r.reference << "\n  " << std::left << std::setw(14) << "" << std::right
+       << std::setw(12) << "RMSE/diag" << std::setw(12) << "MFNE (deg)"
+       << "\n";
     print_error_row(os, r.noise_sigma > 0 ? "noisy input" : "input", r.input_error);
     print_error_row(os, "result", r.output_error);
   }

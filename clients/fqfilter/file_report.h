@@ -3,11 +3,10 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "engine.h"
 #include "metrics.h"
@@ -23,9 +22,9 @@ struct MeshError {
 
 struct FileReport {
   std::string file;
-  std::string output;      ///< written file; empty when none
-  std::string engine;      ///< Engine::name()
-  int threads = 0;         ///< CPU engine threads; 0 for other engines
+  std::string output;  ///< written file; empty when none
+  std::string engine;  ///< Engine::name()
+  int threads = 0;     ///< CPU engine threads; 0 for other engines
   uint32_t vertices = 0;
   uint32_t triangles = 0;
   double mean_edge = 0.0;  ///< of the engine's input, in input units
@@ -36,7 +35,7 @@ struct FileReport {
   std::vector<PassTiming> passes;  ///< median ms of each pass over the repeats
   double total_ms = 0.0;           ///< median of the per-run totals
   std::optional<uint32_t> clusters;
-  std::string reference;           ///< what the metrics compare to; empty: no metrics
+  std::string reference;                  ///< what the metrics compare to; empty: no metrics
   std::optional<MeshError> input_error;   ///< engine input (noisy) vs reference
   std::optional<MeshError> output_error;  ///< result vs reference (when filtering)
   std::string error;                      ///< non-empty when the file failed

@@ -17,12 +17,14 @@ namespace {
 bool prepare_output_folder(const Options& o) {
   std::error_code ec;
   if (fs::exists(o.output, ec) && !fs::is_directory(o.output, ec)) {
-    std::cerr << "fqfilter: error: OUT '" << o.output << "' is a file; with a folder as IN, OUT must be a folder\n";
+    std::cerr << "fqfilter: error: OUT '" << o.output
+              << "' is a file; with a folder as IN, OUT must be a folder\n";
     return false;
   }
   fs::create_directories(o.output, ec);
   if (ec) {
-    std::cerr << "fqfilter: error: cannot create output folder '" << o.output << "': " << ec.message() << "\n";
+    std::cerr << "fqfilter: error: cannot create output folder '" << o.output << "': " << ec.message()
+              << "\n";
     return false;
   }
   if (fs::equivalent(o.input, o.output, ec)) {
@@ -46,7 +48,8 @@ std::vector<fs::path> list_mesh_files(const fs::path& folder) {
   for (const fs::directory_entry& e : fs::directory_iterator(folder)) {
     if (e.is_regular_file() && io::is_readable_mesh_file(e.path().string())) files.push_back(e.path());
   }
-  std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) { return a.filename() < b.filename(); });
+  std::sort(files.begin(), files.end(),
+            [](const fs::path& a, const fs::path& b) { return a.filename() < b.filename(); });
   return files;
 }
 

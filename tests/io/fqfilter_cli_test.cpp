@@ -1,6 +1,5 @@
 // The built fqfilter binary, run as a user would: exit codes, error lines, JSON, folders.
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 
 #include <cmath>
@@ -69,8 +68,11 @@ TEST(FqfilterCli, BadOptionIsOneErrorLine) {
 
 TEST(FqfilterCli, BadValuesAreRejected) {
   fq::test::ScratchDir dir;
-  const std::vector<std::vector<std::string>> cases = {
-      {"--sigma-s", "-1"}, {"--theta", "1.5", "--cluster"}, {"--mode", "xx"}, {"--repeat", "0"}, {"--threads", "abc"}};
+  const std::vector<std::vector<std::string>> cases = {{"--sigma-s", "-1"},
+                                                       {"--theta", "1.5", "--cluster"},
+                                                       {"--mode", "xx"},
+                                                       {"--repeat", "0"},
+                                                       {"--threads", "abc"}};
   for (const auto& opt : cases) {
     std::vector<std::string> args = {kFandisk};
     args.insert(args.end(), opt.begin(), opt.end());
@@ -90,8 +92,9 @@ TEST(FqfilterCli, MissingInputFails) {
 
 TEST(FqfilterCli, JsonOnFandisk) {
   fq::test::ScratchDir dir;
-  const RunResult r =
-      run_fqfilter({kFandisk, "--engine", "cpu", "--threads", "2", "--noise", "0.2", "--seed", "5", "--cluster", "--json"}, dir);
+  const RunResult r = run_fqfilter(
+      {kFandisk, "--engine", "cpu", "--threads", "2", "--noise", "0.2", "--seed", "5", "--cluster", "--json"},
+      dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);  // throws (fails the test) if not JSON
   EXPECT_EQ(j.at("vertices").get<uint32_t>(), 6475u);

@@ -121,7 +121,8 @@ TEST(MeshIoErrors, WriteUnknownExtension) {
 TEST(MeshIoErrors, WriteUnwritablePath) {
   test::ScratchDir dir;
   const Mesh m = test::make_single_triangle();
-  for (const std::string& path : {std::string("/nonexistent/dir/out.ply"), std::string("/nonexistent/dir/out.drc")}) {
+  for (const std::string& path :
+       {std::string("/nonexistent/dir/out.ply"), std::string("/nonexistent/dir/out.drc")}) {
     const Status s = write_mesh(path, m.view(), nullptr, 0);
     EXPECT_FALSE(s.ok()) << path;
     EXPECT_NE(s.message().find("cannot open"), std::string::npos) << s.message();

@@ -78,7 +78,8 @@ TEST(Metrics, SingleFaceTiltedByKnownAngle) {
 TEST(Metrics, FlippedFaceIsPi) {
   const Mesh tri = test::make_single_triangle();
   std::vector<float> mirrored = tri.positions;
-  std::swap_ranges(mirrored.begin() + 3, mirrored.begin() + 6, mirrored.begin() + 6);  // swap vertices 1 and 2
+  std::swap_ranges(mirrored.begin() + 3, mirrored.begin() + 6,
+                   mirrored.begin() + 6);  // swap vertices 1 and 2
   EXPECT_NEAR(mean_face_normal_error(tri.view(), mirrored.data()).mean_radians, std::numbers::pi, 1e-6);
 }
 

@@ -80,7 +80,8 @@ TEST(Noise, DrawsArePinned) {
   const double edge = mean_edge_length(m.view());
   add_gaussian_noise(m, 1.0, 12345);
   const double expected[3] = {-0.7626909, 0.5508932, -1.4227289};
-  for (int i = 0; i < 3; ++i) EXPECT_NEAR((double(m.positions[i]) - before[i]) / edge, expected[i], 1e-5) << i;
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR((double(m.positions[i]) - before[i]) / edge, expected[i], 1e-5) << i;
 }
 
 TEST(Noise, ZeroOrInvalidSigmaLeavesTheMeshAlone) {
