@@ -70,28 +70,48 @@ void add_uint_attribute(draco::Mesh& m, const char* name, const std::vector<uint
 
 constexpr uint32_t kNoLocal = ~0u;
 
-/// One chunk as a draco::Mesh whose points are the chunk's vertices in first-use order.
-/// Built directly (not with a mesh builder) so that no deduplication can merge two vertices.
+/// The chunk's vertices in ascending global id, with local[g] = their index. Ascending ids make
+/// fq_vid's deltas small (Draco's symbol coder is slow on a large alphabet) and keep the input's
+/// vertex order, usually spatially coherent, for Draco's sequential coder.
+std::vector<uint32_t> chunk_vertices(const fq::MeshView& mesh, const std::vector<uint32_t>& tris,
+                                     std::vector<uint32_t>& local) {
+  std::vector<uint32_t> global;
+  global.reserve(tris.size() / 2 + 16);
+  for (uint32_t t : tris) {
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t g = mesh.triangles[3 * size_t(t) + k];
+      if (local[g] == kNoLocal) {
+        local[g] = 0;  // seen
+        global.push_back(g);
+      }
+    }
+  }
+  if (global.size() * 8 >= mesh.num_vertices) {  // a large chunk: a linear scan beats a sort
+    global.clear();
+    for (uint32_t g = 0; g < mesh.num_vertices; ++g) {
+      if (local[g] != kNoLocal) global.push_back(g);
+    }
+  } else {
+    std::sort(global.begin(), global.end());
+  }
+  for (size_t i = 0; i < global.size(); ++i) local[global[i]] = static_cast<uint32_t>(i);
+  return global;
+}
+
+/// One chunk as a draco::Mesh (points = the chunk's vertices, see chunk_vertices). Built
+/// directly (not with a mesh builder) so that no deduplication can merge two vertices.
 /// `local` is the worker's global -> local map (num_vertices entries, all kNoLocal on entry
 /// and on return). Returns whether a face repeats a vertex (edgebreaker would drop it).
 bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, const std::vector<uint32_t>& tris,
                  std::vector<uint32_t>& local, draco::Mesh& m) {
-  std::vector<uint32_t> global;
-  global.reserve(tris.size() / 2 + 16);
+  const std::vector<uint32_t> global = chunk_vertices(mesh, tris, local);
   m.SetNumFaces(tris.size());
   bool repeated_index = false;
   for (size_t t = 0; t < tris.size(); ++t) {
     const uint32_t* f = mesh.triangles + 3 * size_t(tris[t]);
-    draco::Mesh::Face face;
-    for (int k = 0; k < 3; ++k) {
-      if (local[f[k]] == kNoLocal) {
-        local[f[k]] = static_cast<uint32_t>(global.size());
-        global.push_back(f[k]);
-      }
-      face[k] = draco::PointIndex(local[f[k]]);
-    }
     repeated_index |= f[0] == f[1] || f[1] == f[2] || f[2] == f[0];
-    m.SetFace(draco::FaceIndex(static_cast<uint32_t>(t)), face);
+    m.SetFace(draco::FaceIndex(static_cast<uint32_t>(t)),
+              {draco::PointIndex(local[f[0]]), draco::PointIndex(local[f[1]]), draco::PointIndex(local[f[2]])});
   }
   for (uint32_t g : global) local[g] = kNoLocal;
 
