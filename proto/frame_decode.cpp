@@ -120,6 +120,9 @@ fq::Status merge(std::vector<Chunk>& cs, uint32_t n, fq::Mesh& out, std::vector<
   out.triangles.clear();
   if (with_labels) labels->assign(n, 0);
   std::vector<uint8_t> covered(n, 0);
+  size_t corners = 0;
+  for (const Chunk& c : cs) corners += c.triangles.size();
+  out.triangles.reserve(corners);
   for (size_t i = 0; i < cs.size(); ++i) {
     const Chunk& c = cs[i];
     for (size_t p = 0; p < c.ids.size(); ++p) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <numeric>
+#include <system_error>
 #include <thread>
 
 namespace fq::wire::detail {
@@ -75,18 +76,22 @@ size_t chunk_workers(size_t count, int threads) {
 
 void for_each_chunk(size_t count, int threads, const std::function<void(size_t, size_t)>& fn) {
   const size_t workers = chunk_workers(count, threads);
-  if (workers == 1) {
-    for (size_t i = 0; i < count; ++i) fn(i, 0);
-    return;
-  }
   std::atomic<size_t> next{0};
+  const auto work = [&](size_t w) {
+    for (size_t i = next++; i < count; i = next++) fn(i, w);
+  };
+  // The calling thread is worker 0. If a thread cannot be started (resource limits), the
+  // workers already running finish the items: slower, never a lost chunk or an exception.
   std::vector<std::thread> pool;
-  pool.reserve(workers);
-  for (size_t w = 0; w < workers; ++w) {
-    pool.emplace_back([&, w] {
-      for (size_t i = next++; i < count; i = next++) fn(i, w);
-    });
+  pool.reserve(workers - 1);
+  for (size_t w = 1; w < workers; ++w) {
+    try {
+      pool.emplace_back(work, w);
+    } catch (const std::system_error&) {
+      break;
+    }
   }
+  work(0);
   for (auto& t : pool) t.join();
 }
 
