@@ -166,3 +166,36 @@ TEST(FrameCodec, ZeroAreaAndRepeatedTrianglesAreKept) {
 
 }  // namespace
 }  // namespace fq::wire
+
+namespace fq::wire {
+namespace {
+
+class FrameCodecSpeed : public ::testing::TestWithParam<int> {};
+
+TEST_P(FrameCodecSpeed, RoundTripWithLabelsAtEveryDracoSpeed) {
+  // Speed 10 selects Draco's sequential coder, lower speeds edgebreaker: both must round trip.
+  const Mesh m = test_proto::make_bumpy_grid(24, 17);
+  std::vector<uint32_t> labels(m.num_vertices());
+  for (uint32_t v = 0; v < labels.size(); ++v) labels[v] = (v / 7) % 11;
+  CodecOptions o;
+  o.encode_speed = o.decode_speed = GetParam();
+  o.threads = 2;
+  std::vector<float> unchunked;
+  for (uint32_t chunks : {1u, 3u}) {
+    std::vector<std::string> encoded;
+    ASSERT_TRUE(encode_frame(m.view(), labels.data(), chunks, o, encoded).ok());
+    std::vector<std::string_view> v(encoded.begin(), encoded.end());
+    Mesh out;
+    std::vector<uint32_t> got;
+    ASSERT_TRUE(decode_frame(v, m.num_vertices(), o, out, &got).ok());
+    expect_same_mesh(m, out);
+    EXPECT_EQ(got, labels);
+    if (chunks == 1) unchunked = out.positions;
+    EXPECT_EQ(out.positions, unchunked);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Speeds, FrameCodecSpeed, ::testing::Values(0, 5, 7, 10));
+
+}  // namespace
+}  // namespace fq::wire
