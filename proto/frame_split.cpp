@@ -58,9 +58,12 @@ std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, con
   if (chunks > 1) {
     const float extent = box.max_extent();
     const float scale = extent > 0.f ? 1023.f / extent : 0.f;
-    std::vector<uint32_t> code(n);
-    for (uint32_t t = 0; t < n; ++t) code[t] = morton_of_centroid(mesh, t, box, scale);
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return code[a] < code[b]; });
+    // (code, triangle) packed in one integer: a plain sort of unique keys, deterministic and
+    // several times faster than an indirect stable sort.
+    std::vector<uint64_t> keys(n);
+    for (uint32_t t = 0; t < n; ++t) keys[t] = (uint64_t(morton_of_centroid(mesh, t, box, scale)) << 32) | t;
+    std::sort(keys.begin(), keys.end());
+    for (uint32_t i = 0; i < n; ++i) order[i] = static_cast<uint32_t>(keys[i]);
   }
   std::vector<std::vector<uint32_t>> parts(chunks);
   for (uint32_t c = 0; c < chunks; ++c) {
