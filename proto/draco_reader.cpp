@@ -14,25 +14,34 @@ namespace fq::io {
 
 namespace {
 
-/// Copies Draco's points (positions per point, through the point-to-value map) and faces.
-Status from_draco(const std::string& path, const draco::Mesh& dm, Mesh& out) {
+/// What becomes an fq vertex: Draco's points (a point is one combination of attribute
+/// values, so texture seams split a position into several points), or the distinct
+/// position values (welded: one vertex per position, whatever the other attributes).
+enum class Vertices { kPoints, kPositionValues };
+
+/// Copies positions and faces out of a decoded Draco mesh.
+Status from_draco(const std::string& path, const draco::Mesh& dm, Vertices vertices, Mesh& out) {
   const draco::PointAttribute* pos = dm.GetNamedAttribute(draco::GeometryAttribute::POSITION);
   if (!pos) return invalid_input("'" + path + "' has no vertex positions");
   if (pos->num_components() < 3)
     return invalid_input("'" + path + "' has " + std::to_string(pos->num_components()) +
                          "-D positions, not 3-D");
-  const uint32_t n = dm.num_points();
+  const bool welded = vertices == Vertices::kPositionValues;
+  const uint32_t n = welded ? uint32_t(pos->size()) : dm.num_points();
+  auto value_of = [&](draco::PointIndex p) { return pos->mapped_index(p); };
   out.positions.resize(3 * size_t(n));
-  for (uint32_t p = 0; p < n; ++p) {
+  for (uint32_t i = 0; i < n; ++i) {
+    const draco::AttributeValueIndex v =
+        welded ? draco::AttributeValueIndex(i) : value_of(draco::PointIndex(i));
     // ConvertValue reads any stored type (float, or integers in some files).
-    if (!pos->ConvertValue<float>(pos->mapped_index(draco::PointIndex(p)), 3, &out.positions[3 * size_t(p)]))
-      return invalid_input("'" + path + "': cannot convert the position of vertex " + std::to_string(p));
+    if (!pos->ConvertValue<float>(v, 3, &out.positions[3 * size_t(i)]))
+      return invalid_input("'" + path + "': cannot convert the position of vertex " + std::to_string(i));
   }
   out.triangles.resize(3 * size_t(dm.num_faces()));
   for (uint32_t f = 0; f < dm.num_faces(); ++f) {
     const draco::Mesh::Face& face = dm.face(draco::FaceIndex(f));
     for (int k = 0; k < 3; ++k) {
-      const uint32_t v = face[k].value();
+      const uint32_t v = welded ? value_of(face[k]).value() : face[k].value();
       if (v >= n)
         return invalid_input("cannot decode '" + path + "': face " + std::to_string(f) +
                              " references vertex " + std::to_string(v) + " of " + std::to_string(n));
@@ -86,7 +95,7 @@ Status read_drc(const std::string& path, Mesh& out) {
   draco::Decoder decoder;
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
   if (!decoded.ok()) return invalid_input("cannot decode '" + path + "': " + draco_message(decoded.status()));
-  return from_draco(path, *decoded.value(), out);
+  return from_draco(path, *decoded.value(), Vertices::kPoints, out);
 }
 
 Status read_obj_or_stl(const std::string& path, Mesh& out) {
@@ -97,7 +106,9 @@ Status read_obj_or_stl(const std::string& path, Mesh& out) {
   if (!decoded.ok()) return invalid_input("cannot decode '" + path + "': " + draco_message(decoded.status()));
   const std::unique_ptr<draco::Mesh> dm = std::move(decoded).value();
   if (!dm) return invalid_input("cannot decode '" + path + "': Draco returned no mesh");
-  return from_draco(path, *dm, out);
+  // Welded: Draco splits a position into one point per texture coordinate or normal it
+  // carries, which would cut the surface open along every seam.
+  return from_draco(path, *dm, Vertices::kPositionValues, out);
 }
 
 }  // namespace fq::io

@@ -15,9 +15,10 @@ Status read_file_bytes(const std::string& path, std::vector<char>& bytes);
 /// Draco bitstream: a triangle mesh (a Draco point cloud is "not a triangle mesh").
 Status read_drc(const std::string& path, Mesh& out);
 
-/// OBJ or STL through draco::ReadMeshFromFile (which fan-triangulates OBJ polygons and
-/// merges duplicate points). A binary STL whose triangle count disagrees with its size is
-/// rejected first: Draco would trust the count and read far past the data.
+/// OBJ or binary STL through draco::ReadMeshFromFile (which fan-triangulates OBJ
+/// polygons), welded to one vertex per distinct position value. A binary STL whose
+/// triangle count disagrees with its size is rejected first: Draco would trust the
+/// count and read far past the data.
 Status read_obj_or_stl(const std::string& path, Mesh& out);
 
 }  // namespace fq::io

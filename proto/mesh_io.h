@@ -19,8 +19,9 @@ bool is_readable_mesh_file(const std::string& path);
 
 /// Reads a triangle mesh with Draco. PLY keeps the file's vertex count and order
 /// (coincident vertices stay separate) and must have triangle faces only; .drc gives the
-/// decoded points; OBJ and STL go through Draco's point deduplication (OBJ polygons are
-/// fan-triangulated by Draco). Only positions are read.
+/// decoded points; OBJ and STL (binary only) are welded: one vertex per distinct position,
+/// so texture or normal seams do not cut the surface (OBJ keeps the order of its `v`
+/// lines; Draco fan-triangulates OBJ polygons). Only positions are read.
 /// A file with no faces reads fine (out has zero triangles); the engines reject it later.
 /// Errors (one line, naming the file): missing file, unsupported extension, decode
 /// failure (with Draco's message), no 3D positions, not a triangle mesh (a PLY polygon,

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <sstream>
 #include <vector>
 
 #include "cluster_colors.h"
@@ -112,6 +113,55 @@ TEST(MeshIoPly, CoincidentVerticesStaySeparate) {
   EXPECT_EQ(back.num_vertices(), soup.num_vertices());
   EXPECT_EQ(back.positions, soup.positions);
   EXPECT_EQ(back.triangles, soup.triangles);
+}
+
+TEST(MeshIoObjStl, ObjTextureSeamsAreWeldedInFileOrder) {
+  // Every corner has its own texture coordinate: Draco makes one point per corner; fq
+  // must still see one vertex per `v` line, in file order, with the file's faces.
+  test::ScratchDir dir;
+  const Mesh mesh = test::make_icosphere(1, 1.0f);
+  std::ostringstream obj;  // (not "literal" + std::string: GCC 12 warns falsely)
+  obj.precision(9);
+  for (uint32_t v = 0; v < mesh.num_vertices(); ++v) {
+    const Vec3 p = test::vertex(mesh, v);
+    obj << "v " << p.x << " " << p.y << " " << p.z << "\n";
+  }
+  for (uint32_t c = 0; c < 3 * mesh.num_triangles(); ++c) obj << "vt " << c * 1e-3 << " 0.5\n";
+  for (uint32_t t = 0; t < mesh.num_triangles(); ++t) {
+    obj << "f";
+    for (int k = 0; k < 3; ++k) obj << " " << mesh.triangles[3 * t + k] + 1 << "/" << 3 * t + k + 1;
+    obj << "\n";
+  }
+  test::write_bytes(dir.file("seams.obj"), obj.str());
+  Mesh back;
+  const Status s = read_mesh(dir.file("seams.obj"), back);
+  ASSERT_TRUE(s.ok()) << s.message();
+  ASSERT_EQ(back.num_vertices(), mesh.num_vertices());
+  EXPECT_EQ(back.triangles, mesh.triangles);
+  for (uint32_t i = 0; i < 3 * mesh.num_vertices(); ++i)
+    EXPECT_NEAR(back.positions[i], mesh.positions[i], 1e-6);
+}
+
+TEST(MeshIoObjStl, BinaryStlIsWelded) {
+  // STL stores three corners per facet; welding gives back the shared vertices.
+  test::ScratchDir dir;
+  const Mesh mesh = test::make_cube(2, 1.0f);
+  std::string stl(80, '\0');
+  auto put = [&stl](const void* p, size_t n) { stl.append(static_cast<const char*>(p), n); };
+  const uint32_t count = mesh.num_triangles();
+  put(&count, 4);
+  for (uint32_t t = 0; t < count; ++t) {
+    const float normal[3] = {0, 0, 0};
+    put(normal, 12);
+    for (int k = 0; k < 3; ++k) put(&mesh.positions[3 * mesh.triangles[3 * t + k]], 12);
+    put("\0\0", 2);
+  }
+  test::write_bytes(dir.file("cube.stl"), stl);
+  Mesh back;
+  const Status s = read_mesh(dir.file("cube.stl"), back);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(back.num_vertices(), mesh.num_vertices());
+  EXPECT_EQ(back.num_triangles(), mesh.num_triangles());
 }
 
 /// Index of the original vertex nearest to p (brute force; small meshes only).
