@@ -50,25 +50,48 @@ Box bounding_box(const fq::MeshView& mesh) {
   return b;
 }
 
+namespace {
+
+/// Puts into first[c], for every chunk c in (c0, c1), the smallest key of chunk c: chunk c holds
+/// the keys of rank [n c / chunks, n (c + 1) / chunks). Recursive bisection with nth_element:
+/// O(n log chunks), no full sort.
+void find_chunk_starts(std::vector<uint64_t>& keys, size_t lo, size_t hi, uint32_t c0, uint32_t c1,
+                       uint32_t chunks, std::vector<uint64_t>& first) {
+  if (c1 - c0 < 2) return;
+  const uint32_t cm = c0 + (c1 - c0) / 2;
+  const size_t cut = keys.size() * cm / chunks;
+  std::nth_element(keys.begin() + lo, keys.begin() + cut, keys.begin() + hi);
+  first[cm] = keys[cut];
+  find_chunk_starts(keys, lo, cut, c0, cm, chunks, first);
+  find_chunk_starts(keys, cut, hi, cm, c1, chunks, first);
+}
+
+}  // namespace
+
 std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box,
                                                    uint32_t chunks) {
   const uint32_t n = mesh.num_triangles;
-  std::vector<uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
-  if (chunks > 1) {
-    const float extent = box.max_extent();
-    const float scale = extent > 0.f ? 1023.f / extent : 0.f;
-    // (code, triangle) packed in one integer: a plain sort of unique keys, deterministic and
-    // several times faster than an indirect stable sort.
-    std::vector<uint64_t> keys(n);
-    for (uint32_t t = 0; t < n; ++t) keys[t] = (uint64_t(morton_of_centroid(mesh, t, box, scale)) << 32) | t;
-    std::sort(keys.begin(), keys.end());
-    for (uint32_t i = 0; i < n; ++i) order[i] = static_cast<uint32_t>(keys[i]);
-  }
   std::vector<std::vector<uint32_t>> parts(chunks);
-  for (uint32_t c = 0; c < chunks; ++c) {
-    const size_t begin = size_t(n) * c / chunks, end = size_t(n) * (c + 1) / chunks;
-    parts[c].assign(order.begin() + begin, order.begin() + end);
+  if (chunks <= 1) {
+    parts[0].resize(n);
+    std::iota(parts[0].begin(), parts[0].end(), 0u);
+    return parts;
+  }
+  const float extent = box.max_extent();
+  const float scale = extent > 0.f ? 1023.f / extent : 0.f;
+  // (code, triangle) in one integer: keys are unique, so equal counts per chunk are exact and
+  // the split is deterministic.
+  std::vector<uint64_t> keys(n);
+  for (uint32_t t = 0; t < n; ++t) keys[t] = (uint64_t(morton_of_centroid(mesh, t, box, scale)) << 32) | t;
+  std::vector<uint64_t> first(chunks, 0);
+  std::vector<uint64_t> work = keys;
+  find_chunk_starts(work, 0, n, 0, chunks, chunks, first);
+  // Within a chunk, triangles keep the input order (usually coherent: good for Draco's
+  // sequential coder, which stores indices in face order).
+  for (auto& p : parts) p.reserve(n / chunks + 1);
+  for (uint32_t t = 0; t < n; ++t) {
+    const auto c = std::upper_bound(first.begin() + 1, first.end(), keys[t]) - first.begin() - 1;
+    parts[c].push_back(t);
   }
   return parts;
 }

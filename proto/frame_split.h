@@ -20,9 +20,10 @@ struct Box {
 
 Box bounding_box(const fq::MeshView& mesh);
 
-/// Triangle ids of each of `chunks` parts: triangles sorted by the Morton code of their
-/// centroid (10 bits per axis on `box`) and cut into equal counts, so each part is a
-/// spatially coherent patch. Ties keep the input order, so the split is deterministic.
+/// Triangle ids of each of `chunks` parts: triangles ranked by the Morton code of their
+/// centroid (10 bits per axis on `box`; ties broken by triangle id, so the split is
+/// deterministic) and cut into equal counts, so each part is a spatially coherent patch.
+/// Within a part, triangles keep their input order.
 std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box,
                                                    uint32_t chunks);
 
