@@ -92,6 +92,36 @@ TEST(KernelDegenerateInput, SingleTriangleStaysInItsPlace) {
   EXPECT_EQ(out.num_clusters, 1u);
 }
 
+// Every face collinear: edges have length (so the mesh is not refused) but no face has
+// area, so no vertex carries a quadric and nothing moves.
+TEST(KernelDegenerateInput, AllFacesWithoutAreaLeaveTheMeshInPlace) {
+  Mesh m;
+  m.positions = {0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0};
+  m.triangles = {0, 1, 2, 1, 2, 3, 0, 1, 3};
+  Params constrained = filter_and_cluster(), bilateral = filter_and_cluster();
+  constrained.f.constrained = true;
+  bilateral.f.method = FilterMethod::kBilateral;
+  for (const Params& p : {filter_and_cluster(), constrained, bilateral}) {
+    const FrameResult out = expect_ok(m, p);
+    EXPECT_LT(test::max_displacement(m.positions, out.positions), 1e-6);
+  }
+}
+
+// Coordinates near the ends of float's range: the engine works in normalized units, so
+// the result is the unit-scale result, scaled.
+TEST(KernelDegenerateInput, ExtremeScalesGiveTheScaledResult) {
+  Mesh unit = test::make_icosphere(2);
+  add_gaussian_noise(unit, 0.2, 10);
+  const FrameResult want = expect_ok(unit);
+  for (float scale : {1e-30f, 1e30f}) {
+    Mesh m = unit;
+    for (float& x : m.positions) x *= scale;
+    const FrameResult got = expect_ok(m);
+    EXPECT_EQ(got.labels, want.labels) << scale;
+    for (size_t i = 0; i < m.positions.size(); ++i) ASSERT_NEAR(got.positions[i] / scale, want.positions[i], 1e-5) << scale;
+  }
+}
+
 TEST(KernelDegenerateInput, NonManifoldFinIsProcessed) {
   expect_ok(test::make_non_manifold_fin());
   Mesh m = test::make_cube(4);
@@ -120,7 +150,7 @@ TEST(KernelDegenerateInput, DuplicatedVerticesGiveTheWeldedResult) {
   Mesh welded = test::make_icosphere(2);
   add_gaussian_noise(welded, 0.15, 6);
   const Mesh soup = test::make_triangle_soup(welded);
-  Params p;  // filter only: cluster ranks break ties by index, so labels may differ
+  Params p;  // filter only (cluster_test.cpp checks the soup's clusters)
   const FrameResult w = expect_ok(welded, p), s = expect_ok(soup, p);
   const double me = mean_edge_length(welded.view());
   for (uint32_t corner = 0; corner < soup.num_vertices(); ++corner) {
