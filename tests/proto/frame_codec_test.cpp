@@ -139,11 +139,6 @@ TEST(FrameCodec, MoreChunksThanTrianglesIsClamped) {
   expect_same_mesh(m, round_trip(m, 9));
 }
 
-}  // namespace
-}  // namespace fq::wire
-
-namespace fq::wire {
-namespace {
 
 TEST(FrameCodec, ZeroAreaAndRepeatedTrianglesAreKept) {
   // Draco's edgebreaker drops a face with a repeated index: the codec must not lose it, nor a
@@ -164,11 +159,6 @@ TEST(FrameCodec, ZeroAreaAndRepeatedTrianglesAreKept) {
   }
 }
 
-}  // namespace
-}  // namespace fq::wire
-
-namespace fq::wire {
-namespace {
 
 class FrameCodecSpeed : public ::testing::TestWithParam<int> {};
 
@@ -197,11 +187,6 @@ TEST_P(FrameCodecSpeed, RoundTripWithLabelsAtEveryDracoSpeed) {
 
 INSTANTIATE_TEST_SUITE_P(Speeds, FrameCodecSpeed, ::testing::Values(0, 5, 7, 10));
 
-}  // namespace
-}  // namespace fq::wire
-
-namespace fq::wire {
-namespace {
 
 TEST(FrameCodec, DragonKeepsItsCoincidentVertices) {
   // dragon.ply was quantized to 11 bits upstream: 51,986 of its vertices share a position with
@@ -210,6 +195,16 @@ TEST(FrameCodec, DragonKeepsItsCoincidentVertices) {
   if (!m) GTEST_SKIP() << "dragon.ply not found (set FQ_MESH_DIR)";
   const Mesh back = round_trip(*m, 4, 2);
   expect_same_mesh(*m, back);
+}
+
+
+TEST(FrameCodec, EdgebreakerKeepsRepeatedAndCollinearFaces) {
+  // No face repeats a vertex here, so every chunk goes through edgebreaker (speed 5).
+  Mesh m = test_proto::make_bumpy_grid(4, 4);
+  m.positions.insert(m.positions.end(), {0.05f, 0.f, 0.f});  // midpoint of edge (0, 1)
+  const uint32_t mid = m.num_vertices() - 1;
+  m.triangles.insert(m.triangles.end(), {0, mid, 1, 7, 8, 13, 7, 13, 8});
+  for (uint32_t chunks : {1u, 2u}) expect_same_mesh(m, round_trip(m, chunks));
 }
 
 }  // namespace
