@@ -56,7 +56,8 @@ fq::Status read_mesh(const draco::Mesh& m, Chunk& c) {
   for (uint32_t f = 0; f < m.num_faces(); ++f) {
     const auto& face = m.face(draco::FaceIndex(f));
     for (int k = 0; k < 3; ++k) {
-      if (face[k].value() >= m.num_points()) return invalid_input("face " + std::to_string(f) + " out of range");
+      if (face[k].value() >= m.num_points())
+        return invalid_input("face " + std::to_string(f) + " out of range");
       c.triangles[3 * size_t(f) + k] = face[k].value();
     }
   }
@@ -88,8 +89,8 @@ void decode_chunk(std::string_view bytes, Chunk& c) {
 fq::Status take_plain(Chunk& c, uint32_t vertex_count, fq::Mesh& out, std::vector<uint32_t>* labels) {
   const auto n = static_cast<uint32_t>(c.positions.size() / 3);
   if (vertex_count != 0 && vertex_count != n) {
-    return invalid_input("frame header says " + std::to_string(vertex_count) + " vertices, the Draco mesh has " +
-                         std::to_string(n));
+    return invalid_input("frame header says " + std::to_string(vertex_count) +
+                         " vertices, the Draco mesh has " + std::to_string(n));
   }
   out.positions = std::move(c.positions);
   out.triangles = std::move(c.triangles);
@@ -115,7 +116,8 @@ fq::Status merged_count(const std::vector<Chunk>& cs, uint32_t vertex_count, uin
 }
 
 fq::Status merge(std::vector<Chunk>& cs, uint32_t n, fq::Mesh& out, std::vector<uint32_t>* labels) {
-  const bool with_labels = labels && std::all_of(cs.begin(), cs.end(), [](const Chunk& c) { return !c.labels.empty(); });
+  const bool with_labels =
+      labels && std::all_of(cs.begin(), cs.end(), [](const Chunk& c) { return !c.labels.empty(); });
   out.positions.assign(3 * size_t(n), 0.f);
   out.triangles.clear();
   if (with_labels) labels->assign(n, 0);
@@ -139,7 +141,8 @@ fq::Status merge(std::vector<Chunk>& cs, uint32_t n, fq::Mesh& out, std::vector<
   }
   const auto hole = std::find(covered.begin(), covered.end(), uint8_t{0});
   if (hole != covered.end()) {
-    return invalid_input("vertex " + std::to_string(hole - covered.begin()) + " is in no chunk (missing chunk?)");
+    return invalid_input("vertex " + std::to_string(hole - covered.begin()) +
+                         " is in no chunk (missing chunk?)");
   }
   return {};
 }
@@ -151,7 +154,8 @@ fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t ve
   out = {};
   if (labels) labels->clear();
   if (chunks.empty()) return invalid_input("frame has no Draco chunks");
-  if (chunks.size() > kMaxChunks) return invalid_input("frame has more than " + std::to_string(kMaxChunks) + " chunks");
+  if (chunks.size() > kMaxChunks)
+    return invalid_input("frame has more than " + std::to_string(kMaxChunks) + " chunks");
 
   std::vector<Chunk> cs(chunks.size());
   detail::for_each_chunk(chunks.size(), options.threads, [&](size_t i, size_t) {
@@ -162,7 +166,8 @@ fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t ve
     }
   });
   for (size_t i = 0; i < cs.size(); ++i) {
-    if (!cs[i].status.ok()) return invalid_input("chunk " + std::to_string(i) + ": " + cs[i].status.message());
+    if (!cs[i].status.ok())
+      return invalid_input("chunk " + std::to_string(i) + ": " + cs[i].status.message());
   }
   if (cs.size() == 1 && cs[0].ids.empty()) return take_plain(cs[0], vertex_count, out, labels);
   for (size_t i = 0; i < cs.size(); ++i) {

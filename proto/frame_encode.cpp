@@ -110,8 +110,9 @@ bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, const std::ve
   for (size_t t = 0; t < tris.size(); ++t) {
     const uint32_t* f = mesh.triangles + 3 * size_t(tris[t]);
     repeated_index |= f[0] == f[1] || f[1] == f[2] || f[2] == f[0];
-    m.SetFace(draco::FaceIndex(static_cast<uint32_t>(t)),
-              {draco::PointIndex(local[f[0]]), draco::PointIndex(local[f[1]]), draco::PointIndex(local[f[2]])});
+    m.SetFace(
+        draco::FaceIndex(static_cast<uint32_t>(t)),
+        {draco::PointIndex(local[f[0]]), draco::PointIndex(local[f[1]]), draco::PointIndex(local[f[2]])});
   }
   for (uint32_t g : global) local[g] = kNoLocal;
 
@@ -152,7 +153,8 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
   out.clear();
   if (auto s = check_options(options); !s.ok()) return s;
   if (chunks == 0 || chunks > kMaxChunks) {
-    return invalid_argument("chunk count " + std::to_string(chunks) + " outside [1, " + std::to_string(kMaxChunks) + "]");
+    return invalid_argument("chunk count " + std::to_string(chunks) + " outside [1, " +
+                            std::to_string(kMaxChunks) + "]");
   }
   if (auto s = fq::check_mesh(mesh); !s.ok()) return s;
   if (auto s = check_all_used(mesh); !s.ok()) return s;

@@ -33,9 +33,7 @@ uint32_t morton_of_centroid(const fq::MeshView& mesh, uint32_t t, const Box& box
 
 }  // namespace
 
-float Box::max_extent() const {
-  return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-}
+float Box::max_extent() const { return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}); }
 
 Box bounding_box(const fq::MeshView& mesh) {
   Box b;

@@ -64,8 +64,8 @@ fq::Status check_version(uint32_t version, std::string_view what) {
 fq::Status parse_strict(std::string_view bytes, Message& out, std::string_view what) {
   out.Clear();
   if (!out.ParseFromArray(bytes.data(), static_cast<int>(bytes.size()))) {
-    return invalid_input(std::string(what) + ": not a valid " + out.GetDescriptor()->full_name() +
-                         " (" + std::to_string(bytes.size()) + " bytes)");
+    return invalid_input(std::string(what) + ": not a valid " + out.GetDescriptor()->full_name() + " (" +
+                         std::to_string(bytes.size()) + " bytes)");
   }
   std::string problem = find_unknown(out, "");
   if (!problem.empty()) {
@@ -79,8 +79,8 @@ fq::Status parse_frame_header(std::string_view bytes, FrameHeader& out) {
   if (auto s = check_version(out.version(), "frame header"); !s.ok()) return s;
   if (out.stream_id().empty()) return invalid_input("frame header: empty stream id");
   if (out.chunk_count() == 0 || out.chunk_count() > kMaxChunks) {
-    return invalid_input("frame header: chunk_count " + std::to_string(out.chunk_count()) +
-                         " outside [1, " + std::to_string(kMaxChunks) + "]");
+    return invalid_input("frame header: chunk_count " + std::to_string(out.chunk_count()) + " outside [1, " +
+                         std::to_string(kMaxChunks) + "]");
   }
   return {};
 }

@@ -8,26 +8,35 @@ namespace {
 
 fq::Status set_mode(FilterMode m, fq::FilterParams& f) {
   switch (m) {
-    case MODE_DEFAULT: return {};
-    case QF: f.method = fq::FilterMethod::kQuadric; return {};
-    case BF: f.method = fq::FilterMethod::kBilateral; return {};
-    default: return invalid_argument("filter mode " + std::to_string(m) + " is not a FilterMode");
+    case MODE_DEFAULT:
+      return {};
+    case QF:
+      f.method = fq::FilterMethod::kQuadric;
+      return {};
+    case BF:
+      f.method = fq::FilterMethod::kBilateral;
+      return {};
+    default:
+      return invalid_argument("filter mode " + std::to_string(m) + " is not a FilterMode");
   }
 }
 
 fq::Status set_method(ClusterMethodWire m, fq::ClusterParams& c) {
   switch (m) {
-    case METHOD_DEFAULT: return {};
-    case QUADRIC: c.method = fq::ClusterMethod::kQuadric; return {};
-    case EUCLIDEAN: c.method = fq::ClusterMethod::kEuclidean; return {};
+    case METHOD_DEFAULT:
+      return {};
+    case QUADRIC:
+      c.method = fq::ClusterMethod::kQuadric;
+      return {};
+    case EUCLIDEAN:
+      c.method = fq::ClusterMethod::kEuclidean;
+      return {};
     default:
       return invalid_argument("cluster method " + std::to_string(m) + " is not a ClusterMethodWire");
   }
 }
 
-FilterMode mode_of(const fq::FilterParams& f) {
-  return f.method == fq::FilterMethod::kBilateral ? BF : QF;
-}
+FilterMode mode_of(const fq::FilterParams& f) { return f.method == fq::FilterMethod::kBilateral ? BF : QF; }
 
 ClusterMethodWire method_of(const fq::ClusterParams& c) {
   return c.method == fq::ClusterMethod::kEuclidean ? EUCLIDEAN : QUADRIC;
@@ -58,11 +67,22 @@ fq::Status apply_overrides(const ParamOverrides& o, fq::Params& inout) {
 
 fq::Status apply_compute(Compute c, fq::Params& inout) {
   switch (c) {
-    case COMPUTE_DEFAULT: return {};
-    case FILTER: inout.filter = true; inout.cluster = false; return {};
-    case CLUSTER: inout.filter = false; inout.cluster = true; return {};
-    case FILTER_AND_CLUSTER: inout.filter = true; inout.cluster = true; return {};
-    default: return invalid_argument("compute " + std::to_string(c) + " is not a Compute");
+    case COMPUTE_DEFAULT:
+      return {};
+    case FILTER:
+      inout.filter = true;
+      inout.cluster = false;
+      return {};
+    case CLUSTER:
+      inout.filter = false;
+      inout.cluster = true;
+      return {};
+    case FILTER_AND_CLUSTER:
+      inout.filter = true;
+      inout.cluster = true;
+      return {};
+    default:
+      return invalid_argument("compute " + std::to_string(c) + " is not a Compute");
   }
 }
 

@@ -1,12 +1,11 @@
 // Encode/decode time of the chunked frame codec on the shared meshes (a benchmark, not a test).
 // Prints a Markdown table (median of --repeats runs per row); see --help.
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <string>
 
 #include "frame_codec.h"
@@ -54,9 +53,9 @@ void bench(const std::string& name, const fq::Mesh& m, const fq::wire::CodecOpti
       dec_ms.push_back(ms_since(t0));
       dec_cpu.push_back(cpu_ms() - c0);
     }
-    std::printf("| %s | %u | %u | %u | %d | %d | %.1f | %.1f | %.1f | %.1f | %zu |\n", name.c_str(), m.num_vertices(),
-                m.num_triangles(), chunks, o.threads, o.encode_speed, median(enc_ms), median(enc_cpu), median(dec_ms),
-                median(dec_cpu), bytes);
+    std::printf("| %s | %u | %u | %u | %d | %d | %.1f | %.1f | %.1f | %.1f | %zu |\n", name.c_str(),
+                m.num_vertices(), m.num_triangles(), chunks, o.threads, o.encode_speed, median(enc_ms),
+                median(enc_cpu), median(dec_ms), median(dec_cpu), bytes);
   }
 }
 
@@ -77,7 +76,9 @@ int main(int argc, char** argv) {
   app.add_option("meshes", meshes, "PLY files in FQ_MESH_DIR");
   CLI11_PARSE(app, argc, argv);
   o.decode_speed = o.encode_speed;
-  std::printf("| mesh | V | F | chunks | threads | speed | encode wall ms | encode CPU ms | decode wall ms | decode CPU ms | bytes |\n");
+  std::printf(
+      "| mesh | V | F | chunks | threads | speed | encode wall ms | encode CPU ms | decode wall ms | decode "
+      "CPU ms | bytes |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const auto& file : meshes) {
     const auto m = fq::test_proto::load_shared_mesh(file);

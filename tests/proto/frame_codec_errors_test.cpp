@@ -42,14 +42,17 @@ std::string plain_draco(const Mesh& m, bool cloud = false, const std::vector<uin
   draco::GeometryAttribute ga;
   ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 12, 0);
   auto* pa = dm.attribute(dm.AddAttribute(ga, true, m.num_vertices()));
-  for (uint32_t v = 0; v < m.num_vertices(); ++v) pa->SetAttributeValue(draco::AttributeValueIndex(v), &m.positions[3 * v]);
+  for (uint32_t v = 0; v < m.num_vertices(); ++v)
+    pa->SetAttributeValue(draco::AttributeValueIndex(v), &m.positions[3 * v]);
   if (vid) {
-    ga.Init(draco::GeometryAttribute::GENERIC, nullptr, 1, vid_type, false, draco::DataTypeLength(vid_type), 0);
+    ga.Init(draco::GeometryAttribute::GENERIC, nullptr, 1, vid_type, false, draco::DataTypeLength(vid_type),
+            0);
     const int id = dm.AddAttribute(ga, true, m.num_vertices());
     for (uint32_t v = 0; v < m.num_vertices(); ++v) {
       const uint32_t u = (*vid)[v];
       const float f = float(u);
-      dm.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(v), vid_type == draco::DT_FLOAT32 ? (const void*)&f : &u);
+      dm.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(v),
+                                          vid_type == draco::DT_FLOAT32 ? (const void*)&f : &u);
     }
     auto md = std::make_unique<draco::AttributeMetadata>();
     md->AddEntryString("name", kVertexIdAttribute);
@@ -75,10 +78,12 @@ TEST(FrameCodecErrors, PlainDracoMeshIsASingleChunkFrame) {
   ASSERT_EQ(out.num_triangles(), m.num_triangles());
   // Draco reorders points: map decoded vertices back through their (exact) positions.
   std::map<std::array<float, 3>, uint32_t> by_position;
-  for (uint32_t v = 0; v < m.num_vertices(); ++v) by_position[{m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]}] = v;
+  for (uint32_t v = 0; v < m.num_vertices(); ++v)
+    by_position[{m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]}] = v;
   std::vector<uint32_t> mapped;
   for (uint32_t v : out.triangles) {
-    const auto it = by_position.find({out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]});
+    const auto it =
+        by_position.find({out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]});
     ASSERT_NE(it, by_position.end());
     mapped.push_back(it->second);
   }
@@ -197,7 +202,8 @@ TEST(FrameCodecErrors, BadEncodeInputRejected) {
   Mesh m = test_proto::make_bumpy_grid(4, 4);
   std::vector<std::string> out;
   EXPECT_EQ(encode_frame(m.view(), nullptr, 0, CodecOptions{}, out).code(), StatusCode::kInvalidArgument);
-  EXPECT_EQ(encode_frame(m.view(), nullptr, kMaxChunks + 1, CodecOptions{}, out).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(encode_frame(m.view(), nullptr, kMaxChunks + 1, CodecOptions{}, out).code(),
+            StatusCode::kInvalidArgument);
   CodecOptions bad;
   bad.position_bits = 31;
   EXPECT_EQ(encode_frame(m.view(), nullptr, 1, bad, out).code(), StatusCode::kInvalidArgument);
@@ -208,7 +214,8 @@ TEST(FrameCodecErrors, BadEncodeInputRejected) {
   EXPECT_NE(s.message().find("used by no triangle"), std::string::npos) << s.message();
   std::vector<uint32_t> labels(m.num_vertices(), 0);
   labels[3] = kMaxAttributeValue;
-  EXPECT_EQ(encode_frame(m.view(), labels.data(), 1, CodecOptions{}, out).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(encode_frame(m.view(), labels.data(), 1, CodecOptions{}, out).code(),
+            StatusCode::kInvalidArgument);
   Mesh broken = m;
   broken.triangles[4] = 1000;
   EXPECT_EQ(encode_frame(broken.view(), nullptr, 2, CodecOptions{}, out).code(), StatusCode::kInvalidInput);

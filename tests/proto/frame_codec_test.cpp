@@ -1,11 +1,12 @@
 // Chunked Draco frames: split, encode, decode and merge give back the input mesh.
+#include "frame_codec.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "frame_codec.h"
 #include "frame_split.h"
 #include "proto_test_meshes.h"
 
@@ -47,7 +48,8 @@ void expect_same_mesh(const Mesh& in, const Mesh& out) {
   const float extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   const float tolerance = 0.5f * extent / 65535.f * 1.01f + 1e-6f * extent;
   float worst = 0.f;
-  for (size_t i = 0; i < in.positions.size(); ++i) worst = std::max(worst, std::abs(in.positions[i] - out.positions[i]));
+  for (size_t i = 0; i < in.positions.size(); ++i)
+    worst = std::max(worst, std::abs(in.positions[i] - out.positions[i]));
   EXPECT_LE(worst, tolerance);
 }
 
@@ -62,9 +64,7 @@ void check_chunk_counts(const Mesh& m) {
   }
 }
 
-TEST(FrameCodec, MeshMadeInCodeAnyChunkCount) {
-  check_chunk_counts(test_proto::make_bumpy_grid(40, 30));
-}
+TEST(FrameCodec, MeshMadeInCodeAnyChunkCount) { check_chunk_counts(test_proto::make_bumpy_grid(40, 30)); }
 
 TEST(FrameCodec, RealMeshAnyChunkCount) {
   const auto m = test_proto::load_shared_mesh("bunny.ply");
@@ -102,7 +102,8 @@ TEST(FrameCodec, ChunksAreSpatiallyCoherent) {
 TEST(FrameCodec, LabelsRoundTrip) {
   const Mesh m = test_proto::make_bumpy_grid(20, 20);
   std::vector<uint32_t> labels(m.num_vertices());
-  for (uint32_t v = 0; v < labels.size(); ++v) labels[v] = v % 3 == 0 ? kMaxAttributeValue - 1 - v : (v * 7919u) % 1000003u;
+  for (uint32_t v = 0; v < labels.size(); ++v)
+    labels[v] = v % 3 == 0 ? kMaxAttributeValue - 1 - v : (v * 7919u) % 1000003u;
   for (uint32_t chunks : {1u, 3u}) {
     std::vector<uint32_t> out;
     const Mesh back = round_trip(m, chunks, 2, labels.data(), &out);
@@ -121,7 +122,8 @@ TEST(FrameCodec, DuplicatePositionsStayDistinctVertices) {
   }
   // Two vertices at exactly the same point, both used, like dragon.ply.
   Mesh pair = test_proto::make_bumpy_grid(2, 2);
-  pair.positions.insert(pair.positions.end(), pair.positions.begin() + 3 * 4, pair.positions.begin() + 3 * 4 + 3);
+  pair.positions.insert(pair.positions.end(), pair.positions.begin() + 3 * 4,
+                        pair.positions.begin() + 3 * 4 + 3);
   pair.triangles[0] = 9;  // triangle 0 now uses vertex 9, at exactly vertex 4's position
   const Mesh back = round_trip(pair, 1);
   expect_same_mesh(pair, back);
@@ -138,7 +140,6 @@ TEST(FrameCodec, MoreChunksThanTrianglesIsClamped) {
   const Mesh m = test_proto::make_bumpy_grid(1, 1);
   expect_same_mesh(m, round_trip(m, 9));
 }
-
 
 TEST(FrameCodec, ZeroAreaAndRepeatedTrianglesAreKept) {
   // Draco's edgebreaker drops a face with a repeated index: the codec must not lose it, nor a
@@ -158,7 +159,6 @@ TEST(FrameCodec, ZeroAreaAndRepeatedTrianglesAreKept) {
     EXPECT_EQ(test_proto::triangle_set(out.triangles), test_proto::triangle_set(m.triangles)) << chunks;
   }
 }
-
 
 class FrameCodecSpeed : public ::testing::TestWithParam<int> {};
 
@@ -187,7 +187,6 @@ TEST_P(FrameCodecSpeed, RoundTripWithLabelsAtEveryDracoSpeed) {
 
 INSTANTIATE_TEST_SUITE_P(Speeds, FrameCodecSpeed, ::testing::Values(0, 5, 7, 10));
 
-
 TEST(FrameCodec, DragonKeepsItsCoincidentVertices) {
   // dragon.ply was quantized to 11 bits upstream: 51,986 of its vertices share a position with
   // another vertex, and 105K faces have zero area. A deduplicating codec would merge them.
@@ -196,7 +195,6 @@ TEST(FrameCodec, DragonKeepsItsCoincidentVertices) {
   const Mesh back = round_trip(*m, 4, 2);
   expect_same_mesh(*m, back);
 }
-
 
 TEST(FrameCodec, EdgebreakerKeepsRepeatedAndCollinearFaces) {
   // No face repeats a vertex here, so every chunk goes through edgebreaker (speed 5).

@@ -1,12 +1,12 @@
 // Strict parsing of the wire headers and the ParamOverrides / StreamParams mapping.
+#include "header_codec.h"
+
 #include <google/protobuf/util/message_differencer.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 #include <string>
-
-#include "header_codec.h"
 
 namespace fq::wire {
 namespace {
@@ -33,7 +33,10 @@ FrameHeader full_header() {
 std::string raw_varint_field(uint32_t number, uint64_t value) {
   std::string out;
   for (uint64_t v : {uint64_t(number) << 3, value}) {
-    while (v >= 0x80) { out += char(0x80 | (v & 0x7f)); v >>= 7; }
+    while (v >= 0x80) {
+      out += char(0x80 | (v & 0x7f));
+      v >>= 7;
+    }
     out += char(v);
   }
   return out;
@@ -103,7 +106,8 @@ TEST(HeaderCodec, WrongVersionRejected) {
     const Status s = parse_frame_header(h.SerializeAsString(), out);
     EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
     EXPECT_NE(s.message().find("wire version " + std::to_string(v) + " not supported (this fqd speaks 1)"),
-              std::string::npos) << s.message();
+              std::string::npos)
+        << s.message();
   }
 }
 
@@ -123,7 +127,8 @@ TEST(HeaderCodec, FrameRulesEnforced) {
 
 TEST(HeaderCodec, GarbageRejected) {
   FrameHeader out;
-  EXPECT_EQ(parse_frame_header(std::string("\xff\xff\xff\xff\xff", 5), out).code(), StatusCode::kInvalidInput);
+  EXPECT_EQ(parse_frame_header(std::string("\xff\xff\xff\xff\xff", 5), out).code(),
+            StatusCode::kInvalidInput);
   EXPECT_EQ(parse_frame_header("", out).code(), StatusCode::kInvalidInput);  // version 0
   EXPECT_EQ(parse_frame_header("hello, fqd", out).code(), StatusCode::kInvalidInput);
   std::mt19937 rng(7);

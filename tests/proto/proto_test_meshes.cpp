@@ -14,7 +14,8 @@ Mesh make_bumpy_grid(int nx, int ny) {
   Mesh m;
   for (int j = 0; j <= ny; ++j) {
     for (int i = 0; i <= nx; ++i) {
-      m.positions.insert(m.positions.end(), {0.1f * i, 0.1f * j, 0.05f * std::sin(0.7f * i) * std::cos(0.5f * j)});
+      m.positions.insert(m.positions.end(),
+                         {0.1f * i, 0.1f * j, 0.05f * std::sin(0.7f * i) * std::cos(0.5f * j)});
     }
   }
   const auto idx = [&](int i, int j) { return static_cast<uint32_t>(j * (nx + 1) + i); };
