@@ -64,12 +64,13 @@ void Publisher::publish(FrameJob& f) {
   parts.push_back(zmq::buffer(f.stream_id));
   parts.push_back(zmq::buffer(header));
   for (const std::string& c : f.out_chunks) parts.push_back(zmq::buffer(c));
+  // Counted before sending, so that a consumer who got the result sees it in the counters.
+  account(f, h);
   try {
     zmq::send_multipart(socket_, parts);
   } catch (const zmq::error_t& e) {
     spdlog::error("publish of stream '{}' frame {} failed: {}", f.stream_id, h.sequence(), e.what());
   }
-  account(f, h);
 }
 
 void Publisher::account(const FrameJob& f, const wire::ResultHeader& h) {

@@ -36,7 +36,11 @@ const char* filter_method_name(FilterMethod m) { return m == FilterMethod::kQuad
 const char* cluster_method_name(ClusterMethod m) { return m == ClusterMethod::kQuadric ? "quadric" : "euclidean"; }
 
 Status validate(const StreamSettings& s) {
-  if (Status st = fq::validate(s.params); !st.ok()) return st;
+  // The clustering parameters are checked even when the stream only filters: a frame or a
+  // control request may switch clustering on at any time.
+  Params all = s.params;
+  all.filter = all.cluster = true;
+  if (Status st = fq::validate(all); !st.ok()) return st;
   if (!(s.budget_ms > 0.0 && std::isfinite(s.budget_ms)))
     return invalid_argument("budget_ms must be > 0 (got " + std::to_string(s.budget_ms) + ")");
   if (s.output.position_bits < 8 || s.output.position_bits > 30)

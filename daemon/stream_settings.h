@@ -34,7 +34,8 @@ bool parse_cluster_method(const std::string& s, ClusterMethod& out);
 const char* filter_method_name(FilterMethod m);
 const char* cluster_method_name(ClusterMethod m);
 
-/// fq::validate plus the budget and the encoding ranges.
+/// fq::validate (of the clustering parameters too, whatever the compute mode) plus the
+/// budget and the encoding ranges.
 Status validate(const StreamSettings& s);
 
 }  // namespace fq::daemon

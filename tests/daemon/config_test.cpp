@@ -1,0 +1,125 @@
+// Configuration parsing and validation: the shipped config, defaults, overrides, and a
+// clear message naming the key for each kind of mistake.
+#include <gtest/gtest.h>
+
+#include "config.h"
+
+namespace fq::daemon {
+namespace {
+
+Status parse(const std::string& text, DaemonConfig& c) { return parse_config(text, "test.toml", c); }
+
+// The error message for `text`, which must be rejected.
+std::string error_of(const std::string& text) {
+  DaemonConfig c;
+  const Status s = parse(text, c);
+  EXPECT_FALSE(s.ok()) << "accepted: " << text;
+  return s.message();
+}
+
+TEST(DaemonConfig, ShippedDefaultConfigIsValid) {
+  DaemonConfig c;
+  const Status s = load_config(std::string(FQ_SOURCE_DIR) + "/configs/fqd.toml", c);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(c.engine.kind, EngineKind::kAuto);
+  EXPECT_NE(c.endpoints.ingest.find("127.0.0.1"), std::string::npos);
+  EXPECT_TRUE(c.defaults.params.filter);
+  EXPECT_TRUE(c.defaults.params.cluster);
+  ASSERT_EQ(c.streams.count("preview"), 1u);
+  EXPECT_FLOAT_EQ(c.streams["preview"].params.f.sigma_s, 3.0f);
+}
+
+TEST(DaemonConfig, EmptyFileGivesBuiltInDefaults) {
+  DaemonConfig c;
+  ASSERT_TRUE(parse("", c).ok());
+  EXPECT_EQ(c.decode_threads, 2);
+  EXPECT_EQ(c.defaults.output.position_bits, 16);
+  EXPECT_EQ(c.defaults.output.chunks, 0u);
+  EXPECT_DOUBLE_EQ(c.defaults.budget_ms, 100.0);
+}
+
+TEST(DaemonConfig, StreamsInheritDefaultsAndOverrideSomeKeys) {
+  DaemonConfig c;
+  const Status s = parse(R"(
+[defaults]
+budget_ms = 40
+compute = "filter"
+[defaults.filter]
+sigma_s = 3
+sigma_r = 0.5
+[streams.cam1.filter]
+sigma_s = 1.5
+[streams.cam1.output]
+chunks = 4
+position_bits = 12
+[streams.cam2]
+compute = "cluster"
+[streams.cam2.cluster]
+method = "euclidean"
+theta = 0.5
+)",
+                         c);
+  ASSERT_TRUE(s.ok()) << s.message();
+  const StreamSettings& a = c.settings_for("cam1");
+  EXPECT_FLOAT_EQ(a.params.f.sigma_s, 1.5f);
+  EXPECT_FLOAT_EQ(a.params.f.sigma_r, 0.5f);  // from [defaults]
+  EXPECT_DOUBLE_EQ(a.budget_ms, 40.0);
+  EXPECT_EQ(a.output.chunks, 4u);
+  EXPECT_EQ(a.output.position_bits, 12);
+  EXPECT_FALSE(a.params.cluster);
+  const StreamSettings& b = c.settings_for("cam2");
+  EXPECT_FALSE(b.params.filter);
+  EXPECT_TRUE(b.params.cluster);
+  EXPECT_EQ(b.params.c.method, ClusterMethod::kEuclidean);
+  EXPECT_FLOAT_EQ(c.settings_for("unlisted").params.f.sigma_s, 3.0f);
+}
+
+TEST(DaemonConfig, UnknownKeysAreNamedWithTheirLine) {
+  EXPECT_NE(error_of("bogus = 1").find("unknown key 'bogus'"), std::string::npos);
+  const std::string m = error_of("[defaults.filter]\nsigma_s = 2\nsigmaa_r = 1\n");
+  EXPECT_NE(m.find("unknown key 'defaults.filter.sigmaa_r'"), std::string::npos) << m;
+  EXPECT_NE(m.find("test.toml:3"), std::string::npos) << m;
+  EXPECT_NE(error_of("[streams.cam.output]\nbits = 3\n").find("streams.cam.output.bits"), std::string::npos);
+  EXPECT_NE(error_of("[caps]\nmax_vertex = 3\n").find("caps.max_vertex"), std::string::npos);
+}
+
+TEST(DaemonConfig, WrongTypesAndRangesAreRejected) {
+  EXPECT_NE(error_of("[threads]\ndecode = \"two\"\n").find("threads.decode must be an integer"), std::string::npos);
+  EXPECT_NE(error_of("[threads]\nencode = 0\n").find("threads.encode must be in"), std::string::npos);
+  EXPECT_NE(error_of("[defaults.filter]\nsigma_s = \"big\"\n").find("must be a number"), std::string::npos);
+  EXPECT_NE(error_of("[defaults.output]\nchunks = 0\n").find("chunks"), std::string::npos);
+  EXPECT_NE(error_of("[defaults.output]\nposition_bits = 40\n").find("position_bits"), std::string::npos);
+  EXPECT_NE(error_of("[defaults]\nbudget_ms = -5\n").find("budget_ms"), std::string::npos);
+  EXPECT_NE(error_of("engine = 3\n").find("engine must be a table"), std::string::npos);
+  EXPECT_NE(error_of("[engine]\ngpus = [0, \"one\"]\n").find("engine.gpus"), std::string::npos);
+  EXPECT_NE(error_of("log_level = \"loud\"\n").find("log_level"), std::string::npos);
+}
+
+TEST(DaemonConfig, BadNamesAndParametersAreRejected) {
+  EXPECT_NE(error_of("[engine]\nkind = \"gpu\"\n").find("engine.kind"), std::string::npos);
+  EXPECT_NE(error_of("[defaults]\ncompute = \"both\"\n").find("compute"), std::string::npos);
+  EXPECT_NE(error_of("[defaults.filter]\nmethod = \"median\"\n").find("method"), std::string::npos);
+  EXPECT_NE(error_of("[defaults.filter]\nsigma_s = 0\n").find("sigma_s must be > 0"), std::string::npos);
+  const std::string m = error_of("[streams.cam.cluster]\ntheta = 1.5\n");
+  EXPECT_NE(m.find("streams.cam"), std::string::npos) << m;
+  EXPECT_NE(m.find("theta"), std::string::npos) << m;
+  EXPECT_NE(error_of("[endpoints]\ningest = \"localhost:5555\"\n").find("not a ZeroMQ address"), std::string::npos);
+  EXPECT_NE(error_of("[endpoints]\ningest = \"tcp://127.0.0.1:1\"\npublish = \"tcp://127.0.0.1:1\"\n").find("differ"),
+            std::string::npos);
+  EXPECT_NE(error_of("[engine]\nkind = \"cuda\"\ngpus = []\n").find("gpus"), std::string::npos);
+}
+
+TEST(DaemonConfig, SyntaxErrorsNameTheLine) {
+  const std::string m = error_of("[defaults]\nbudget_ms = \n");
+  EXPECT_NE(m.find("test.toml:2"), std::string::npos) << m;
+}
+
+TEST(DaemonConfig, MissingFileIsAClearError) {
+  DaemonConfig c;
+  const Status s = load_config("/nonexistent/fqd.toml", c);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("/nonexistent/fqd.toml"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fq::daemon

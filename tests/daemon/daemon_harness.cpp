@@ -1,0 +1,139 @@
+#include "daemon_harness.h"
+
+#include <gtest/gtest.h>
+
+#include "noise.h"
+#include "support/test_meshes.h"
+
+namespace fq::test {
+
+daemon::DaemonConfig test_config() {
+  daemon::DaemonConfig c;
+  c.endpoints = {"tcp://127.0.0.1:*", "tcp://127.0.0.1:*", "tcp://127.0.0.1:*"};
+  c.engine.kind = EngineKind::kCpu;
+  c.engine.cpu_threads = 2;
+  c.log_level = "warn";
+  c.defaults.budget_ms = 60'000.0;
+  c.defaults.params.cluster = true;
+  return c;
+}
+
+Mesh noisy_sphere(uint64_t seed, int subdivisions) {
+  Mesh m = make_icosphere(subdivisions, 1.0f);
+  add_gaussian_noise(m, 0.2, seed);
+  return m;
+}
+
+DaemonHarness::DaemonHarness(daemon::DaemonConfig config)
+    : daemon_(std::make_unique<daemon::Daemon>(std::move(config))) {
+  const Status s = daemon_->start();
+  if (!s.ok()) {
+    ADD_FAILURE() << "daemon did not start: " << s.message();
+    return;
+  }
+  connect(daemon_->endpoints());
+}
+
+DaemonHarness::DaemonHarness(const daemon::BoundEndpoints& endpoints) { connect(endpoints); }
+
+void DaemonHarness::connect(const daemon::BoundEndpoints& e) {
+  push_ = zmq::socket_t(ctx_, zmq::socket_type::push);
+  sub_ = zmq::socket_t(ctx_, zmq::socket_type::sub);
+  req_ = zmq::socket_t(ctx_, zmq::socket_type::req);
+  for (zmq::socket_t* s2 : {&push_, &sub_, &req_}) s2->set(zmq::sockopt::linger, 0);
+  sub_.set(zmq::sockopt::subscribe, "");
+  sub_.set(zmq::sockopt::rcvhwm, 100000);
+  push_.connect(e.ingest);
+  sub_.connect(e.publish);
+  req_.connect(e.control);
+  wait_for_subscription();
+}
+
+DaemonHarness::~DaemonHarness() {
+  if (daemon_) daemon_->stop();
+  push_.close();
+  sub_.close();
+  req_.close();
+}
+
+// A SUB socket only sees messages published after its subscription reached the PUB side:
+// send probe frames until one comes back, then every later result is seen.
+void DaemonHarness::wait_for_subscription() {
+  const Mesh probe = make_icosphere(0, 1.0f);
+  client::FrameSpec spec;
+  spec.stream_id = "__probe";
+  spec.compute = wire::FILTER;
+  sub_.set(zmq::sockopt::rcvtimeo, 100);
+  for (int attempt = 0; attempt < 600; ++attempt) {
+    send(probe, spec, static_cast<uint64_t>(attempt));
+    client::ReceivedResult r;
+    Status why;
+    while (client::receive_result(sub_, r, why)) {
+      if (r.topic == "__probe") {
+        // Later probe results may still come; receive() skips other streams.
+        sub_.set(zmq::sockopt::rcvtimeo, 60'000);
+        return;
+      }
+    }
+  }
+  ADD_FAILURE() << "no probe result came back: the subscription never became active";
+}
+
+void DaemonHarness::send_parts(const std::vector<std::string>& parts) { client::send_parts(push_, parts); }
+
+void DaemonHarness::send(const Mesh& mesh, const client::FrameSpec& spec, uint64_t sequence) {
+  std::vector<std::string> parts;
+  const Status s = client::build_frame(mesh.view(), spec, sequence, parts);
+  ASSERT_TRUE(s.ok()) << s.message();
+  send_parts(parts);
+}
+
+client::ReceivedResult DaemonHarness::receive(const std::string& stream) {
+  client::ReceivedResult r;
+  if (auto it = pending_.find(stream); it != pending_.end() && !it->second.empty()) {
+    r = std::move(it->second.front());
+    it->second.pop_front();
+    return r;
+  }
+  Status why;
+  for (;;) {
+    if (!client::receive_result(sub_, r, why)) {
+      ADD_FAILURE() << "no result on stream '" << stream << "' within 60 s";
+      return r;
+    }
+    EXPECT_TRUE(why.ok()) << why.message();
+    if (r.topic == stream) return r;
+    if (r.topic != "__probe") pending_[r.topic].push_back(std::move(r));
+  }
+}
+
+client::ReceivedResult DaemonHarness::receive_decoded(const std::string& stream) {
+  client::ReceivedResult r = receive(stream);
+  EXPECT_NE(r.header.status(), wire::ERROR) << r.header.error();
+  Status s = client::decode_result(r, 2);
+  EXPECT_TRUE(s.ok()) << s.message();
+  s = client::check_result(r);
+  EXPECT_TRUE(s.ok()) << s.message();
+  return r;
+}
+
+wire::ControlReply DaemonHarness::control(const wire::ControlRequest& request) {
+  wire::ControlReply reply;
+  const Status s = client::control_call(req_, request, reply, 60'000);
+  if (s.code() == StatusCode::kUnavailable) ADD_FAILURE() << s.message();
+  return reply;
+}
+
+wire::StreamCounters DaemonHarness::counters(const std::string& stream) {
+  wire::ControlRequest q;
+  q.mutable_get_counters()->set_stream_id(stream);
+  const wire::ControlReply r = control(q);
+  EXPECT_TRUE(r.ok()) << r.error();
+  if (r.counters_size() != 1) {
+    ADD_FAILURE() << "expected the counters of one stream";
+    return {};
+  }
+  return r.counters(0);
+}
+
+}  // namespace fq::test

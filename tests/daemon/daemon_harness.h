@@ -1,0 +1,60 @@
+// A daemon started in-process on ephemeral 127.0.0.1 ports with the CPU engine, and the
+// three client sockets a test talks to it with (PUSH frames, SUB results, REQ control).
+#pragma once
+
+#include <deque>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <zmq.hpp>
+
+#include "config.h"
+#include "control_client.h"
+#include "daemon.h"
+#include "frame_sender.h"
+#include "result_receiver.h"
+
+namespace fq::test {
+
+/// Defaults for tests: CPU engine on 2 threads, every endpoint tcp://127.0.0.1:*, a
+/// generous budget (so nothing is late or stale unless a test asks), log level warn.
+daemon::DaemonConfig test_config();
+
+/// Noisy icosphere (642 vertices) used by most daemon tests.
+Mesh noisy_sphere(uint64_t seed = 7, int subdivisions = 3);
+
+class DaemonHarness {
+ public:
+  /// Starts a daemon in this process and connects to it.
+  explicit DaemonHarness(daemon::DaemonConfig config = test_config());
+  /// Connects to a daemon running elsewhere (e.g. a child process).
+  explicit DaemonHarness(const daemon::BoundEndpoints& endpoints);
+  ~DaemonHarness();
+
+  void send_parts(const std::vector<std::string>& parts);
+  /// Encodes and sends one frame (the test fails on an encode error).
+  void send(const Mesh& mesh, const client::FrameSpec& spec, uint64_t sequence);
+  /// The next result on `stream`; results of other streams that come first are kept for
+  /// their own receive() (probe results are dropped). Fails the test after 60 s.
+  client::ReceivedResult receive(const std::string& stream);
+  /// receive() plus decode and consumer checks (the test fails when they fail).
+  client::ReceivedResult receive_decoded(const std::string& stream);
+
+  /// One control round trip; the reply as received (ok may be false).
+  wire::ControlReply control(const wire::ControlRequest& request);
+  /// The counters of one stream (the test fails when it is unknown).
+  wire::StreamCounters counters(const std::string& stream);
+
+ private:
+  void connect(const daemon::BoundEndpoints& e);
+  void wait_for_subscription();
+
+  std::unique_ptr<daemon::Daemon> daemon_;
+  zmq::context_t ctx_{1};
+  zmq::socket_t push_, sub_, req_;
+  std::map<std::string, std::deque<client::ReceivedResult>> pending_;
+};
+
+}  // namespace fq::test

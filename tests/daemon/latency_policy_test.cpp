@@ -1,0 +1,102 @@
+// FrameSlots (the latency policy) and the percentile helper, without sockets.
+#include <gtest/gtest.h>
+
+#include "latency_policy.h"
+#include "metrics.h"
+
+namespace fq::daemon {
+namespace {
+
+FramePtr frame(const std::string& stream, uint64_t arrival, int64_t receive_ns, double budget_ms = 1e6) {
+  auto f = std::make_unique<FrameJob>();
+  f->stream_id = stream;
+  f->arrival = arrival;
+  f->receive_ns = receive_ns;
+  f->settings.budget_ms = budget_ms;
+  return f;
+}
+
+TEST(FrameSlots, NewerFrameReplacesTheWaitingOne) {
+  FrameSlots slots;
+  const int64_t now = wall_ns();
+  EXPECT_EQ(slots.offer(frame("a", 0, now)), nullptr);
+  FramePtr loser = slots.offer(frame("a", 1, now));
+  ASSERT_NE(loser, nullptr);
+  EXPECT_EQ(loser->arrival, 0u);
+  FramePtr out;
+  std::vector<FramePtr> stale;
+  ASSERT_TRUE(slots.take(out, stale));
+  ASSERT_NE(out, nullptr);
+  EXPECT_EQ(out->arrival, 1u);
+  EXPECT_EQ(out->ticket, 0u);
+  EXPECT_TRUE(stale.empty());
+}
+
+TEST(FrameSlots, AnOlderFrameDecodedLateLosesToTheNewerOne) {
+  FrameSlots slots;
+  const int64_t now = wall_ns();
+  EXPECT_EQ(slots.offer(frame("a", 5, now)), nullptr);
+  FramePtr loser = slots.offer(frame("a", 4, now));
+  ASSERT_NE(loser, nullptr);
+  EXPECT_EQ(loser->arrival, 4u);
+  FramePtr out;
+  std::vector<FramePtr> stale;
+  ASSERT_TRUE(slots.take(out, stale));
+  EXPECT_EQ(out->arrival, 5u);
+  // Once 5 was taken, 3 is behind it as well.
+  FramePtr late = slots.offer(frame("a", 3, now));
+  ASSERT_NE(late, nullptr);
+  EXPECT_EQ(late->arrival, 3u);
+}
+
+TEST(FrameSlots, StaleFramesAreSetAsideAndOldestStreamGoesFirstWithTickets) {
+  FrameSlots slots;
+  const int64_t now = wall_ns();
+  slots.offer(frame("old", 0, now - 50'000'000, 10.0));  // 50 ms old, 10 ms budget
+  slots.offer(frame("b", 0, now - 2'000'000));
+  slots.offer(frame("c", 0, now - 1'000'000));
+  FramePtr out;
+  std::vector<FramePtr> stale;
+  ASSERT_TRUE(slots.take(out, stale));
+  ASSERT_EQ(stale.size(), 1u);
+  EXPECT_EQ(stale[0]->stream_id, "old");
+  ASSERT_NE(out, nullptr);
+  EXPECT_EQ(out->stream_id, "b");
+  EXPECT_TRUE(out->ticketed);
+  slots.offer(frame("b", 1, now));
+  FramePtr next;
+  stale.clear();
+  ASSERT_TRUE(slots.take(next, stale));
+  EXPECT_EQ(next->stream_id, "c");
+  ASSERT_TRUE(slots.take(next, stale));
+  EXPECT_EQ(next->stream_id, "b");
+  EXPECT_EQ(next->ticket, 1u);
+}
+
+TEST(FrameSlots, CloseHandsOutWhatIsWaitingThenStops) {
+  FrameSlots slots;
+  slots.offer(frame("a", 0, wall_ns()));
+  slots.close();
+  FramePtr out;
+  std::vector<FramePtr> stale;
+  EXPECT_TRUE(slots.take(out, stale));
+  EXPECT_NE(out, nullptr);
+  out.reset();
+  EXPECT_FALSE(slots.take(out, stale));
+}
+
+TEST(Metrics, NearestRankPercentiles) {
+  std::vector<double> v;
+  for (int i = 100; i >= 1; --i) v.push_back(i);
+  EXPECT_DOUBLE_EQ(percentile(v, 0.5), 50.0);
+  EXPECT_DOUBLE_EQ(percentile(v, 0.99), 99.0);
+  EXPECT_DOUBLE_EQ(percentile(v, 1.0), 100.0);
+  EXPECT_DOUBLE_EQ(percentile({}, 0.5), 0.0);
+  SampleWindow w;
+  for (size_t i = 0; i < SampleWindow::kWindow + 10; ++i) w.add(1.0);
+  EXPECT_EQ(w.summary().count, SampleWindow::kWindow + 10);
+  EXPECT_DOUBLE_EQ(w.summary().p99_ms, 1.0);
+}
+
+}  // namespace
+}  // namespace fq::daemon

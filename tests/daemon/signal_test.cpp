@@ -1,0 +1,116 @@
+// fqd as a child process: it reports its ephemeral ports, serves frames, and exits 0 on
+// SIGTERM and SIGINT; a bad config makes it exit non-zero with a message.
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "daemon_harness.h"
+
+namespace fq::test {
+namespace {
+
+struct Child {
+  pid_t pid = -1;
+  FILE* out = nullptr;  // the child's stdout
+};
+
+// Starts fqd with `args`, its stdout on a pipe.
+Child spawn_fqd(const std::vector<std::string>& args) {
+  int fds[2];
+  if (pipe(fds) != 0) return {};
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(fds[1], STDOUT_FILENO);
+    close(fds[0]);
+    close(fds[1]);
+    std::vector<char*> argv{const_cast<char*>(FQD_PATH)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(FQD_PATH, argv.data());
+    _exit(127);
+  }
+  close(fds[1]);
+  return {pid, fdopen(fds[0], "r")};
+}
+
+// Waits up to 60 s for the child; its exit status, or -1 (killed) when it hangs.
+int wait_exit(pid_t pid) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  int status = 0;
+  while (waitpid(pid, &status, WNOHANG) == 0) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      return -1;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));  // waiting for exit, not ordering
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string write_config(const std::string& name, const std::string& text) {
+  const std::string path = testing::TempDir() + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+constexpr const char* kConfig = R"(
+log_level = "warn"
+[endpoints]
+ingest = "tcp://127.0.0.1:*"
+publish = "tcp://127.0.0.1:*"
+control = "tcp://127.0.0.1:*"
+[engine]
+kind = "cpu"
+cpu_threads = 1
+[defaults]
+budget_ms = 60000
+)";
+
+class DaemonSignal : public testing::TestWithParam<int> {};
+
+TEST_P(DaemonSignal, ServesFramesThenExitsZeroOnSignal) {
+  const std::string config = write_config("fqd_signal_test.toml", kConfig);
+  Child child = spawn_fqd({"--config", config, "--print-endpoints"});
+  ASSERT_GT(child.pid, 0);
+  char line[1024] = {0};
+  ASSERT_NE(std::fgets(line, sizeof line, child.out), nullptr) << "fqd printed no endpoints";
+  const nlohmann::json j = nlohmann::json::parse(line);
+  const daemon::BoundEndpoints ep{j.at("ingest"), j.at("publish"), j.at("control")};
+  EXPECT_EQ(ep.ingest.find(":*"), std::string::npos) << "port not resolved: " << ep.ingest;
+  {
+    DaemonHarness h(ep);
+    const Mesh mesh = noisy_sphere();
+    client::FrameSpec spec;
+    spec.stream_id = "cam";
+    for (uint64_t i = 0; i < 3; ++i) {
+      h.send(mesh, spec, i);
+      EXPECT_EQ(h.receive_decoded("cam").header.sequence(), i);
+    }
+  }
+  ASSERT_EQ(kill(child.pid, GetParam()), 0);
+  EXPECT_EQ(wait_exit(child.pid), 0);
+  std::fclose(child.out);
+}
+
+INSTANTIATE_TEST_SUITE_P(Signals, DaemonSignal, testing::Values(SIGTERM, SIGINT),
+                         [](const testing::TestParamInfo<int>& i) { return i.param == SIGTERM ? "SIGTERM" : "SIGINT"; });
+
+TEST(DaemonProcess, BadConfigExitsNonZero) {
+  const std::string config = write_config("fqd_bad.toml", "[engine]\nkind = \"gpu\"\n");
+  Child child = spawn_fqd({"--config", config});
+  ASSERT_GT(child.pid, 0);
+  EXPECT_EQ(wait_exit(child.pid), 2);
+  std::fclose(child.out);
+}
+
+}  // namespace
+}  // namespace fq::test

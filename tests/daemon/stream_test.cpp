@@ -1,0 +1,207 @@
+// fqd over real sockets: frames in, results out, per-stream and run-time parameters,
+// chunked frames.
+#include <algorithm>
+#include <array>
+
+#include <gtest/gtest.h>
+
+#include "cpu_engine.h"
+#include "daemon_harness.h"
+#include "frame_codec.h"
+#include "support/test_meshes.h"
+
+namespace fq::test {
+namespace {
+
+// What fqd should publish for `mesh` under `params`: the same Draco round trips around
+// the same engine (the CPU engine gives the same result whatever its thread count).
+std::vector<float> expected_positions(const Mesh& mesh, const Params& params) {
+  wire::CodecOptions opt;
+  std::vector<std::string> chunks;
+  EXPECT_TRUE(wire::encode_frame(mesh.view(), nullptr, 1, opt, chunks).ok());
+  Mesh seen;
+  EXPECT_TRUE(wire::decode_frame({chunks[0]}, mesh.num_vertices(), opt, seen, nullptr).ok());
+  CpuEngine engine(1);
+  FrameResult result;
+  EXPECT_TRUE(engine.process(seen.view(), params, result).ok());
+  const MeshView out_view{result.positions.data(), seen.num_vertices(), seen.triangles.data(), seen.num_triangles()};
+  EXPECT_TRUE(wire::encode_frame(out_view, nullptr, 1, opt, chunks).ok());
+  Mesh published;
+  EXPECT_TRUE(wire::decode_frame({chunks[0]}, mesh.num_vertices(), opt, published, nullptr).ok());
+  return published.positions;
+}
+
+// The triangles as a sorted list, each rotated to start at its smallest index.
+std::vector<std::array<uint32_t, 3>> canonical_triangles(const Mesh& m) {
+  std::vector<std::array<uint32_t, 3>> out;
+  for (uint32_t f = 0; f < m.num_triangles(); ++f) {
+    std::array<uint32_t, 3> t{m.triangles[3 * f], m.triangles[3 * f + 1], m.triangles[3 * f + 2]};
+    while (t[0] > t[1] || t[0] > t[2]) t = {t[1], t[2], t[0]};
+    out.push_back(t);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+client::FrameSpec spec_for(const std::string& stream, uint32_t chunks = 1) {
+  client::FrameSpec s;
+  s.stream_id = stream;
+  s.chunks = chunks;
+  return s;
+}
+
+TEST(DaemonStream, NFramesInGiveNResultsInOrderWithCorrectCounts) {
+  DaemonHarness h;
+  const Mesh mesh = noisy_sphere();
+  constexpr uint64_t kFrames = 5;
+  for (uint64_t i = 0; i < kFrames; ++i) {
+    h.send(mesh, spec_for("cam"), 100 + i);
+    const client::ReceivedResult r = h.receive_decoded("cam");
+    EXPECT_EQ(r.header.sequence(), 100 + i);
+    EXPECT_EQ(r.header.status(), wire::OK);
+    EXPECT_EQ(r.mesh.num_vertices(), mesh.num_vertices());
+    EXPECT_EQ(r.mesh.num_triangles(), mesh.num_triangles());
+    EXPECT_TRUE(all_finite(r.mesh.positions));
+    EXPECT_GT(r.header.cluster_count(), 0u);
+    EXPECT_EQ(r.labels.size(), mesh.num_vertices());
+    EXPECT_EQ(r.header.engine(), "cpu");
+    EXPECT_GT(r.header.latency_ms(), 0.0);
+    EXPECT_FALSE(r.header.late());
+    bool has_decode = false, has_engine = false, has_encode = false;
+    for (const wire::StageTiming& t : r.header.timings()) {
+      has_decode |= t.name() == "decode";
+      has_engine |= t.name() == "engine";
+      has_encode |= t.name() == "encode";
+    }
+    EXPECT_TRUE(has_decode && has_engine && has_encode);
+  }
+  const wire::StreamCounters c = h.counters("cam");
+  EXPECT_EQ(c.frames_in(), kFrames);
+  EXPECT_EQ(c.frames_out(), kFrames);
+  EXPECT_EQ(c.errors() + c.superseded() + c.dropped_stale(), 0u);
+}
+
+TEST(DaemonStream, ResultMatchesTheEngineOnTheDecodedFrame) {
+  DaemonHarness h;
+  const Mesh mesh = noisy_sphere(3);
+  h.send(mesh, spec_for("cam"), 0);
+  const client::ReceivedResult r = h.receive_decoded("cam");
+  Params p = test_config().defaults.params;
+  const std::vector<float> want = expected_positions(mesh, p);
+  EXPECT_LT(max_displacement(r.mesh.positions, want), 1e-6);
+  EXPECT_GT(max_displacement(r.mesh.positions, mesh.positions), 1e-3) << "the filter moved nothing";
+}
+
+TEST(DaemonStream, TwoStreamsWithDifferentParametersGiveDifferentResults) {
+  daemon::DaemonConfig c = test_config();
+  c.streams["soft"] = c.defaults;
+  c.streams["soft"].params.f.sigma_s = 1.0f;
+  c.streams["strong"] = c.defaults;
+  c.streams["strong"].params.f.sigma_s = 4.0f;
+  DaemonHarness h(c);
+  const Mesh mesh = noisy_sphere();
+  h.send(mesh, spec_for("soft"), 0);
+  h.send(mesh, spec_for("strong"), 0);
+  const client::ReceivedResult soft = h.receive_decoded("soft");
+  const client::ReceivedResult strong = h.receive_decoded("strong");
+  Params ps = c.streams["soft"].params, pg = c.streams["strong"].params;
+  EXPECT_LT(max_displacement(soft.mesh.positions, expected_positions(mesh, ps)), 1e-6);
+  EXPECT_LT(max_displacement(strong.mesh.positions, expected_positions(mesh, pg)), 1e-6);
+  EXPECT_GT(max_displacement(soft.mesh.positions, strong.mesh.positions), 1e-3);
+}
+
+TEST(DaemonStream, RuntimeParameterChangeTakesEffectOnTheNextFrame) {
+  DaemonHarness h;
+  const Mesh mesh = noisy_sphere();
+  h.send(mesh, spec_for("cam"), 0);
+  const client::ReceivedResult before = h.receive_decoded("cam");
+
+  wire::ControlRequest set;
+  set.mutable_set_params()->set_stream_id("cam");
+  set.mutable_set_params()->mutable_params()->set_sigma_s(4.0f);
+  set.mutable_set_params()->set_compute(wire::FILTER);
+  const wire::ControlReply sr = h.control(set);
+  ASSERT_TRUE(sr.ok()) << sr.error();
+  EXPECT_FLOAT_EQ(sr.params().sigma_s(), 4.0f);
+
+  wire::ControlRequest get;
+  get.mutable_get_params()->set_stream_id("cam");
+  const wire::ControlReply gr = h.control(get);
+  ASSERT_TRUE(gr.ok()) << gr.error();
+  EXPECT_FLOAT_EQ(gr.params().sigma_s(), 4.0f);
+  EXPECT_EQ(gr.params().compute(), wire::FILTER);
+
+  h.send(mesh, spec_for("cam"), 1);
+  const client::ReceivedResult after = h.receive_decoded("cam");
+  Params p = test_config().defaults.params;
+  p.f.sigma_s = 4.0f;
+  p.cluster = false;
+  EXPECT_LT(max_displacement(after.mesh.positions, expected_positions(mesh, p)), 1e-6);
+  EXPECT_GT(max_displacement(after.mesh.positions, before.mesh.positions), 1e-3);
+  EXPECT_EQ(after.header.cluster_count(), 0u);
+  EXPECT_TRUE(after.labels.empty());
+}
+
+TEST(DaemonStream, InvalidRuntimeParametersAreRejectedAndKeepTheOldOnes) {
+  DaemonHarness h;
+  wire::ControlRequest set;
+  set.mutable_set_params()->set_stream_id("cam");
+  set.mutable_set_params()->mutable_params()->set_theta(1.5f);
+  const wire::ControlReply r = h.control(set);
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(r.error().find("theta"), std::string::npos) << r.error();
+  wire::ControlRequest get;
+  get.mutable_get_params()->set_stream_id("cam");
+  const wire::ControlReply g = h.control(get);
+  ASSERT_TRUE(g.ok()) << g.error();
+  EXPECT_FLOAT_EQ(g.params().theta(), test_config().defaults.params.c.theta);
+  wire::ControlRequest unknown;
+  unknown.mutable_get_params()->set_stream_id("nobody");
+  EXPECT_FALSE(h.control(unknown).ok());
+}
+
+TEST(DaemonStream, ChunkedAndUnchunkedFramesGiveTheSameResult) {
+  DaemonHarness h;
+  const Mesh mesh = noisy_sphere(11);
+  h.send(mesh, spec_for("one", 1), 0);
+  h.send(mesh, spec_for("four", 4), 0);
+  const client::ReceivedResult one = h.receive_decoded("one");
+  const client::ReceivedResult four = h.receive_decoded("four");
+  EXPECT_EQ(one.header.chunk_count(), 1u);
+  EXPECT_EQ(four.header.chunk_count(), 4u);  // output chunks "same as input"
+  // Chunks arrive with their triangles in another order, so the engine sums the same
+  // quadrics in another order: equal up to float rounding (and one quantization step).
+  EXPECT_LT(max_displacement(one.mesh.positions, four.mesh.positions), 1e-4);
+  EXPECT_EQ(one.labels, four.labels);
+  // Chunking may reorder the triangles (and rotate their corners), not change them.
+  EXPECT_EQ(canonical_triangles(one.mesh), canonical_triangles(four.mesh));
+  EXPECT_EQ(one.header.cluster_count(), four.header.cluster_count());
+}
+
+TEST(DaemonStream, ControlListsStreamsAndCountsWithPercentiles) {
+  daemon::DaemonConfig c = test_config();
+  c.streams["configured"] = c.defaults;
+  DaemonHarness h(c);
+  h.send(noisy_sphere(), spec_for("seen"), 0);
+  h.receive_decoded("seen");
+  wire::ControlRequest list;
+  list.mutable_list_streams();
+  const wire::ControlReply l = h.control(list);
+  ASSERT_TRUE(l.ok());
+  std::vector<std::string> ids(l.streams().begin(), l.streams().end());
+  EXPECT_NE(std::find(ids.begin(), ids.end(), "configured"), ids.end());
+  EXPECT_NE(std::find(ids.begin(), ids.end(), "seen"), ids.end());
+  const wire::StreamCounters k = h.counters("seen");
+  bool has_total = false;
+  for (const wire::StagePercentiles& s : k.stages()) {
+    if (s.name() != "receive_to_publish") continue;
+    has_total = true;
+    EXPECT_EQ(s.count(), 1u);
+    EXPECT_GT(s.p50_ms(), 0.0);
+    EXPECT_LE(s.p50_ms(), s.p99_ms());
+  }
+  EXPECT_TRUE(has_total);
+}
+
+}  // namespace
+}  // namespace fq::test
