@@ -6,13 +6,16 @@
 #include "mesh_io.h"
 #include "metrics.h"
 #include "noise.h"
+#include "surface_distance.h"
 
 namespace fq::cli {
 
 namespace {
 
 MeshError measure(const MeshView& reference, const float* positions) {
-  return {rmse_over_diagonal(reference, positions), mean_face_normal_error(reference, positions)};
+  return {rmse_over_diagonal(reference, positions),
+          distance_to_surface(reference, positions, reference.num_vertices),
+          mean_face_normal_error(reference, positions)};
 }
 
 /// The clean mesh the metrics compare to: --reference when given, else the input

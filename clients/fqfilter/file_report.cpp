@@ -49,6 +49,8 @@ nlohmann::json params_json(const Params& p) {
 nlohmann::json error_json(const std::optional<MeshError>& e) {
   if (!e) return nullptr;
   return {{"rmse_over_diagonal", e->rmse_over_diagonal},
+          {"surface_rms_over_diagonal", e->surface.rms_over_diagonal},
+          {"surface_max_over_diagonal", e->surface.max_over_diagonal},
           {"mfne_rad", e->mfne.mean_radians},
           {"mfne_deg", e->mfne.mean_radians * 180.0 / std::numbers::pi},
           {"faces_skipped", e->mfne.faces_skipped}};
@@ -57,7 +59,8 @@ nlohmann::json error_json(const std::optional<MeshError>& e) {
 void print_error_row(std::ostream& os, const char* what, const std::optional<MeshError>& e) {
   if (!e) return;
   os << "  " << std::left << std::setw(14) << what << std::right << std::scientific << std::setprecision(3)
-     << std::setw(12) << e->rmse_over_diagonal << std::fixed << std::setprecision(3) << std::setw(12)
+     << std::setw(12) << e->rmse_over_diagonal << std::setw(12) << e->surface.rms_over_diagonal
+     << std::setw(12) << e->surface.max_over_diagonal << std::fixed << std::setprecision(3) << std::setw(12)
      << e->mfne.mean_radians * 180.0 / std::numbers::pi << "\n";
 }
 
@@ -133,7 +136,8 @@ void print_human(const FileReport& r, std::ostream& os) {
   if (r.clusters) os << "  clusters: " << *r.clusters << "\n";
   if (!r.reference.empty()) {
     os << "  error vs " << r.reference << "\n  " << std::left << std::setw(14) << "" << std::right
-       << std::setw(12) << "RMSE/diag" << std::setw(12) << "MFNE (deg)"
+       << std::setw(12) << "RMSE/diag" << std::setw(12) << "surf RMS" << std::setw(12) << "surf max"
+       << std::setw(12) << "MFNE (deg)"
        << "\n";
     print_error_row(os, r.noise_sigma > 0 ? "noisy input" : "input", r.input_error);
     print_error_row(os, "result", r.output_error);

@@ -11,12 +11,14 @@
 #include "engine.h"
 #include "metrics.h"
 #include "params.h"
+#include "surface_distance.h"
 
 namespace fq::cli {
 
 /// Error of one vertex set against the reference.
 struct MeshError {
-  double rmse_over_diagonal = 0.0;
+  double rmse_over_diagonal = 0.0;  ///< vertex to vertex (counts sliding along the surface)
+  SurfaceDistance surface;          ///< vertex to the reference surface (does not)
   MfneResult mfne;
 };
 
