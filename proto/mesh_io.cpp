@@ -4,6 +4,8 @@
 #include <cctype>
 #include <exception>
 #include <filesystem>
+#include <new>
+#include <stdexcept>
 #include <string_view>
 
 #include "draco_reader.h"
@@ -66,8 +68,12 @@ Status read_mesh(const std::string& path, Mesh& out) {
   Status s;
   try {
     s = read_by_extension(path, out);
-  } catch (const std::exception& e) {
+  } catch (const std::length_error&) {
     // Draco sizes allocations from counts in the file; a corrupt one can ask for too much.
+    s = invalid_input("cannot decode '" + path + "': its header announces more data than can be allocated");
+  } catch (const std::bad_alloc&) {
+    s = invalid_input("cannot decode '" + path + "': out of memory (corrupt header or mesh too large)");
+  } catch (const std::exception& e) {
     s = invalid_input("cannot decode '" + path + "': " + e.what());
   }
   if (!s.ok()) out = Mesh{};

@@ -76,6 +76,23 @@ TEST(MeshIoErrors, BinaryStlWithLyingTriangleCount) {
   expect_read_error(dir.file("short.stl"), "announces 65535 triangles");
 }
 
+TEST(MeshIoErrors, PlyHeaderAnnouncingTooMuch) {
+  test::ScratchDir dir;
+  test::write_bytes(dir.file("huge.ply"),
+                    "ply\nformat ascii 1.0\nelement vertex 1000000000\nproperty float x\nproperty float y\n"
+                    "property float z\nend_header\n0 0 0\n");
+  expect_read_error(dir.file("huge.ply"), "cannot decode");
+}
+
+TEST(MeshIoErrors, BigEndianPlyIsNamed) {
+  test::ScratchDir dir;
+  test::write_bytes(
+      dir.file("be.ply"),
+      "ply\nformat binary_big_endian 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
+      "property float z\nend_header\n");
+  expect_read_error(dir.file("be.ply"), "binary_little_endian");
+}
+
 TEST(MeshIoErrors, PlyWithQuadsIsNotATriangleMesh) {
   test::ScratchDir dir;
   test::write_bytes(dir.file("quad.ply"),
