@@ -4,6 +4,7 @@ add_library(fq_meshio STATIC
   ${CMAKE_CURRENT_LIST_DIR}/draco_reader.cpp
   ${CMAKE_CURRENT_LIST_DIR}/drc_writer.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh_io.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/ply_extent_check.cpp
   ${CMAKE_CURRENT_LIST_DIR}/ply_reader.cpp
   ${CMAKE_CURRENT_LIST_DIR}/ply_writer.cpp)
 target_include_directories(fq_meshio PUBLIC "${CMAKE_CURRENT_LIST_DIR}")

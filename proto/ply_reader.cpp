@@ -6,6 +6,7 @@
 #include "draco/io/ply_property_reader.h"
 #include "draco/io/ply_reader.h"
 #include "draco_reader.h"
+#include "ply_extent_check.h"
 
 namespace fq::io {
 
@@ -60,6 +61,7 @@ Status read_faces(const std::string& path, const draco::PlyElement* face, Mesh& 
 Status read_ply(const std::string& path, Mesh& out) {
   std::vector<char> bytes;
   if (Status s = read_file_bytes(path, bytes); !s.ok()) return s;
+  if (Status s = check_binary_ply_extent(path, bytes); !s.ok()) return s;
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
   draco::PlyReader reader;

@@ -84,6 +84,34 @@ TEST(MeshIoErrors, PlyHeaderAnnouncingTooMuch) {
   expect_read_error(dir.file("huge.ply"), "cannot decode");
 }
 
+TEST(MeshIoErrors, TruncatedBinaryPly) {
+  // Draco's PlyReader would read past the end of such a file; fq checks the extent first.
+  test::ScratchDir dir;
+  const Mesh mesh = test::make_icosphere(2, 1.0f);
+  ASSERT_TRUE(write_mesh(dir.file("full.ply"), mesh.view(), nullptr, 0).ok());
+  const std::string bytes = test::read_bytes(dir.file("full.ply"));
+  const size_t body = bytes.find("end_header\n") + 11;
+  const size_t vertex_bytes = 12 * size_t(mesh.num_vertices());
+  for (size_t cut : {body + 5, body + vertex_bytes - 1, body + vertex_bytes + 7, bytes.size() - 1}) {
+    const std::string path = dir.file("cut" + std::to_string(cut) + ".ply");
+    test::write_bytes(path, bytes.substr(0, cut));
+    expect_read_error(path, "truncated");
+  }
+  // A face whose list count runs past the end.
+  std::string lying = bytes;
+  lying[body + vertex_bytes + 13 * (mesh.num_triangles() - 1)] = char(200);
+  test::write_bytes(dir.file("lying.ply"), lying);
+  expect_read_error(dir.file("lying.ply"), "truncated");
+}
+
+TEST(MeshIoErrors, BinaryPlyCountBeyondInt) {
+  test::ScratchDir dir;
+  test::write_bytes(dir.file("big.ply"),
+                    "ply\nformat binary_little_endian 1.0\nelement vertex 3000000000\nproperty float x\n"
+                    "property float y\nproperty float z\nend_header\n");
+  expect_read_error(dir.file("big.ply"), "at most 2^31 - 1");
+}
+
 TEST(MeshIoErrors, BigEndianPlyIsNamed) {
   test::ScratchDir dir;
   test::write_bytes(
