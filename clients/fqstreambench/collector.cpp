@@ -1,0 +1,68 @@
+#include "collector.h"
+
+#include "frame_sender.h"
+#include "result_receiver.h"
+
+namespace fq::bench {
+
+Status Collector::connect(zmq::context_t& ctx, const std::string& publish, const std::string& ingest) {
+  sub_ = zmq::socket_t(ctx, zmq::socket_type::sub);
+  sub_.set(zmq::sockopt::rcvhwm, 1000000);
+  sub_.set(zmq::sockopt::subscribe, "");
+  sub_.set(zmq::sockopt::rcvtimeo, 100);
+  sub_.connect(publish);
+  zmq::socket_t push(ctx, zmq::socket_type::push);
+  push.set(zmq::sockopt::linger, 0);
+  push.connect(ingest);
+  // A tetrahedron-like probe: the smallest closed mesh the engines accept.
+  Mesh probe;
+  probe.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  probe.triangles = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+  client::FrameSpec spec;
+  spec.stream_id = "__probe";
+  spec.compute = wire::FILTER;
+  for (uint64_t attempt = 0; attempt < 300; ++attempt) {
+    std::vector<std::string> parts;
+    if (Status s = client::build_frame(probe.view(), spec, attempt, parts); !s.ok()) return s;
+    client::send_parts(push, parts);
+    client::ReceivedResult r;
+    Status why;
+    while (client::receive_result(sub_, r, why))
+      if (r.topic == "__probe") return {};
+  }
+  return {StatusCode::kUnavailable, "no result from fqd at " + publish + " within 30 s"};
+}
+
+void Collector::run(const std::atomic<bool>& stop, int64_t measure_from_ns, bool decode) {
+  while (!stop) {
+    client::ReceivedResult r;
+    Status why;
+    if (!client::receive_result(sub_, r, why) || r.topic == "__probe") continue;
+    if (why.ok() && decode) why = client::decode_result(r, 1);
+    if (why.ok() && decode) why = client::check_result(r);
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++received_[r.topic];
+    if (r.header.send_time_ns() < measure_from_ns) continue;
+    stats_[r.topic].add(r, why.ok());
+    overall_.add(r, why.ok());
+  }
+  sub_.close();
+}
+
+uint64_t Collector::received(const std::string& stream) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto it = received_.find(stream);
+  return it == received_.end() ? 0 : it->second;
+}
+
+std::map<std::string, client::StreamStats> Collector::per_stream() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return stats_;
+}
+
+client::StreamStats Collector::overall() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return overall_;
+}
+
+}  // namespace fq::bench

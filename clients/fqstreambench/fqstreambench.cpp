@@ -1,0 +1,212 @@
+// fqstreambench: sustains a frame rate on one or more streams for a duration and reports
+// receive->publish and send->receive latency percentiles, achieved fps, drops and the
+// per-stage times. Runs fqd in-process (engine from the options or a config file) or
+// against a running fqd (--connect).
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include "collector.h"
+#include "control_client.h"
+#include "daemon.h"
+#include "mesh_io.h"
+#include "override_options.h"
+#include "producer.h"
+#include "report.h"
+
+namespace {
+
+struct Args {
+  std::string mesh, mesh_dir, config, engine = "auto", ingest, publish, control, stream_prefix = "bench";
+  std::vector<int> gpus{0};
+  int streams = 1, cpu_threads = 0, decode_threads = 2, encode_threads = 2;
+  double warmup = 1.0, drain = 30.0, budget_ms = 0.0;
+  bool connect = false, json = false, markdown = false, decode = false;
+  fq::bench::ProducerOptions producer;
+  fq::client::OverrideArgs overrides;
+};
+
+struct Endpoints {
+  std::string ingest, publish, control;
+};
+
+std::string resolve_mesh(const Args& a) {
+  namespace fs = std::filesystem;
+  if (a.mesh_dir.empty() && fs::exists(a.mesh)) return a.mesh;
+  std::string dir = a.mesh_dir;
+  if (dir.empty()) dir = std::getenv("FQ_MESH_DIR") ? std::getenv("FQ_MESH_DIR") : "../shared/meshes";
+  return (fs::path(dir) / a.mesh).string();
+}
+
+fq::Status start_daemon(const Args& a, std::unique_ptr<fq::daemon::Daemon>& d, Endpoints& ep, std::string& engine) {
+  fq::daemon::DaemonConfig c;
+  if (!a.config.empty()) {
+    if (fq::Status s = fq::daemon::load_config(a.config, c); !s.ok()) return s;
+  } else {
+    if (!fq::parse_engine_kind(a.engine, c.engine.kind)) return fq::invalid_argument("--engine must be auto, cuda or cpu");
+    c.engine.gpus = a.gpus;
+    c.engine.cpu_threads = a.cpu_threads;
+    c.decode_threads = a.decode_threads;
+    c.encode_threads = a.encode_threads;
+  }
+  c.endpoints = {"tcp://127.0.0.1:*", "tcp://127.0.0.1:*", "tcp://127.0.0.1:*"};
+  if (a.budget_ms > 0) c.defaults.budget_ms = a.budget_ms;
+  d = std::make_unique<fq::daemon::Daemon>(c);
+  if (fq::Status s = d->start(); !s.ok()) return s;
+  ep = {d->endpoints().ingest, d->endpoints().publish, d->endpoints().control};
+  for (const std::string& n : d->engine_names()) engine += (engine.empty() ? "" : "+") + n;
+  return {};
+}
+
+// Counters of every stream from the control socket (empty on failure).
+std::map<std::string, fq::wire::StreamCounters> counters(zmq::context_t& ctx, const std::string& control) {
+  zmq::socket_t req(ctx, zmq::socket_type::req);
+  req.set(zmq::sockopt::linger, 0);
+  req.connect(control);
+  fq::wire::ControlRequest q;
+  q.mutable_get_counters();
+  fq::wire::ControlReply r;
+  std::map<std::string, fq::wire::StreamCounters> out;
+  if (!fq::client::control_call(req, q, r).ok()) return out;
+  for (const auto& c : r.counters()) out[c.stream_id()] = c;
+  return out;
+}
+
+// What fqd computed for a stream: "filter", "cluster" or "filter_and_cluster".
+std::string stream_compute(zmq::context_t& ctx, const std::string& control, const std::string& stream) {
+  zmq::socket_t req(ctx, zmq::socket_type::req);
+  req.set(zmq::sockopt::linger, 0);
+  req.connect(control);
+  fq::wire::ControlRequest q;
+  q.mutable_get_params()->set_stream_id(stream);
+  fq::wire::ControlReply r;
+  if (!fq::client::control_call(req, q, r).ok()) return "?";
+  switch (r.params().compute()) {
+    case fq::wire::FILTER: return "filter";
+    case fq::wire::CLUSTER: return "cluster";
+    case fq::wire::FILTER_AND_CLUSTER: return "filter_and_cluster";
+    default: return "?";
+  }
+}
+
+// True once fqd accounted for every frame sent and each published result has arrived.
+bool settled(const fq::bench::RunInfo& run, const std::map<std::string, fq::wire::StreamCounters>& now,
+             const fq::bench::Collector& col) {
+  for (const auto& [id, sent] : run.sent) {
+    auto it = now.find(id);
+    if (it == now.end()) return false;
+    const fq::wire::StreamCounters b = run.before.count(id) ? run.before.at(id) : fq::wire::StreamCounters{};
+    const fq::wire::StreamCounters& c = it->second;
+    const uint64_t in = c.frames_in() - b.frames_in();
+    const uint64_t published = c.frames_out() + c.errors() - b.frames_out() - b.errors();
+    const uint64_t dropped = c.superseded() + c.dropped_stale() - b.superseded() - b.dropped_stale();
+    if (in != sent || in != published + dropped || col.received(id) < published) return false;
+  }
+  return true;
+}
+
+fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep, fq::bench::RunInfo& run) {
+  zmq::context_t ctx(1);
+  fq::bench::Collector col;
+  if (fq::Status s = col.connect(ctx, ep.publish, ep.ingest); !s.ok()) return s;
+  std::vector<fq::bench::Producer> producers(static_cast<size_t>(a.streams));
+  for (int i = 0; i < a.streams; ++i) {
+    fq::bench::ProducerOptions o = a.producer;
+    o.spec.stream_id = a.stream_prefix + std::to_string(i);
+    o.seed += static_cast<uint64_t>(i) * 1000;
+    if (fq::Status s = producers[size_t(i)].prepare(mesh, o); !s.ok()) return s;
+  }
+  run.before = counters(ctx, ep.control);
+  std::atomic<bool> stop_sending{false}, stop_collecting{false};
+  const int64_t measure_from = fq::client::now_ns() + static_cast<int64_t>(a.warmup * 1e9);
+  std::thread collector([&] { col.run(stop_collecting, measure_from, a.decode); });
+  std::vector<std::thread> senders;
+  std::vector<fq::bench::Producer::Sent> sent(producers.size());
+  for (size_t i = 0; i < producers.size(); ++i)
+    senders.emplace_back([&, i] { sent[i] = producers[i].run(ctx, ep.ingest, stop_sending, measure_from); });
+  for (std::thread& t : senders) t.join();
+  for (int i = 0; i < a.streams; ++i) {
+    run.sent[a.stream_prefix + std::to_string(i)] = sent[size_t(i)].all;
+    run.sent_measured[a.stream_prefix + std::to_string(i)] = sent[size_t(i)].measured;
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(a.drain);
+  while (!settled(run, counters(ctx, ep.control), col) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));  // waiting for the tail of results
+  stop_collecting = true;
+  collector.join();
+  run.after = counters(ctx, ep.control);
+  run.compute = a.overrides.compute.empty() ? stream_compute(ctx, ep.control, a.stream_prefix + "0") : a.overrides.compute;
+  run.per_stream = col.per_stream();
+  run.overall = col.overall();
+  return {};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"fqstreambench: latency and throughput of fqd at a sustained frame rate"};
+  Args a;
+  app.add_option("mesh", a.mesh, "mesh file, or a file name in --mesh-dir (e.g. bunny.ply)")->required();
+  app.add_option("--mesh-dir", a.mesh_dir, "folder of meshes (default $FQ_MESH_DIR, else ../shared/meshes)");
+  app.add_option("--streams", a.streams, "concurrent streams")->capture_default_str()->check(CLI::Range(1, 256));
+  app.add_option("--fps", a.producer.fps, "frames per second per stream")->capture_default_str()->check(CLI::Range(0.01, 10000.0));
+  app.add_option("-d,--duration", a.producer.seconds, "seconds of sending per stream")->capture_default_str();
+  app.add_option("--warmup", a.warmup, "first seconds not measured")->capture_default_str();
+  app.add_option("--drain", a.drain, "longest wait for the last results")->capture_default_str();
+  app.add_option("--chunks", a.producer.spec.chunks, "Draco chunks per frame")->capture_default_str()->check(CLI::Range(1, 256));
+  app.add_option("--noise", a.producer.noise, "noise in mean edges (0 = the mesh as is)")->capture_default_str();
+  app.add_option("--variants", a.producer.variants, "distinct noisy frames per stream")->capture_default_str();
+  app.add_option("--budget-ms", a.budget_ms, "latency budget of the streams (in-process fqd; 0 = default/config)");
+  app.add_option("--engine", a.engine, "in-process engine: auto | cuda | cpu")->capture_default_str();
+  app.add_option("--gpus", a.gpus, "GPUs of the in-process fqd, one engine each (e.g. 0,1)")->delimiter(',');
+  app.add_option("--cpu-threads", a.cpu_threads, "CPU engine threads (0 = all)");
+  app.add_option("--decode-threads", a.decode_threads, "fqd decode pool")->capture_default_str();
+  app.add_option("--encode-threads", a.encode_threads, "fqd encode pool")->capture_default_str();
+  app.add_option("--config", a.config, "in-process fqd from this config file (its endpoints are replaced)");
+  app.add_flag("--connect", a.connect, "benchmark a running fqd at --ingest, --publish, --control");
+  app.add_option("--ingest", a.ingest, "running fqd's ingest endpoint");
+  app.add_option("--publish", a.publish, "running fqd's publish endpoint");
+  app.add_option("--control", a.control, "running fqd's control endpoint");
+  app.add_option("--stream-prefix", a.stream_prefix, "stream ids are <prefix>0, <prefix>1, ...")->capture_default_str();
+  app.add_flag("--decode", a.decode, "decode and check every result (costs consumer CPU)");
+  app.add_flag("--json", a.json, "print the report as JSON");
+  app.add_flag("--markdown", a.markdown, "also print a docs/BENCHMARKS.md table row");
+  fq::client::add_override_options(app, a.overrides);
+  CLI11_PARSE(app, argc, argv);
+  spdlog::set_level(spdlog::level::warn);
+  auto fail = [](const fq::Status& s) {
+    std::fprintf(stderr, "fqstreambench: %s\n", s.message().c_str());
+    return 1;
+  };
+  if (fq::Status s = fq::client::to_wire(a.overrides, a.producer.spec.overrides, a.producer.spec.compute); !s.ok())
+    return fail(s);
+  fq::Mesh mesh;
+  if (fq::Status s = fq::io::read_mesh(resolve_mesh(a), mesh); !s.ok()) return fail(s);
+
+  fq::bench::RunInfo run;
+  run.mesh_name = std::filesystem::path(a.mesh).filename().string();
+  run.vertices = mesh.num_vertices(), run.triangles = mesh.num_triangles();
+  run.streams = a.streams, run.fps = a.producer.fps, run.seconds = a.producer.seconds, run.warmup = a.warmup;
+  run.chunks = a.producer.spec.chunks;
+  std::unique_ptr<fq::daemon::Daemon> daemon;
+  Endpoints ep{a.ingest, a.publish, a.control};
+  if (a.connect) {
+    if (a.ingest.empty() || a.publish.empty() || a.control.empty())
+      return fail(fq::invalid_argument("--connect needs --ingest, --publish and --control"));
+    run.engine = "external fqd";
+  } else if (fq::Status s = start_daemon(a, daemon, ep, run.engine); !s.ok()) {
+    return fail(s);
+  }
+  if (fq::Status s = run_streams(a, mesh, ep, run); !s.ok()) return fail(s);
+  if (daemon) daemon->stop();
+  if (a.json) std::printf("%s\n", fq::bench::report_json(run).dump(2).c_str());
+  else std::printf("%s", fq::bench::report_text(run).c_str());
+  if (a.markdown) std::printf("%s\n%s\n", fq::bench::report_markdown_header().c_str(),
+                              fq::bench::report_markdown_row(run).c_str());
+  return run.overall.results() > 0 && run.overall.bad() == 0 ? 0 : 1;
+}

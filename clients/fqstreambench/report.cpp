@@ -1,0 +1,118 @@
+#include "report.h"
+
+#include <cstdio>
+
+namespace fq::bench {
+namespace {
+
+// fqd's counter deltas over the run, summed over the benchmark's streams.
+struct Deltas {
+  uint64_t in = 0, out = 0, superseded = 0, stale = 0, late = 0, errors = 0;
+};
+
+Deltas deltas(const RunInfo& r) {
+  Deltas d;
+  for (const auto& [id, a] : r.after) {
+    if (!r.sent.count(id)) continue;
+    const wire::StreamCounters b = r.before.count(id) ? r.before.at(id) : wire::StreamCounters{};
+    d.in += a.frames_in() - b.frames_in();
+    d.out += a.frames_out() - b.frames_out();
+    d.superseded += a.superseded() - b.superseded();
+    d.stale += a.dropped_stale() - b.dropped_stale();
+    d.late += a.late() - b.late();
+    d.errors += a.errors() - b.errors();
+  }
+  return d;
+}
+
+uint64_t total(const std::map<std::string, uint64_t>& m) {
+  uint64_t t = 0;
+  for (const auto& [k, v] : m) t += v;
+  return t;
+}
+
+std::string triple(const nlohmann::json& s) {
+  char b[96];
+  std::snprintf(b, sizeof b, "%.1f / %.1f / %.1f", s.value("p50_ms", 0.0), s.value("p95_ms", 0.0),
+                s.value("p99_ms", 0.0));
+  return b;
+}
+
+double achieved_fps(const RunInfo& r) {
+  const double measured = r.seconds - r.warmup;
+  return measured > 0 ? static_cast<double>(r.overall.results() - r.overall.errors()) / measured / r.streams : 0.0;
+}
+
+}  // namespace
+
+nlohmann::json report_json(const RunInfo& r) {
+  const Deltas d = deltas(r);
+  nlohmann::json streams = nlohmann::json::object();
+  for (const auto& [id, s] : r.per_stream) streams[id] = s.to_json();
+  const uint64_t measured = total(r.sent_measured);
+  return {{"mesh", r.mesh_name},         {"vertices", r.vertices},
+          {"triangles", r.triangles},    {"engine", r.engine},
+          {"streams", r.streams},        {"fps_target", r.fps},
+          {"seconds", r.seconds},        {"warmup", r.warmup},
+          {"chunks", r.chunks},          {"compute", r.compute},
+          {"frames_sent", total(r.sent)}, {"frames_sent_measured", measured},
+          {"achieved_fps_per_stream", achieved_fps(r)},
+          {"drops_measured", measured > r.overall.results() ? measured - r.overall.results() : 0},
+          {"fqd", {{"frames_in", d.in}, {"frames_out", d.out}, {"superseded", d.superseded},
+                   {"dropped_stale", d.stale}, {"late", d.late}, {"errors", d.errors}}},
+          {"overall", r.overall.to_json()},
+          {"per_stream", streams}};
+}
+
+std::string report_text(const RunInfo& r) {
+  const nlohmann::json j = report_json(r);
+  const nlohmann::json& o = j["overall"];
+  std::string s;
+  char b[512];
+  std::snprintf(b, sizeof b,
+                "fqstreambench: %s (%u V, %u F), %d stream(s) x %.1f fps for %.1f s (first %.1f s not measured), "
+                "%u chunk(s), engine %s, compute %s\n",
+                r.mesh_name.c_str(), r.vertices, r.triangles, r.streams, r.fps, r.seconds, r.warmup, r.chunks,
+                r.engine.c_str(), r.compute.c_str());
+  s += b;
+  std::snprintf(b, sizeof b,
+                "  sent %llu (measured %llu), results measured %llu, achieved %.2f fps/stream, drops %llu "
+                "(fqd: superseded %llu, stale %llu), late %llu, errors %llu\n",
+                static_cast<unsigned long long>(j["frames_sent"].get<uint64_t>()),
+                static_cast<unsigned long long>(j["frames_sent_measured"].get<uint64_t>()),
+                static_cast<unsigned long long>(o["results"].get<uint64_t>()), j["achieved_fps_per_stream"].get<double>(),
+                static_cast<unsigned long long>(j["drops_measured"].get<uint64_t>()),
+                static_cast<unsigned long long>(j["fqd"]["superseded"].get<uint64_t>()),
+                static_cast<unsigned long long>(j["fqd"]["dropped_stale"].get<uint64_t>()),
+                static_cast<unsigned long long>(o["late"].get<uint64_t>()),
+                static_cast<unsigned long long>(o["errors"].get<uint64_t>()));
+  s += b;
+  s += "  receive->publish p50/p95/p99 ms: " + triple(o["receive_to_publish"]) + "\n";
+  s += "  send->receive    p50/p95/p99 ms: " + triple(o["send_to_receive"]) + "\n";
+  s += "  stages p50/p95/p99 ms:\n";
+  for (const auto& [name, st] : o["stages"].items()) s += "    " + name + ": " + triple(st) + "\n";
+  return s;
+}
+
+std::string report_markdown_header() {
+  return "| mesh | V | streams × fps | chunks | engine | achieved fps/stream | recv→pub p50 / p95 / p99 ms | "
+         "send→recv p50 / p95 / p99 ms | drops (superseded, stale) | late |\n"
+         "|---|---:|---|---:|---|---:|---|---|---|---:|";
+}
+
+std::string report_markdown_row(const RunInfo& r) {
+  const nlohmann::json j = report_json(r);
+  const nlohmann::json& o = j["overall"];
+  char b[512];
+  std::snprintf(b, sizeof b, "| %s | %u | %d × %.0f | %u | %s | %.1f | %s | %s | %llu (%llu, %llu) | %llu |",
+                r.mesh_name.c_str(), r.vertices, r.streams, r.fps, r.chunks, r.engine.c_str(),
+                j["achieved_fps_per_stream"].get<double>(), triple(o["receive_to_publish"]).c_str(),
+                triple(o["send_to_receive"]).c_str(),
+                static_cast<unsigned long long>(j["drops_measured"].get<uint64_t>()),
+                static_cast<unsigned long long>(j["fqd"]["superseded"].get<uint64_t>()),
+                static_cast<unsigned long long>(j["fqd"]["dropped_stale"].get<uint64_t>()),
+                static_cast<unsigned long long>(o["late"].get<uint64_t>()));
+  return b;
+}
+
+}  // namespace fq::bench

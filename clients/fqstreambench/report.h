@@ -1,0 +1,40 @@
+// The benchmark's report: a readable summary, a Markdown table row for docs/BENCHMARKS.md,
+// or JSON.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "fq.pb.h"
+#include "stream_stats.h"
+
+namespace fq::bench {
+
+struct RunInfo {
+  std::string mesh_name;
+  uint32_t vertices = 0, triangles = 0;
+  std::string engine;
+  int streams = 1;
+  double fps = 0, seconds = 0, warmup = 0;
+  uint32_t chunks = 1;
+  std::string compute;
+  std::map<std::string, uint64_t> sent;           ///< all frames sent, per stream
+  std::map<std::string, uint64_t> sent_measured;  ///< frames sent after the warm-up
+  std::map<std::string, wire::StreamCounters> before, after;  ///< fqd's counters
+  std::map<std::string, client::StreamStats> per_stream;
+  client::StreamStats overall;
+};
+
+nlohmann::json report_json(const RunInfo& r);
+/// Human-readable summary (several lines).
+std::string report_text(const RunInfo& r);
+/// "| mesh | V | streams x fps | chunks | engine | achieved fps | recv->pub p50/p95/p99 | ..." row.
+std::string report_markdown_row(const RunInfo& r);
+/// The header of the Markdown table report_markdown_row fills.
+std::string report_markdown_header();
+
+}  // namespace fq::bench
