@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "config.h"
@@ -29,6 +30,8 @@ int main(int argc, char** argv) {
   app.add_option("--endpoints-file", endpoints_file, "also write that JSON line to this file once listening");
   app.add_flag("--check-config", check_only, "validate the configuration and exit");
   CLI11_PARSE(app, argc, argv);
+  // Logs go to stderr: stdout carries only the --print-endpoints line.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("fqd"));
 
   fq::daemon::DaemonConfig config;
   if (fq::Status s = fq::daemon::load_config(config_path, config); !s.ok()) {

@@ -108,7 +108,12 @@ int main(int argc, char** argv) {
   zmq::context_t ctx(1);
   zmq::socket_t push(ctx, zmq::socket_type::push);
   push.set(zmq::sockopt::linger, 5000);  // deliver queued frames before exiting
-  push.connect(a.endpoint);
+  try {
+    push.connect(a.endpoint);
+  } catch (const zmq::error_t& e) {
+    std::fprintf(stderr, "fqpub: cannot connect to %s: %s\n", a.endpoint.c_str(), e.what());
+    return 2;
+  }
   const Totals t = publish(a, source, push);
   push.close();
   if (t.failed || t.sent == 0) return 1;

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "collector.h"
@@ -178,6 +179,7 @@ int main(int argc, char** argv) {
   app.add_flag("--markdown", a.markdown, "also print a docs/BENCHMARKS.md table row");
   fq::client::add_override_options(app, a.overrides);
   CLI11_PARSE(app, argc, argv);
+  spdlog::set_default_logger(spdlog::stderr_color_mt("fqd"));  // stdout carries the report
   spdlog::set_level(spdlog::level::warn);
   auto fail = [](const fq::Status& s) {
     std::fprintf(stderr, "fqstreambench: %s\n", s.message().c_str());

@@ -85,7 +85,12 @@ int main(int argc, char** argv) {
   if (a.streams.empty()) sub.set(zmq::sockopt::subscribe, "");
   // ZeroMQ topics are prefixes: the exact-match check below drops e.g. "cam10" for "cam1".
   for (const std::string& s : a.streams) sub.set(zmq::sockopt::subscribe, s);
-  sub.connect(a.endpoint);
+  try {
+    sub.connect(a.endpoint);
+  } catch (const zmq::error_t& e) {
+    std::fprintf(stderr, "fqsub: cannot connect to %s: %s\n", a.endpoint.c_str(), e.what());
+    return 2;
+  }
 
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
