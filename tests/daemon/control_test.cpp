@@ -1,0 +1,45 @@
+// The control request handler without sockets: malformed and empty requests get ok = false.
+#include <gtest/gtest.h>
+
+#include "control_server.h"
+#include "header_codec.h"
+
+namespace fq::daemon {
+namespace {
+
+TEST(ControlHandler, GarbageAndEmptyRequestsGetErrorReplies) {
+  DaemonConfig c;
+  StreamRegistry r(c);
+  wire::ControlReply reply;
+  ASSERT_TRUE(wire::parse_control_reply(handle_control_bytes("\xff\x01garbage", r), reply).ok());
+  EXPECT_FALSE(reply.ok());
+  EXPECT_FALSE(reply.error().empty());
+  ASSERT_TRUE(wire::parse_control_reply(handle_control_bytes("", r), reply).ok());
+  EXPECT_FALSE(reply.ok());
+}
+
+TEST(ControlHandler, SetParamsValidatesAndGetParamsReadsBack) {
+  DaemonConfig c;
+  StreamRegistry r(c);
+  wire::ControlRequest set;
+  set.mutable_set_params()->set_stream_id("s");
+  set.mutable_set_params()->mutable_params()->set_sigma_r(-1.0f);
+  EXPECT_FALSE(handle_control(set, r).ok());
+  set.mutable_set_params()->mutable_params()->set_sigma_r(0.5f);
+  set.mutable_set_params()->set_compute(wire::CLUSTER);
+  ASSERT_TRUE(handle_control(set, r).ok());
+  StreamSettings s;
+  ASSERT_TRUE(r.find("s", s));
+  EXPECT_FLOAT_EQ(s.params.f.sigma_r, 0.5f);
+  EXPECT_FALSE(s.params.filter);
+  EXPECT_TRUE(s.params.cluster);
+  wire::ControlRequest get;
+  get.mutable_get_params()->set_stream_id("s");
+  const wire::ControlReply g = handle_control(get, r);
+  ASSERT_TRUE(g.ok());
+  EXPECT_FLOAT_EQ(g.params().sigma_r(), 0.5f);
+  EXPECT_EQ(g.params().compute(), wire::CLUSTER);
+}
+
+}  // namespace
+}  // namespace fq::daemon
