@@ -1,13 +1,24 @@
-// Factory of the CUDA engine. CUDA-free on purpose: device state stays behind the Engine.
+// Factory of the CUDA engine and its process-wide counters. CUDA-free on purpose: device
+// state stays behind the Engine, so this header compiles without nvcc.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 
 #include "engine.h"
 
 namespace fq {
 
-/// The CUDA engine on device `device`, or null with a reason (no device, driver too old...).
+/// The CUDA engine on device `device` ("cuda:<device name>"), or null with a kUnavailable
+/// status and a reason (no device, no driver, bad ordinal, device refused a stream...).
 std::unique_ptr<Engine> make_cuda_engine(int device, Status* why);
+
+/// Device allocations (cudaMalloc) made so far by every CUDA engine of this process. After
+/// the first frame of a given size, further frames of that size leave it unchanged.
+uint64_t cuda_allocation_count();
+
+/// Test hook: the next kernel launch of any CUDA engine fails with a real CUDA error (an
+/// invalid launch configuration), which the engine reports as kInternal for that frame.
+void cuda_fail_next_launch_for_testing();
 
 }  // namespace fq

@@ -1,0 +1,99 @@
+// The bilateral baseline (Jones et al. 2003) on the device: a second grid over triangle
+// centroids, mollified face normals, then one thread per vertex. Same math headers as the
+// CPU engine (bilateral_math.h).
+#include <climits>
+#include <cstring>
+
+#include "bilateral_math.h"
+#include "cuda_check.cuh"
+#include "gaussian.h"
+#include "launch.cuh"
+#include "passes.cuh"
+
+namespace fq::cuda {
+
+namespace {
+
+// Floats mapped to ints with the same order, so that atomicMin/Max give float bounds.
+__device__ int ordered_int(float f) {
+  const int i = __float_as_int(f);
+  return i >= 0 ? i : i ^ 0x7fffffff;
+}
+
+float from_ordered_int(int i) {
+  const int bits = i >= 0 ? i : i ^ 0x7fffffff;
+  float f;
+  static_assert(sizeof(f) == sizeof(bits));
+  std::memcpy(&f, &bits, sizeof(f));
+  return f;
+}
+
+__global__ void reset_bounds(int* b) {
+  if (threadIdx.x < 3) b[threadIdx.x] = INT_MAX;
+  else if (threadIdx.x < 6) b[threadIdx.x] = INT_MIN;
+}
+
+__global__ void centroid_points(uint32_t m, const TriangleGeom* geom, Point4* out, int* bounds) {
+  const uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= m) return;
+  const TriangleGeom g = geom[t];
+  out[t] = {g.centroid.x, g.centroid.y, g.centroid.z, g.area};
+  const float c[3] = {g.centroid.x, g.centroid.y, g.centroid.z};
+#pragma unroll
+  for (int k = 0; k < 3; ++k) {
+    atomicMin(&bounds[k], ordered_int(c[k]));
+    atomicMax(&bounds[3 + k], ordered_int(c[k]));
+  }
+}
+
+__global__ void sorted_normals(uint32_t m, const uint32_t* order, const TriangleGeom* geom, Vec3* out) {
+  const uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k < m) out[k] = geom[order[k]].normal;
+}
+
+__global__ void mollify_kernel(GridView tg, const Vec3* normals, Gaussian gm, float radius, Vec3* out) {
+  const uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t < tg.count) out[t] = mollified_face_normal(tg, normals, t, gm, radius);
+}
+
+__global__ void jones_kernel(uint32_t n, const Point4* points, GridView tg, const Vec3* mollified, Gaussian gs,
+                             Gaussian gr, float radius, Vec3* moved) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) moved[i] = jones_bilateral_position(tg, mollified, xyz(points[i]), gs, gr, radius);
+}
+
+// Centroid bounds read back to lay the grid out on the host, as build_grid does.
+GridLayout centroid_layout(DeviceFrame& f, float cell, cudaStream_t s) {
+  int* bounds = f.bounds.reserve(6);
+  reset_bounds<<<1, 32, 0, s>>>(bounds);
+  FQ_CUDA_CHECK_LAUNCH("reset_bounds");
+  centroid_points<<<blocks_for(f.m), block_size(), 0, s>>>(f.m, f.tri_geom.data(), f.tri_in.reserve(f.m), bounds);
+  FQ_CUDA_CHECK_LAUNCH("centroid_points");
+  int* h = f.h_bounds.reserve(6);
+  FQ_CUDA_CHECK(cudaMemcpyAsync(h, bounds, 6 * sizeof(int), cudaMemcpyDeviceToHost, s));
+  FQ_CUDA_CHECK(cudaStreamSynchronize(s));
+  const Vec3 lo{from_ordered_int(h[0]), from_ordered_int(h[1]), from_ordered_int(h[2])};
+  const Vec3 hi{from_ordered_int(h[3]), from_ordered_int(h[4]), from_ordered_int(h[5])};
+  return choose_grid_layout(lo, hi, cell, f.m);
+}
+
+}  // namespace
+
+void bilateral_filter(DeviceFrame& f, const FilterParams& p, cudaStream_t s) {
+  const GridLayout layout = centroid_layout(f, p.sigma_s, s);
+  build_device_grid(layout, f.tri_in.data(), f.m, f.tri_grid, f.tri_points.reserve(f.m), s);
+  sorted_normals<<<blocks_for(f.m), block_size(), 0, s>>>(f.m, f.tri_grid.order.data(), f.tri_geom.data(),
+                                                    f.tri_normals.reserve(f.m));
+  FQ_CUDA_CHECK_LAUNCH("sorted_normals");
+  const GridView tg = f.tri_grid.view(f.tri_points.data());
+  const float sm = 0.5f * p.sigma_s;  // Jones et al.: normals mollified with sigma_s / 2
+  mollify_kernel<<<blocks_for(f.m), block_size(), 0, s>>>(tg, f.tri_normals.data(), Gaussian::with_sigma(sm), 2.f * sm,
+                                                    f.tri_mollified.reserve(f.m));
+  FQ_CUDA_CHECK_LAUNCH("mollify_kernel");
+  jones_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(f.n, f.points.data(), tg, f.tri_mollified.data(),
+                                                  Gaussian::with_sigma(p.sigma_s), Gaussian::with_sigma(p.sigma_r),
+                                                  2.f * p.sigma_s, f.moved.reserve(f.n));
+  FQ_CUDA_CHECK_LAUNCH("jones_kernel");
+}
+
+}  // namespace fq::cuda

@@ -1,0 +1,71 @@
+// RAII for a CUDA stream and for the events that time the passes of a frame.
+#pragma once
+
+#include <cuda_runtime.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cuda_check.cuh"
+#include "device_buffer.cuh"
+
+namespace fq::cuda {
+
+class Stream {
+ public:
+  Stream() { FQ_CUDA_CHECK(cudaStreamCreateWithFlags(&s_, cudaStreamNonBlocking)); }
+  Stream(const Stream&) = delete;
+  Stream& operator=(const Stream&) = delete;
+  ~Stream() {
+    if (const cudaError_t e = cudaStreamDestroy(s_); e != cudaSuccess) log_free_failure("cudaStreamDestroy", e);
+  }
+  cudaStream_t get() const { return s_; }
+  void sync() const { FQ_CUDA_CHECK(cudaStreamSynchronize(s_)); }
+
+ private:
+  cudaStream_t s_ = nullptr;
+};
+
+/// A fixed pool of events recorded between passes; after the frame's synchronization the
+/// elapsed time between consecutive marks is each pass's device time.
+class PassEvents {
+ public:
+  explicit PassEvents(int capacity) : events_(capacity) {
+    for (cudaEvent_t& e : events_) FQ_CUDA_CHECK(cudaEventCreate(&e));
+  }
+  PassEvents(const PassEvents&) = delete;
+  PassEvents& operator=(const PassEvents&) = delete;
+  ~PassEvents() {
+    for (cudaEvent_t e : events_) {
+      if (const cudaError_t r = cudaEventDestroy(e); r != cudaSuccess) log_free_failure("cudaEventDestroy", r);
+    }
+  }
+
+  /// Starts a frame: the first mark.
+  void begin(cudaStream_t s) {
+    names_.clear();
+    FQ_CUDA_CHECK(cudaEventRecord(events_[0], s));
+  }
+  /// Ends the pass `name` here (the events are reused; `name` must be a literal).
+  void mark(const char* name, cudaStream_t s) {
+    if (names_.size() + 1 >= events_.size()) return;  // more passes than events: untimed
+    names_.push_back(name);
+    FQ_CUDA_CHECK(cudaEventRecord(events_[names_.size()], s));
+  }
+  /// Elapsed device time per pass; call after the stream has been synchronized.
+  template <class Out>
+  void collect(Out&& out) const {
+    for (size_t k = 0; k < names_.size(); ++k) {
+      float ms = 0.f;
+      FQ_CUDA_CHECK(cudaEventElapsedTime(&ms, events_[k], events_[k + 1]));
+      out(names_[k], double(ms));
+    }
+  }
+
+ private:
+  std::vector<cudaEvent_t> events_;
+  std::vector<const char*> names_;
+};
+
+}  // namespace fq::cuda

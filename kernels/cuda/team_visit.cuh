@@ -1,0 +1,80 @@
+// A team of T lanes of one warp per vertex for the neighbourhood passes: the lanes share
+// one vertex's candidate rows (exactly the rows of grid.h's for_each_neighbor) and take
+// the candidates of each row round-robin, then combine their partial sums by shuffles.
+// T lanes per vertex multiply the threads in flight by T (small meshes fill the GPU) and
+// make the row loop uniform across the team.
+#pragma once
+
+#include <cstdint>
+
+#include "grid.h"
+#include "packed_quadric.cuh"
+#include "quadric.h"
+#include "vec3.h"
+
+namespace fq::cuda {
+
+/// Calls f(j, point_j, d = point_j - p, |d|^2) for this lane's share of the points within
+/// `radius` of p: the same rows and cells as for_each_neighbor, and within a row the
+/// candidates j = begin + lane, begin + lane + T, ... (so each lane sees increasing j).
+template <int T, class F>
+__device__ void team_for_each_neighbor(const GridView& g, Vec3 p, float radius, unsigned lane, F&& f) {
+  const float r2 = radius * radius;
+  const float inv = 1.0f / g.cell;
+  const int z0 = clamp_cell((p.z - radius - g.origin.z) * inv, g.nz);
+  const int z1 = clamp_cell((p.z + radius - g.origin.z) * inv, g.nz);
+  const int y0 = clamp_cell((p.y - radius - g.origin.y) * inv, g.ny);
+  const int y1 = clamp_cell((p.y + radius - g.origin.y) * inv, g.ny);
+  for (int iz = z0; iz <= z1; ++iz) {
+    const float gz = gap2(p.z, g.origin.z, g.cell, iz);
+    if (gz > r2) continue;
+    for (int iy = y0; iy <= y1; ++iy) {
+      const float gyz = gz + gap2(p.y, g.origin.y, g.cell, iy);
+      if (gyz > r2) continue;
+      const float rx = sqrtf(r2 - gyz);
+      const int x0 = clamp_cell((p.x - rx - g.origin.x) * inv, g.nx);
+      const int x1 = clamp_cell((p.x + rx - g.origin.x) * inv, g.nx);
+      const uint32_t row = (static_cast<uint32_t>(iz) * g.ny + iy) * g.nx;
+      const uint32_t begin = g.cell_start[row + x0], end = g.cell_start[row + x1 + 1];
+      for (uint32_t j = begin + lane; j < end; j += T) {
+        const Point4 q = load_point(g.points, j);
+        const Vec3 d{q.x - p.x, q.y - p.y, q.z - p.z};
+        const float d2 = norm2(d);
+        if (d2 <= r2) f(j, q, d, d2);
+      }
+    }
+  }
+}
+
+/// Sum over the team (every lane gets it). All 32 lanes of the warp must call it.
+template <int T>
+__device__ float team_sum(float v) {
+#pragma unroll
+  for (int o = T / 2; o > 0; o /= 2) v += __shfl_xor_sync(0xffffffffu, v, o, T);
+  return v;
+}
+
+template <int T>
+__device__ void team_sum(Quadric& q) {
+  q.a00 = team_sum<T>(q.a00); q.a01 = team_sum<T>(q.a01); q.a02 = team_sum<T>(q.a02);
+  q.a11 = team_sum<T>(q.a11); q.a12 = team_sum<T>(q.a12); q.a22 = team_sum<T>(q.a22);
+  q.b0 = team_sum<T>(q.b0); q.b1 = team_sum<T>(q.b1); q.b2 = team_sum<T>(q.b2);
+  q.c = team_sum<T>(q.c);
+}
+
+/// The team's best (p, j): the largest p, and among equal positive p the smallest j --
+/// what a single thread visiting j in increasing order with `if (p > pmax)` keeps.
+template <int T>
+__device__ void team_argmax(float& p, uint32_t& j) {
+#pragma unroll
+  for (int o = T / 2; o > 0; o /= 2) {
+    const float op = __shfl_xor_sync(0xffffffffu, p, o, T);
+    const uint32_t oj = __shfl_xor_sync(0xffffffffu, j, o, T);
+    if (op > p || (op == p && op > 0.f && oj < j)) {
+      p = op;
+      j = oj;
+    }
+  }
+}
+
+}  // namespace fq::cuda

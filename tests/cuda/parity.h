@@ -1,0 +1,74 @@
+// Comparison of two engines' results on one frame, and a fixture that holds a CUDA engine
+// (or skips the test when there is no device).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine.h"
+#include "mesh_view.h"
+
+namespace fq::test {
+
+/// Per-vertex distance between two position arrays, relative to the diagonal of the
+/// bounding box of `reference`.
+struct PositionError {
+  double p99 = 0.0;  ///< 99th percentile
+  double max = 0.0;
+};
+PositionError position_error(const std::vector<float>& reference, const std::vector<float>& candidate);
+
+/// Fraction of vertices whose label agrees after mapping each cluster of one labelling to
+/// the cluster of the other it overlaps most (majority mapping), taken both ways; the
+/// smaller of the two fractions.
+double label_agreement(const std::vector<uint32_t>& reference, const std::vector<uint32_t>& candidate);
+
+/// Both engines' results of one frame, and a summary line for test logs.
+struct Parity {
+  FrameResult cpu, gpu;
+  PositionError pos;
+  double labels = 1.0;
+  std::string summary() const;
+};
+
+/// Runs `mesh` through both engines with `params` (ASSERTs both succeed).
+void run_both(Engine& cpu, Engine& gpu, const MeshView& mesh, const Params& params, Parity& out);
+/// Runs only the GPU engine and compares with the CPU result already in `out.cpu`.
+void rerun_gpu(Engine& gpu, const MeshView& mesh, const Params& params, Parity& out);
+
+/// The CUDA engine's kernel paths (environment variable FQ_CUDA_TEAM): "0" one thread per
+/// vertex calling the math headers directly, "auto" the default team per vertex, and
+/// fixed teams of 1 and 32 lanes.
+inline const char* const kKernelPaths[] = {"auto", "0", "1", "32"};
+
+/// Sets an environment variable for its lifetime (restores the previous value).
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value);
+  ~ScopedEnv();
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  std::string name_, old_;
+  bool had_ = false;
+};
+
+/// The stated tolerances: positions within 1e-4 of the bbox diagonal at the 99th
+/// percentile and 1e-2 at most; labels agreeing on >= 99% of vertices; cluster counts
+/// within 2% (at least 1).
+void expect_parity(const Parity& p, const Params& params);
+
+/// Holds a CUDA engine on device 0; skips the test when none can be made.
+class CudaTest : public ::testing::Test {
+ protected:
+  void SetUp() override;
+  std::unique_ptr<Engine> gpu_;
+  std::unique_ptr<Engine> cpu_;
+};
+
+}  // namespace fq::test
