@@ -38,7 +38,8 @@ FQ_HD Vec3 jones_bilateral_position(const GridView& tg, const Vec3* mollified_no
     acc = acc + (w * h) * n;
     wsum += w;
   });
-  return wsum > 0.f ? x + (1.0f / wsum) * acc : x;
+  // Divide rather than multiply by 1/wsum: wsum may be denormal when sigma_r is tiny.
+  return wsum > 0.f ? Vec3{x.x + acc.x / wsum, x.y + acc.y / wsum, x.z + acc.z / wsum} : x;
 }
 
 }  // namespace fq

@@ -29,7 +29,7 @@ FQ_HD Quadric neighbourhood_quadric(const GridView& g, const Quadric* base, uint
     add_translated(acc, base[j], t, evaluate(base[j], t), w);
     wsum += w;
   });
-  if (wsum > 0.f) scale(acc, 1.0f / wsum);
+  if (wsum > 0.f) divide(acc, wsum);
   return acc;
 }
 
@@ -48,7 +48,7 @@ FQ_HD Quadric bilateral_quadric(const GridView& g, const Quadric* nbhd, uint32_t
     add_translated(acc, nbhd[j], t, e, w);
     wsum += w;
   });
-  if (wsum > 0.f) scale(acc, 1.0f / wsum);
+  if (wsum > 0.f) divide(acc, wsum);
   return acc;
 }
 

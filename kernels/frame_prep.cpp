@@ -53,6 +53,11 @@ Status compute_normalization(const MeshView& mesh, Normalization& out) {
   out.mean_edge = mean_edge_length(mesh);
   if (!(out.mean_edge > 0.0) || !std::isfinite(out.mean_edge))
     return invalid_input("mesh is degenerate: every edge has zero length");
+  double extent = 0.0;
+  for (int k = 0; k < 3; ++k) extent = std::max(extent, hi[k] - lo[k]);
+  if (!(extent / out.mean_edge <= kMaxExtentInEdges))
+    return invalid_input("mesh spans " + std::to_string(extent / out.mean_edge) +
+                         " mean edge lengths (at most 1e6 supported): is there a far outlier vertex?");
   return {};
 }
 

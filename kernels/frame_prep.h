@@ -29,9 +29,14 @@ struct Normalization {
 /// Non-empty, finite coordinates, every index in range, at least one triangle.
 Status check_mesh(const MeshView& mesh);
 
+/// Largest bounding-box extent, in mean edge lengths, that a frame may span. float32
+/// coordinates at 1e6 edges from the centre resolve about 0.06 edge; beyond that (or with a
+/// far outlier vertex) precision and the grid both degrade, so such frames are refused.
+inline constexpr double kMaxExtentInEdges = 1e6;
+
 /// Bounding-box centre and mean edge length (over the three edges of every triangle, so
 /// interior edges of a closed mesh count once per side; a mesh whose edges all have zero
-/// length is rejected).
+/// length, or one spanning more than kMaxExtentInEdges, is rejected).
 Status compute_normalization(const MeshView& mesh, Normalization& out);
 
 /// Mean edge length of a mesh in its own units (0 when it has no non-degenerate edge).

@@ -67,4 +67,13 @@ FQ_HD void scale(Quadric& q, float s) {
   q = z;
 }
 
+/// q /= s, component by component. Normalizing a weighted sum by its weight sum this way
+/// stays finite when the sum is denormal (1/s would overflow to inf; each component is
+/// at most s times a finite value, so the quotient is finite).
+FQ_HD void divide(Quadric& q, float s) {
+  q.a00 /= s; q.a01 /= s; q.a02 /= s; q.a11 /= s; q.a12 /= s; q.a22 /= s;
+  q.b0 /= s; q.b1 /= s; q.b2 /= s;
+  q.c /= s;
+}
+
 }  // namespace fq

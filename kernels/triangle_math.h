@@ -52,7 +52,7 @@ FQ_HD void add_triangle(VertexAccum& acc, const TriangleGeom& t, Vec3 v) {
 /// The base quadric as an area-weighted average (zero when no incident area).
 FQ_HD Quadric base_quadric(const VertexAccum& acc) {
   Quadric q = acc.q;
-  if (acc.area > 0.f) scale(q, 1.0f / acc.area);
+  if (acc.area > 0.f) divide(q, acc.area);
   return q;
 }
 

@@ -183,12 +183,10 @@ TEST(KernelDegenerateInput, IsolatedVertices) {
   }
 }
 
-// KNOWN BUG (reported, kernels/frame_prep.h): a mesh whose extent is more than ~3e38 mean
-// edges (here 1e-10 edges and one unreferenced vertex at 1e30) overflows float in
-// Normalization::to_normalized; today every output vertex is -inf with an ok status
-// (choose_grid_layout only stops because its cell overflows to inf). Enable once the
-// engine refuses such frames or keeps them finite.
-TEST(KernelDegenerateInput, DISABLED_ExtentBeyondFloatRangeIsRefusedOrFinite) {
+// A mesh whose extent is beyond float range in mean edges (1e-10 edges and one unreferenced
+// vertex at 1e30) once gave all -inf with an ok status; frames wider than
+// kMaxExtentInEdges are now refused.
+TEST(KernelDegenerateInput, ExtentBeyondFloatRangeIsRefusedOrFinite) {
   Mesh m = test::make_plane_grid(10, 10, 1e-10f);
   test::append_isolated_vertex(m, {1e30f, 1e30f, 1e30f});
   CpuEngine engine(2);

@@ -247,11 +247,9 @@ TEST(KernelFilter, SmallRangeSigmaKeepsTheQuadricFilterFinite) {
   }
 }
 
-// KNOWN BUG (reported, kernels/bilateral_math.h): jones_bilateral_position returns
-// x + (1 / wsum) * acc; for sigma_r in about [1e-5, 1e-2] some wsum are denormal, 1 / wsum
-// overflows to inf and 3..51 coordinates per frame come out inf/NaN with an ok status
-// (noisy icosphere, 642 vertices, seeds 1-3). Enable once fixed (e.g. divide acc by wsum).
-TEST(KernelFilter, DISABLED_SmallRangeSigmaKeepsTheBilateralFilterFinite) {
+// Regression: for sigma_r in about [1e-5, 1e-2] some weight sums are denormal; the filter
+// once multiplied by 1 / wsum (inf) and gave 3..51 inf/NaN coordinates per frame.
+TEST(KernelFilter, SmallRangeSigmaKeepsTheBilateralFilterFinite) {
   for (uint64_t seed : {1, 2}) {
     const Mesh noisy = noisy_copy(test::make_icosphere(3), 0.2, seed);
     for (float sigma_r : small_range_sigmas()) {
