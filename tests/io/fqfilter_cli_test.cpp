@@ -128,6 +128,21 @@ TEST(FqfilterCli, WritesLabelledPly) {
   EXPECT_NE(r.out.find("clusters:"), std::string::npos) << r.out;
 }
 
+TEST(FqfilterCli, RepeatAndDracoOutput) {
+  fq::test::ScratchDir dir;
+  const std::string out = dir.file("out.drc");
+  const RunResult r = run_fqfilter(
+      {kFandisk, out, "--engine", "cpu", "--threads", "2", "--repeat", "3", "--cluster", "--json"}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("repeat").get<int>(), 3);
+  EXPECT_EQ(j.at("output").get<std::string>(), out);
+  EXPECT_TRUE(j.at("metrics").is_null());
+  fq::Mesh back;
+  ASSERT_TRUE(fq::io::read_mesh(out, back).ok());
+  EXPECT_EQ(back.num_triangles(), 12946u);
+}
+
 TEST(FqfilterCli, MismatchedReferenceFails) {
   fq::test::ScratchDir dir;
   fq::Mesh tri;
