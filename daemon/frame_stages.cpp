@@ -16,6 +16,17 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Runs one stage of one frame; a fault (exception) becomes that frame's error, so that
+// the daemon keeps serving the next frames.
+template <class Fn>
+Status guarded(const char* stage, Fn&& fn) {
+  try {
+    return fn();
+  } catch (const std::exception& e) {
+    return {StatusCode::kInternal, std::string(stage) + " fault: " + e.what()};
+  }
+}
+
 // The stream's settings with the frame's own overrides and compute mode applied.
 Status resolve_settings(FrameJob& f) {
   if (Status s = wire::apply_overrides(f.header.params(), f.settings.params); !s.ok()) return s;
@@ -55,7 +66,7 @@ void run_decode_worker(Pipeline& p) {
       continue;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    Status s = decode(*f, p.config);
+    Status s = guarded("decode", [&] { return decode(*f, p.config); });
     if (s.ok()) s = resolve_settings(*f);
     f->timings.push_back({"decode", ms_since(t0)});
     if (!s.ok()) {
@@ -83,12 +94,7 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
     f->timings.push_back({"wait", ms_between(f->decoded_ns, wall_ns())});
     f->engine = engine.name();
     const auto t0 = std::chrono::steady_clock::now();
-    Status s;
-    try {
-      s = engine.process(f->mesh.view(), f->settings.params, f->result);
-    } catch (const std::exception& e) {
-      s = {StatusCode::kInternal, std::string("engine fault: ") + e.what()};
-    }
+    const Status s = guarded("engine", [&] { return engine.process(f->mesh.view(), f->settings.params, f->result); });
     const double total = ms_since(t0);
     for (const PassTiming& t : f->result.timings) f->timings.push_back({"engine." + t.name, t.ms});
     f->timings.push_back({"engine", total});
@@ -108,7 +114,8 @@ void run_encode_worker(Pipeline& p) {
     wire::CodecOptions opt;
     opt.position_bits = f->settings.output.position_bits;
     opt.threads = std::max(1, std::min<int>(p.config.encode_threads, static_cast<int>(chunks)));
-    Status s = wire::encode_frame(view, labels, std::max(1u, chunks), opt, f->out_chunks);
+    const Status s =
+        guarded("encode", [&] { return wire::encode_frame(view, labels, std::max(1u, chunks), opt, f->out_chunks); });
     f->timings.push_back({"encode", ms_since(t0)});
     if (!s.ok()) p.fail(std::move(f), s);
     else p.publish_queue.push(std::move(f));
