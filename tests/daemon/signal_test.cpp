@@ -101,6 +101,41 @@ TEST_P(DaemonSignal, ServesFramesThenExitsZeroOnSignal) {
   std::fclose(child.out);
 }
 
+TEST_P(DaemonSignal, FramesReceivedBeforeTheSignalAreFinished) {
+  const std::string config = write_config("fqd_drain_test.toml", kConfig);
+  Child child = spawn_fqd({"--config", config, "--print-endpoints"});
+  ASSERT_GT(child.pid, 0);
+  char line[1024] = {0};
+  ASSERT_NE(std::fgets(line, sizeof line, child.out), nullptr) << "fqd printed no endpoints";
+  const nlohmann::json j = nlohmann::json::parse(line);
+  DaemonHarness h(daemon::BoundEndpoints{j.at("ingest"), j.at("publish"), j.at("control")});
+  // One slow frame on each of three streams (so none supersedes another), all received by
+  // fqd before the signal: each must still come out as a result.
+  const Mesh mesh = noisy_sphere(9, 5);
+  const std::vector<std::string> streams{"a", "b", "c"};
+  for (const std::string& id : streams) {
+    client::FrameSpec spec;
+    spec.stream_id = id;
+    spec.compute = wire::FILTER_AND_CLUSTER;
+    h.send(mesh, spec, 42);
+  }
+  for (const std::string& id : streams) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    wire::ControlRequest q;
+    q.mutable_get_counters()->set_stream_id(id);
+    while (!h.control(q).ok() && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));  // until fqd has received it
+  }
+  ASSERT_EQ(kill(child.pid, GetParam()), 0);
+  for (const std::string& id : streams) {
+    const client::ReceivedResult r = h.receive_decoded(id);
+    EXPECT_EQ(r.header.sequence(), 42u);
+    EXPECT_EQ(r.mesh.num_vertices(), mesh.num_vertices());
+  }
+  EXPECT_EQ(wait_exit(child.pid), 0);
+  std::fclose(child.out);
+}
+
 INSTANTIATE_TEST_SUITE_P(Signals, DaemonSignal, testing::Values(SIGTERM, SIGINT),
                          [](const testing::TestParamInfo<int>& i) { return i.param == SIGTERM ? "SIGTERM" : "SIGINT"; });
 
