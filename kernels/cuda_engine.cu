@@ -53,6 +53,7 @@ class CudaEngine final : public Engine {
   void enqueue_passes(const Params& params);
   int team_size() const;
   static bool gather_base_quadrics();
+  static bool fast_exp_enabled();
   void finish_output(const MeshView& mesh, const Params& params, const Normalization& norm, FrameResult& out);
   Status fail(const std::string& what, FrameResult& out);
 
@@ -143,20 +144,28 @@ bool CudaEngine::gather_base_quadrics() {
   return !(env && std::string(env) == "atomic");
 }
 
+// Gaussian weights of the team kernels through __expf (FQ_CUDA_FAST_EXP=1) or the
+// accurate exp of gaussian.h (default).
+bool CudaEngine::fast_exp_enabled() {
+  const char* env = std::getenv("FQ_CUDA_FAST_EXP");
+  return env && std::string(env) == "1";
+}
+
 void CudaEngine::enqueue_passes(const Params& params) {
   const cudaStream_t s = stream_.get();
   const FilterParams& fp = params.f;
   const int team = team_size();
+  const bool fast_exp = fast_exp_enabled();
   cuda::sort_into_grid(f_, f_.grid.layout, s);
   events_.mark("grid", s);
   if (gather_base_quadrics()) cuda::base_quadrics_gather(f_, s);
   else cuda::base_quadrics(f_, s);
   events_.mark("base_quadrics", s);
   if (params.cluster || fp.method == FilterMethod::kQuadric) {
-    if (team) cuda::team_neighbourhood_quadrics(f_, fp.effective_sigma_b(), team, s);
+    if (team) cuda::team_neighbourhood_quadrics(f_, fp.effective_sigma_b(), team, fast_exp, s);
     else cuda::neighbourhood_quadrics(f_, fp.effective_sigma_b(), s);
     events_.mark("neighbourhood_quadrics", s);
-    if (team) cuda::team_diffuse_quadrics(f_, fp, team, s);
+    if (team) cuda::team_diffuse_quadrics(f_, fp, team, fast_exp, s);
     else cuda::diffuse_quadrics(f_, fp, s);
     events_.mark("diffusion", s);
   }
@@ -166,10 +175,10 @@ void CudaEngine::enqueue_passes(const Params& params) {
     events_.mark(fp.method == FilterMethod::kQuadric ? "update" : "bilateral_filter", s);
   }
   if (params.cluster) {
-    if (team) cuda::team_cluster_scores(f_, params.c, team, s);
+    if (team) cuda::team_cluster_scores(f_, params.c, team, fast_exp, s);
     else cuda::cluster_scores(f_, params.c, s);
     events_.mark("score", s);
-    if (team) cuda::team_cluster_links(f_, params.c, team, s);
+    if (team) cuda::team_cluster_links(f_, params.c, team, fast_exp, s);
     else cuda::cluster_links(f_, params.c, s);
     events_.mark("link", s);
     cuda::cluster_labels(f_, s);

@@ -22,6 +22,15 @@ __device__ void normalize_sum(Quadric& q, float wsum) {
   q.c /= wsum;
 }
 
+// Gaussian weight: gaussian.h's accurate exp, or with `fast` the hardware approximation
+// __expf (relative error ~1e-6 here, far inside the parity tolerance). Measured in
+// docs/BENCHMARKS.md; FQ_CUDA_FAST_EXP selects it.
+struct Weight {
+  Gaussian g;
+  bool fast;
+  __device__ float of_squared(float x2) const { return fast ? __expf(x2 * g.neg_inv_two_sigma2) : g.of_squared(x2); }
+};
+
 struct Slot {
   uint32_t i;     ///< vertex (grid order)
   unsigned lane;  ///< lane within the team
@@ -37,7 +46,7 @@ __device__ Slot slot_of(uint32_t count) {
 
 // filter_math.h neighbourhood_quadric
 template <int T>
-__global__ void team_neighbourhood(GridView g, const PackedQuadric* base, Gaussian gb, float radius,
+__global__ void team_neighbourhood(GridView g, const PackedQuadric* base, Weight gb, float radius,
                                    PackedQuadric* out) {
   const Slot s = slot_of<T>(g.count);
   Quadric acc = zero_quadric();
@@ -61,7 +70,7 @@ __global__ void team_neighbourhood(GridView g, const PackedQuadric* base, Gaussi
 
 // filter_math.h bilateral_quadric
 template <int T>
-__global__ void team_diffusion(GridView g, const PackedQuadric* nbhd, Gaussian gs, Gaussian gr, float radius,
+__global__ void team_diffusion(GridView g, const PackedQuadric* nbhd, Weight gs, Weight gr, float radius,
                                Quadric* out, PackedQuadric* out_p) {
   const Slot s = slot_of<T>(g.count);
   Quadric acc = zero_quadric();
@@ -87,7 +96,7 @@ __global__ void team_diffusion(GridView g, const PackedQuadric* nbhd, Gaussian g
 
 // cluster_math.h representativity
 template <int T>
-__global__ void team_score(GridView g, const Quadric* qbl, Gaussian gd, Gaussian gq, float radius, bool euclid,
+__global__ void team_score(GridView g, const Quadric* qbl, Weight gd, Weight gq, float radius, bool euclid,
                            float* score) {
   const Slot s = slot_of<T>(g.count);
   float num = 0.f, den = 0.f;
@@ -107,7 +116,7 @@ __global__ void team_score(GridView g, const Quadric* qbl, Gaussian gd, Gaussian
 
 // cluster_math.h quick_shift_link
 template <int T>
-__global__ void team_link(GridView g, const PackedQuadric* qbl, const float* score, Gaussian gd, Gaussian gq,
+__global__ void team_link(GridView g, const PackedQuadric* qbl, const float* score, Weight gd, Weight gq,
                           float radius, bool euclid, float cut, uint32_t* next) {
   const Slot s = slot_of<T>(g.count);
   float pmax = 0.f;
@@ -146,29 +155,29 @@ unsigned team_blocks(uint32_t n, int team) { return blocks_for(uint64_t(n) * tea
 
 }  // namespace
 
-void team_neighbourhood_quadrics(DeviceFrame& f, float sigma_b, int team, cudaStream_t s) {
+void team_neighbourhood_quadrics(DeviceFrame& f, float sigma_b, int team, bool fast_exp, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
-  FQ_TEAM_LAUNCH(team_neighbourhood, team, f.n, s, g, f.base_p.data(), Gaussian::with_sigma(sigma_b),
+  FQ_TEAM_LAUNCH(team_neighbourhood, team, f.n, s, g, f.base_p.data(), Weight{Gaussian::with_sigma(sigma_b), fast_exp},
                  2.f * sigma_b, f.nbhd_p.reserve(f.n));
 }
 
-void team_diffuse_quadrics(DeviceFrame& f, const FilterParams& p, int team, cudaStream_t s) {
+void team_diffuse_quadrics(DeviceFrame& f, const FilterParams& p, int team, bool fast_exp, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
-  FQ_TEAM_LAUNCH(team_diffusion, team, f.n, s, g, f.nbhd_p.data(), Gaussian::with_sigma(p.sigma_s),
-                 Gaussian::with_sigma(p.sigma_r), 2.f * p.sigma_s, f.bl.reserve(f.n), f.bl_p.reserve(f.n));
+  FQ_TEAM_LAUNCH(team_diffusion, team, f.n, s, g, f.nbhd_p.data(), Weight{Gaussian::with_sigma(p.sigma_s), fast_exp},
+                 Weight{Gaussian::with_sigma(p.sigma_r), fast_exp}, 2.f * p.sigma_s, f.bl.reserve(f.n), f.bl_p.reserve(f.n));
 }
 
-void team_cluster_scores(DeviceFrame& f, const ClusterParams& p, int team, cudaStream_t s) {
+void team_cluster_scores(DeviceFrame& f, const ClusterParams& p, int team, bool fast_exp, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
-  FQ_TEAM_LAUNCH(team_score, team, f.n, s, g, f.bl.data(), Gaussian::with_sigma(p.sigma_d),
-                 Gaussian::with_sigma(p.sigma_q), 2.f * p.sigma_d, p.method == ClusterMethod::kEuclidean,
+  FQ_TEAM_LAUNCH(team_score, team, f.n, s, g, f.bl.data(), Weight{Gaussian::with_sigma(p.sigma_d), fast_exp},
+                 Weight{Gaussian::with_sigma(p.sigma_q), fast_exp}, 2.f * p.sigma_d, p.method == ClusterMethod::kEuclidean,
                  f.score.reserve(f.n));
 }
 
-void team_cluster_links(DeviceFrame& f, const ClusterParams& p, int team, cudaStream_t s) {
+void team_cluster_links(DeviceFrame& f, const ClusterParams& p, int team, bool fast_exp, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
-  FQ_TEAM_LAUNCH(team_link, team, f.n, s, g, f.bl_p.data(), f.score.data(), Gaussian::with_sigma(p.sigma_d),
-                 Gaussian::with_sigma(p.sigma_q), 2.f * p.sigma_d, p.method == ClusterMethod::kEuclidean,
+  FQ_TEAM_LAUNCH(team_link, team, f.n, s, g, f.bl_p.data(), f.score.data(), Weight{Gaussian::with_sigma(p.sigma_d), fast_exp},
+                 Weight{Gaussian::with_sigma(p.sigma_q), fast_exp}, 2.f * p.sigma_d, p.method == ClusterMethod::kEuclidean,
                  1.0f - p.theta, f.next.reserve(f.n));
 }
 

@@ -1,5 +1,5 @@
 // Team-per-vertex versions of the four heaviest passes (see team_passes.cu). `team` is the
-// lanes per vertex: 1, 2, 4, 8, 16 or 32.
+// lanes per vertex: 1, 2, 4, 8, 16 or 32; `fast_exp` takes Gaussian weights through __expf.
 #pragma once
 
 #include <cuda_runtime.h>
@@ -9,9 +9,9 @@
 
 namespace fq::cuda {
 
-void team_neighbourhood_quadrics(DeviceFrame& f, float sigma_b, int team, cudaStream_t s);
-void team_diffuse_quadrics(DeviceFrame& f, const FilterParams& p, int team, cudaStream_t s);
-void team_cluster_scores(DeviceFrame& f, const ClusterParams& p, int team, cudaStream_t s);
-void team_cluster_links(DeviceFrame& f, const ClusterParams& p, int team, cudaStream_t s);
+void team_neighbourhood_quadrics(DeviceFrame& f, float sigma_b, int team, bool fast_exp, cudaStream_t s);
+void team_diffuse_quadrics(DeviceFrame& f, const FilterParams& p, int team, bool fast_exp, cudaStream_t s);
+void team_cluster_scores(DeviceFrame& f, const ClusterParams& p, int team, bool fast_exp, cudaStream_t s);
+void team_cluster_links(DeviceFrame& f, const ClusterParams& p, int team, bool fast_exp, cudaStream_t s);
 
 }  // namespace fq::cuda

@@ -84,6 +84,18 @@ TEST_F(CudaEngineTest, QuadricFilterMatchesCpu) {
   }
 }
 
+// Gaussian weights through __expf in the team kernels.
+TEST_F(CudaEngineTest, FastExpWeightsMatchCpu) {
+  ScopedEnv fast("FQ_CUDA_FAST_EXP", "1");
+  for (const Params& params : {qf(3.f, 1.f), clustering(5.f, 0.8f, 0.9f)}) {
+    for (const Mesh& m : {noisy_sphere(), noisy_cube()}) {
+      Parity p;
+      run_both(*cpu_, *gpu_, m.view(), params, p);
+      expect_parity(p, params);
+    }
+  }
+}
+
 // Base quadrics by per-vertex gather (default) and by float4 atomics per triangle.
 TEST_F(CudaEngineTest, BothBaseQuadricVariantsMatchCpu) {
   const Params params = clustering(4.f, 1.f, 0.8f);

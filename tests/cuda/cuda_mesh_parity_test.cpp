@@ -42,6 +42,12 @@ TEST_P(CudaMeshParity, MatchesCpuEngine) {
   run_both(*cpu_, *gpu_, mesh.view(), params, p);
   std::printf("  %s (%u vertices), default kernels:\n", row.file, mesh.num_vertices());
   expect_parity(p, params);
+  {
+    ScopedEnv fast("FQ_CUDA_FAST_EXP", "1");
+    rerun_gpu(*gpu_, mesh.view(), params, p);
+    std::printf("  default kernels, __expf weights:\n");
+    expect_parity(p, params);
+  }
   ScopedEnv env("FQ_CUDA_TEAM", "0");
   rerun_gpu(*gpu_, mesh.view(), params, p);
   std::printf("  one thread per vertex:\n");
