@@ -13,7 +13,8 @@ constexpr int64_t kMaxThreads = 256;
 void read_filter(TomlReader& r, FilterParams& f) {
   std::string method = filter_method_name(f.method);
   r.read("method", method);
-  if (!parse_filter_method(method, f.method)) r.fail("method", "must be \"qf\" or \"bf\" (got \"" + method + "\")");
+  if (!parse_filter_method(method, f.method))
+    r.fail("method", "must be \"qf\" or \"bf\" (got \"" + method + "\")");
   r.read("sigma_s", f.sigma_s);
   r.read("sigma_r", f.sigma_r);
   r.read("sigma_b", f.sigma_b);
@@ -36,13 +37,17 @@ void read_output(TomlReader& r, OutputEncoding& o) {
   r.read("position_bits", o.position_bits, 8, 30);
   const toml::node* c = r.raw("chunks");
   if (!c) return;
-  if (auto str = c->value_exact<std::string>(); str && *str == "same") o.chunks = 0;
-  else if (auto v = c->value_exact<int64_t>(); v && *v >= 1 && *v <= 256) o.chunks = static_cast<uint32_t>(*v);
-  else r.fail("chunks", "must be \"same\" or an integer in [1, 256]");
+  if (auto str = c->value_exact<std::string>(); str && *str == "same")
+    o.chunks = 0;
+  else if (auto v = c->value_exact<int64_t>(); v && *v >= 1 && *v <= 256)
+    o.chunks = static_cast<uint32_t>(*v);
+  else
+    r.fail("chunks", "must be \"same\" or an integer in [1, 256]");
 }
 
 // Reads a stream table ([defaults] or [streams.<id>]) over `s`.
-Status read_stream(const toml::table& t, const std::string& source, const std::string& path, StreamSettings& s) {
+Status read_stream(const toml::table& t, const std::string& source, const std::string& path,
+                   StreamSettings& s) {
   TomlReader r(t, source, path);
   std::string compute = compute_name(s.params);
   r.read("compute", compute);
@@ -66,8 +71,7 @@ Status read_stream(const toml::table& t, const std::string& source, const std::s
     if (Status e = sr.finish(); !e.ok()) return e;
   }
   if (Status st = r.finish(); !st.ok()) return st;
-  if (Status v = validate(s); !v.ok())
-    return invalid_argument(source + ": [" + path + "] " + v.message());
+  if (Status v = validate(s); !v.ok()) return invalid_argument(source + ": [" + path + "] " + v.message());
   return {};
 }
 
@@ -81,11 +85,13 @@ Status read_endpoints(TomlReader& root, Endpoints& e) {
   if (Status s = r.finish(); !s.ok()) return s;
   for (const std::string* ep : {&e.ingest, &e.publish, &e.control}) {
     if (ep->find("://") == std::string::npos)
-      return invalid_argument(root.source() + ": endpoint \"" + *ep + "\" is not a ZeroMQ address like tcp://127.0.0.1:5555");
+      return invalid_argument(root.source() + ": endpoint \"" + *ep +
+                              "\" is not a ZeroMQ address like tcp://127.0.0.1:5555");
   }
   const bool fixed_dup = (e.ingest == e.publish || e.ingest == e.control || e.publish == e.control) &&
                          e.ingest.find(":*") == std::string::npos;
-  if (fixed_dup) return invalid_argument(root.source() + ": the ingest, publish and control endpoints must differ");
+  if (fixed_dup)
+    return invalid_argument(root.source() + ": the ingest, publish and control endpoints must differ");
   return {};
 }
 
@@ -95,13 +101,15 @@ Status read_engine(TomlReader& root, EngineConfig& e) {
   TomlReader r(*t, root.source(), "engine");
   std::string kind = e.kind == EngineKind::kCpu ? "cpu" : e.kind == EngineKind::kCuda ? "cuda" : "auto";
   r.read("kind", kind);
-  if (!parse_engine_kind(kind, e.kind)) r.fail("kind", "must be \"auto\", \"cuda\" or \"cpu\" (got \"" + kind + "\")");
+  if (!parse_engine_kind(kind, e.kind))
+    r.fail("kind", "must be \"auto\", \"cuda\" or \"cpu\" (got \"" + kind + "\")");
   r.read("gpus", e.gpus, 0, 63);
   r.read("cpu_alongside_gpus", e.cpu_alongside_gpus);
   r.read("cpu_threads", e.cpu_threads, 0, kMaxThreads);
   if (Status s = r.finish(); !s.ok()) return s;
   if (e.kind == EngineKind::kCuda && e.gpus.empty())
-    return invalid_argument(root.source() + ": engine.kind = \"cuda\" needs at least one entry in engine.gpus");
+    return invalid_argument(root.source() +
+                            ": engine.kind = \"cuda\" needs at least one entry in engine.gpus");
   return {};
 }
 
@@ -159,7 +167,8 @@ Status parse_config(std::string_view text, const std::string& source, DaemonConf
   try {
     root_table = toml::parse(text, source);
   } catch (const toml::parse_error& e) {
-    return invalid_argument(source + ":" + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
+    return invalid_argument(source + ":" + std::to_string(e.source().begin.line) + ": " +
+                            std::string(e.description()));
   }
   DaemonConfig c;
   TomlReader root(root_table, source, "");

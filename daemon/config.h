@@ -22,9 +22,9 @@ struct Endpoints {
 
 struct EngineConfig {
   EngineKind kind = EngineKind::kAuto;
-  std::vector<int> gpus{0};        ///< one CUDA engine per listed device
-  bool cpu_alongside_gpus = false; ///< also run the CPU engine when GPU engines exist
-  int cpu_threads = 0;             ///< CPU engine threads; 0 = all hardware threads
+  std::vector<int> gpus{0};         ///< one CUDA engine per listed device
+  bool cpu_alongside_gpus = false;  ///< also run the CPU engine when GPU engines exist
+  int cpu_threads = 0;              ///< CPU engine threads; 0 = all hardware threads
 };
 
 struct Caps {

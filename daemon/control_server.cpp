@@ -69,23 +69,28 @@ wire::ControlReply get_counters(const wire::GetCounters& q, StreamRegistry& regi
 
 wire::ControlReply handle_control(const wire::ControlRequest& request, StreamRegistry& registry) {
   switch (request.request_case()) {
-    case wire::ControlRequest::kGetParams: return get_params(request.get_params(), registry);
-    case wire::ControlRequest::kSetParams: return set_params(request.set_params(), registry);
+    case wire::ControlRequest::kGetParams:
+      return get_params(request.get_params(), registry);
+    case wire::ControlRequest::kSetParams:
+      return set_params(request.set_params(), registry);
     case wire::ControlRequest::kListStreams: {
       wire::ControlReply r;
       r.set_ok(true);
       for (const std::string& id : registry.list()) r.add_streams(id);
       return r;
     }
-    case wire::ControlRequest::kGetCounters: return get_counters(request.get_counters(), registry);
-    case wire::ControlRequest::REQUEST_NOT_SET: break;
+    case wire::ControlRequest::kGetCounters:
+      return get_counters(request.get_counters(), registry);
+    case wire::ControlRequest::REQUEST_NOT_SET:
+      break;
   }
   return error_reply("empty control request");
 }
 
 std::string handle_control_bytes(std::string_view bytes, StreamRegistry& registry) {
   wire::ControlRequest request;
-  if (Status s = wire::parse_control_request(bytes, request); !s.ok()) return error_reply(s.message()).SerializeAsString();
+  if (Status s = wire::parse_control_request(bytes, request); !s.ok())
+    return error_reply(s.message()).SerializeAsString();
   return handle_control(request, registry).SerializeAsString();
 }
 
@@ -94,7 +99,8 @@ void run_control(zmq::socket_t socket, StreamRegistry& registry) {
     zmq::message_t request;
     try {
       if (!socket.recv(request)) continue;
-      const std::string reply = handle_control_bytes(std::string_view(request.data<char>(), request.size()), registry);
+      const std::string reply =
+          handle_control_bytes(std::string_view(request.data<char>(), request.size()), registry);
       socket.send(zmq::buffer(reply), zmq::send_flags::none);
     } catch (const zmq::error_t& e) {
       if (e.num() == ETERM) break;

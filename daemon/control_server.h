@@ -4,7 +4,6 @@
 #pragma once
 
 #include <string_view>
-
 #include <zmq.hpp>
 
 #include "fq.pb.h"

@@ -22,7 +22,8 @@ Status bind_one(zmq::socket_t& s, const std::string& endpoint, const char* role,
   try {
     s.bind(endpoint);
   } catch (const zmq::error_t& e) {
-    return invalid_argument(std::string("cannot bind the ") + role + " endpoint " + endpoint + ": " + e.what());
+    return invalid_argument(std::string("cannot bind the ") + role + " endpoint " + endpoint + ": " +
+                            e.what());
   }
   bound = s.get(zmq::sockopt::last_endpoint);
   return {};
@@ -36,9 +37,12 @@ Status make_engines(const EngineConfig& c, std::vector<std::unique_ptr<Engine>>&
     for (int gpu : c.gpus) {
       Status why;
       auto e = make_engine({EngineKind::kCuda, c.cpu_threads, gpu}, &why);
-      if (e) out.push_back(std::move(e));
-      else if (c.kind == EngineKind::kCuda) return {StatusCode::kUnavailable, "GPU " + std::to_string(gpu) + ": " + why.message()};
-      else spdlog::info("engine auto: no CUDA engine on GPU {} ({})", gpu, why.message());
+      if (e)
+        out.push_back(std::move(e));
+      else if (c.kind == EngineKind::kCuda)
+        return {StatusCode::kUnavailable, "GPU " + std::to_string(gpu) + ": " + why.message()};
+      else
+        spdlog::info("engine auto: no CUDA engine on GPU {} ({})", gpu, why.message());
     }
   }
   if (out.empty() || c.cpu_alongside_gpus) out.push_back(make_engine({EngineKind::kCpu, c.cpu_threads, 0}));
@@ -46,7 +50,10 @@ Status make_engines(const EngineConfig& c, std::vector<std::unique_ptr<Engine>>&
 }
 
 Daemon::Daemon(DaemonConfig config)
-    : config_(std::move(config)), registry_(config_), pipeline_(config_, registry_), input_context_(1),
+    : config_(std::move(config)),
+      registry_(config_),
+      pipeline_(config_, registry_),
+      input_context_(1),
       output_context_(1) {}
 
 Daemon::~Daemon() { stop(); }
@@ -65,7 +72,8 @@ Status Daemon::bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::
   control.set(zmq::sockopt::linger, 0);
   publish.set(zmq::sockopt::linger, kPublishLingerMs);
   if (Status s = bind_one(ingest, config_.endpoints.ingest, "ingest", endpoints_.ingest); !s.ok()) return s;
-  if (Status s = bind_one(publish, config_.endpoints.publish, "publish", endpoints_.publish); !s.ok()) return s;
+  if (Status s = bind_one(publish, config_.endpoints.publish, "publish", endpoints_.publish); !s.ok())
+    return s;
   return bind_one(control, config_.endpoints.control, "control", endpoints_.control);
 }
 
@@ -75,19 +83,25 @@ Status Daemon::start() {
   zmq::socket_t ingest, publish, control;
   if (Status s = bind_sockets(ingest, publish, control); !s.ok()) return s;
   // Sockets were made on this thread and are handed over whole to their owner threads.
-  publisher_thread_ = std::thread([this, s = std::move(publish)]() mutable { Publisher(std::move(s), pipeline_).run(); });
-  for (int i = 0; i < config_.encode_threads; ++i) encoders_.emplace_back([this] { run_encode_worker(pipeline_); });
-  for (auto& e : engines_) workers_.emplace_back([this, eng = e.get()] { run_engine_worker(pipeline_, *eng); });
-  for (int i = 0; i < config_.decode_threads; ++i) decoders_.emplace_back([this] { run_decode_worker(pipeline_); });
-  control_thread_ = std::thread([this, s = std::move(control)]() mutable { run_control(std::move(s), registry_); });
-  ingest_thread_ = std::thread([this, s = std::move(ingest)]() mutable { run_ingest(std::move(s), pipeline_); });
+  publisher_thread_ =
+      std::thread([this, s = std::move(publish)]() mutable { Publisher(std::move(s), pipeline_).run(); });
+  for (int i = 0; i < config_.encode_threads; ++i)
+    encoders_.emplace_back([this] { run_encode_worker(pipeline_); });
+  for (auto& e : engines_)
+    workers_.emplace_back([this, eng = e.get()] { run_engine_worker(pipeline_, *eng); });
+  for (int i = 0; i < config_.decode_threads; ++i)
+    decoders_.emplace_back([this] { run_decode_worker(pipeline_); });
+  control_thread_ =
+      std::thread([this, s = std::move(control)]() mutable { run_control(std::move(s), registry_); });
+  ingest_thread_ =
+      std::thread([this, s = std::move(ingest)]() mutable { run_ingest(std::move(s), pipeline_); });
   running_ = true;
   std::string names;
   for (const std::string& n : engine_names()) names += (names.empty() ? "" : ", ") + n;
   spdlog::info("fqd: engines [{}], {} decode / {} encode threads", names, config_.decode_threads,
                config_.encode_threads);
-  spdlog::info("fqd: ingest {} (PULL), publish {} (PUB), control {} (REP)", endpoints_.ingest, endpoints_.publish,
-               endpoints_.control);
+  spdlog::info("fqd: ingest {} (PULL), publish {} (PUB), control {} (REP)", endpoints_.ingest,
+               endpoints_.publish, endpoints_.control);
   return {};
 }
 

@@ -7,7 +7,6 @@
 #include <memory>
 #include <string>
 #include <vector>
-
 #include <zmq.hpp>
 
 #include "engine.h"
@@ -20,30 +19,33 @@ namespace fq::daemon {
 /// Wall-clock nanoseconds since the epoch: comparable with the producer's timestamps on
 /// the same host (and across hosts whose clocks are synchronized).
 inline int64_t wall_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
 
 /// Milliseconds between two wall_ns() values.
-inline double ms_between(int64_t from_ns, int64_t to_ns) { return static_cast<double>(to_ns - from_ns) * 1e-6; }
+inline double ms_between(int64_t from_ns, int64_t to_ns) {
+  return static_cast<double>(to_ns - from_ns) * 1e-6;
+}
 
 struct FrameJob {
   std::string stream_id;
-  uint64_t arrival = 0;         ///< per-stream arrival index (ingest order)
-  uint64_t ticket = 0;          ///< per-stream publish order, given when a worker takes it
-  bool ticketed = false;        ///< the publisher orders ticketed results per stream
-  wire::FrameHeader header;     ///< as received (empty for messages whose header failed)
+  uint64_t arrival = 0;                ///< per-stream arrival index (ingest order)
+  uint64_t ticket = 0;                 ///< per-stream publish order, given when a worker takes it
+  bool ticketed = false;               ///< the publisher orders ticketed results per stream
+  wire::FrameHeader header;            ///< as received (empty for messages whose header failed)
   std::vector<zmq::message_t> chunks;  ///< Draco payloads, released after decode
   int64_t receive_ns = 0;
 
-  StreamSettings settings;      ///< the stream's settings with the frame's overrides applied
-  Mesh mesh;                    ///< decoded input
-  FrameResult result;           ///< engine output
-  std::string engine;           ///< engine that processed it
+  StreamSettings settings;              ///< the stream's settings with the frame's overrides applied
+  Mesh mesh;                            ///< decoded input
+  FrameResult result;                   ///< engine output
+  std::string engine;                   ///< engine that processed it
   std::vector<PassTiming> timings;      ///< decode, wait, engine.<pass>..., encode
   std::vector<std::string> out_chunks;  ///< encoded result
   int64_t decoded_ns = 0;
-  Status error;                 ///< non-ok: published as an ERROR result
+  Status error;  ///< non-ok: published as an ERROR result
 };
 
 using FramePtr = std::unique_ptr<FrameJob>;

@@ -1,8 +1,8 @@
 // The three CPU/engine stages of the pipeline (see pipeline.h).
+#include <spdlog/spdlog.h>
+
 #include <chrono>
 #include <exception>
-
-#include <spdlog/spdlog.h>
 
 #include "frame_codec.h"
 #include "frame_prep.h"
@@ -31,7 +31,8 @@ Status guarded(const char* stage, Fn&& fn) {
 Status resolve_settings(FrameJob& f) {
   if (Status s = wire::apply_overrides(f.header.params(), f.settings.params); !s.ok()) return s;
   if (Status s = wire::apply_compute(f.header.compute(), f.settings.params); !s.ok()) return s;
-  if (Status s = fq::validate(f.settings.params); !s.ok()) return invalid_argument("invalid parameters: " + s.message());
+  if (Status s = fq::validate(f.settings.params); !s.ok())
+    return invalid_argument("invalid parameters: " + s.message());
   return {};
 }
 
@@ -43,8 +44,8 @@ Status decode(FrameJob& f, const DaemonConfig& c) {
   if (Status s = wire::decode_frame(views, f.header.vertex_count(), opt, f.mesh, nullptr); !s.ok()) return s;
   f.chunks.clear();
   if (f.mesh.num_vertices() > c.caps.max_vertices)
-    return invalid_input("frame has " + std::to_string(f.mesh.num_vertices()) + " vertices, over the cap of " +
-                         std::to_string(c.caps.max_vertices));
+    return invalid_input("frame has " + std::to_string(f.mesh.num_vertices()) +
+                         " vertices, over the cap of " + std::to_string(c.caps.max_vertices));
   return check_mesh(f.mesh.view());
 }
 
@@ -94,12 +95,15 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
     f->timings.push_back({"wait", ms_between(f->decoded_ns, wall_ns())});
     f->engine = engine.name();
     const auto t0 = std::chrono::steady_clock::now();
-    const Status s = guarded("engine", [&] { return engine.process(f->mesh.view(), f->settings.params, f->result); });
+    const Status s =
+        guarded("engine", [&] { return engine.process(f->mesh.view(), f->settings.params, f->result); });
     const double total = ms_since(t0);
     for (const PassTiming& t : f->result.timings) f->timings.push_back({"engine." + t.name, t.ms});
     f->timings.push_back({"engine", total});
-    if (!s.ok()) p.fail(std::move(f), s);
-    else p.encode_queue.push(std::move(f));
+    if (!s.ok())
+      p.fail(std::move(f), s);
+    else
+      p.encode_queue.push(std::move(f));
   }
 }
 
@@ -109,16 +113,20 @@ void run_encode_worker(Pipeline& p) {
     const auto t0 = std::chrono::steady_clock::now();
     const MeshView view{f->result.positions.data(), f->mesh.num_vertices(), f->mesh.triangles.data(),
                         f->mesh.num_triangles()};
-    const uint32_t* labels = f->settings.params.cluster && !f->result.labels.empty() ? f->result.labels.data() : nullptr;
-    const uint32_t chunks = f->settings.output.chunks > 0 ? f->settings.output.chunks : f->header.chunk_count();
+    const uint32_t* labels =
+        f->settings.params.cluster && !f->result.labels.empty() ? f->result.labels.data() : nullptr;
+    const uint32_t chunks =
+        f->settings.output.chunks > 0 ? f->settings.output.chunks : f->header.chunk_count();
     wire::CodecOptions opt;
     opt.position_bits = f->settings.output.position_bits;
     opt.threads = std::max(1, std::min<int>(p.config.encode_threads, static_cast<int>(chunks)));
-    const Status s =
-        guarded("encode", [&] { return wire::encode_frame(view, labels, std::max(1u, chunks), opt, f->out_chunks); });
+    const Status s = guarded(
+        "encode", [&] { return wire::encode_frame(view, labels, std::max(1u, chunks), opt, f->out_chunks); });
     f->timings.push_back({"encode", ms_since(t0)});
-    if (!s.ok()) p.fail(std::move(f), s);
-    else p.publish_queue.push(std::move(f));
+    if (!s.ok())
+      p.fail(std::move(f), s);
+    else
+      p.publish_queue.push(std::move(f));
   }
 }
 

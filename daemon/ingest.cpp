@@ -1,7 +1,8 @@
 #include "ingest.h"
 
-#include <zmq_addon.hpp>
 #include <spdlog/spdlog.h>
+
+#include <zmq_addon.hpp>
 
 #include "frame_codec.h"
 #include "header_codec.h"
@@ -11,8 +12,8 @@ namespace {
 
 Status check_framing(const std::vector<zmq::message_t>& parts, const Caps& caps) {
   if (parts.size() < 3)
-    return invalid_input("expected [stream id][FrameHeader][draco chunk]..., got " + std::to_string(parts.size()) +
-                         " part(s)");
+    return invalid_input("expected [stream id][FrameHeader][draco chunk]..., got " +
+                         std::to_string(parts.size()) + " part(s)");
   uint64_t bytes = 0;
   for (const zmq::message_t& m : parts) bytes += m.size();
   if (bytes > caps.max_frame_bytes)
@@ -21,7 +22,8 @@ Status check_framing(const std::vector<zmq::message_t>& parts, const Caps& caps)
   return {};
 }
 
-Status check_header(const wire::FrameHeader& h, const std::string& topic, size_t chunk_parts, const Caps& caps) {
+Status check_header(const wire::FrameHeader& h, const std::string& topic, size_t chunk_parts,
+                    const Caps& caps) {
   if (h.stream_id() != topic)
     return invalid_input("header stream id '" + h.stream_id() + "' does not match the topic '" + topic + "'");
   if (h.chunk_count() != chunk_parts)
@@ -41,12 +43,14 @@ FramePtr admit_message(std::vector<zmq::message_t>& parts, Pipeline& p) {
   f->stream_id = parts.empty() ? std::string() : parts[0].to_string();
   f->arrival = p.arrivals[f->stream_id]++;
   if (!p.registry.settings(f->stream_id, f->settings)) {
-    f->error = invalid_input("too many streams (caps.max_streams = " + std::to_string(p.config.caps.max_streams) + ")");
+    f->error = invalid_input(
+        "too many streams (caps.max_streams = " + std::to_string(p.config.caps.max_streams) + ")");
     return f;
   }
   p.registry.count(f->stream_id, Counter::kIn);
   Status s = check_framing(parts, p.config.caps);
-  if (s.ok()) s = wire::parse_frame_header(std::string_view(parts[1].data<char>(), parts[1].size()), f->header);
+  if (s.ok())
+    s = wire::parse_frame_header(std::string_view(parts[1].data<char>(), parts[1].size()), f->header);
   if (s.ok()) s = check_header(f->header, f->stream_id, parts.size() - 2, p.config.caps);
   if (!s.ok()) {
     f->error = s;
@@ -71,7 +75,8 @@ void run_ingest(zmq::socket_t socket, Pipeline& p) {
     if (!f->error.ok()) {
       const Status why = f->error;
       p.fail(std::move(f), why);
-    } else p.decode_queue.push(std::move(f));
+    } else
+      p.decode_queue.push(std::move(f));
   }
   socket.close();
 }

@@ -9,8 +9,10 @@ FramePtr FrameSlots::offer(FramePtr frame) {
     Stream& s = streams_[frame->stream_id];
     const bool behind_taken = s.taken_any && frame->arrival <= s.last_taken_arrival;
     if (behind_taken || (s.waiting && s.waiting->arrival > frame->arrival)) return frame;
-    if (s.waiting) loser = std::move(s.waiting);
-    else ++waiting_;
+    if (s.waiting)
+      loser = std::move(s.waiting);
+    else
+      ++waiting_;
     s.waiting = std::move(frame);
   }
   ready_.notify_one();

@@ -1,11 +1,11 @@
 // fqd: the streaming daemon. Usage: fqd --config configs/fqd.toml
-#include <cstdio>
-#include <fstream>
-
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "config.h"
 #include "daemon.h"
@@ -24,7 +24,8 @@ int main(int argc, char** argv) {
   std::string config_path = "configs/fqd.toml", log_level, endpoints_file;
   bool print_endpoints = false, check_only = false;
   app.add_option("-c,--config", config_path, "TOML configuration file")->capture_default_str();
-  app.add_option("--log-level", log_level, "override log_level: trace, debug, info, warn, error, critical, off");
+  app.add_option("--log-level", log_level,
+                 "override log_level: trace, debug, info, warn, error, critical, off");
   app.add_flag("--print-endpoints", print_endpoints,
                "print the bound endpoints as one JSON line on stdout once listening (for ports given as *)");
   app.add_option("--endpoints-file", endpoints_file, "also write that JSON line to this file once listening");
@@ -40,7 +41,8 @@ int main(int argc, char** argv) {
   }
   if (!log_level.empty()) {
     if (!fq::daemon::valid_log_level(log_level)) {
-      std::fprintf(stderr, "fqd: --log-level must be one of trace, debug, info, warn, error, critical, off\n");
+      std::fprintf(stderr,
+                   "fqd: --log-level must be one of trace, debug, info, warn, error, critical, off\n");
       return 2;
     }
     config.log_level = log_level;

@@ -15,8 +15,10 @@ double percentile(std::vector<double> values, double q) {
 }
 
 void SampleWindow::add(double ms) {
-  if (ring_.size() < kWindow) ring_.push_back(ms);
-  else ring_[next_] = ms;
+  if (ring_.size() < kWindow)
+    ring_.push_back(ms);
+  else
+    ring_[next_] = ms;
   next_ = (next_ + 1) % kWindow;
   ++count_;
 }

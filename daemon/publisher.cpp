@@ -1,7 +1,8 @@
 #include "publisher.h"
 
-#include <zmq_addon.hpp>
 #include <spdlog/spdlog.h>
+
+#include <zmq_addon.hpp>
 
 #include "header_codec.h"
 
@@ -83,7 +84,8 @@ void Publisher::account(const FrameJob& f, const wire::ResultHeader& h) {
   if (h.late()) r.count(f.stream_id, Counter::kLate);
   for (const PassTiming& t : f.timings) r.record(f.stream_id, t.name, t.ms);
   r.record(f.stream_id, "receive_to_publish", h.latency_ms());
-  if (h.send_time_ns() > 0) r.record(f.stream_id, "send_to_publish", ms_between(h.send_time_ns(), h.publish_time_ns()));
+  if (h.send_time_ns() > 0)
+    r.record(f.stream_id, "send_to_publish", ms_between(h.send_time_ns(), h.publish_time_ns()));
 }
 
 }  // namespace fq::daemon

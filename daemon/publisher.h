@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <map>
 #include <string>
-
 #include <zmq.hpp>
 
 #include "pipeline.h"

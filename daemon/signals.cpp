@@ -1,7 +1,8 @@
 #include "signals.h"
 
-#include <csignal>
 #include <pthread.h>
+
+#include <csignal>
 
 namespace fq::daemon {
 namespace {

@@ -46,12 +46,24 @@ void StreamRegistry::count(const std::string& stream_id, Counter c, uint64_t n) 
   if (!e) return;
   StreamCounters& k = e->counters;
   switch (c) {
-    case Counter::kIn: k.frames_in += n; break;
-    case Counter::kOut: k.frames_out += n; break;
-    case Counter::kSuperseded: k.superseded += n; break;
-    case Counter::kDroppedStale: k.dropped_stale += n; break;
-    case Counter::kLate: k.late += n; break;
-    case Counter::kErrors: k.errors += n; break;
+    case Counter::kIn:
+      k.frames_in += n;
+      break;
+    case Counter::kOut:
+      k.frames_out += n;
+      break;
+    case Counter::kSuperseded:
+      k.superseded += n;
+      break;
+    case Counter::kDroppedStale:
+      k.dropped_stale += n;
+      break;
+    case Counter::kLate:
+      k.late += n;
+      break;
+    case Counter::kErrors:
+      k.errors += n;
+      break;
   }
 }
 

@@ -5,10 +5,14 @@
 namespace fq::daemon {
 
 bool parse_compute(const std::string& s, Params& inout) {
-  if (s == "filter") inout.filter = true, inout.cluster = false;
-  else if (s == "cluster") inout.filter = false, inout.cluster = true;
-  else if (s == "filter_and_cluster") inout.filter = true, inout.cluster = true;
-  else return false;
+  if (s == "filter")
+    inout.filter = true, inout.cluster = false;
+  else if (s == "cluster")
+    inout.filter = false, inout.cluster = true;
+  else if (s == "filter_and_cluster")
+    inout.filter = true, inout.cluster = true;
+  else
+    return false;
   return true;
 }
 
@@ -19,21 +23,29 @@ const char* compute_name(const Params& p) {
 }
 
 bool parse_filter_method(const std::string& s, FilterMethod& out) {
-  if (s == "qf") out = FilterMethod::kQuadric;
-  else if (s == "bf") out = FilterMethod::kBilateral;
-  else return false;
+  if (s == "qf")
+    out = FilterMethod::kQuadric;
+  else if (s == "bf")
+    out = FilterMethod::kBilateral;
+  else
+    return false;
   return true;
 }
 
 bool parse_cluster_method(const std::string& s, ClusterMethod& out) {
-  if (s == "quadric") out = ClusterMethod::kQuadric;
-  else if (s == "euclidean") out = ClusterMethod::kEuclidean;
-  else return false;
+  if (s == "quadric")
+    out = ClusterMethod::kQuadric;
+  else if (s == "euclidean")
+    out = ClusterMethod::kEuclidean;
+  else
+    return false;
   return true;
 }
 
 const char* filter_method_name(FilterMethod m) { return m == FilterMethod::kQuadric ? "qf" : "bf"; }
-const char* cluster_method_name(ClusterMethod m) { return m == ClusterMethod::kQuadric ? "quadric" : "euclidean"; }
+const char* cluster_method_name(ClusterMethod m) {
+  return m == ClusterMethod::kQuadric ? "quadric" : "euclidean";
+}
 
 Status validate(const StreamSettings& s) {
   // The clustering parameters are checked even when the stream only filters: a frame or a
@@ -44,9 +56,11 @@ Status validate(const StreamSettings& s) {
   if (!(s.budget_ms > 0.0 && std::isfinite(s.budget_ms)))
     return invalid_argument("budget_ms must be > 0 (got " + std::to_string(s.budget_ms) + ")");
   if (s.output.position_bits < 8 || s.output.position_bits > 30)
-    return invalid_argument("output position_bits must be in [8, 30] (got " + std::to_string(s.output.position_bits) + ")");
+    return invalid_argument("output position_bits must be in [8, 30] (got " +
+                            std::to_string(s.output.position_bits) + ")");
   if (s.output.chunks > 256)
-    return invalid_argument("output chunks must be \"same\" or 1..256 (got " + std::to_string(s.output.chunks) + ")");
+    return invalid_argument("output chunks must be \"same\" or 1..256 (got " +
+                            std::to_string(s.output.chunks) + ")");
   return {};
 }
 

@@ -18,8 +18,8 @@ struct OutputEncoding {
 };
 
 struct StreamSettings {
-  Params params;            ///< params.filter / params.cluster are the compute mode
-  double budget_ms = 100.0; ///< receive -> publish budget; older frames are dropped, results flagged late
+  Params params;             ///< params.filter / params.cluster are the compute mode
+  double budget_ms = 100.0;  ///< receive -> publish budget; older frames are dropped, results flagged late
   OutputEncoding output;
 };
 

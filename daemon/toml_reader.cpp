@@ -24,15 +24,19 @@ const toml::node* TomlReader::get(const char* key) {
 void TomlReader::read(const char* key, std::string& out) {
   const toml::node* n = get(key);
   if (!n) return;
-  if (auto v = n->value_exact<std::string>()) out = *v;
-  else fail(key, "must be a string");
+  if (auto v = n->value_exact<std::string>())
+    out = *v;
+  else
+    fail(key, "must be a string");
 }
 
 void TomlReader::read(const char* key, bool& out) {
   const toml::node* n = get(key);
   if (!n) return;
-  if (auto v = n->value_exact<bool>()) out = *v;
-  else fail(key, "must be true or false");
+  if (auto v = n->value_exact<bool>())
+    out = *v;
+  else
+    fail(key, "must be true or false");
 }
 
 void TomlReader::read(const char* key, float& out) {
@@ -45,8 +49,10 @@ void TomlReader::read(const char* key, double& out, double lo, double hi) {
   const toml::node* n = get(key);
   if (!n) return;
   std::optional<double> v;
-  if (n->is_floating_point()) v = n->value_exact<double>();
-  else if (n->is_integer()) v = static_cast<double>(*n->value_exact<int64_t>());
+  if (n->is_floating_point())
+    v = n->value_exact<double>();
+  else if (n->is_integer())
+    v = static_cast<double>(*n->value_exact<int64_t>());
   if (!v) return fail(key, "must be a number");
   if (!std::isfinite(*v) || *v < lo || *v > hi)
     return fail(key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " +

@@ -2,12 +2,12 @@
 // daemon does not know (a typo) is reported instead of silently ignored.
 #pragma once
 
+#include <toml++/toml.h>
+
 #include <cstdint>
 #include <set>
 #include <string>
 #include <vector>
-
-#include <toml++/toml.h>
 
 #include "status.h"
 

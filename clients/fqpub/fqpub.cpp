@@ -1,13 +1,12 @@
 // fqpub: publishes a mesh file, or a folder of meshes as a looped sequence, to fqd's ingest
 // endpoint at a fixed frame rate, optionally with fresh noise each frame.
+#include <CLI/CLI.hpp>
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <thread>
-
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "frame_sender.h"
 #include "mesh_source.h"
@@ -69,7 +68,8 @@ Totals publish(const Args& a, const fq::client::MeshSource& source, zmq::socket_
     t.encode_ms += std::chrono::duration<double, std::milli>(clock::now() - t0).count();
     fq::client::send_parts(push, parts);
     ++t.sent;
-    if (!a.quiet && !a.json) std::fprintf(stderr, "\rfqpub: sent %llu frames", static_cast<unsigned long long>(t.sent));
+    if (!a.quiet && !a.json)
+      std::fprintf(stderr, "\rfqpub: sent %llu frames", static_cast<unsigned long long>(t.sent));
   }
   t.seconds = std::chrono::duration<double>(clock::now() - start).count();
   return t;
@@ -82,11 +82,19 @@ int main(int argc, char** argv) {
   Args a;
   app.add_option("input", a.input, "mesh file (.ply .obj .stl .drc) or folder of them")->required();
   app.add_option("-e,--endpoint", a.endpoint, "fqd ingest endpoint (PUSH connects)")->capture_default_str();
-  app.add_option("-s,--stream", a.spec.stream_id, "stream id (the topic of the results)")->capture_default_str();
-  app.add_option("--fps", a.fps, "frames per second")->capture_default_str()->check(CLI::Range(0.001, 10000.0));
-  app.add_option("--chunks", a.spec.chunks, "Draco chunks per frame")->capture_default_str()->check(CLI::Range(1, 256));
-  app.add_option("--position-bits", a.spec.position_bits, "Draco position bits")->capture_default_str()->check(CLI::Range(8, 30));
-  app.add_option("--noise", a.noise, "Gaussian noise per frame, in mean edge lengths (0 = none)")->check(CLI::Range(0.0, 100.0));
+  app.add_option("-s,--stream", a.spec.stream_id, "stream id (the topic of the results)")
+      ->capture_default_str();
+  app.add_option("--fps", a.fps, "frames per second")
+      ->capture_default_str()
+      ->check(CLI::Range(0.001, 10000.0));
+  app.add_option("--chunks", a.spec.chunks, "Draco chunks per frame")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  app.add_option("--position-bits", a.spec.position_bits, "Draco position bits")
+      ->capture_default_str()
+      ->check(CLI::Range(8, 30));
+  app.add_option("--noise", a.noise, "Gaussian noise per frame, in mean edge lengths (0 = none)")
+      ->check(CLI::Range(0.0, 100.0));
   app.add_option("--seed", a.seed, "noise seed (frame i uses seed + i)")->capture_default_str();
   app.add_option("-n,--count", a.count, "frames to send (0 = until --duration or Ctrl-C)");
   app.add_option("-d,--duration", a.duration, "seconds to publish (0 = until --count or Ctrl-C)");
@@ -120,12 +128,17 @@ int main(int argc, char** argv) {
   const double fps = t.seconds > 0 ? static_cast<double>(t.sent) / t.seconds : 0.0;
   const double enc = t.sent ? t.encode_ms / static_cast<double>(t.sent) : 0.0;
   if (a.json) {
-    std::printf("%s\n", nlohmann::json{{"stream", a.spec.stream_id}, {"frames_sent", t.sent}, {"seconds", t.seconds},
-                                       {"fps", fps}, {"encode_ms_mean", enc}}.dump().c_str());
+    std::printf("%s\n", nlohmann::json{{"stream", a.spec.stream_id},
+                                       {"frames_sent", t.sent},
+                                       {"seconds", t.seconds},
+                                       {"fps", fps},
+                                       {"encode_ms_mean", enc}}
+                            .dump()
+                            .c_str());
   } else {
     std::fprintf(stderr, "%sfqpub: stream '%s': %llu frames in %.2f s (%.1f fps), encode %.2f ms/frame\n",
-                 a.quiet ? "" : "\n", a.spec.stream_id.c_str(), static_cast<unsigned long long>(t.sent), t.seconds, fps,
-                 enc);
+                 a.quiet ? "" : "\n", a.spec.stream_id.c_str(), static_cast<unsigned long long>(t.sent),
+                 t.seconds, fps, enc);
   }
   return 0;
 }

@@ -7,7 +7,6 @@
 #include <map>
 #include <mutex>
 #include <string>
-
 #include <zmq.hpp>
 
 #include "mesh_view.h"

@@ -2,15 +2,15 @@
 // receive->publish and send->receive latency percentiles, achieved fps, drops and the
 // per-stage times. Runs fqd in-process (engine from the options or a config file) or
 // against a running fqd (--connect).
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <thread>
-
-#include <CLI/CLI.hpp>
-#include <spdlog/sinks/stdout_color_sinks.h>
-#include <spdlog/spdlog.h>
 
 #include "collector.h"
 #include "control_client.h"
@@ -44,12 +44,14 @@ std::string resolve_mesh(const Args& a) {
   return (fs::path(dir) / a.mesh).string();
 }
 
-fq::Status start_daemon(const Args& a, std::unique_ptr<fq::daemon::Daemon>& d, Endpoints& ep, std::string& engine) {
+fq::Status start_daemon(const Args& a, std::unique_ptr<fq::daemon::Daemon>& d, Endpoints& ep,
+                        std::string& engine) {
   fq::daemon::DaemonConfig c;
   if (!a.config.empty()) {
     if (fq::Status s = fq::daemon::load_config(a.config, c); !s.ok()) return s;
   } else {
-    if (!fq::parse_engine_kind(a.engine, c.engine.kind)) return fq::invalid_argument("--engine must be auto, cuda or cpu");
+    if (!fq::parse_engine_kind(a.engine, c.engine.kind))
+      return fq::invalid_argument("--engine must be auto, cuda or cpu");
     c.engine.gpus = a.gpus;
     c.engine.cpu_threads = a.cpu_threads;
     c.decode_threads = a.decode_threads;
@@ -88,10 +90,14 @@ std::string stream_compute(zmq::context_t& ctx, const std::string& control, cons
   fq::wire::ControlReply r;
   if (!fq::client::control_call(req, q, r).ok()) return "?";
   switch (r.params().compute()) {
-    case fq::wire::FILTER: return "filter";
-    case fq::wire::CLUSTER: return "cluster";
-    case fq::wire::FILTER_AND_CLUSTER: return "filter_and_cluster";
-    default: return "?";
+    case fq::wire::FILTER:
+      return "filter";
+    case fq::wire::CLUSTER:
+      return "cluster";
+    case fq::wire::FILTER_AND_CLUSTER:
+      return "filter_and_cluster";
+    default:
+      return "?";
   }
 }
 
@@ -141,7 +147,8 @@ fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep,
   stop_collecting = true;
   collector.join();
   run.after = counters(ctx, ep.control);
-  run.compute = a.overrides.compute.empty() ? stream_compute(ctx, ep.control, a.stream_prefix + "0") : a.overrides.compute;
+  run.compute = a.overrides.compute.empty() ? stream_compute(ctx, ep.control, a.stream_prefix + "0")
+                                            : a.overrides.compute;
   run.per_stream = col.per_stream();
   run.overall = col.overall();
   return {};
@@ -154,15 +161,24 @@ int main(int argc, char** argv) {
   Args a;
   app.add_option("mesh", a.mesh, "mesh file, or a file name in --mesh-dir (e.g. bunny.ply)")->required();
   app.add_option("--mesh-dir", a.mesh_dir, "folder of meshes (default $FQ_MESH_DIR, else ../shared/meshes)");
-  app.add_option("--streams", a.streams, "concurrent streams")->capture_default_str()->check(CLI::Range(1, 256));
-  app.add_option("--fps", a.producer.fps, "frames per second per stream")->capture_default_str()->check(CLI::Range(0.01, 10000.0));
+  app.add_option("--streams", a.streams, "concurrent streams")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  app.add_option("--fps", a.producer.fps, "frames per second per stream")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 10000.0));
   app.add_option("-d,--duration", a.producer.seconds, "seconds of sending per stream")->capture_default_str();
   app.add_option("--warmup", a.warmup, "first seconds not measured")->capture_default_str();
   app.add_option("--drain", a.drain, "longest wait for the last results")->capture_default_str();
-  app.add_option("--chunks", a.producer.spec.chunks, "Draco chunks per frame")->capture_default_str()->check(CLI::Range(1, 256));
-  app.add_option("--noise", a.producer.noise, "noise in mean edges (0 = the mesh as is)")->capture_default_str();
-  app.add_option("--variants", a.producer.variants, "distinct noisy frames per stream")->capture_default_str();
-  app.add_option("--budget-ms", a.budget_ms, "latency budget of the streams (in-process fqd; 0 = default/config)");
+  app.add_option("--chunks", a.producer.spec.chunks, "Draco chunks per frame")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  app.add_option("--noise", a.producer.noise, "noise in mean edges (0 = the mesh as is)")
+      ->capture_default_str();
+  app.add_option("--variants", a.producer.variants, "distinct noisy frames per stream")
+      ->capture_default_str();
+  app.add_option("--budget-ms", a.budget_ms,
+                 "latency budget of the streams (in-process fqd; 0 = default/config)");
   app.add_option("--engine", a.engine, "in-process engine: auto | cuda | cpu")->capture_default_str();
   app.add_option("--gpus", a.gpus, "GPUs of the in-process fqd, one engine each (e.g. 0,1)")->delimiter(',');
   app.add_option("--cpu-threads", a.cpu_threads, "CPU engine threads (0 = all)");
@@ -173,7 +189,8 @@ int main(int argc, char** argv) {
   app.add_option("--ingest", a.ingest, "running fqd's ingest endpoint");
   app.add_option("--publish", a.publish, "running fqd's publish endpoint");
   app.add_option("--control", a.control, "running fqd's control endpoint");
-  app.add_option("--stream-prefix", a.stream_prefix, "stream ids are <prefix>0, <prefix>1, ...")->capture_default_str();
+  app.add_option("--stream-prefix", a.stream_prefix, "stream ids are <prefix>0, <prefix>1, ...")
+      ->capture_default_str();
   app.add_flag("--decode", a.decode, "decode and check every result (costs consumer CPU)");
   app.add_flag("--json", a.json, "print the report as JSON");
   app.add_flag("--markdown", a.markdown, "also print a docs/BENCHMARKS.md table row");
@@ -185,7 +202,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "fqstreambench: %s\n", s.message().c_str());
     return 1;
   };
-  if (fq::Status s = fq::client::to_wire(a.overrides, a.producer.spec.overrides, a.producer.spec.compute); !s.ok())
+  if (fq::Status s = fq::client::to_wire(a.overrides, a.producer.spec.overrides, a.producer.spec.compute);
+      !s.ok())
     return fail(s);
   fq::Mesh mesh;
   if (fq::Status s = fq::io::read_mesh(resolve_mesh(a), mesh); !s.ok()) return fail(s);
@@ -206,9 +224,12 @@ int main(int argc, char** argv) {
   }
   if (fq::Status s = run_streams(a, mesh, ep, run); !s.ok()) return fail(s);
   if (daemon) daemon->stop();
-  if (a.json) std::printf("%s\n", fq::bench::report_json(run).dump(2).c_str());
-  else std::printf("%s", fq::bench::report_text(run).c_str());
-  if (a.markdown) std::printf("%s\n%s\n", fq::bench::report_markdown_header().c_str(),
-                              fq::bench::report_markdown_row(run).c_str());
+  if (a.json)
+    std::printf("%s\n", fq::bench::report_json(run).dump(2).c_str());
+  else
+    std::printf("%s", fq::bench::report_text(run).c_str());
+  if (a.markdown)
+    std::printf("%s\n%s\n", fq::bench::report_markdown_header().c_str(),
+                fq::bench::report_markdown_row(run).c_str());
   return run.overall.results() > 0 && run.overall.bad() == 0 ? 0 : 1;
 }

@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <string>
 #include <vector>
-
 #include <zmq.hpp>
 
 #include "frame_sender.h"
@@ -19,8 +18,8 @@ struct ProducerOptions {
   client::FrameSpec spec;
   double fps = 30.0;
   double seconds = 10.0;
-  double noise = 0.0;     ///< mean edges; each variant gets its own draw
-  int variants = 4;       ///< distinct noisy frames cycled through (1 without noise)
+  double noise = 0.0;  ///< mean edges; each variant gets its own draw
+  int variants = 4;    ///< distinct noisy frames cycled through (1 without noise)
   uint64_t seed = 1;
 };
 
@@ -33,7 +32,8 @@ class Producer {
     uint64_t measured = 0;  ///< sent at or after measure_from_ns
   };
   /// Sends at the frame rate until the time is up or `stop`.
-  Sent run(zmq::context_t& ctx, const std::string& endpoint, const std::atomic<bool>& stop, int64_t measure_from_ns);
+  Sent run(zmq::context_t& ctx, const std::string& endpoint, const std::atomic<bool>& stop,
+           int64_t measure_from_ns);
 
   double encode_ms() const { return encode_ms_; }
 

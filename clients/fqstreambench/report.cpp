@@ -40,7 +40,8 @@ std::string triple(const nlohmann::json& s) {
 
 double achieved_fps(const RunInfo& r) {
   const double measured = r.seconds - r.warmup;
-  return measured > 0 ? static_cast<double>(r.overall.results() - r.overall.errors()) / measured / r.streams : 0.0;
+  return measured > 0 ? static_cast<double>(r.overall.results() - r.overall.errors()) / measured / r.streams
+                      : 0.0;
 }
 
 }  // namespace
@@ -50,16 +51,27 @@ nlohmann::json report_json(const RunInfo& r) {
   nlohmann::json streams = nlohmann::json::object();
   for (const auto& [id, s] : r.per_stream) streams[id] = s.to_json();
   const uint64_t measured = total(r.sent_measured);
-  return {{"mesh", r.mesh_name},         {"vertices", r.vertices},
-          {"triangles", r.triangles},    {"engine", r.engine},
-          {"streams", r.streams},        {"fps_target", r.fps},
-          {"seconds", r.seconds},        {"warmup", r.warmup},
-          {"chunks", r.chunks},          {"compute", r.compute},
-          {"frames_sent", total(r.sent)}, {"frames_sent_measured", measured},
+  return {{"mesh", r.mesh_name},
+          {"vertices", r.vertices},
+          {"triangles", r.triangles},
+          {"engine", r.engine},
+          {"streams", r.streams},
+          {"fps_target", r.fps},
+          {"seconds", r.seconds},
+          {"warmup", r.warmup},
+          {"chunks", r.chunks},
+          {"compute", r.compute},
+          {"frames_sent", total(r.sent)},
+          {"frames_sent_measured", measured},
           {"achieved_fps_per_stream", achieved_fps(r)},
           {"drops_measured", measured > r.overall.results() ? measured - r.overall.results() : 0},
-          {"fqd", {{"frames_in", d.in}, {"frames_out", d.out}, {"superseded", d.superseded},
-                   {"dropped_stale", d.stale}, {"late", d.late}, {"errors", d.errors}}},
+          {"fqd",
+           {{"frames_in", d.in},
+            {"frames_out", d.out},
+            {"superseded", d.superseded},
+            {"dropped_stale", d.stale},
+            {"late", d.late},
+            {"errors", d.errors}}},
           {"overall", r.overall.to_json()},
           {"per_stream", streams}};
 }
@@ -69,18 +81,20 @@ std::string report_text(const RunInfo& r) {
   const nlohmann::json& o = j["overall"];
   std::string s;
   char b[512];
-  std::snprintf(b, sizeof b,
-                "fqstreambench: %s (%u V, %u F), %d stream(s) x %.1f fps for %.1f s (first %.1f s not measured), "
-                "%u chunk(s), engine %s, compute %s\n",
-                r.mesh_name.c_str(), r.vertices, r.triangles, r.streams, r.fps, r.seconds, r.warmup, r.chunks,
-                r.engine.c_str(), r.compute.c_str());
+  std::snprintf(
+      b, sizeof b,
+      "fqstreambench: %s (%u V, %u F), %d stream(s) x %.1f fps for %.1f s (first %.1f s not measured), "
+      "%u chunk(s), engine %s, compute %s\n",
+      r.mesh_name.c_str(), r.vertices, r.triangles, r.streams, r.fps, r.seconds, r.warmup, r.chunks,
+      r.engine.c_str(), r.compute.c_str());
   s += b;
   std::snprintf(b, sizeof b,
                 "  sent %llu (measured %llu), results measured %llu, achieved %.2f fps/stream, drops %llu "
                 "(fqd: superseded %llu, stale %llu), late %llu, errors %llu\n",
                 static_cast<unsigned long long>(j["frames_sent"].get<uint64_t>()),
                 static_cast<unsigned long long>(j["frames_sent_measured"].get<uint64_t>()),
-                static_cast<unsigned long long>(o["results"].get<uint64_t>()), j["achieved_fps_per_stream"].get<double>(),
+                static_cast<unsigned long long>(o["results"].get<uint64_t>()),
+                j["achieved_fps_per_stream"].get<double>(),
                 static_cast<unsigned long long>(j["drops_measured"].get<uint64_t>()),
                 static_cast<unsigned long long>(j["fqd"]["superseded"].get<uint64_t>()),
                 static_cast<unsigned long long>(j["fqd"]["dropped_stale"].get<uint64_t>()),

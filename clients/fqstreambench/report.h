@@ -4,10 +4,9 @@
 
 #include <cstdint>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "fq.pb.h"
 #include "stream_stats.h"
@@ -22,8 +21,8 @@ struct RunInfo {
   double fps = 0, seconds = 0, warmup = 0;
   uint32_t chunks = 1;
   std::string compute;
-  std::map<std::string, uint64_t> sent;           ///< all frames sent, per stream
-  std::map<std::string, uint64_t> sent_measured;  ///< frames sent after the warm-up
+  std::map<std::string, uint64_t> sent;                       ///< all frames sent, per stream
+  std::map<std::string, uint64_t> sent_measured;              ///< frames sent after the warm-up
   std::map<std::string, wire::StreamCounters> before, after;  ///< fqd's counters
   std::map<std::string, client::StreamStats> per_stream;
   client::StreamStats overall;

@@ -2,13 +2,13 @@
 // with cluster colours, shows a live status line and prints a summary.
 // Exit status: 0 when at least one result came and every result decoded, passed the checks
 // and was not an error result; 1 otherwise; 2 for bad options.
+#include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
-
-#include <CLI/CLI.hpp>
 
 #include "mesh_io.h"
 #include "result_receiver.h"
@@ -30,8 +30,8 @@ struct Args {
 
 // Writes one result as <out>/<stream>_<sequence>.ply; returns the path or "" on failure.
 std::string write_ply(const Args& a, const fq::client::ReceivedResult& r) {
-  const std::string path = (std::filesystem::path(a.out_dir) / (r.header.stream_id() + "_" +
-                                                                 std::to_string(r.header.sequence()) + ".ply"))
+  const std::string path = (std::filesystem::path(a.out_dir) /
+                            (r.header.stream_id() + "_" + std::to_string(r.header.sequence()) + ".ply"))
                                .string();
   const uint32_t* labels = r.labels.empty() ? nullptr : r.labels.data();
   if (fq::Status s = fq::io::write_mesh(path, r.mesh.view(), labels, r.header.cluster_count()); !s.ok()) {
@@ -49,9 +49,57 @@ bool inspect(const Args& a, fq::client::ReceivedResult& r, fq::Status why) {
     std::fprintf(stderr, "\nfqsub: bad result from stream '%s' frame %llu: %s\n", r.topic.c_str(),
                  static_cast<unsigned long long>(r.header.sequence()), why.message().c_str());
   else if (r.header.status() == fq::wire::ERROR)
-    std::fprintf(stderr, "\nfqsub: error result for stream '%s' frame %llu: %s\n", r.header.stream_id().c_str(),
-                 static_cast<unsigned long long>(r.header.sequence()), r.header.error().c_str());
+    std::fprintf(stderr, "\nfqsub: error result for stream '%s' frame %llu: %s\n",
+                 r.header.stream_id().c_str(), static_cast<unsigned long long>(r.header.sequence()),
+                 r.header.error().c_str());
   return why.ok();
+}
+
+// Subscribes and connects; false (with a message) for a bad endpoint.
+bool subscribe(const Args& a, zmq::socket_t& sub) {
+  sub.set(zmq::sockopt::rcvtimeo, 200);  // wake up for the status line and the time limits
+  sub.set(zmq::sockopt::rcvhwm, 100000);
+  if (a.streams.empty()) sub.set(zmq::sockopt::subscribe, "");
+  // ZeroMQ topics are prefixes: receive_loop's exact-match check drops e.g. "cam10" for "cam1".
+  for (const std::string& s : a.streams) sub.set(zmq::sockopt::subscribe, s);
+  try {
+    sub.connect(a.endpoint);
+  } catch (const zmq::error_t& e) {
+    std::fprintf(stderr, "fqsub: cannot connect to %s: %s\n", a.endpoint.c_str(), e.what());
+    return false;
+  }
+  return true;
+}
+
+// Receives until a limit or a signal; returns the path of the last PLY written.
+std::string receive_loop(const Args& a, zmq::socket_t& sub, fq::client::StreamStats& stats) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  auto last_result = start, last_line = start;
+  std::string last_ply;
+  uint64_t good = 0;
+  while (!g_stop && (a.count == 0 || stats.results() < a.count)) {
+    const auto now = clock::now();
+    if (a.duration > 0 && std::chrono::duration<double>(now - start).count() >= a.duration) break;
+    if (a.idle_timeout > 0 && std::chrono::duration<double>(now - last_result).count() >= a.idle_timeout)
+      break;
+    if (!a.quiet && !a.json && now - last_line >= std::chrono::seconds(1)) {
+      std::fprintf(stderr, "\rfqsub: %s", stats.status_line().c_str());
+      last_line = now;
+    }
+    fq::client::ReceivedResult r;
+    fq::Status why;
+    if (!fq::client::receive_result(sub, r, why)) continue;
+    if (!a.streams.empty() && std::find(a.streams.begin(), a.streams.end(), r.topic) == a.streams.end())
+      continue;
+    last_result = clock::now();
+    const bool ok = inspect(a, r, why);
+    stats.add(r, ok);
+    if (ok && r.header.status() != fq::wire::ERROR && a.write_every > 0 && good++ % a.write_every == 0) {
+      if (std::string p = write_ply(a, r); !p.empty()) last_ply = p;
+    }
+  }
+  return last_ply;
 }
 
 }  // namespace
@@ -63,10 +111,12 @@ int main(int argc, char** argv) {
   app.add_option("-s,--stream", a.streams, "stream id to subscribe to (repeatable; none = all streams)");
   app.add_option("-n,--count", a.count, "stop after this many results (0 = no limit)");
   app.add_option("-d,--duration", a.duration, "stop after this many seconds (0 = no limit)");
-  app.add_option("--idle-timeout", a.idle_timeout, "stop when no result came for this many seconds (0 = never)");
+  app.add_option("--idle-timeout", a.idle_timeout,
+                 "stop when no result came for this many seconds (0 = never)");
   app.add_option("--write-every", a.write_every, "write every Nth good result as PLY (0 = none)");
   app.add_option("-o,--out", a.out_dir, "folder for the PLY files");
-  app.add_option("--decode-threads", a.decode_threads, "threads decoding a result's chunks")->capture_default_str();
+  app.add_option("--decode-threads", a.decode_threads, "threads decoding a result's chunks")
+      ->capture_default_str();
   app.add_flag("--json", a.json, "print the summary as JSON on stdout");
   app.add_flag("-q,--quiet", a.quiet, "no live status line");
   CLI11_PARSE(app, argc, argv);
@@ -74,53 +124,24 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "fqsub: --write-every needs --out DIR\n");
     return 2;
   }
-  if (!a.out_dir.empty()) std::filesystem::create_directories(a.out_dir);
+  std::error_code ec;
+  if (!a.out_dir.empty() && !std::filesystem::create_directories(a.out_dir, ec) && ec) {
+    std::fprintf(stderr, "fqsub: cannot create %s: %s\n", a.out_dir.c_str(), ec.message().c_str());
+    return 2;
+  }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 
   zmq::context_t ctx(1);
   zmq::socket_t sub(ctx, zmq::socket_type::sub);
-  sub.set(zmq::sockopt::rcvtimeo, 200);  // wake up for the status line and the time limits
-  sub.set(zmq::sockopt::rcvhwm, 100000);
-  if (a.streams.empty()) sub.set(zmq::sockopt::subscribe, "");
-  // ZeroMQ topics are prefixes: the exact-match check below drops e.g. "cam10" for "cam1".
-  for (const std::string& s : a.streams) sub.set(zmq::sockopt::subscribe, s);
-  try {
-    sub.connect(a.endpoint);
-  } catch (const zmq::error_t& e) {
-    std::fprintf(stderr, "fqsub: cannot connect to %s: %s\n", a.endpoint.c_str(), e.what());
-    return 2;
-  }
-
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
-  auto last_result = start, last_line = start;
+  if (!subscribe(a, sub)) return 2;
   fq::client::StreamStats stats;
-  std::string last_ply;
-  uint64_t good = 0;
-  while (!g_stop && (a.count == 0 || stats.results() < a.count)) {
-    const auto now = clock::now();
-    if (a.duration > 0 && std::chrono::duration<double>(now - start).count() >= a.duration) break;
-    if (a.idle_timeout > 0 && std::chrono::duration<double>(now - last_result).count() >= a.idle_timeout) break;
-    if (!a.quiet && !a.json && now - last_line >= std::chrono::seconds(1)) {
-      std::fprintf(stderr, "\rfqsub: %s", stats.status_line().c_str());
-      last_line = now;
-    }
-    fq::client::ReceivedResult r;
-    fq::Status why;
-    if (!fq::client::receive_result(sub, r, why)) continue;
-    if (!a.streams.empty() && std::find(a.streams.begin(), a.streams.end(), r.topic) == a.streams.end()) continue;
-    last_result = clock::now();
-    const bool ok = inspect(a, r, why);
-    stats.add(r, ok);
-    if (ok && r.header.status() != fq::wire::ERROR && a.write_every > 0 && good++ % a.write_every == 0) {
-      if (std::string p = write_ply(a, r); !p.empty()) last_ply = p;
-    }
-  }
+  const std::string last_ply = receive_loop(a, sub, stats);
   sub.close();
   nlohmann::json j = stats.to_json();
   j["last_ply"] = last_ply;
-  if (a.json) std::printf("%s\n", j.dump(2).c_str());
+  if (a.json)
+    std::printf("%s\n", j.dump(2).c_str());
   else {
     std::fprintf(stderr, "%sfqsub: %s\n", a.quiet ? "" : "\r", stats.status_line().c_str());
     if (!last_ply.empty()) std::fprintf(stderr, "fqsub: last PLY written: %s\n", last_ply.c_str());

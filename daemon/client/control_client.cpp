@@ -10,8 +10,10 @@ Status control_call(zmq::socket_t& req, const wire::ControlRequest& request, wir
   const std::string bytes = request.SerializeAsString();
   req.send(zmq::buffer(bytes), zmq::send_flags::none);
   zmq::message_t m;
-  if (!req.recv(m)) return {StatusCode::kUnavailable, "no control reply within " + std::to_string(timeout_ms) + " ms"};
-  if (Status s = wire::parse_control_reply(std::string_view(m.data<char>(), m.size()), reply); !s.ok()) return s;
+  if (!req.recv(m))
+    return {StatusCode::kUnavailable, "no control reply within " + std::to_string(timeout_ms) + " ms"};
+  if (Status s = wire::parse_control_reply(std::string_view(m.data<char>(), m.size()), reply); !s.ok())
+    return s;
   if (!reply.ok()) return invalid_argument(reply.error());
   return {};
 }

@@ -1,7 +1,6 @@
 #include "frame_sender.h"
 
 #include <chrono>
-
 #include <zmq_addon.hpp>
 
 #include "header_codec.h"
@@ -9,11 +8,13 @@
 namespace fq::client {
 
 int64_t now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
 
-Status build_frame(const MeshView& mesh, const FrameSpec& spec, uint64_t sequence, std::vector<std::string>& parts) {
+Status build_frame(const MeshView& mesh, const FrameSpec& spec, uint64_t sequence,
+                   std::vector<std::string>& parts) {
   std::vector<std::string> chunks;
   wire::CodecOptions opt;
   opt.position_bits = spec.position_bits;

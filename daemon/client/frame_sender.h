@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <string>
 #include <vector>
-
 #include <zmq.hpp>
 
 #include "fq.pb.h"
@@ -25,7 +24,8 @@ struct FrameSpec {
 };
 
 /// The message parts of one frame: topic, header (send_time_ns stamped now), chunks.
-Status build_frame(const MeshView& mesh, const FrameSpec& spec, uint64_t sequence, std::vector<std::string>& parts);
+Status build_frame(const MeshView& mesh, const FrameSpec& spec, uint64_t sequence,
+                   std::vector<std::string>& parts);
 
 /// Restamps send_time_ns in an already built frame (parts[1]) to now.
 void restamp_send_time(std::vector<std::string>& parts);

@@ -14,7 +14,8 @@ Status MeshSource::open(const std::string& path) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) {
     for (const auto& e : fs::directory_iterator(path, ec))
-      if (e.is_regular_file() && io::is_readable_mesh_file(e.path().string())) files.push_back(e.path().string());
+      if (e.is_regular_file() && io::is_readable_mesh_file(e.path().string()))
+        files.push_back(e.path().string());
     std::sort(files.begin(), files.end());
     if (files.empty()) return invalid_argument("no mesh files (.ply .obj .stl .drc) in folder " + path);
   } else {

@@ -29,19 +29,28 @@ Status to_wire(const OverrideArgs& a, wire::ParamOverrides& o, wire::Compute& co
   if (a.sigma_d) o.set_sigma_d(*a.sigma_d);
   if (a.sigma_q) o.set_sigma_q(*a.sigma_q);
   if (a.theta) o.set_theta(*a.theta);
-  if (a.mode == "qf") o.set_mode(wire::QF);
-  else if (a.mode == "bf") o.set_mode(wire::BF);
-  else if (!a.mode.empty()) return invalid_argument("--mode must be qf or bf (got " + a.mode + ")");
-  if (a.cluster_method == "quadric") o.set_cluster_method(wire::QUADRIC);
-  else if (a.cluster_method == "euclidean") o.set_cluster_method(wire::EUCLIDEAN);
+  if (a.mode == "qf")
+    o.set_mode(wire::QF);
+  else if (a.mode == "bf")
+    o.set_mode(wire::BF);
+  else if (!a.mode.empty())
+    return invalid_argument("--mode must be qf or bf (got " + a.mode + ")");
+  if (a.cluster_method == "quadric")
+    o.set_cluster_method(wire::QUADRIC);
+  else if (a.cluster_method == "euclidean")
+    o.set_cluster_method(wire::EUCLIDEAN);
   else if (!a.cluster_method.empty())
     return invalid_argument("--cluster-method must be quadric or euclidean (got " + a.cluster_method + ")");
   compute = wire::COMPUTE_DEFAULT;
-  if (a.compute == "filter") compute = wire::FILTER;
-  else if (a.compute == "cluster") compute = wire::CLUSTER;
-  else if (a.compute == "filter_and_cluster") compute = wire::FILTER_AND_CLUSTER;
+  if (a.compute == "filter")
+    compute = wire::FILTER;
+  else if (a.compute == "cluster")
+    compute = wire::CLUSTER;
+  else if (a.compute == "filter_and_cluster")
+    compute = wire::FILTER_AND_CLUSTER;
   else if (!a.compute.empty())
-    return invalid_argument("--compute must be filter, cluster or filter_and_cluster (got " + a.compute + ")");
+    return invalid_argument("--compute must be filter, cluster or filter_and_cluster (got " + a.compute +
+                            ")");
   return {};
 }
 

@@ -2,10 +2,9 @@
 // by fqpub and fqstreambench. Only the options given on the command line are set.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
-
-#include <CLI/CLI.hpp>
 
 #include "fq.pb.h"
 #include "status.h"

@@ -1,7 +1,6 @@
 #include "result_receiver.h"
 
 #include <cmath>
-
 #include <zmq_addon.hpp>
 
 #include "frame_codec.h"
@@ -24,8 +23,8 @@ bool receive_result(zmq::socket_t& sub, ReceivedResult& out, Status& why) {
   why = wire::parse_result_header(std::string_view(parts[1].data<char>(), parts[1].size()), out.header);
   for (size_t i = 2; i < parts.size(); ++i) out.chunks.push_back(std::move(parts[i]));
   if (why.ok() && out.header.chunk_count() != out.chunks.size())
-    why = invalid_input("result header says " + std::to_string(out.header.chunk_count()) + " chunk(s), message has " +
-                        std::to_string(out.chunks.size()));
+    why = invalid_input("result header says " + std::to_string(out.header.chunk_count()) +
+                        " chunk(s), message has " + std::to_string(out.chunks.size()));
   return true;
 }
 
@@ -48,12 +47,12 @@ Status check_result(const ReceivedResult& r) {
     if (!std::isfinite(v)) return invalid_input("non-finite position in the result");
   if (h.cluster_count() > 0 && r.labels.size() != r.mesh.num_vertices())
     return invalid_input("result has " + std::to_string(h.cluster_count()) + " clusters but " +
-                         std::to_string(r.labels.size()) + " labels for " + std::to_string(r.mesh.num_vertices()) +
-                         " vertices");
+                         std::to_string(r.labels.size()) + " labels for " +
+                         std::to_string(r.mesh.num_vertices()) + " vertices");
   for (uint32_t l : r.labels)
     if (l >= h.cluster_count())
-      return invalid_input("label " + std::to_string(l) + " out of range (" + std::to_string(h.cluster_count()) +
-                           " clusters)");
+      return invalid_input("label " + std::to_string(l) + " out of range (" +
+                           std::to_string(h.cluster_count()) + " clusters)");
   return {};
 }
 

@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <string>
 #include <vector>
-
 #include <zmq.hpp>
 
 #include "fq.pb.h"
@@ -18,8 +17,8 @@ struct ReceivedResult {
   std::string topic;
   wire::ResultHeader header;
   std::vector<zmq::message_t> chunks;
-  int64_t receive_ns = 0;   ///< when this process got it
-  Mesh mesh;                ///< after decode_result
+  int64_t receive_ns = 0;  ///< when this process got it
+  Mesh mesh;               ///< after decode_result
   std::vector<uint32_t> labels;
 };
 

@@ -9,7 +9,9 @@ namespace {
 
 nlohmann::json summary(const std::vector<double>& v) {
   using fq::daemon::percentile;
-  return {{"p50_ms", percentile(v, 0.50)}, {"p95_ms", percentile(v, 0.95)}, {"p99_ms", percentile(v, 0.99)},
+  return {{"p50_ms", percentile(v, 0.50)},
+          {"p95_ms", percentile(v, 0.95)},
+          {"p99_ms", percentile(v, 0.99)},
           {"count", v.size()}};
 }
 
@@ -43,13 +45,14 @@ double StreamStats::fps() const {
 std::string StreamStats::status_line() const {
   using fq::daemon::percentile;
   char line[256];
-  std::snprintf(line, sizeof line,
-                "%llu results  %.1f fps  latency p50 %.1f p99 %.1f ms  send->recv p50 %.1f p99 %.1f ms  drops %llu  "
-                "errors %llu  late %llu  bad %llu",
-                static_cast<unsigned long long>(results_), fps(), percentile(latency_, 0.5),
-                percentile(latency_, 0.99), percentile(send_to_receive_, 0.5), percentile(send_to_receive_, 0.99),
-                static_cast<unsigned long long>(drops_), static_cast<unsigned long long>(errors_),
-                static_cast<unsigned long long>(late_), static_cast<unsigned long long>(bad_));
+  std::snprintf(
+      line, sizeof line,
+      "%llu results  %.1f fps  latency p50 %.1f p99 %.1f ms  send->recv p50 %.1f p99 %.1f ms  drops %llu  "
+      "errors %llu  late %llu  bad %llu",
+      static_cast<unsigned long long>(results_), fps(), percentile(latency_, 0.5), percentile(latency_, 0.99),
+      percentile(send_to_receive_, 0.5), percentile(send_to_receive_, 0.99),
+      static_cast<unsigned long long>(drops_), static_cast<unsigned long long>(errors_),
+      static_cast<unsigned long long>(late_), static_cast<unsigned long long>(bad_));
   return line;
 }
 

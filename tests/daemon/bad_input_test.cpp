@@ -1,10 +1,10 @@
 // Every kind of bad frame gets an ERROR result on its stream's topic, is counted, and the
 // next good frame of the stream is served.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <functional>
 #include <limits>
-
-#include <gtest/gtest.h>
 
 #include "daemon_harness.h"
 #include "draco_plain.h"
@@ -30,7 +30,8 @@ std::vector<std::string> good_parts(const Mesh& m, uint32_t chunks = 1) {
 }
 
 // Rewrites the header of built parts.
-std::vector<std::string> with_header(std::vector<std::string> parts, const std::function<void(wire::FrameHeader&)>& f) {
+std::vector<std::string> with_header(std::vector<std::string> parts,
+                                     const std::function<void(wire::FrameHeader&)>& f) {
   wire::FrameHeader h;
   EXPECT_TRUE(h.ParseFromString(parts[1]));
   f(h);
@@ -40,7 +41,8 @@ std::vector<std::string> with_header(std::vector<std::string> parts, const std::
 
 // A good header around one plain Draco payload (vertex count taken from it).
 std::vector<std::string> plain_frame(const Mesh& m, std::string payload) {
-  std::vector<std::string> parts = with_header(good_parts(m), [](wire::FrameHeader& h) { h.set_vertex_count(0); });
+  std::vector<std::string> parts =
+      with_header(good_parts(m), [](wire::FrameHeader& h) { h.set_vertex_count(0); });
   parts[2] = std::move(payload);
   return parts;
 }
@@ -54,14 +56,20 @@ const std::vector<BadCase>& bad_cases() {
          p[2].resize(p[2].size() / 2);
          return p;
        }},
-      {"wrong version", "version", [](const Mesh& m) { return with_header(good_parts(m), [](auto& h) { h.set_version(2); }); }},
+      {"wrong version", "version",
+       [](const Mesh& m) { return with_header(good_parts(m), [](auto& h) { h.set_version(2); }); }},
       {"unknown field", "unknown field",
        [](const Mesh& m) {
          auto p = good_parts(m);
          p[1] += std::string("\xa0\x06\x01", 3);  // field 100, varint 1
          return p;
        }},
-      {"unparsable header", "frame header", [](const Mesh& m) { auto p = good_parts(m); p[1] = "\xff\xff\xff"; return p; }},
+      {"unparsable header", "frame header",
+       [](const Mesh& m) {
+         auto p = good_parts(m);
+         p[1] = "\xff\xff\xff";
+         return p;
+       }},
       {"NaN coordinates", "finite",
        [](const Mesh& m) {
          Mesh bad = m;
@@ -78,8 +86,7 @@ const std::vector<BadCase>& bad_cases() {
          return plain_frame(m, draco_plain_mesh(none));
        }},
       {"point cloud", "point cloud", [](const Mesh& m) { return plain_frame(m, draco_point_cloud(m)); }},
-      {"over the vertex cap", "cap",
-       [](const Mesh&) { return good_parts(make_icosphere(4, 1.0f)); }},
+      {"over the vertex cap", "cap", [](const Mesh&) { return good_parts(make_icosphere(4, 1.0f)); }},
       {"invalid parameters", "theta",
        [](const Mesh& m) {
          return with_header(good_parts(m), [](wire::FrameHeader& h) {

@@ -1,8 +1,8 @@
 // Configuration parsing and validation: the shipped config, defaults, overrides, and a
 // clear message naming the key for each kind of mistake.
-#include <gtest/gtest.h>
-
 #include "config.h"
+
+#include <gtest/gtest.h>
 
 namespace fq::daemon {
 namespace {
@@ -84,7 +84,8 @@ TEST(DaemonConfig, UnknownKeysAreNamedWithTheirLine) {
 }
 
 TEST(DaemonConfig, WrongTypesAndRangesAreRejected) {
-  EXPECT_NE(error_of("[threads]\ndecode = \"two\"\n").find("threads.decode must be an integer"), std::string::npos);
+  EXPECT_NE(error_of("[threads]\ndecode = \"two\"\n").find("threads.decode must be an integer"),
+            std::string::npos);
   EXPECT_NE(error_of("[threads]\nencode = 0\n").find("threads.encode must be in"), std::string::npos);
   EXPECT_NE(error_of("[defaults.filter]\nsigma_s = \"big\"\n").find("must be a number"), std::string::npos);
   EXPECT_NE(error_of("[defaults.output]\nchunks = 0\n").find("chunks"), std::string::npos);
@@ -103,8 +104,10 @@ TEST(DaemonConfig, BadNamesAndParametersAreRejected) {
   const std::string m = error_of("[streams.cam.cluster]\ntheta = 1.5\n");
   EXPECT_NE(m.find("streams.cam"), std::string::npos) << m;
   EXPECT_NE(m.find("theta"), std::string::npos) << m;
-  EXPECT_NE(error_of("[endpoints]\ningest = \"localhost:5555\"\n").find("not a ZeroMQ address"), std::string::npos);
-  EXPECT_NE(error_of("[endpoints]\ningest = \"tcp://127.0.0.1:1\"\npublish = \"tcp://127.0.0.1:1\"\n").find("differ"),
+  EXPECT_NE(error_of("[endpoints]\ningest = \"localhost:5555\"\n").find("not a ZeroMQ address"),
+            std::string::npos);
+  EXPECT_NE(error_of("[endpoints]\ningest = \"tcp://127.0.0.1:1\"\npublish = \"tcp://127.0.0.1:1\"\n")
+                .find("differ"),
             std::string::npos);
   EXPECT_NE(error_of("[engine]\nkind = \"cuda\"\ngpus = []\n").find("gpus"), std::string::npos);
 }

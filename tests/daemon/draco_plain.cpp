@@ -2,7 +2,6 @@
 
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
-
 #include <gtest/gtest.h>
 
 namespace fq::test {

@@ -1,7 +1,8 @@
 // FrameSlots (the latency policy) and the percentile helper, without sockets.
+#include "latency_policy.h"
+
 #include <gtest/gtest.h>
 
-#include "latency_policy.h"
 #include "metrics.h"
 
 namespace fq::daemon {

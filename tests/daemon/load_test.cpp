@@ -1,9 +1,9 @@
 // The latency policy under load: latest frame wins (superseded counted), frames older than
 // a tiny budget are dropped (counted), and every frame is accounted for.
+#include <gtest/gtest.h>
+
 #include <chrono>
 #include <thread>
-
-#include <gtest/gtest.h>
 
 #include "daemon_harness.h"
 
@@ -50,7 +50,9 @@ TEST(DaemonLoad, LatestFrameWinsAndSupersededFramesAreCounted) {
   for (;;) {
     const client::ReceivedResult r = h.receive("burst");
     ASSERT_NE(r.header.status(), wire::ERROR) << r.header.error();
-    if (!seen.empty()) EXPECT_GT(r.header.sequence(), seen.back()) << "results out of order";
+    if (!seen.empty()) {
+      EXPECT_GT(r.header.sequence(), seen.back()) << "results out of order";
+    }
     seen.push_back(r.header.sequence());
     if (r.header.sequence() == kFrames - 1 || testing::Test::HasFailure()) break;
   }

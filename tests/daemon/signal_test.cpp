@@ -1,16 +1,15 @@
 // fqd as a child process: it reports its ephemeral ports, serves frames, and exits 0 on
 // SIGTERM and SIGINT; a bad config makes it exit non-zero with a message.
-#include <csignal>
-#include <cstdio>
-#include <fstream>
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
-#include <thread>
-
-#include <gtest/gtest.h>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "daemon_harness.h"
 
@@ -137,7 +136,9 @@ TEST_P(DaemonSignal, FramesReceivedBeforeTheSignalAreFinished) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Signals, DaemonSignal, testing::Values(SIGTERM, SIGINT),
-                         [](const testing::TestParamInfo<int>& i) { return i.param == SIGTERM ? "SIGTERM" : "SIGINT"; });
+                         [](const testing::TestParamInfo<int>& i) {
+                           return i.param == SIGTERM ? "SIGTERM" : "SIGINT";
+                         });
 
 TEST(DaemonProcess, BadConfigExitsNonZero) {
   const std::string config = write_config("fqd_bad.toml", "[engine]\nkind = \"gpu\"\n");

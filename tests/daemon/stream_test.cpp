@@ -1,9 +1,9 @@
 // fqd over real sockets: frames in, results out, per-stream and run-time parameters,
 // chunked frames.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <array>
-
-#include <gtest/gtest.h>
 
 #include "cpu_engine.h"
 #include "daemon_harness.h"
@@ -24,7 +24,8 @@ std::vector<float> expected_positions(const Mesh& mesh, const Params& params) {
   CpuEngine engine(1);
   FrameResult result;
   EXPECT_TRUE(engine.process(seen.view(), params, result).ok());
-  const MeshView out_view{result.positions.data(), seen.num_vertices(), seen.triangles.data(), seen.num_triangles()};
+  const MeshView out_view{result.positions.data(), seen.num_vertices(), seen.triangles.data(),
+                          seen.num_triangles()};
   EXPECT_TRUE(wire::encode_frame(out_view, nullptr, 1, opt, chunks).ok());
   Mesh published;
   EXPECT_TRUE(wire::decode_frame({chunks[0]}, mesh.num_vertices(), opt, published, nullptr).ok());
