@@ -1,6 +1,7 @@
 #include "params.h"
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 namespace fq {
@@ -18,6 +19,13 @@ const char* status_code_name(StatusCode code) {
 
 namespace {
 
+// "-1" or "0.25" rather than std::to_string's "-1.000000".
+std::string show(float v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
 // Upper bound on any sigma: beyond it the neighbourhood is the whole mesh anyway and
 // the grid visitor would only waste time.
 constexpr float kMaxSigma = 1e4f;
@@ -25,10 +33,10 @@ constexpr float kMaxSigma = 1e4f;
 Status check_sigma(const char* name, float v, bool zero_means_default) {
   if (std::isnan(v)) return invalid_argument(std::string(name) + " is NaN");
   if (zero_means_default && v == 0.f) return {};
-  if (!(v > 0.f)) return invalid_argument(std::string(name) + " must be > 0 (got " + std::to_string(v) + ")");
+  if (!(v > 0.f)) return invalid_argument(std::string(name) + " must be > 0 (got " + show(v) + ")");
   if (!(v <= kMaxSigma))
     return invalid_argument(std::string(name) + " must be at most 1e4 mean edge lengths (got " +
-                            std::to_string(v) + ")");
+                            show(v) + ")");
   return {};
 }
 
@@ -42,13 +50,13 @@ Status validate(const Params& p) {
     if (!s.ok()) return s;
   }
   if (!(f.tikhonov >= 0.f && f.tikhonov <= 1e3f))
-    return invalid_argument("tikhonov must be in [0, 1000] (got " + std::to_string(f.tikhonov) + ")");
+    return invalid_argument("tikhonov must be in [0, 1000] (got " + show(f.tikhonov) + ")");
   if (p.cluster) {
     for (Status s : {check_sigma("sigma_d", p.c.sigma_d, false), check_sigma("sigma_q", p.c.sigma_q, false)}) {
       if (!s.ok()) return s;
     }
     if (!(p.c.theta > 0.f && p.c.theta <= 1.f))
-      return invalid_argument("theta must be in (0, 1] (got " + std::to_string(p.c.theta) + ")");
+      return invalid_argument("theta must be in (0, 1] (got " + show(p.c.theta) + ")");
   }
   return {};
 }

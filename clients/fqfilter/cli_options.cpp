@@ -83,7 +83,6 @@ void add_run_options(CLI::App& app, Options& o, std::string& engine) {
 /// Checks that need several options together; empty when consistent.
 std::string cross_check(const Options& o) {
   if (Status s = validate(o.params); !s.ok()) return s.message();
-  if (!o.reference.empty() && o.reference == o.input) return "--reference must differ from the input";
   return {};
 }
 
