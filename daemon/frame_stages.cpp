@@ -57,6 +57,11 @@ void Pipeline::fail(FramePtr frame, Status why) {
   publish_queue.push(std::move(frame));
 }
 
+void Pipeline::recycle(FrameJob& f) {
+  meshes.release(std::move(f.mesh));
+  results.release(std::move(f.result));
+}
+
 void run_decode_worker(Pipeline& p) {
   while (auto item = p.decode_queue.pop()) {
     FramePtr f = std::move(*item);
@@ -66,6 +71,7 @@ void run_decode_worker(Pipeline& p) {
       spdlog::debug("stream '{}' frame {}: stale before decode", f->stream_id, f->header.sequence());
       continue;
     }
+    f->mesh = p.meshes.acquire();
     const auto t0 = std::chrono::steady_clock::now();
     Status s = guarded("decode", [&] { return decode(*f, p.config); });
     if (s.ok()) s = resolve_settings(*f);
@@ -77,6 +83,7 @@ void run_decode_worker(Pipeline& p) {
     f->decoded_ns = wall_ns();
     if (FramePtr loser = p.slots.offer(std::move(f))) {
       p.registry.count(loser->stream_id, Counter::kSuperseded);
+      p.recycle(*loser);
       spdlog::debug("stream '{}' frame {}: superseded", loser->stream_id, loser->header.sequence());
     }
   }
@@ -88,12 +95,14 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
   while (p.slots.take(f, stale)) {
     for (FramePtr& s : stale) {
       p.registry.count(s->stream_id, Counter::kDroppedStale);
+      p.recycle(*s);
       spdlog::debug("stream '{}' frame {}: dropped stale", s->stream_id, s->header.sequence());
     }
     stale.clear();
     if (!f) continue;
     f->timings.push_back({"wait", ms_between(f->decoded_ns, wall_ns())});
     f->engine = engine.name();
+    f->result = p.results.acquire();
     const auto t0 = std::chrono::steady_clock::now();
     const Status s =
         guarded("engine", [&] { return engine.process(f->mesh.view(), f->settings.params, f->result); });

@@ -11,6 +11,7 @@
 #include "config.h"
 #include "frame_job.h"
 #include "latency_policy.h"
+#include "object_pool.h"
 #include "stream_registry.h"
 #include "work_queue.h"
 
@@ -26,9 +27,13 @@ struct Pipeline {
   WorkQueue<FramePtr> encode_queue;
   WorkQueue<FramePtr> publish_queue;
   std::map<std::string, uint64_t> arrivals;  ///< per-stream arrival counter, ingest thread only
+  ObjectPool<Mesh> meshes;                   ///< decoded frames, reused
+  ObjectPool<FrameResult> results;           ///< engine outputs, reused
 
   /// Marks `frame` failed (message logged) and sends it straight to the publisher.
   void fail(FramePtr frame, Status why);
+  /// Returns the frame's buffers to the pools once it is published or dropped.
+  void recycle(FrameJob& frame);
 };
 
 /// Decode pool worker: decode, check the mesh and the parameters, offer to the slots.

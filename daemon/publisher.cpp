@@ -72,6 +72,7 @@ void Publisher::publish(FrameJob& f) {
   } catch (const zmq::error_t& e) {
     spdlog::error("publish of stream '{}' frame {} failed: {}", f.stream_id, h.sequence(), e.what());
   }
+  p_.recycle(f);
 }
 
 void Publisher::account(const FrameJob& f, const wire::ResultHeader& h) {

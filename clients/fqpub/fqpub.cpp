@@ -41,6 +41,7 @@ Totals publish(const Args& a, const fq::client::MeshSource& source, zmq::socket_
   Totals t;
   std::vector<std::vector<std::string>> cached(source.size());  // noiseless frames encode once
   fq::Mesh scratch;
+  auto last_send = start;
   for (uint64_t i = 0; !g_stop && (a.count == 0 || i < a.count); ++i) {
     const auto due = start + std::chrono::duration_cast<clock::duration>(period * static_cast<double>(i));
     if (a.duration > 0 && std::chrono::duration<double>(due - start).count() >= a.duration) break;
@@ -67,11 +68,12 @@ Totals publish(const Args& a, const fq::client::MeshSource& source, zmq::socket_
     }
     t.encode_ms += std::chrono::duration<double, std::milli>(clock::now() - t0).count();
     fq::client::send_parts(push, parts);
+    last_send = clock::now();
     ++t.sent;
     if (!a.quiet && !a.json)
       std::fprintf(stderr, "\rfqpub: sent %llu frames", static_cast<unsigned long long>(t.sent));
   }
-  t.seconds = std::chrono::duration<double>(clock::now() - start).count();
+  t.seconds = std::chrono::duration<double>(last_send - start).count();
   return t;
 }
 
@@ -125,7 +127,8 @@ int main(int argc, char** argv) {
   const Totals t = publish(a, source, push);
   push.close();
   if (t.failed || t.sent == 0) return 1;
-  const double fps = t.seconds > 0 ? static_cast<double>(t.sent) / t.seconds : 0.0;
+  // Frames 0..n-1 go out at t = 0, 1/fps, ...: n - 1 periods between the first and the last.
+  const double fps = t.sent > 1 && t.seconds > 0 ? static_cast<double>(t.sent - 1) / t.seconds : 0.0;
   const double enc = t.sent ? t.encode_ms / static_cast<double>(t.sent) : 0.0;
   if (a.json) {
     std::printf("%s\n", nlohmann::json{{"stream", a.spec.stream_id},
