@@ -87,6 +87,12 @@ const std::vector<BadCase>& bad_cases() {
        }},
       {"point cloud", "point cloud", [](const Mesh& m) { return plain_frame(m, draco_point_cloud(m)); }},
       {"over the vertex cap", "cap", [](const Mesh&) { return good_parts(make_icosphere(4, 1.0f)); }},
+      {"over the byte cap", "bytes",
+       [](const Mesh& m) {
+         auto p = good_parts(m);
+         p[2] += std::string(200'000, '\0');
+         return p;
+       }},
       {"invalid parameters", "theta",
        [](const Mesh& m) {
          return with_header(good_parts(m), [](wire::FrameHeader& h) {
@@ -120,7 +126,8 @@ bool mentions_one_of(const std::string& message, const std::string& words) {
 
 TEST(DaemonBadInput, EveryBadFrameGetsAnErrorResultAndTheNextFrameIsServed) {
   daemon::DaemonConfig c = test_config();
-  c.caps.max_vertices = 2000;  // the 642-vertex sphere passes, a 2562-vertex one does not
+  c.caps.max_vertices = 2000;        // the 642-vertex sphere passes, a 2562-vertex one does not
+  c.caps.max_frame_bytes = 100'000;  // so does its ~10 KB frame, a 200 KB one does not
   DaemonHarness h(c);
   const Mesh mesh = noisy_sphere();
   uint64_t errors = 0;
