@@ -12,6 +12,7 @@
 
 #include "cuda/cuda_check.cuh"
 #include "cuda/device_frame.cuh"
+#include "cuda/host_staging.h"
 #include "cuda/launch.cuh"
 #include "cuda/passes.cuh"
 #include "cuda/stream.cuh"
@@ -108,16 +109,9 @@ GridLayout CudaEngine::stage_input(const MeshView& mesh, const Normalization& no
   const uint32_t n = mesh.num_vertices, m = mesh.num_triangles;
   f_.n = n;
   f_.m = m;
-  Point4* hp = f_.h_points.reserve(n);
-  Vec3 lo{0.f, 0.f, 0.f}, hi{0.f, 0.f, 0.f};
-  for (uint32_t i = 0; i < n; ++i) {
-    const Vec3 p = norm.to_normalized(mesh.positions + 3 * size_t(i));
-    hp[i] = {p.x, p.y, p.z, 0.f};
-    if (i == 0) lo = hi = p;
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  std::memcpy(f_.h_tris.reserve(3 * size_t(m)), mesh.triangles, 3 * size_t(m) * sizeof(uint32_t));
+  Vec3 lo, hi;
+  cuda::stage_points(mesh, norm, f_.h_points.reserve(n), lo, hi);
+  cuda::copy_indices(mesh.triangles, f_.h_tris.reserve(3 * size_t(m)), 3 * size_t(m));
   return choose_grid_layout(lo, hi, cell, n);  // as build_grid on the CPU
 }
 
@@ -229,8 +223,7 @@ void CudaEngine::finish_output(const MeshView& mesh, const Params& params, const
   const uint32_t n = f_.n;
   out.positions.resize(3 * size_t(n));
   if (params.filter) {
-    const Vec3* moved = f_.h_moved.data();
-    for (uint32_t i = 0; i < n; ++i) norm.to_input(moved[i], &out.positions[3 * size_t(i)]);
+    cuda::unstage_positions(f_.h_moved.data(), n, norm, out.positions.data());
   } else {
     std::copy(mesh.positions, mesh.positions + 3 * size_t(n), out.positions.begin());
   }

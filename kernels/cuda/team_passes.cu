@@ -10,6 +10,17 @@
 #include "team_passes.cuh"
 #include "team_visit.cuh"
 
+// Occupancy experiment (docs/BENCHMARKS.md): build with -DFQ_TEAM_MIN_BLOCKS=6 to cap the
+// team kernels at 40 registers (6 blocks of 256 per SM); 0 leaves the compiler's choice.
+#ifndef FQ_TEAM_MIN_BLOCKS
+#define FQ_TEAM_MIN_BLOCKS 0
+#endif
+#if FQ_TEAM_MIN_BLOCKS > 0
+#define FQ_TEAM_BOUNDS __launch_bounds__(256, FQ_TEAM_MIN_BLOCKS)
+#else
+#define FQ_TEAM_BOUNDS
+#endif
+
 namespace fq::cuda {
 
 namespace {
@@ -46,7 +57,7 @@ __device__ Slot slot_of(uint32_t count) {
 
 // filter_math.h neighbourhood_quadric
 template <int T>
-__global__ void team_neighbourhood(GridView g, const PackedQuadric* base, Weight gb, float radius,
+__global__ void FQ_TEAM_BOUNDS team_neighbourhood(GridView g, const PackedQuadric* base, Weight gb, float radius,
                                    PackedQuadric* out) {
   const Slot s = slot_of<T>(g.count);
   Quadric acc = zero_quadric();
@@ -70,7 +81,7 @@ __global__ void team_neighbourhood(GridView g, const PackedQuadric* base, Weight
 
 // filter_math.h bilateral_quadric
 template <int T>
-__global__ void team_diffusion(GridView g, const PackedQuadric* nbhd, Weight gs, Weight gr, float radius,
+__global__ void FQ_TEAM_BOUNDS team_diffusion(GridView g, const PackedQuadric* nbhd, Weight gs, Weight gr, float radius,
                                Quadric* out, PackedQuadric* out_p) {
   const Slot s = slot_of<T>(g.count);
   Quadric acc = zero_quadric();
@@ -96,7 +107,7 @@ __global__ void team_diffusion(GridView g, const PackedQuadric* nbhd, Weight gs,
 
 // cluster_math.h representativity
 template <int T>
-__global__ void team_score(GridView g, const Quadric* qbl, Weight gd, Weight gq, float radius, bool euclid,
+__global__ void FQ_TEAM_BOUNDS team_score(GridView g, const Quadric* qbl, Weight gd, Weight gq, float radius, bool euclid,
                            float* score) {
   const Slot s = slot_of<T>(g.count);
   float num = 0.f, den = 0.f;
@@ -116,7 +127,7 @@ __global__ void team_score(GridView g, const Quadric* qbl, Weight gd, Weight gq,
 
 // cluster_math.h quick_shift_link
 template <int T>
-__global__ void team_link(GridView g, const PackedQuadric* qbl, const float* score, Weight gd, Weight gq,
+__global__ void FQ_TEAM_BOUNDS team_link(GridView g, const PackedQuadric* qbl, const float* score, Weight gd, Weight gq,
                           float radius, bool euclid, float cut, uint32_t* next) {
   const Slot s = slot_of<T>(g.count);
   float pmax = 0.f;

@@ -84,14 +84,19 @@ TEST_F(CudaEngineTest, QuadricFilterMatchesCpu) {
   }
 }
 
-// Gaussian weights through __expf in the team kernels.
+// Gaussian weights through __expf in the team kernels, for several team sizes.
 TEST_F(CudaEngineTest, FastExpWeightsMatchCpu) {
   ScopedEnv fast("FQ_CUDA_FAST_EXP", "1");
   for (const Params& params : {qf(3.f, 1.f), clustering(5.f, 0.8f, 0.9f)}) {
-    for (const Mesh& m : {noisy_sphere(), noisy_cube()}) {
+    for (const Mesh& m : {noisy_sphere(), noisy_cube(), make_triangle_soup(noisy_cube())}) {
       Parity p;
       run_both(*cpu_, *gpu_, m.view(), params, p);
-      expect_parity(p, params);
+      for (const char* team : {"1", "4", "32"}) {
+        SCOPED_TRACE(team);
+        ScopedEnv env("FQ_CUDA_TEAM", team);
+        rerun_gpu(*gpu_, m.view(), params, p);
+        expect_parity(p, params);
+      }
     }
   }
 }

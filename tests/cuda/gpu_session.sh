@@ -4,20 +4,20 @@
 # and ncu profile, then fqbench. Run from the repository root on the GPU host, after
 # staging (see docs/BENCHMARKS.md):
 #   [FQ_SWEEP="FQ_CUDA_TEAM=0 FQ_CUDA_TEAM=4 ..." FQ_SWEEP_ROWS=f-bunny,...] [FQ_NCU_ROW=f-dragon-grog] \
-#   [FQ_SANITIZE=0] tests/cuda/gpu_session.sh STAGE_DIR [fqbench args...]
+#   [FQ_SANITIZE=0] [FQ_TESTS=0] [FQ_BENCH=other fqbench] tests/cuda/gpu_session.sh STAGE_DIR [fqbench args...]
 # Logs go to $OUT (or ./gpu-out); the last lines printed are fqbench's tables.
 set -uo pipefail
 stage=${1:?usage: gpu_session.sh STAGE_DIR [fqbench args...]}; shift
-out=${OUT:-gpu-out}; mkdir -p "$out"
+out=${OUT:-gpu-out}${FQ_OUT_SUFFIX:+/$FQ_OUT_SUFFIX}; mkdir -p "$out"
 export FQ_MESH_DIR=$stage/meshes LD_LIBRARY_PATH=$stage/lib
-bench=$stage/bin/fqbench
+bench=${FQ_BENCH:-$stage/bin/fqbench}
 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.max.sm --format=csv | tee "$out/device.txt"
 status=0
-for t in cuda_engine_test cuda_mesh_parity_test; do
+for t in $([[ ${FQ_TESTS:-1} == 1 ]] && echo cuda_engine_test cuda_mesh_parity_test); do
   [[ -x $stage/bin/$t ]] || continue
   "$stage/bin/$t" >>"$out/tests.log" 2>&1 || status=1
 done
-grep -E "parity:|PASSED|FAILED|SKIPPED \]" "$out/tests.log" | tail -40
+[[ -f $out/tests.log ]] && grep -E "parity:|PASSED|FAILED|SKIPPED \]" "$out/tests.log" | tail -40
 if [[ ${FQ_SANITIZE:-1} == 1 ]]; then
   # bunny, filter + clustering (Table 3 row) and the bilateral baseline, one frame each.
   for tool in memcheck racecheck; do
@@ -29,11 +29,12 @@ if [[ ${FQ_SANITIZE:-1} == 1 ]]; then
     [[ $rc == 0 ]] || status=1
   done
 fi
-# Each word of FQ_SWEEP is an environment assignment to time the rows under.
+# Each word of FQ_SWEEP is one setting to time the rows under: environment assignments
+# joined by commas (FQ_CUDA_TEAM=4,FQ_CUDA_FAST_EXP=1).
 rows=${FQ_SWEEP_ROWS:-f-bunny,f-armadillo16,f-igea16,c-dragon-075}
 for a in ${FQ_SWEEP:-}; do
   echo "## $a" >>"$out/sweep.md"
-  env "$a" "$bench" --rows "$rows" --cpu-repeat 0 2>/dev/null >"$out/sweep-one.md"
+  env ${a//,/ } "$bench" --rows "$rows" --cpu-repeat 0 2>/dev/null >"$out/sweep-one.md"
   cat "$out/sweep-one.md" >>"$out/sweep.md"
   echo "$a:$(grep -E '^\| [fc]-' "$out/sweep-one.md" | awk -F'|' '{printf " %s%s;", $2, $9}')"
 done
