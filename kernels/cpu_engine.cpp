@@ -35,10 +35,11 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
   out.labels.clear();
   out.num_clusters = 0;
   if (Status s = validate(params); !s.ok()) return s;
-  if (Status s = check_mesh(mesh); !s.ok()) return s;
-  if (Status s = compute_normalization(mesh, f_.norm); !s.ok()) return s;
-  out.mean_edge = f_.norm.mean_edge;
   PassClock clock(out.timings);
+  if (Status s = check_mesh(mesh, threads_); !s.ok()) return s;
+  if (Status s = compute_normalization(mesh, f_.norm, threads_); !s.ok()) return s;
+  out.mean_edge = f_.norm.mean_edge;
+  clock.lap("normalize");
   const FilterParams& fp = params.f;
   const bool need_quadrics = params.cluster || fp.method == FilterMethod::kQuadric;
 

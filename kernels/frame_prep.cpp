@@ -1,60 +1,115 @@
 #include "frame_prep.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
+
+#include "parallel_for.h"
 
 namespace fq {
 
-Status check_mesh(const MeshView& mesh) {
+namespace {
+
+// Reductions run over fixed-size chunks whose partial results are combined in chunk
+// order, so every sum is bit-identical for any thread count.
+constexpr uint32_t kChunk = 1u << 15;
+
+uint32_t chunks_of(uint64_t n) { return static_cast<uint32_t>((n + kChunk - 1) / kChunk); }
+
+// First index in [0, n) failing `bad`, or n. Parallel scan for the common (valid) case,
+// then a serial search of the first failing chunk for a deterministic message.
+template <class Bad>
+uint64_t first_bad(uint64_t n, int threads, Bad bad) {
+  std::atomic<uint32_t> first_chunk{UINT32_MAX};
+  parallel_for(chunks_of(n), threads, [&](uint32_t c) {
+    const uint64_t end = std::min<uint64_t>(n, uint64_t(c + 1) * kChunk);
+    for (uint64_t i = uint64_t(c) * kChunk; i < end; ++i) {
+      if (bad(i)) {
+        uint32_t cur = first_chunk.load();
+        while (c < cur && !first_chunk.compare_exchange_weak(cur, c)) {
+        }
+        return;
+      }
+    }
+  });
+  if (first_chunk == UINT32_MAX) return n;
+  for (uint64_t i = uint64_t(first_chunk) * kChunk;; ++i) {
+    if (bad(i)) return i;
+  }
+}
+
+}  // namespace
+
+Status check_mesh(const MeshView& mesh, int threads) {
   if (mesh.num_vertices == 0) return invalid_input("mesh has no vertices");
   if (mesh.num_triangles == 0) return invalid_input("mesh has no triangles (point clouds are not supported)");
-  for (uint64_t i = 0; i < uint64_t(mesh.num_vertices) * 3; ++i) {
-    if (!std::isfinite(mesh.positions[i]))
-      return invalid_input("vertex " + std::to_string(i / 3) + " has a non-finite coordinate");
-  }
-  for (uint64_t i = 0; i < uint64_t(mesh.num_triangles) * 3; ++i) {
-    if (mesh.triangles[i] >= mesh.num_vertices)
-      return invalid_input("triangle " + std::to_string(i / 3) + " references vertex " +
-                           std::to_string(mesh.triangles[i]) + " but the mesh has " +
-                           std::to_string(mesh.num_vertices) + " vertices");
-  }
+  const uint64_t nc = uint64_t(mesh.num_vertices) * 3;
+  if (const uint64_t i = first_bad(nc, threads, [&](uint64_t k) { return !std::isfinite(mesh.positions[k]); }); i < nc)
+    return invalid_input("vertex " + std::to_string(i / 3) + " has a non-finite coordinate");
+  const uint64_t ni = uint64_t(mesh.num_triangles) * 3;
+  if (const uint64_t i = first_bad(ni, threads, [&](uint64_t k) { return mesh.triangles[k] >= mesh.num_vertices; });
+      i < ni)
+    return invalid_input("triangle " + std::to_string(i / 3) + " references vertex " +
+                         std::to_string(mesh.triangles[i]) + " but the mesh has " +
+                         std::to_string(mesh.num_vertices) + " vertices");
   return {};
 }
 
-double mean_edge_length(const MeshView& mesh) {
-  double sum = 0.0;
-  for (uint32_t t = 0; t < mesh.num_triangles; ++t) {
-    const uint32_t* tri = mesh.triangles + 3 * size_t(t);
-    for (int e = 0; e < 3; ++e) {
-      const float* a = mesh.positions + 3 * size_t(tri[e]);
-      const float* b = mesh.positions + 3 * size_t(tri[(e + 1) % 3]);
-      const double dx = double(a[0]) - b[0], dy = double(a[1]) - b[1], dz = double(a[2]) - b[2];
-      sum += std::sqrt(dx * dx + dy * dy + dz * dz);
+double mean_edge_length(const MeshView& mesh, int threads) {
+  if (mesh.num_triangles == 0) return 0.0;
+  std::vector<double> partial(chunks_of(mesh.num_triangles), 0.0);
+  parallel_for(static_cast<uint32_t>(partial.size()), threads, [&](uint32_t c) {
+    const uint32_t end = std::min<uint64_t>(mesh.num_triangles, uint64_t(c + 1) * kChunk);
+    double sum = 0.0;
+    for (uint32_t t = c * kChunk; t < end; ++t) {
+      const uint32_t* tri = mesh.triangles + 3 * size_t(t);
+      for (int e = 0; e < 3; ++e) {
+        const float* a = mesh.positions + 3 * size_t(tri[e]);
+        const float* b = mesh.positions + 3 * size_t(tri[(e + 1) % 3]);
+        const double dx = double(a[0]) - b[0], dy = double(a[1]) - b[1], dz = double(a[2]) - b[2];
+        sum += std::sqrt(dx * dx + dy * dy + dz * dz);
+      }
     }
-  }
-  return mesh.num_triangles ? sum / (3.0 * mesh.num_triangles) : 0.0;
+    partial[c] = sum;
+  });
+  double sum = 0.0;
+  for (double s : partial) sum += s;
+  return sum / (3.0 * mesh.num_triangles);
 }
 
-Status compute_normalization(const MeshView& mesh, Normalization& out) {
-  double lo[3], hi[3];
-  for (int k = 0; k < 3; ++k) {
-    lo[k] = std::numeric_limits<double>::infinity();
-    hi[k] = -lo[k];
-  }
-  for (uint32_t i = 0; i < mesh.num_vertices; ++i) {
+Status compute_normalization(const MeshView& mesh, Normalization& out, int threads) {
+  // Min and max do not depend on the order of evaluation: per-chunk bounds are exact.
+  struct Box {
+    double lo[3], hi[3];
+  };
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  std::vector<Box> boxes(chunks_of(mesh.num_vertices), Box{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}});
+  parallel_for(static_cast<uint32_t>(boxes.size()), threads, [&](uint32_t c) {
+    const uint32_t end = std::min<uint64_t>(mesh.num_vertices, uint64_t(c + 1) * kChunk);
+    Box& b = boxes[c];
+    for (uint32_t i = c * kChunk; i < end; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        b.lo[k] = std::min(b.lo[k], double(mesh.positions[3 * size_t(i) + k]));
+        b.hi[k] = std::max(b.hi[k], double(mesh.positions[3 * size_t(i) + k]));
+      }
+    }
+  });
+  Box all{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}};
+  for (const Box& b : boxes) {
     for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], double(mesh.positions[3 * size_t(i) + k]));
-      hi[k] = std::max(hi[k], double(mesh.positions[3 * size_t(i) + k]));
+      all.lo[k] = std::min(all.lo[k], b.lo[k]);
+      all.hi[k] = std::max(all.hi[k], b.hi[k]);
     }
   }
-  for (int k = 0; k < 3; ++k) out.center[k] = 0.5 * (lo[k] + hi[k]);
-  out.mean_edge = mean_edge_length(mesh);
+  for (int k = 0; k < 3; ++k) out.center[k] = 0.5 * (all.lo[k] + all.hi[k]);
+  out.mean_edge = mean_edge_length(mesh, threads);
   if (!(out.mean_edge > 0.0) || !std::isfinite(out.mean_edge))
     return invalid_input("mesh is degenerate: every edge has zero length");
   double extent = 0.0;
-  for (int k = 0; k < 3; ++k) extent = std::max(extent, hi[k] - lo[k]);
+  for (int k = 0; k < 3; ++k) extent = std::max(extent, all.hi[k] - all.lo[k]);
   if (!(extent / out.mean_edge <= kMaxExtentInEdges))
     return invalid_input("mesh spans " + std::to_string(extent / out.mean_edge) +
                          " mean edge lengths (at most 1e6 supported): is there a far outlier vertex?");

@@ -3,6 +3,9 @@
 // that every sigma is a plain number and float32 keeps its precision.
 #pragma once
 
+// The reductions below run on `threads` threads and give bit-identical results for any
+// thread count (fixed chunks, partial results combined in chunk order).
+
 #include <cstdint>
 
 #include "mesh_view.h"
@@ -27,7 +30,7 @@ struct Normalization {
 };
 
 /// Non-empty, finite coordinates, every index in range, at least one triangle.
-Status check_mesh(const MeshView& mesh);
+Status check_mesh(const MeshView& mesh, int threads = 1);
 
 /// Largest bounding-box extent, in mean edge lengths, that a frame may span. float32
 /// coordinates at 1e6 edges from the centre resolve about 0.06 edge; beyond that (or with a
@@ -37,9 +40,9 @@ inline constexpr double kMaxExtentInEdges = 1e6;
 /// Bounding-box centre and mean edge length (over the three edges of every triangle, so
 /// interior edges of a closed mesh count once per side; a mesh whose edges all have zero
 /// length, or one spanning more than kMaxExtentInEdges, is rejected).
-Status compute_normalization(const MeshView& mesh, Normalization& out);
+Status compute_normalization(const MeshView& mesh, Normalization& out, int threads = 1);
 
 /// Mean edge length of a mesh in its own units (0 when it has no non-degenerate edge).
-double mean_edge_length(const MeshView& mesh);
+double mean_edge_length(const MeshView& mesh, int threads = 1);
 
 }  // namespace fq
