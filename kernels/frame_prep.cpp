@@ -19,12 +19,14 @@ constexpr uint32_t kChunk = 1u << 15;
 
 uint32_t chunks_of(uint64_t n) { return static_cast<uint32_t>((n + kChunk - 1) / kChunk); }
 
+int resolve(int threads) { return threads > 0 ? threads : hardware_threads(); }
+
 // First index in [0, n) failing `bad`, or n. Parallel scan for the common (valid) case,
 // then a serial search of the first failing chunk for a deterministic message.
 template <class Bad>
 uint64_t first_bad(uint64_t n, int threads, Bad bad) {
   std::atomic<uint32_t> first_chunk{UINT32_MAX};
-  parallel_for(chunks_of(n), threads, [&](uint32_t c) {
+  parallel_for(chunks_of(n), resolve(threads), [&](uint32_t c) {
     const uint64_t end = std::min<uint64_t>(n, uint64_t(c + 1) * kChunk);
     for (uint64_t i = uint64_t(c) * kChunk; i < end; ++i) {
       if (bad(i)) {
@@ -61,7 +63,7 @@ Status check_mesh(const MeshView& mesh, int threads) {
 double mean_edge_length(const MeshView& mesh, int threads) {
   if (mesh.num_triangles == 0) return 0.0;
   std::vector<double> partial(chunks_of(mesh.num_triangles), 0.0);
-  parallel_for(static_cast<uint32_t>(partial.size()), threads, [&](uint32_t c) {
+  parallel_for(static_cast<uint32_t>(partial.size()), resolve(threads), [&](uint32_t c) {
     const uint32_t end = std::min<uint64_t>(mesh.num_triangles, uint64_t(c + 1) * kChunk);
     double sum = 0.0;
     for (uint32_t t = c * kChunk; t < end; ++t) {
@@ -87,7 +89,7 @@ Status compute_normalization(const MeshView& mesh, Normalization& out, int threa
   };
   constexpr double kInf = std::numeric_limits<double>::infinity();
   std::vector<Box> boxes(chunks_of(mesh.num_vertices), Box{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}});
-  parallel_for(static_cast<uint32_t>(boxes.size()), threads, [&](uint32_t c) {
+  parallel_for(static_cast<uint32_t>(boxes.size()), resolve(threads), [&](uint32_t c) {
     const uint32_t end = std::min<uint64_t>(mesh.num_vertices, uint64_t(c + 1) * kChunk);
     Box& b = boxes[c];
     for (uint32_t i = c * kChunk; i < end; ++i) {

@@ -4,7 +4,8 @@
 #pragma once
 
 // The reductions below run on `threads` threads and give bit-identical results for any
-// thread count (fixed chunks, partial results combined in chunk order).
+// thread count (fixed chunks, partial results combined in chunk order); threads <= 0
+// means all hardware threads.
 
 #include <cstdint>
 
@@ -30,7 +31,7 @@ struct Normalization {
 };
 
 /// Non-empty, finite coordinates, every index in range, at least one triangle.
-Status check_mesh(const MeshView& mesh, int threads = 1);
+Status check_mesh(const MeshView& mesh, int threads = 0);
 
 /// Largest bounding-box extent, in mean edge lengths, that a frame may span. float32
 /// coordinates at 1e6 edges from the centre resolve about 0.06 edge; beyond that (or with a
@@ -40,9 +41,9 @@ inline constexpr double kMaxExtentInEdges = 1e6;
 /// Bounding-box centre and mean edge length (over the three edges of every triangle, so
 /// interior edges of a closed mesh count once per side; a mesh whose edges all have zero
 /// length, or one spanning more than kMaxExtentInEdges, is rejected).
-Status compute_normalization(const MeshView& mesh, Normalization& out, int threads = 1);
+Status compute_normalization(const MeshView& mesh, Normalization& out, int threads = 0);
 
 /// Mean edge length of a mesh in its own units (0 when it has no non-degenerate edge).
-double mean_edge_length(const MeshView& mesh, int threads = 1);
+double mean_edge_length(const MeshView& mesh, int threads = 0);
 
 }  // namespace fq
