@@ -1,8 +1,6 @@
 // The CUDA engine: the CPU engine's passes (cpu_engine.cpp) as kernels on persistent
 // device buffers. The host validates and normalizes the frame (frame_prep.h) into pinned
 // staging, the device does every pass, the host maps the result back to input units.
-#include "cuda_engine.h"
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -17,6 +15,7 @@
 #include "cuda/passes.cuh"
 #include "cuda/stream.cuh"
 #include "cuda/team_passes.cuh"
+#include "cuda_engine.h"
 #include "frame_prep.h"
 #include "grid_build.h"
 
@@ -28,7 +27,9 @@ std::atomic<uint64_t> g_allocations{0};
 std::atomic<bool> g_fail_next_launch{false};
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
 
 // Selects the device before the stream and events (members below) are created on it.
 struct DeviceSelection {
@@ -77,7 +78,8 @@ Status CudaEngine::process(const MeshView& mesh, const Params& params, FrameResu
   Normalization norm;
   if (Status s = compute_normalization(mesh, norm); !s.ok()) return s;
   out.mean_edge = norm.mean_edge;
-  if (!usable_) return {StatusCode::kInternal, "the CUDA engine is unusable after an earlier device fault: " + fault_};
+  if (!usable_)
+    return {StatusCode::kInternal, "the CUDA engine is unusable after an earlier device fault: " + fault_};
   try {
     run_frame(mesh, params, norm, out);
   } catch (const cuda::CudaError& e) {
@@ -152,28 +154,40 @@ void CudaEngine::enqueue_passes(const Params& params) {
   const bool fast_exp = fast_exp_enabled();
   cuda::sort_into_grid(f_, f_.grid.layout, s);
   events_.mark("grid", s);
-  if (gather_base_quadrics()) cuda::base_quadrics_gather(f_, s);
-  else cuda::base_quadrics(f_, s);
+  if (gather_base_quadrics())
+    cuda::base_quadrics_gather(f_, s);
+  else
+    cuda::base_quadrics(f_, s);
   events_.mark("base_quadrics", s);
   if (params.cluster || fp.method == FilterMethod::kQuadric) {
-    if (team) cuda::team_neighbourhood_quadrics(f_, fp.effective_sigma_b(), team, fast_exp, s);
-    else cuda::neighbourhood_quadrics(f_, fp.effective_sigma_b(), s);
+    if (team)
+      cuda::team_neighbourhood_quadrics(f_, fp.effective_sigma_b(), team, fast_exp, s);
+    else
+      cuda::neighbourhood_quadrics(f_, fp.effective_sigma_b(), s);
     events_.mark("neighbourhood_quadrics", s);
-    if (team) cuda::team_diffuse_quadrics(f_, fp, team, fast_exp, s);
-    else cuda::diffuse_quadrics(f_, fp, s);
+    if (team)
+      cuda::team_diffuse_quadrics(f_, fp, team, fast_exp, s);
+    else
+      cuda::diffuse_quadrics(f_, fp, s);
     events_.mark("diffusion", s);
   }
   if (params.filter) {
-    if (fp.method == FilterMethod::kQuadric) cuda::update_positions(f_, fp, s);
-    else cuda::bilateral_filter(f_, fp, s);
+    if (fp.method == FilterMethod::kQuadric)
+      cuda::update_positions(f_, fp, s);
+    else
+      cuda::bilateral_filter(f_, fp, s);
     events_.mark(fp.method == FilterMethod::kQuadric ? "update" : "bilateral_filter", s);
   }
   if (params.cluster) {
-    if (team) cuda::team_cluster_scores(f_, params.c, team, fast_exp, s);
-    else cuda::cluster_scores(f_, params.c, s);
+    if (team)
+      cuda::team_cluster_scores(f_, params.c, team, fast_exp, s);
+    else
+      cuda::cluster_scores(f_, params.c, s);
     events_.mark("score", s);
-    if (team) cuda::team_cluster_links(f_, params.c, team, fast_exp, s);
-    else cuda::cluster_links(f_, params.c, s);
+    if (team)
+      cuda::team_cluster_links(f_, params.c, team, fast_exp, s);
+    else
+      cuda::cluster_links(f_, params.c, s);
     events_.mark("link", s);
     cuda::cluster_labels(f_, s);
     events_.mark("modes", s);
@@ -270,7 +284,8 @@ std::unique_ptr<Engine> make_cuda_engine(int device, Status* why) {
   };
   int count = 0;
   if (const cudaError_t e = cudaGetDeviceCount(&count); e != cudaSuccess)
-    return unavailable(std::string("no usable CUDA device: ") + cudaGetErrorName(e) + " (" + cudaGetErrorString(e) + ")");
+    return unavailable(std::string("no usable CUDA device: ") + cudaGetErrorName(e) + " (" +
+                       cudaGetErrorString(e) + ")");
   if (count == 0) return unavailable("no CUDA device is present");
   if (device < 0 || device >= count)
     return unavailable("CUDA device " + std::to_string(device) + " does not exist (" + std::to_string(count) +
@@ -280,7 +295,8 @@ std::unique_ptr<Engine> make_cuda_engine(int device, Status* why) {
     if (why) *why = {};
     return engine;
   } catch (const cuda::CudaError& e) {
-    return unavailable("could not start the CUDA engine on device " + std::to_string(device) + ": " + e.what());
+    return unavailable("could not start the CUDA engine on device " + std::to_string(device) + ": " +
+                       e.what());
   }
 }
 

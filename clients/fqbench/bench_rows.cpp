@@ -50,7 +50,8 @@ std::vector<BenchRow> paper_rows() {
       cluster_row("c-dragon-075", "dragon.ply", "T3 Grog 1M th 0.75", 1883, 2.f, 1.f, 6.f, 1.f, 0.75f),
       cluster_row("c-dragon-099", "dragon.ply", "T3 Grog 1M th 0.99", 2864, 2.f, 1.f, 6.f, 1.f, 0.99f),
       cluster_row("c-armadillo16", "armadillo_x16.drc", "T3 Gargoyle 1.7M", 3928, 3.f, 1.f, 6.f, 1.f, 0.95f),
-      cluster_row("c-igea16", "igea_x16.drc", "T3 Raptor 2M params (mesh 4.3M)", 0, 3.f, 1.f, 4.f, 1.f, 0.95f),
+      cluster_row("c-igea16", "igea_x16.drc", "T3 Raptor 2M params (mesh 4.3M)", 0, 3.f, 1.f, 4.f, 1.f,
+                  0.95f),
   };
 }
 

@@ -10,10 +10,10 @@
 namespace fq::bench {
 
 struct BenchRow {
-  std::string id;          ///< short name used by --rows
-  std::string file;        ///< mesh file in the mesh folder
-  std::string paper_row;   ///< which row of the paper it stands for (model, size)
-  double paper_ms = 0.0;   ///< the paper's time on a GTX 980 Ti; 0 = no comparable row
+  std::string id;         ///< short name used by --rows
+  std::string file;       ///< mesh file in the mesh folder
+  std::string paper_row;  ///< which row of the paper it stands for (model, size)
+  double paper_ms = 0.0;  ///< the paper's time on a GTX 980 Ti; 0 = no comparable row
   Params params;
 };
 

@@ -10,7 +10,9 @@ Spread spread_of(std::vector<double> v) {
   s.count = static_cast<int>(v.size());
   if (v.empty()) return s;
   std::sort(v.begin(), v.end());
-  auto at = [&](double q) { return v[std::min(v.size() - 1, size_t(std::floor(q * double(v.size() - 1) + 0.5)))]; };
+  auto at = [&](double q) {
+    return v[std::min(v.size() - 1, size_t(std::floor(q * double(v.size() - 1) + 0.5)))];
+  };
   s.median = v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
   s.p10 = at(0.1);
   s.p90 = at(0.9);

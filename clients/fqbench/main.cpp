@@ -3,7 +3,6 @@
 // rows of Tables 2 and 3, with the paper's figure, the speed-up, host<->device transfers
 // (pinned) and the CPU engine's time on the same row. Prints a markdown table.
 #include <CLI/CLI.hpp>
-
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -57,8 +56,8 @@ std::string fmt(const Spread& s) {
 std::string params_text(const Params& p) {
   char b[128];
   if (p.cluster)
-    std::snprintf(b, sizeof b, "σs %.3g σr %.3g σd %.3g σq %.3g θ %.3g", p.f.sigma_s, p.f.sigma_r, p.c.sigma_d,
-                  p.c.sigma_q, p.c.theta);
+    std::snprintf(b, sizeof b, "σs %.3g σr %.3g σd %.3g σq %.3g θ %.3g", p.f.sigma_s, p.f.sigma_r,
+                  p.c.sigma_d, p.c.sigma_q, p.c.theta);
   else
     std::snprintf(b, sizeof b, "σs %.3g σr %.3g", p.f.sigma_s, p.f.sigma_r);
   return b;
@@ -70,7 +69,8 @@ bool run_frames(Engine& e, const Mesh& mesh, const Params& params, int frames, P
   for (int k = 0; k < frames; ++k) {
     const auto t0 = std::chrono::steady_clock::now();
     const Status s = e.process(mesh.view(), params, r);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (!s.ok()) {
       std::fprintf(stderr, "fqbench: %s failed: %s\n", e.name().c_str(), s.message().c_str());
       return false;
@@ -98,12 +98,14 @@ bool bench_row(const Options& o, Engine& engine, CpuEngine* cpu, const Mesh& mes
 }
 
 void print_summary(const std::vector<RowResult>& results, const std::string& engine, int cpu_threads) {
-  std::printf("\nEngine: %s; device time = sum of the passes' CUDA-event times (transfers and host work "
-              "excluded); ms, median (p10–p90).\n\n",
-              engine.c_str());
-  std::printf("| row | mesh | V | F | params | paper row | paper ms | ours: device ms | speed-up | upload ms | "
-              "download ms | frame wall ms | CPU engine ms (%d thr) | clusters ours / CPU |\n",
-              cpu_threads);
+  std::printf(
+      "\nEngine: %s; device time = sum of the passes' CUDA-event times (transfers and host work "
+      "excluded); ms, median (p10–p90).\n\n",
+      engine.c_str());
+  std::printf(
+      "| row | mesh | V | F | params | paper row | paper ms | ours: device ms | speed-up | upload ms | "
+      "download ms | frame wall ms | CPU engine ms (%d thr) | clusters ours / CPU |\n",
+      cpu_threads);
   std::printf("|---|---|---:|---:|---|---|---:|---|---:|---|---|---|---|---|\n");
   for (const RowResult& r : results) {
     const Spread dev = r.gpu.spread("device");
@@ -139,14 +141,21 @@ int main(int argc, char** argv) {
   Options o;
   o.mesh_dir = default_mesh_dir();
   CLI::App app{"fqbench: device time per pass for the paper's Table 2 and 3 rows"};
-  app.add_option("--mesh-dir", o.mesh_dir, "folder of the shared meshes (default: $FQ_MESH_DIR or ../shared/meshes)");
+  app.add_option("--mesh-dir", o.mesh_dir,
+                 "folder of the shared meshes (default: $FQ_MESH_DIR or ../shared/meshes)");
   app.add_option("--rows", o.rows, "comma-separated row ids, or all")->capture_default_str();
-  app.add_option("--engine", o.engine, "engine to time: cuda | cpu | auto")->capture_default_str()
+  app.add_option("--engine", o.engine, "engine to time: cuda | cpu | auto")
+      ->capture_default_str()
       ->check(CLI::IsMember({"cuda", "cpu", "auto"}));
-  app.add_option("--repeat", o.repeat, "timed frames per row (>= 1)")->capture_default_str()->check(CLI::Range(1, 100000));
-  app.add_option("--warmup", o.warmup, "untimed frames first")->capture_default_str()->check(CLI::Range(0, 1000));
+  app.add_option("--repeat", o.repeat, "timed frames per row (>= 1)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--warmup", o.warmup, "untimed frames first")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
   app.add_option("--cpu-repeat", o.cpu_repeat, "CPU engine frames per row for comparison (0 = none)")
-      ->capture_default_str()->check(CLI::Range(0, 1000));
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
   app.add_option("--cpu-threads", o.cpu_threads, "CPU engine threads (0 = all)")->capture_default_str();
   app.add_flag("--neighbour-stats", o.neighbour_stats,
                "also print mean neighbours per vertex at each pass's radius (CPU; for FLOP floors)");
@@ -205,10 +214,13 @@ int main(int argc, char** argv) {
     print_passes(results);
   }
   if (o.neighbour_stats || o.stats_only) {
-    std::printf("\nMean neighbours per vertex (radius 2σ; grid cell σs):\n\n| row | V | Q' (2σb) | diffusion (2σs) | score/link (2σd) |\n|---|---:|---:|---:|---:|\n");
+    std::printf(
+        "\nMean neighbours per vertex (radius 2σ; grid cell σs):\n\n| row | V | Q' (2σb) | diffusion (2σs) | "
+        "score/link (2σd) |\n|---|---:|---:|---:|---:|\n");
     for (const RowResult& r : results) {
       const NeighbourStats s = neighbour_stats(meshes.at(r.row.file).view(), r.row.params);
-      std::printf("| %s | %u | %.1f | %.1f | %.1f |\n", r.row.id.c_str(), r.vertices, s.nbhd, s.diffusion, s.cluster);
+      std::printf("| %s | %u | %.1f | %.1f | %.1f |\n", r.row.id.c_str(), r.vertices, s.nbhd, s.diffusion,
+                  s.cluster);
     }
   }
   return 0;

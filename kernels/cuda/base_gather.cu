@@ -3,9 +3,8 @@
 // triangles in increasing triangle order -- the CPU engine's order (cpu_stages.cpp
 // base_quadrics), so the result is deterministic. Chosen over the float4-atomic version
 // when it measures faster (see docs/BENCHMARKS.md).
-#include <cub/device/device_scan.cuh>
-
 #include <algorithm>
+#include <cub/device/device_scan.cuh>
 
 #include "cuda_check.cuh"
 #include "launch.cuh"
@@ -15,7 +14,8 @@ namespace fq::cuda {
 
 namespace {
 
-__global__ void triangle_geometry(uint32_t m, const uint32_t* tris, const Point4* points, TriangleGeom* geom) {
+__global__ void triangle_geometry(uint32_t m, const uint32_t* tris, const Point4* points,
+                                  TriangleGeom* geom) {
   const uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
   if (t >= m) return;
   const uint32_t* tri = tris + 3 * size_t(t);
@@ -27,8 +27,8 @@ __global__ void count_corners(uint64_t corners, const uint32_t* tris, uint32_t* 
   if (c < corners) slot[c] = atomicAdd(&count[tris[c]], 1u);
 }
 
-__global__ void scatter_corners(uint64_t corners, const uint32_t* tris, const uint32_t* start, const uint32_t* slot,
-                                uint32_t* faces) {
+__global__ void scatter_corners(uint64_t corners, const uint32_t* tris, const uint32_t* start,
+                                const uint32_t* slot, uint32_t* faces) {
   const uint64_t c = uint64_t(blockIdx.x) * blockDim.x + threadIdx.x;
   if (c < corners) faces[start[tris[c]] + slot[c]] = static_cast<uint32_t>(c / 3);
 }
@@ -66,18 +66,20 @@ void base_quadrics_gather(DeviceFrame& f, cudaStream_t s) {
   FQ_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, bytes, count, start, int(n + 1), s));
   unsigned char* temp = f.temp.reserve(bytes);
 
-  triangle_geometry<<<blocks_for(m), block_size(), 0, s>>>(m, f.tris.data(), f.points.data(), f.tri_geom.reserve(m));
+  triangle_geometry<<<blocks_for(m), block_size(), 0, s>>>(m, f.tris.data(), f.points.data(),
+                                                           f.tri_geom.reserve(m));
   FQ_CUDA_CHECK_LAUNCH("triangle_geometry");
   FQ_CUDA_CHECK(cudaMemsetAsync(count, 0, (n + 1) * sizeof(uint32_t), s));
   count_corners<<<blocks_for(corners), block_size(), 0, s>>>(corners, f.tris.data(), count,
-                                                            f.vf_slot.reserve(corners));
+                                                             f.vf_slot.reserve(corners));
   FQ_CUDA_CHECK_LAUNCH("count_corners");
   FQ_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(temp, bytes, count, start, int(n + 1), s));
-  scatter_corners<<<blocks_for(corners), block_size(), 0, s>>>(corners, f.tris.data(), start, f.vf_slot.data(),
-                                                              f.vf_faces.reserve(corners));
+  scatter_corners<<<blocks_for(corners), block_size(), 0, s>>>(corners, f.tris.data(), start,
+                                                               f.vf_slot.data(), f.vf_faces.reserve(corners));
   FQ_CUDA_CHECK_LAUNCH("scatter_corners");
-  gather_base<<<blocks_for(n), block_size(), 0, s>>>(n, start, f.vf_faces.data(), f.tri_geom.data(), f.points.data(),
-                                                     f.base.reserve(n), f.base_p.reserve(n), f.vnormal.reserve(n));
+  gather_base<<<blocks_for(n), block_size(), 0, s>>>(n, start, f.vf_faces.data(), f.tri_geom.data(),
+                                                     f.points.data(), f.base.reserve(n), f.base_p.reserve(n),
+                                                     f.vnormal.reserve(n));
   FQ_CUDA_CHECK_LAUNCH("gather_base");
 }
 

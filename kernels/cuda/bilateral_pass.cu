@@ -29,8 +29,10 @@ float from_ordered_int(int i) {
 }
 
 __global__ void reset_bounds(int* b) {
-  if (threadIdx.x < 3) b[threadIdx.x] = INT_MAX;
-  else if (threadIdx.x < 6) b[threadIdx.x] = INT_MIN;
+  if (threadIdx.x < 3)
+    b[threadIdx.x] = INT_MAX;
+  else if (threadIdx.x < 6)
+    b[threadIdx.x] = INT_MIN;
 }
 
 __global__ void centroid_points(uint32_t m, const TriangleGeom* geom, Point4* out, int* bounds) {
@@ -56,8 +58,8 @@ __global__ void mollify_kernel(GridView tg, const Vec3* normals, Gaussian gm, fl
   if (t < tg.count) out[t] = mollified_face_normal(tg, normals, t, gm, radius);
 }
 
-__global__ void jones_kernel(uint32_t n, const Point4* points, GridView tg, const Vec3* mollified, Gaussian gs,
-                             Gaussian gr, float radius, Vec3* moved) {
+__global__ void jones_kernel(uint32_t n, const Point4* points, GridView tg, const Vec3* mollified,
+                             Gaussian gs, Gaussian gr, float radius, Vec3* moved) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < n) moved[i] = jones_bilateral_position(tg, mollified, xyz(points[i]), gs, gr, radius);
 }
@@ -67,7 +69,8 @@ GridLayout centroid_layout(DeviceFrame& f, float cell, cudaStream_t s) {
   int* bounds = f.bounds.reserve(6);
   reset_bounds<<<1, 32, 0, s>>>(bounds);
   FQ_CUDA_CHECK_LAUNCH("reset_bounds");
-  centroid_points<<<blocks_for(f.m), block_size(), 0, s>>>(f.m, f.tri_geom.data(), f.tri_in.reserve(f.m), bounds);
+  centroid_points<<<blocks_for(f.m), block_size(), 0, s>>>(f.m, f.tri_geom.data(), f.tri_in.reserve(f.m),
+                                                           bounds);
   FQ_CUDA_CHECK_LAUNCH("centroid_points");
   int* h = f.h_bounds.reserve(6);
   FQ_CUDA_CHECK(cudaMemcpyAsync(h, bounds, 6 * sizeof(int), cudaMemcpyDeviceToHost, s));
@@ -83,16 +86,16 @@ void bilateral_filter(DeviceFrame& f, const FilterParams& p, cudaStream_t s) {
   const GridLayout layout = centroid_layout(f, p.sigma_s, s);
   build_device_grid(layout, f.tri_in.data(), f.m, f.tri_grid, f.tri_points.reserve(f.m), s);
   sorted_normals<<<blocks_for(f.m), block_size(), 0, s>>>(f.m, f.tri_grid.order.data(), f.tri_geom.data(),
-                                                    f.tri_normals.reserve(f.m));
+                                                          f.tri_normals.reserve(f.m));
   FQ_CUDA_CHECK_LAUNCH("sorted_normals");
   const GridView tg = f.tri_grid.view(f.tri_points.data());
   const float sm = 0.5f * p.sigma_s;  // Jones et al.: normals mollified with sigma_s / 2
-  mollify_kernel<<<blocks_for(f.m), block_size(), 0, s>>>(tg, f.tri_normals.data(), Gaussian::with_sigma(sm), 2.f * sm,
-                                                    f.tri_mollified.reserve(f.m));
+  mollify_kernel<<<blocks_for(f.m), block_size(), 0, s>>>(tg, f.tri_normals.data(), Gaussian::with_sigma(sm),
+                                                          2.f * sm, f.tri_mollified.reserve(f.m));
   FQ_CUDA_CHECK_LAUNCH("mollify_kernel");
-  jones_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(f.n, f.points.data(), tg, f.tri_mollified.data(),
-                                                  Gaussian::with_sigma(p.sigma_s), Gaussian::with_sigma(p.sigma_r),
-                                                  2.f * p.sigma_s, f.moved.reserve(f.n));
+  jones_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(
+      f.n, f.points.data(), tg, f.tri_mollified.data(), Gaussian::with_sigma(p.sigma_s),
+      Gaussian::with_sigma(p.sigma_r), 2.f * p.sigma_s, f.moved.reserve(f.n));
   FQ_CUDA_CHECK_LAUNCH("jones_kernel");
 }
 

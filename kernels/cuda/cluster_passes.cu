@@ -13,8 +13,8 @@ namespace fq::cuda {
 
 namespace {
 
-__global__ void score_kernel(GridView g, const Quadric* bl, Gaussian gd, Gaussian gq, float radius, bool euclid,
-                             float* score) {
+__global__ void score_kernel(GridView g, const Quadric* bl, Gaussian gd, Gaussian gq, float radius,
+                             bool euclid, float* score) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < g.count) score[i] = representativity(g, bl, i, gd, gq, radius, euclid);
 }
@@ -56,18 +56,17 @@ __global__ void label_kernel(uint32_t n, const uint32_t* rank, const uint32_t* o
 
 void cluster_scores(DeviceFrame& f, const ClusterParams& p, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
-  score_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(g, f.bl.data(), Gaussian::with_sigma(p.sigma_d),
-                                                  Gaussian::with_sigma(p.sigma_q), 2.f * p.sigma_d,
-                                                  p.method == ClusterMethod::kEuclidean, f.score.reserve(f.n));
+  score_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(
+      g, f.bl.data(), Gaussian::with_sigma(p.sigma_d), Gaussian::with_sigma(p.sigma_q), 2.f * p.sigma_d,
+      p.method == ClusterMethod::kEuclidean, f.score.reserve(f.n));
   FQ_CUDA_CHECK_LAUNCH("score_kernel");
 }
 
 void cluster_links(DeviceFrame& f, const ClusterParams& p, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
-  link_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(g, f.bl.data(), f.score.data(), Gaussian::with_sigma(p.sigma_d),
-                                                 Gaussian::with_sigma(p.sigma_q), 2.f * p.sigma_d,
-                                                 p.method == ClusterMethod::kEuclidean, 1.0f - p.theta,
-                                                 f.next.reserve(f.n));
+  link_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(
+      g, f.bl.data(), f.score.data(), Gaussian::with_sigma(p.sigma_d), Gaussian::with_sigma(p.sigma_q),
+      2.f * p.sigma_d, p.method == ClusterMethod::kEuclidean, 1.0f - p.theta, f.next.reserve(f.n));
   FQ_CUDA_CHECK_LAUNCH("link_kernel");
 }
 
@@ -88,7 +87,8 @@ void cluster_labels(DeviceFrame& f, cudaStream_t s) {
   flag_roots<<<blocks_for(n), block_size(), 0, s>>>(n, f.grid.rank.data(), f.next.data(), flag);
   FQ_CUDA_CHECK_LAUNCH("flag_roots");
   FQ_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(temp, bytes, flag, scan, int(n + 1), s));
-  label_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, f.grid.rank.data(), f.grid.order.data(), root, scan, labels);
+  label_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, f.grid.rank.data(), f.grid.order.data(), root, scan,
+                                                      labels);
   FQ_CUDA_CHECK_LAUNCH("label_kernel");
   FQ_CUDA_CHECK(cudaMemcpyAsync(labels + n, scan + n, sizeof(uint32_t), cudaMemcpyDeviceToDevice, s));
 }

@@ -28,10 +28,10 @@ struct DeviceFrame {
   DeviceBuffer<Point4> in_points;  ///< input order, normalized, w = 0
   DeviceBuffer<uint32_t> in_tris;  ///< input vertex indices
   DeviceGrid grid;
-  DeviceBuffer<Point4> points;     ///< sorted; w = barycentric area after base_quadrics
-  DeviceBuffer<uint32_t> tris;     ///< sorted vertex indices
+  DeviceBuffer<Point4> points;  ///< sorted; w = barycentric area after base_quadrics
+  DeviceBuffer<uint32_t> tris;  ///< sorted vertex indices
   DeviceBuffer<TriangleGeom> tri_geom;
-  DeviceBuffer<float4> accum;      ///< 4 per vertex: quadric sums, area, normal (atomic variant)
+  DeviceBuffer<float4> accum;  ///< 4 per vertex: quadric sums, area, normal (atomic variant)
   DeviceBuffer<uint32_t> vf_count, vf_start, vf_slot, vf_faces;  ///< vertex -> triangles (gather variant)
   DeviceBuffer<Quadric> base, nbhd, bl;
   DeviceBuffer<PackedQuadric> base_p, nbhd_p, bl_p;  ///< the same, for the team kernels' loads
@@ -39,11 +39,11 @@ struct DeviceFrame {
   DeviceBuffer<Vec3> moved_in_order;
 
   // Bilateral baseline: triangles in centroid-grid order.
-  DeviceBuffer<Point4> tri_in;     ///< centroid, w = area; triangle order
+  DeviceBuffer<Point4> tri_in;  ///< centroid, w = area; triangle order
   DeviceGrid tri_grid;
   DeviceBuffer<Point4> tri_points;
   DeviceBuffer<Vec3> tri_normals, tri_mollified;
-  DeviceBuffer<int> bounds;        ///< order-preserving ints of lo.xyz, hi.xyz
+  DeviceBuffer<int> bounds;  ///< order-preserving ints of lo.xyz, hi.xyz
 
   // Clustering.
   DeviceBuffer<float> score;

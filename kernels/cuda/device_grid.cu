@@ -1,11 +1,9 @@
-#include "device_grid.cuh"
-
+#include <algorithm>
 #include <cub/device/device_scan.cuh>
 #include <cub/device/device_segmented_sort.cuh>
 
-#include <algorithm>
-
 #include "cuda_check.cuh"
+#include "device_grid.cuh"
 #include "launch.cuh"
 
 namespace fq::cuda {
@@ -67,7 +65,7 @@ void build_device_grid(const GridLayout& layout, const Point4* in, uint32_t n, D
   size_t bytes = temp_bytes;
   FQ_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(g.temp.data(), bytes, count, start, int(cells + 1), s));
   scatter_to_cells<<<blocks_for(n), block_size(), 0, s>>>(n, g.cell_of.data(), g.slot.data(), start,
-                                                    g.scattered.data());
+                                                          g.scattered.data());
   FQ_CUDA_CHECK_LAUNCH("scatter_to_cells");
   // Atomics gave an arbitrary order inside each cell; input order makes it the CPU's.
   bytes = temp_bytes;

@@ -74,7 +74,8 @@ __global__ void finish_base_quadrics(uint32_t n, const float4* accum, Point4* po
   vnormal[v] = acc.normal;
 }
 
-__global__ void neighbourhood_kernel(GridView g, const Quadric* base, Gaussian gb, float radius, Quadric* out) {
+__global__ void neighbourhood_kernel(GridView g, const Quadric* base, Gaussian gb, float radius,
+                                     Quadric* out) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < g.count) out[i] = neighbourhood_quadric(g, base, i, gb, radius);
 }
@@ -85,8 +86,8 @@ __global__ void diffusion_kernel(GridView g, const Quadric* nbhd, Gaussian gs, G
   if (i < g.count) out[i] = bilateral_quadric(g, nbhd, i, gs, gr, radius);
 }
 
-__global__ void update_kernel(GridView g, const Quadric* bl, const Vec3* vnormal, bool constrained, Gaussian gn,
-                              float radius_n, float tikhonov, Vec3* moved) {
+__global__ void update_kernel(GridView g, const Quadric* bl, const Vec3* vnormal, bool constrained,
+                              Gaussian gn, float radius_n, float tikhonov, Vec3* moved) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= g.count) return;
   const Vec3 n = constrained ? smoothed_normal(g, vnormal, i, gn, radius_n) : Vec3{0.f, 0.f, 0.f};
@@ -104,7 +105,7 @@ void sort_into_grid(DeviceFrame& f, const GridLayout& layout, cudaStream_t s) {
   build_device_grid(layout, f.in_points.data(), f.n, f.grid, f.points.reserve(f.n), s);
   const uint64_t idx = 3 * uint64_t(f.m);
   renumber_triangles<<<blocks_for(idx), block_size(), 0, s>>>(idx, f.in_tris.data(), f.grid.rank.data(),
-                                                        f.tris.reserve(idx));
+                                                              f.tris.reserve(idx));
   FQ_CUDA_CHECK_LAUNCH("renumber_triangles");
 }
 
@@ -112,25 +113,25 @@ void base_quadrics(DeviceFrame& f, cudaStream_t s) {
   float4* accum = f.accum.reserve(4 * size_t(f.n));
   FQ_CUDA_CHECK(cudaMemsetAsync(accum, 0, 4 * size_t(f.n) * sizeof(float4), s));
   triangle_quadrics<<<blocks_for(f.m), block_size(), 0, s>>>(f.m, f.tris.data(), f.points.data(),
-                                                       f.tri_geom.reserve(f.m), accum);
+                                                             f.tri_geom.reserve(f.m), accum);
   FQ_CUDA_CHECK_LAUNCH("triangle_quadrics");
-  finish_base_quadrics<<<blocks_for(f.n), block_size(), 0, s>>>(f.n, accum, f.points.data(), f.base.reserve(f.n),
-                                                          f.base_p.reserve(f.n), f.vnormal.reserve(f.n));
+  finish_base_quadrics<<<blocks_for(f.n), block_size(), 0, s>>>(
+      f.n, accum, f.points.data(), f.base.reserve(f.n), f.base_p.reserve(f.n), f.vnormal.reserve(f.n));
   FQ_CUDA_CHECK_LAUNCH("finish_base_quadrics");
 }
 
 void neighbourhood_quadrics(DeviceFrame& f, float sigma_b, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
-  neighbourhood_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(g, f.base.data(), Gaussian::with_sigma(sigma_b),
-                                                          2.f * sigma_b, f.nbhd.reserve(f.n));
+  neighbourhood_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(
+      g, f.base.data(), Gaussian::with_sigma(sigma_b), 2.f * sigma_b, f.nbhd.reserve(f.n));
   FQ_CUDA_CHECK_LAUNCH("neighbourhood_kernel");
 }
 
 void diffuse_quadrics(DeviceFrame& f, const FilterParams& p, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
   diffusion_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(g, f.nbhd.data(), Gaussian::with_sigma(p.sigma_s),
-                                                      Gaussian::with_sigma(p.sigma_r), 2.f * p.sigma_s,
-                                                      f.bl.reserve(f.n));
+                                                            Gaussian::with_sigma(p.sigma_r), 2.f * p.sigma_s,
+                                                            f.bl.reserve(f.n));
   FQ_CUDA_CHECK_LAUNCH("diffusion_kernel");
 }
 
@@ -138,14 +139,14 @@ void update_positions(DeviceFrame& f, const FilterParams& p, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
   const float sn = p.effective_sigma_n();
   update_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(g, f.bl.data(), f.vnormal.data(), p.constrained,
-                                                   Gaussian::with_sigma(sn), 2.f * sn, p.tikhonov,
-                                                   f.moved.reserve(f.n));
+                                                         Gaussian::with_sigma(sn), 2.f * sn, p.tikhonov,
+                                                         f.moved.reserve(f.n));
   FQ_CUDA_CHECK_LAUNCH("update_kernel");
 }
 
 void gather_moved(DeviceFrame& f, cudaStream_t s) {
   gather_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(f.n, f.grid.rank.data(), f.moved.data(),
-                                                   f.moved_in_order.reserve(f.n));
+                                                         f.moved_in_order.reserve(f.n));
   FQ_CUDA_CHECK_LAUNCH("gather_kernel");
 }
 

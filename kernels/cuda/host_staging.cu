@@ -1,9 +1,8 @@
-#include "host_staging.h"
-
 #include <algorithm>
 #include <cstring>
 #include <limits>
 
+#include "host_staging.h"
 #include "parallel_for.h"
 
 namespace fq::cuda {
@@ -13,7 +12,9 @@ void stage_points(const MeshView& mesh, const Normalization& norm, Point4* point
   constexpr float kInf = std::numeric_limits<float>::infinity();
   float lx = kInf, ly = kInf, lz = kInf, hx = -kInf, hy = -kInf, hz = -kInf;
 #if defined(FQ_HAVE_OPENMP)
-#pragma omp parallel for schedule(static) reduction(min : lx, ly, lz) reduction(max : hx, hy, hz) \
+#pragma omp parallel for schedule(static) reduction(min                                   \
+                                                    : lx, ly, lz) reduction(max           \
+                                                                            : hx, hy, hz) \
     num_threads(hardware_threads())
 #endif
   for (int64_t i = 0; i < n; ++i) {

@@ -18,7 +18,8 @@ class Stream {
   Stream(const Stream&) = delete;
   Stream& operator=(const Stream&) = delete;
   ~Stream() {
-    if (const cudaError_t e = cudaStreamDestroy(s_); e != cudaSuccess) log_free_failure("cudaStreamDestroy", e);
+    if (const cudaError_t e = cudaStreamDestroy(s_); e != cudaSuccess)
+      log_free_failure("cudaStreamDestroy", e);
   }
   cudaStream_t get() const { return s_; }
   void sync() const { FQ_CUDA_CHECK(cudaStreamSynchronize(s_)); }
@@ -38,7 +39,8 @@ class PassEvents {
   PassEvents& operator=(const PassEvents&) = delete;
   ~PassEvents() {
     for (cudaEvent_t e : events_) {
-      if (const cudaError_t r = cudaEventDestroy(e); r != cudaSuccess) log_free_failure("cudaEventDestroy", r);
+      if (const cudaError_t r = cudaEventDestroy(e); r != cudaSuccess)
+        log_free_failure("cudaEventDestroy", r);
     }
   }
 

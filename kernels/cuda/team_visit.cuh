@@ -56,9 +56,15 @@ __device__ float team_sum(float v) {
 
 template <int T>
 __device__ void team_sum(Quadric& q) {
-  q.a00 = team_sum<T>(q.a00); q.a01 = team_sum<T>(q.a01); q.a02 = team_sum<T>(q.a02);
-  q.a11 = team_sum<T>(q.a11); q.a12 = team_sum<T>(q.a12); q.a22 = team_sum<T>(q.a22);
-  q.b0 = team_sum<T>(q.b0); q.b1 = team_sum<T>(q.b1); q.b2 = team_sum<T>(q.b2);
+  q.a00 = team_sum<T>(q.a00);
+  q.a01 = team_sum<T>(q.a01);
+  q.a02 = team_sum<T>(q.a02);
+  q.a11 = team_sum<T>(q.a11);
+  q.a12 = team_sum<T>(q.a12);
+  q.a22 = team_sum<T>(q.a22);
+  q.b0 = team_sum<T>(q.b0);
+  q.b1 = team_sum<T>(q.b1);
+  q.b2 = team_sum<T>(q.b2);
   q.c = team_sum<T>(q.c);
 }
 

@@ -1,12 +1,13 @@
 // The CUDA engine against the CPU engine on meshes made in code, its allocation
 // behaviour and its error paths. Without a device only the availability tests run.
+#include "cuda_engine.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "cuda_engine.h"
 #include "noise.h"
 #include "parity.h"
 #include "support/test_meshes.h"

@@ -55,22 +55,22 @@ TEST_P(CudaMeshParity, MatchesCpuEngine) {
 }
 
 // Table 2 (filter) and Table 3 (clustering) rows on the meshes of similar size.
-INSTANTIATE_TEST_SUITE_P(
-    PaperRows, CudaMeshParity,
-    ::testing::Values(Row{"fandisk.ply", 3.f, 0.4f, false, 0, 0, 0},
-                      Row{"fandisk.ply", 3.f, 0.4f, false, 0, 0, 0, FilterMethod::kBilateral},
-                      Row{"bunny.ply", 5.f, 2.f, false, 0, 0, 0},
-                      Row{"bunny.ply", 3.f, 1.f, true, 5.f, 0.8f, 0.9f},
-                      Row{"igea.ply", 3.f, 0.4f, false, 0, 0, 0},
-                      Row{"igea.ply", 2.f, 1.f, true, 6.f, 1.f, 0.87f},
-                      Row{"armadillo.ply", 2.f, 1.f, true, 5.f, 1.f, 0.75f},
-                      Row{"dragon.ply", 5.5f, 1.f, false, 0, 0, 0},
-                      Row{"dragon.ply", 2.f, 1.f, true, 6.f, 1.f, 0.75f}),
-    [](const ::testing::TestParamInfo<Row>& info) {
-      std::string name = info.param.file;
-      name = name.substr(0, name.find('.'));
-      return name + "_" + std::to_string(info.index);
-    });
+INSTANTIATE_TEST_SUITE_P(PaperRows, CudaMeshParity,
+                         ::testing::Values(Row{"fandisk.ply", 3.f, 0.4f, false, 0, 0, 0},
+                                           Row{"fandisk.ply", 3.f, 0.4f, false, 0, 0, 0,
+                                               FilterMethod::kBilateral},
+                                           Row{"bunny.ply", 5.f, 2.f, false, 0, 0, 0},
+                                           Row{"bunny.ply", 3.f, 1.f, true, 5.f, 0.8f, 0.9f},
+                                           Row{"igea.ply", 3.f, 0.4f, false, 0, 0, 0},
+                                           Row{"igea.ply", 2.f, 1.f, true, 6.f, 1.f, 0.87f},
+                                           Row{"armadillo.ply", 2.f, 1.f, true, 5.f, 1.f, 0.75f},
+                                           Row{"dragon.ply", 5.5f, 1.f, false, 0, 0, 0},
+                                           Row{"dragon.ply", 2.f, 1.f, true, 6.f, 1.f, 0.75f}),
+                         [](const ::testing::TestParamInfo<Row>& info) {
+                           std::string name = info.param.file;
+                           name = name.substr(0, name.find('.'));
+                           return name + "_" + std::to_string(info.index);
+                         });
 
 }  // namespace
 }  // namespace fq::test

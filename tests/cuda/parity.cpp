@@ -62,7 +62,8 @@ double label_agreement(const std::vector<uint32_t>& reference, const std::vector
 
 std::string Parity::summary() const {
   char buf[256];
-  std::snprintf(buf, sizeof buf, "positions p99 %.3g max %.3g (of bbox diagonal); labels agree %.5f; clusters cpu %u gpu %u",
+  std::snprintf(buf, sizeof buf,
+                "positions p99 %.3g max %.3g (of bbox diagonal); labels agree %.5f; clusters cpu %u gpu %u",
                 pos.p99, pos.max, labels, cpu.num_clusters, gpu.num_clusters);
   return buf;
 }
@@ -108,8 +109,10 @@ ScopedEnv::ScopedEnv(const char* name, const char* value) : name_(name) {
 }
 
 ScopedEnv::~ScopedEnv() {
-  if (had_) setenv(name_.c_str(), old_.c_str(), 1);
-  else unsetenv(name_.c_str());
+  if (had_)
+    setenv(name_.c_str(), old_.c_str(), 1);
+  else
+    unsetenv(name_.c_str());
 }
 
 void CudaTest::SetUp() {
