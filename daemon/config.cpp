@@ -35,6 +35,8 @@ void read_cluster(TomlReader& r, ClusterParams& c) {
 
 void read_output(TomlReader& r, OutputEncoding& o) {
   r.read("position_bits", o.position_bits, 8, 30);
+  r.read("encode_speed", o.encode_speed, 0, 10);
+  r.read("decode_speed", o.decode_speed, 0, 10);
   const toml::node* c = r.raw("chunks");
   if (!c) return;
   if (auto str = c->value_exact<std::string>(); str && *str == "same")

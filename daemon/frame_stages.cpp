@@ -128,6 +128,8 @@ void run_encode_worker(Pipeline& p) {
         f->settings.output.chunks > 0 ? f->settings.output.chunks : f->header.chunk_count();
     wire::CodecOptions opt;
     opt.position_bits = f->settings.output.position_bits;
+    opt.encode_speed = f->settings.output.encode_speed;
+    opt.decode_speed = f->settings.output.decode_speed;
     opt.threads = std::max(1, std::min<int>(p.config.encode_threads, static_cast<int>(chunks)));
     const Status s = guarded(
         "encode", [&] { return wire::encode_frame(view, labels, std::max(1u, chunks), opt, f->out_chunks); });

@@ -58,6 +58,9 @@ Status validate(const StreamSettings& s) {
   if (s.output.position_bits < 8 || s.output.position_bits > 30)
     return invalid_argument("output position_bits must be in [8, 30] (got " +
                             std::to_string(s.output.position_bits) + ")");
+  if (s.output.encode_speed < 0 || s.output.encode_speed > 10 || s.output.decode_speed < 0 ||
+      s.output.decode_speed > 10)
+    return invalid_argument("output encode_speed and decode_speed must be in [0, 10]");
   if (s.output.chunks > 256)
     return invalid_argument("output chunks must be \"same\" or 1..256 (got " +
                             std::to_string(s.output.chunks) + ")");

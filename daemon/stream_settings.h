@@ -15,6 +15,8 @@ namespace fq::daemon {
 struct OutputEncoding {
   int position_bits = 16;  ///< Draco position quantization; high enough not to undo smoothing
   uint32_t chunks = 0;     ///< result chunk count; 0 = same as the input frame
+  int encode_speed = 10;   ///< Draco encoder speed 0..10 (10: sequential, fastest; 0: smallest)
+  int decode_speed = 10;   ///< Draco decoder speed the encoder aims for, 0..10
 };
 
 struct StreamSettings {

@@ -1,5 +1,7 @@
-// A blocking FIFO between pipeline stages. close() wakes every waiting consumer; items
-// already queued are still handed out, so closing drains the pipeline instead of losing work.
+// A blocking FIFO between pipeline stages, optionally bounded: push() waits while the queue
+// holds `capacity` items, so a slow stage holds back the one before it (backpressure)
+// instead of letting a queue, and the latency, grow. close() wakes every waiting producer and
+// consumer; items already queued are still handed out, so closing drains the pipeline.
 #pragma once
 
 #include <condition_variable>
@@ -12,10 +14,17 @@ namespace fq::daemon {
 template <class T>
 class WorkQueue {
  public:
-  /// False (and `item` dropped) when the queue is closed.
+  /// capacity 0: unbounded.
+  explicit WorkQueue(size_t capacity = 0) : capacity_(capacity) {}
+
+  /// Sets the bound (before use).
+  void set_capacity(size_t capacity) { capacity_ = capacity; }
+
+  /// Waits for room, then queues; false (and `item` dropped) when the queue is closed.
   bool push(T item) {
     {
-      std::lock_guard<std::mutex> lock(mutex_);
+      std::unique_lock<std::mutex> lock(mutex_);
+      room_.wait(lock, [&] { return closed_ || capacity_ == 0 || items_.size() < capacity_; });
       if (closed_) return false;
       items_.push_back(std::move(item));
     }
@@ -30,6 +39,8 @@ class WorkQueue {
     if (items_.empty()) return std::nullopt;
     T item = std::move(items_.front());
     items_.pop_front();
+    lock.unlock();
+    room_.notify_one();
     return item;
   }
 
@@ -39,6 +50,7 @@ class WorkQueue {
       closed_ = true;
     }
     ready_.notify_all();
+    room_.notify_all();
   }
 
   size_t size() const {
@@ -48,8 +60,9 @@ class WorkQueue {
 
  private:
   mutable std::mutex mutex_;
-  std::condition_variable ready_;
+  std::condition_variable ready_, room_;
   std::deque<T> items_;
+  size_t capacity_ = 0;
   bool closed_ = false;
 };
 

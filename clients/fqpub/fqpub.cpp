@@ -95,6 +95,9 @@ int main(int argc, char** argv) {
   app.add_option("--position-bits", a.spec.position_bits, "Draco position bits")
       ->capture_default_str()
       ->check(CLI::Range(8, 30));
+  app.add_option("--encode-speed", a.spec.encode_speed, "Draco encoder speed 0..10 (10: fastest, largest)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 10));
   app.add_option("--noise", a.noise, "Gaussian noise per frame, in mean edge lengths (0 = none)")
       ->check(CLI::Range(0.0, 100.0));
   app.add_option("--seed", a.seed, "noise seed (frame i uses seed + i)")->capture_default_str();
@@ -104,6 +107,7 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", a.quiet, "no progress line");
   fq::client::add_override_options(app, a.overrides);
   CLI11_PARSE(app, argc, argv);
+  a.spec.decode_speed = a.spec.encode_speed;
   if (fq::Status s = fq::client::to_wire(a.overrides, a.spec.overrides, a.spec.compute); !s.ok()) {
     std::fprintf(stderr, "fqpub: %s\n", s.message().c_str());
     return 2;

@@ -27,6 +27,7 @@ struct Args {
   std::vector<int> gpus{0};
   int streams = 1, cpu_threads = 0, decode_threads = 2, encode_threads = 2;
   double warmup = 1.0, drain = 30.0, budget_ms = 0.0;
+  int encode_speed = 10;
   bool connect = false, json = false, markdown = false, decode = false;
   fq::bench::ProducerOptions producer;
   fq::client::OverrideArgs overrides;
@@ -59,6 +60,8 @@ fq::Status start_daemon(const Args& a, std::unique_ptr<fq::daemon::Daemon>& d, E
   }
   c.endpoints = {"tcp://127.0.0.1:*", "tcp://127.0.0.1:*", "tcp://127.0.0.1:*"};
   if (a.budget_ms > 0) c.defaults.budget_ms = a.budget_ms;
+  for (fq::daemon::StreamSettings* s : {&c.defaults})
+    s->output.encode_speed = s->output.decode_speed = a.encode_speed;
   d = std::make_unique<fq::daemon::Daemon>(c);
   if (fq::Status s = d->start(); !s.ok()) return s;
   ep = {d->endpoints().ingest, d->endpoints().publish, d->endpoints().control};
@@ -173,6 +176,10 @@ int main(int argc, char** argv) {
   app.add_option("--chunks", a.producer.spec.chunks, "Draco chunks per frame")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
+  app.add_option("--encode-speed", a.encode_speed,
+                 "Draco encoder speed 0..10 of the producers and of fqd's results (in-process fqd)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 10));
   app.add_option("--noise", a.producer.noise, "noise in mean edges (0 = the mesh as is)")
       ->capture_default_str();
   app.add_option("--variants", a.producer.variants, "distinct noisy frames per stream")
@@ -202,6 +209,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "fqstreambench: %s\n", s.message().c_str());
     return 1;
   };
+  a.producer.spec.encode_speed = a.producer.spec.decode_speed = a.encode_speed;
   if (fq::Status s = fq::client::to_wire(a.overrides, a.producer.spec.overrides, a.producer.spec.compute);
       !s.ok())
     return fail(s);

@@ -18,6 +18,8 @@ Status build_frame(const MeshView& mesh, const FrameSpec& spec, uint64_t sequenc
   std::vector<std::string> chunks;
   wire::CodecOptions opt;
   opt.position_bits = spec.position_bits;
+  opt.encode_speed = spec.encode_speed;
+  opt.decode_speed = spec.decode_speed;
   opt.threads = spec.encode_threads;
   if (Status s = wire::encode_frame(mesh, nullptr, spec.chunks, opt, chunks); !s.ok()) return s;
   wire::FrameHeader h;

@@ -18,6 +18,8 @@ struct FrameSpec {
   std::string stream_id = "default";
   uint32_t chunks = 1;
   int position_bits = 16;
+  int encode_speed = 10;  ///< Draco encoder speed 0..10 (10: fastest to encode and decode)
+  int decode_speed = 10;
   int encode_threads = 1;
   wire::ParamOverrides overrides;  ///< per-frame parameter overrides (unset = stream's)
   wire::Compute compute = wire::COMPUTE_DEFAULT;

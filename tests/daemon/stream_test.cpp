@@ -16,7 +16,9 @@ namespace {
 // What fqd should publish for `mesh` under `params`: the same Draco round trips around
 // the same engine (the CPU engine gives the same result whatever its thread count).
 std::vector<float> expected_positions(const Mesh& mesh, const Params& params) {
-  wire::CodecOptions opt;
+  wire::CodecOptions opt;  // the producer's and fqd's default Draco settings
+  opt.encode_speed = client::FrameSpec{}.encode_speed;
+  opt.decode_speed = client::FrameSpec{}.decode_speed;
   std::vector<std::string> chunks;
   EXPECT_TRUE(wire::encode_frame(mesh.view(), nullptr, 1, opt, chunks).ok());
   Mesh seen;
