@@ -108,6 +108,7 @@ Status read_engine(TomlReader& root, EngineConfig& e) {
   r.read("gpus", e.gpus, 0, 63);
   r.read("cpu_alongside_gpus", e.cpu_alongside_gpus);
   r.read("cpu_threads", e.cpu_threads, 0, kMaxThreads);
+  r.read("cpu_engines", e.cpu_engines, 1, 64);
   if (Status s = r.finish(); !s.ok()) return s;
   if (e.kind == EngineKind::kCuda && e.gpus.empty())
     return invalid_argument(root.source() +

@@ -24,7 +24,8 @@ struct EngineConfig {
   EngineKind kind = EngineKind::kAuto;
   std::vector<int> gpus{0};         ///< one CUDA engine per listed device
   bool cpu_alongside_gpus = false;  ///< also run the CPU engine when GPU engines exist
-  int cpu_threads = 0;              ///< CPU engine threads; 0 = all hardware threads
+  int cpu_threads = 0;              ///< threads of each CPU engine; 0 = all hardware threads
+  int cpu_engines = 1;              ///< CPU engines (one worker thread each) when the CPU engine is used
 };
 
 struct Caps {

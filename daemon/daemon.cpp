@@ -45,7 +45,9 @@ Status make_engines(const EngineConfig& c, std::vector<std::unique_ptr<Engine>>&
         spdlog::info("engine auto: no CUDA engine on GPU {} ({})", gpu, why.message());
     }
   }
-  if (out.empty() || c.cpu_alongside_gpus) out.push_back(make_engine({EngineKind::kCpu, c.cpu_threads, 0}));
+  if (out.empty() || c.cpu_alongside_gpus) {
+    for (int i = 0; i < c.cpu_engines; ++i) out.push_back(make_engine({EngineKind::kCpu, c.cpu_threads, 0}));
+  }
   return {};
 }
 

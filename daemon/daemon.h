@@ -20,7 +20,7 @@ struct BoundEndpoints {
   std::string ingest, publish, control;
 };
 
-/// One engine per listed GPU (CUDA), plus or else the CPU engine, as the config says.
+/// One engine per listed GPU (CUDA), plus or else `cpu_engines` CPU engines, as the config says.
 /// kUnavailable when an explicitly requested CUDA engine cannot be made.
 Status make_engines(const EngineConfig& config, std::vector<std::unique_ptr<Engine>>& out);
 

@@ -32,6 +32,9 @@ class DaemonHarness {
   explicit DaemonHarness(const daemon::BoundEndpoints& endpoints);
   ~DaemonHarness();
 
+  /// The in-process daemon (null when connected to one elsewhere).
+  daemon::Daemon* daemon() { return daemon_.get(); }
+
   void send_parts(const std::vector<std::string>& parts);
   /// Encodes and sends one frame (the test fails on an encode error).
   void send(const Mesh& mesh, const client::FrameSpec& spec, uint64_t sequence);
