@@ -77,11 +77,8 @@ Totals publish(const Args& a, const fq::client::MeshSource& source, zmq::socket_
   return t;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"fqpub: publish mesh frames to fqd (a file, or a folder as a looped sequence)"};
-  Args a;
+// Every command-line option, into `a`.
+void add_options(CLI::App& app, Args& a) {
   app.add_option("input", a.input, "mesh file (.ply .obj .stl .drc) or folder of them")->required();
   app.add_option("-e,--endpoint", a.endpoint, "fqd ingest endpoint (PUSH connects)")->capture_default_str();
   app.add_option("-s,--stream", a.spec.stream_id, "stream id (the topic of the results)")
@@ -106,6 +103,14 @@ int main(int argc, char** argv) {
   app.add_flag("--json", a.json, "print the summary as JSON");
   app.add_flag("-q,--quiet", a.quiet, "no progress line");
   fq::client::add_override_options(app, a.overrides);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"fqpub: publish mesh frames to fqd (a file, or a folder as a looped sequence)"};
+  Args a;
+  add_options(app, a);
   CLI11_PARSE(app, argc, argv);
   a.spec.decode_speed = a.spec.encode_speed;
   if (fq::Status s = fq::client::to_wire(a.overrides, a.spec.overrides, a.spec.compute); !s.ok()) {

@@ -157,11 +157,8 @@ fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep,
   return {};
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"fqstreambench: latency and throughput of fqd at a sustained frame rate"};
-  Args a;
+// Every command-line option, into `a`.
+void add_options(CLI::App& app, Args& a) {
   app.add_option("mesh", a.mesh, "mesh file, or a file name in --mesh-dir (e.g. bunny.ply)")->required();
   app.add_option("--mesh-dir", a.mesh_dir, "folder of meshes (default $FQ_MESH_DIR, else ../shared/meshes)");
   app.add_option("--streams", a.streams, "concurrent streams")
@@ -202,6 +199,14 @@ int main(int argc, char** argv) {
   app.add_flag("--json", a.json, "print the report as JSON");
   app.add_flag("--markdown", a.markdown, "also print a docs/BENCHMARKS.md table row");
   fq::client::add_override_options(app, a.overrides);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"fqstreambench: latency and throughput of fqd at a sustained frame rate"};
+  Args a;
+  add_options(app, a);
   CLI11_PARSE(app, argc, argv);
   spdlog::set_default_logger(spdlog::stderr_color_mt("fqd"));  // stdout carries the report
   spdlog::set_level(spdlog::level::warn);
