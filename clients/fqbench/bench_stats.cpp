@@ -20,7 +20,8 @@ Spread spread_of(std::vector<double> v) {
 }
 
 bool is_host_or_transfer(const std::string& pass) {
-  return pass == "upload" || pass == "download" || pass == "prepare" || pass == "finish";
+  return pass == "upload" || pass == "download" || pass == "normalize" || pass == "prepare" ||
+         pass == "finish";
 }
 
 void PassSamples::push(const std::string& name, double ms) {
