@@ -11,49 +11,13 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "child_process.h"
 #include "daemon_harness.h"
 
 namespace fq::test {
 namespace {
 
-struct Child {
-  pid_t pid = -1;
-  FILE* out = nullptr;  // the child's stdout
-};
-
-// Starts fqd with `args`, its stdout on a pipe.
-Child spawn_fqd(const std::vector<std::string>& args) {
-  int fds[2];
-  if (pipe(fds) != 0) return {};
-  const pid_t pid = fork();
-  if (pid == 0) {
-    dup2(fds[1], STDOUT_FILENO);
-    close(fds[0]);
-    close(fds[1]);
-    std::vector<char*> argv{const_cast<char*>(FQD_PATH)};
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execv(FQD_PATH, argv.data());
-    _exit(127);
-  }
-  close(fds[1]);
-  return {pid, fdopen(fds[0], "r")};
-}
-
-// Waits up to 60 s for the child; its exit status, or -1 (killed) when it hangs.
-int wait_exit(pid_t pid) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  int status = 0;
-  while (waitpid(pid, &status, WNOHANG) == 0) {
-    if (std::chrono::steady_clock::now() > deadline) {
-      kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
-      return -1;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));  // waiting for exit, not ordering
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+Child spawn_fqd(const std::vector<std::string>& args) { return spawn(FQD_PATH, args); }
 
 std::string write_config(const std::string& name, const std::string& text) {
   const std::string path = testing::TempDir() + "/" + name;

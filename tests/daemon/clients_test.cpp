@@ -1,0 +1,79 @@
+// The command-line clients end to end: fqpub -> fqd -> fqsub, all three as child processes
+// on ephemeral ports; fqsub checks every result and writes coloured PLYs.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "child_process.h"
+#include "daemon_harness.h"
+#include "mesh_io.h"
+
+namespace fq::test {
+namespace {
+
+constexpr const char* kConfig = R"(
+log_level = "warn"
+[endpoints]
+ingest = "tcp://127.0.0.1:*"
+publish = "tcp://127.0.0.1:*"
+control = "tcp://127.0.0.1:*"
+[engine]
+kind = "cpu"
+cpu_threads = 1
+[defaults]
+compute = "filter_and_cluster"
+budget_ms = 60000
+)";
+
+TEST(Clients, FqpubToFqdToFqsubGivesCheckedColouredPlys) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(testing::TempDir()) / "fq_clients_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "out");
+  std::ofstream(dir / "fqd.toml") << kConfig;
+  const Mesh mesh = noisy_sphere();
+  ASSERT_TRUE(io::write_mesh((dir / "sphere.ply").string(), mesh.view(), nullptr, 0).ok());
+
+  Child fqd = spawn(FQD_PATH, {"--config", (dir / "fqd.toml").string(), "--print-endpoints"});
+  ASSERT_GT(fqd.pid, 0);
+  char line[1024] = {0};
+  ASSERT_NE(std::fgets(line, sizeof line, fqd.out), nullptr) << "fqd printed no endpoints";
+  const nlohmann::json ep = nlohmann::json::parse(line);
+
+  Child sub =
+      spawn(FQSUB_PATH, {"--endpoint", ep.at("publish"), "--stream", "cam", "--count", "3", "--idle-timeout",
+                         "30", "--write-every", "1", "--out", (dir / "out").string(), "--json", "--quiet"});
+  // 20 frames over 2 s: the subscription is active long before the last ones.
+  Child pub =
+      spawn(FQPUB_PATH, {(dir / "sphere.ply").string(), "--endpoint", ep.at("ingest"), "--stream", "cam",
+                         "--fps", "10", "--count", "20", "--noise", "0.1", "--quiet", "--json"});
+  ASSERT_GT(sub.pid, 0);
+  ASSERT_GT(pub.pid, 0);
+  const nlohmann::json summary = nlohmann::json::parse(read_all(sub.out));
+  EXPECT_EQ(wait_exit(sub.pid), 0);
+  EXPECT_EQ(nlohmann::json::parse(read_all(pub.out)).at("frames_sent"), 20);
+  EXPECT_EQ(wait_exit(pub.pid), 0);
+  kill(fqd.pid, SIGTERM);
+  EXPECT_EQ(wait_exit(fqd.pid), 0);
+
+  EXPECT_EQ(summary.at("results"), 3);
+  EXPECT_EQ(summary.at("bad"), 0);
+  EXPECT_EQ(summary.at("errors"), 0);
+  const std::string ply = summary.at("last_ply");
+  ASSERT_FALSE(ply.empty());
+  Mesh back;
+  ASSERT_TRUE(io::read_mesh(ply, back).ok());
+  EXPECT_EQ(back.num_vertices(), mesh.num_vertices());
+  EXPECT_EQ(back.num_triangles(), mesh.num_triangles());
+  std::ifstream in(ply, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(text.find("property uint label"), std::string::npos);
+  EXPECT_NE(text.find("property uchar red"), std::string::npos);
+  for (FILE* f : {fqd.out, sub.out, pub.out}) std::fclose(f);
+}
+
+}  // namespace
+}  // namespace fq::test
