@@ -188,6 +188,42 @@ TEST_F(CudaEngineTest, TriangleSoupWithTiesMatchesCpu) {
   }
 }
 
+// Unusual meshes (as tests/kernels/degenerate_input_test.cpp feeds the CPU engine): the
+// device must give the CPU engine's answer, finite, for every kernel path.
+TEST_F(CudaEngineTest, UnusualMeshesMatchCpu) {
+  // Noise, so that scores do not tie everywhere (exact symmetry leaves the clustering to
+  // rounding, which differs between any two compilers).
+  Mesh with_isolated = make_cube(6, 2.0f);
+  add_gaussian_noise(with_isolated, 0.1, 21);
+  append_isolated_vertex(with_isolated, {0.1f, 0.2f, 0.3f});
+  append_isolated_vertex(with_isolated, {9.f, 9.f, 9.f});
+  Mesh with_zero_area = make_icosphere(3, 4.0f);
+  add_gaussian_noise(with_zero_area, 0.1, 22);
+  append_zero_area_faces(with_zero_area, 40);
+  Mesh plane = make_plane_grid(20, 12);
+  add_gaussian_noise(plane, 0.1, 23);
+  const Mesh meshes[] = {make_single_triangle(), make_non_manifold_fin(), plane, with_isolated,
+                         with_zero_area};
+  Params params = clustering(3.f, 1.f, 0.9f);
+  for (const Mesh& m : meshes) {
+    Parity p;
+    run_both(*cpu_, *gpu_, m.view(), params, p);
+    for (const char* path : kKernelPaths) {
+      SCOPED_TRACE(path);
+      ScopedEnv env("FQ_CUDA_TEAM", path);
+      rerun_gpu(*gpu_, m.view(), params, p);
+      EXPECT_TRUE(all_finite(p.gpu.positions));
+      expect_parity(p, params);
+    }
+  }
+  params.f.method = FilterMethod::kBilateral;
+  for (const Mesh& m : meshes) {
+    Parity p;
+    run_both(*cpu_, *gpu_, m.view(), params, p);
+    expect_parity(p, params);
+  }
+}
+
 TEST_F(CudaEngineTest, NoDeviceAllocationAfterWarmUp) {
   const Mesh m = noisy_sphere();
   const Params params = clustering(5.f, 1.f, 0.9f);
