@@ -62,6 +62,16 @@ void Pipeline::recycle(FrameJob& f) {
   results.release(std::move(f.result));
 }
 
+void Pipeline::note_queued(const FrameJob& f) {
+  std::lock_guard<std::mutex> lock(newest_mutex_);
+  newest_queued_[f.stream_id] = f.arrival;
+}
+
+bool Pipeline::newer_queued(const FrameJob& f) {
+  std::lock_guard<std::mutex> lock(newest_mutex_);
+  return newest_queued_[f.stream_id] > f.arrival;
+}
+
 void run_decode_worker(Pipeline& p) {
   while (auto item = p.decode_queue.pop()) {
     FramePtr f = std::move(*item);
@@ -69,6 +79,11 @@ void run_decode_worker(Pipeline& p) {
     if (is_stale(f->receive_ns, wall_ns(), f->settings.budget_ms)) {
       p.registry.count(f->stream_id, Counter::kDroppedStale);
       spdlog::debug("stream '{}' frame {}: stale before decode", f->stream_id, f->header.sequence());
+      continue;
+    }
+    if (p.newer_queued(*f)) {
+      p.registry.count(f->stream_id, Counter::kSuperseded);
+      spdlog::debug("stream '{}' frame {}: superseded before decode", f->stream_id, f->header.sequence());
       continue;
     }
     f->mesh = p.meshes.acquire();

@@ -75,8 +75,10 @@ void run_ingest(zmq::socket_t socket, Pipeline& p) {
     if (!f->error.ok()) {
       const Status why = f->error;
       p.fail(std::move(f), why);
-    } else
+    } else {
+      p.note_queued(*f);
       p.decode_queue.push(std::move(f));
+    }
   }
   socket.close();
 }

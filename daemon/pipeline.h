@@ -6,6 +6,7 @@
 #pragma once
 
 #include <map>
+#include <mutex>
 #include <string>
 
 #include "config.h"
@@ -34,6 +35,17 @@ struct Pipeline {
   void fail(FramePtr frame, Status why);
   /// Returns the frame's buffers to the pools once it is published or dropped.
   void recycle(FrameJob& frame);
+
+  /// Notes that `frame` is being queued for decode (ingest thread).
+  void note_queued(const FrameJob& frame);
+  /// True when a newer frame of the same stream is already queued: a decoder that pops an
+  /// older one skips it (superseded), as the newer one would take its slot anyway. This
+  /// keeps a backlog from building up in front of the decoders.
+  bool newer_queued(const FrameJob& frame);
+
+ private:
+  std::mutex newest_mutex_;
+  std::map<std::string, uint64_t> newest_queued_;  ///< per stream, the last arrival queued
 };
 
 /// Decode pool worker: decode, check the mesh and the parameters, offer to the slots.
