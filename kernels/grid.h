@@ -42,10 +42,11 @@ FQ_HD float gap2(float v, float lo_cell, float cell, int i) {
   return d * d;
 }
 
-/// Calls f(j, point_j, d = point_j - p, |d|^2) for every point j with |d| <= radius.
-/// The order of calls is fixed by the grid alone, so sums built in f are reproducible.
-template <class F>
-FQ_HD void for_each_neighbor(const GridView& g, Vec3 p, float radius, F&& f) {
+/// Calls run(begin, end) for each contiguous range [begin, end) of candidate points: one
+/// per (y, z) row of cells that meets the sphere of `radius` about p, cut to the x-span of
+/// cells the sphere covers in that row. Candidates still need the |d| <= radius test.
+template <class R>
+FQ_HD void for_each_candidate_run(const GridView& g, Vec3 p, float radius, R&& run) {
   const float r2 = radius * radius;
   const float inv = 1.0f / g.cell;
   const int z0 = clamp_cell((p.z - radius - g.origin.z) * inv, g.nz);
@@ -62,15 +63,24 @@ FQ_HD void for_each_neighbor(const GridView& g, Vec3 p, float radius, F&& f) {
       const int x0 = clamp_cell((p.x - rx - g.origin.x) * inv, g.nx);
       const int x1 = clamp_cell((p.x + rx - g.origin.x) * inv, g.nx);
       const uint32_t row = (static_cast<uint32_t>(iz) * g.ny + iy) * g.nx;
-      const uint32_t begin = g.cell_start[row + x0], end = g.cell_start[row + x1 + 1];
-      for (uint32_t j = begin; j < end; ++j) {
-        const Point4 q = g.points[j];
-        const Vec3 d{q.x - p.x, q.y - p.y, q.z - p.z};
-        const float d2 = norm2(d);
-        if (d2 <= r2) f(j, q, d, d2);
-      }
+      run(g.cell_start[row + x0], g.cell_start[row + x1 + 1]);
     }
   }
+}
+
+/// Calls f(j, point_j, d = point_j - p, |d|^2) for every point j with |d| <= radius.
+/// The order of calls is fixed by the grid alone, so sums built in f are reproducible.
+template <class F>
+FQ_HD void for_each_neighbor(const GridView& g, Vec3 p, float radius, F&& f) {
+  const float r2 = radius * radius;
+  for_each_candidate_run(g, p, radius, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t j = begin; j < end; ++j) {
+      const Point4 q = g.points[j];
+      const Vec3 d{q.x - p.x, q.y - p.y, q.z - p.z};
+      const float d2 = norm2(d);
+      if (d2 <= r2) f(j, q, d, d2);
+    }
+  });
 }
 
 }  // namespace fq

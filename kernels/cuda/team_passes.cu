@@ -1,9 +1,10 @@
-// The neighbourhood passes with a team of T lanes per vertex (team_visit.cuh). Each body
-// is the per-neighbour term of the CPU function named beside it, built from the same
-// quadric.h / gaussian.h / cluster_math.h primitives; the parity tests hold the two paths
-// to the CPU engine. Partial sums are combined by shuffles, so summation order (not the
-// neighbour set) differs from the CPU; link keeps the CPU's tie-break exactly.
+// The neighbourhood passes with a team of T lanes per vertex (team_visit.cuh). Each lane
+// adds its share of the neighbours with the very term functions the CPU engine uses
+// (filter_math.h, cluster_math.h); the lanes' partial sums are combined by shuffles, so
+// the summation order (not the neighbour set or the math) differs from the CPU; link keeps
+// the CPU's tie-break exactly.
 #include "cluster_math.h"
+#include "filter_math.h"
 #include "cuda_check.cuh"
 #include "gaussian.h"
 #include "launch.cuh"
@@ -24,21 +25,6 @@
 namespace fq::cuda {
 
 namespace {
-
-// The weighted sum over its weight sum, component by component (quadric.h divide(), which
-// the CPU functions use: stays finite when the weight sum is denormal).
-__device__ void normalize_sum(Quadric& q, float wsum) {
-  q.a00 /= wsum;
-  q.a01 /= wsum;
-  q.a02 /= wsum;
-  q.a11 /= wsum;
-  q.a12 /= wsum;
-  q.a22 /= wsum;
-  q.b0 /= wsum;
-  q.b1 /= wsum;
-  q.b2 /= wsum;
-  q.c /= wsum;
-}
 
 // Gaussian weight: gaussian.h's accurate exp, or with `fast` the hardware approximation
 // __expf (relative error ~1e-6 here, far inside the parity tolerance). Measured in
@@ -69,24 +55,16 @@ template <int T>
 __global__ void FQ_TEAM_BOUNDS team_neighbourhood(GridView g, const PackedQuadric* base, Weight gb,
                                                   float radius, PackedQuadric* out) {
   const Slot s = slot_of<T>(g.count);
-  Quadric acc = zero_quadric();
-  float wsum = 0.f;
+  QuadricSum acc = zero_quadric_sum();
   if (s.active) {
     team_for_each_neighbor<T>(g, xyz(g.points[s.i]), radius, s.lane,
                               [&](uint32_t j, const Point4& pj, Vec3 d, float d2) {
-                                const float w = pj.w * gb.of_squared(d2);
-                                if (!(w > 0.f)) return;
-                                const Vec3 t = -1.0f * d;
-                                const Quadric qj = load_quadric(base, j);
-                                add_translated(acc, qj, t, evaluate(qj, t), w);
-                                wsum += w;
+                                add_neighbourhood_term(acc, load_quadric(base, j), pj, d, d2, gb);
                               });
   }
   team_sum<T>(acc);
-  wsum = team_sum<T>(wsum);
   if (!s.active || s.lane != 0) return;
-  if (wsum > 0.f) normalize_sum(acc, wsum);
-  out[s.i] = pack(acc);
+  out[s.i] = pack(mean_of(acc));
 }
 
 // filter_math.h bilateral_quadric
@@ -94,26 +72,18 @@ template <int T>
 __global__ void FQ_TEAM_BOUNDS team_diffusion(GridView g, const PackedQuadric* nbhd, Weight gs, Weight gr,
                                               float radius, Quadric* out, PackedQuadric* out_p) {
   const Slot s = slot_of<T>(g.count);
-  Quadric acc = zero_quadric();
-  float wsum = 0.f;
+  QuadricSum acc = zero_quadric_sum();
   if (s.active) {
     team_for_each_neighbor<T>(g, xyz(g.points[s.i]), radius, s.lane,
                               [&](uint32_t j, const Point4& pj, Vec3 d, float d2) {
-                                const Vec3 t = -1.0f * d;
-                                const Quadric qj = load_quadric(nbhd, j);
-                                const float e = evaluate(qj, t);
-                                const float w = pj.w * gs.of_squared(d2) * gr.of_squared(e);
-                                if (!(w > 0.f)) return;
-                                add_translated(acc, qj, t, e, w);
-                                wsum += w;
+                                add_bilateral_term(acc, load_quadric(nbhd, j), pj, d, d2, gs, gr);
                               });
   }
   team_sum<T>(acc);
-  wsum = team_sum<T>(wsum);
   if (!s.active || s.lane != 0) return;
-  if (wsum > 0.f) normalize_sum(acc, wsum);
-  out[s.i] = acc;
-  out_p[s.i] = pack(acc);
+  const Quadric q = mean_of(acc);
+  out[s.i] = q;
+  out_p[s.i] = pack(q);
 }
 
 // cluster_math.h representativity
@@ -121,20 +91,17 @@ template <int T>
 __global__ void FQ_TEAM_BOUNDS team_score(GridView g, const Quadric* qbl, Weight gd, Weight gq, float radius,
                                           bool euclid, float* score) {
   const Slot s = slot_of<T>(g.count);
-  float num = 0.f, den = 0.f;
+  ScoreSum acc{0.f, 0.f};
   if (s.active) {
     const Quadric qi = qbl[s.i];
     team_for_each_neighbor<T>(g, xyz(g.points[s.i]), radius, s.lane,
                               [&](uint32_t, const Point4& pj, Vec3 d, float d2) {
-                                den += pj.w;
-                                float w = pj.w * gd.of_squared(d2);
-                                if (!euclid) w *= gq.of_squared(evaluate(qi, d));
-                                num += w;
+                                add_score_term(acc, qi, pj, d, d2, gd, gq, euclid);
                               });
   }
-  num = team_sum<T>(num);
-  den = team_sum<T>(den);
-  if (s.active && s.lane == 0) score[s.i] = den > 0.f ? num / den : 0.f;
+  acc.num = team_sum<T>(acc.num);
+  acc.den = team_sum<T>(acc.den);
+  if (s.active && s.lane == 0) score[s.i] = score_of(acc);
 }
 
 // cluster_math.h quick_shift_link
@@ -142,23 +109,17 @@ template <int T>
 __global__ void FQ_TEAM_BOUNDS team_link(GridView g, const PackedQuadric* qbl, const float* score, Weight gd,
                                          Weight gq, float radius, bool euclid, float cut, uint32_t* next) {
   const Slot s = slot_of<T>(g.count);
-  float pmax = 0.f;
-  uint32_t best = s.i;
+  LinkBest best{0.f, s.i};
   if (s.active) {
     const float si = score[s.i];
     team_for_each_neighbor<T>(g, xyz(g.points[s.i]), radius, s.lane,
                               [&](uint32_t j, const Point4&, Vec3 d, float d2) {
                                 if (j == s.i || !ranks_above(score[j], j, si, s.i)) return;
-                                float p = gd.of_squared(d2);
-                                if (!euclid) p *= gq.of_squared(evaluate(load_quadric(qbl, j), -1.0f * d));
-                                if (p > pmax) {
-                                  pmax = p;
-                                  best = j;
-                                }
+                                best.offer(link_proximity(load_quadric(qbl, j), d, d2, gd, gq, euclid), j);
                               });
   }
-  team_argmax<T>(pmax, best);
-  if (s.active && s.lane == 0) next[s.i] = pmax < cut ? s.i : best;
+  team_argmax<T>(best.p, best.j);
+  if (s.active && s.lane == 0) next[s.i] = best.target(s.i, cut);
 }
 
 unsigned team_blocks(uint32_t n, int team) { return blocks_for(uint64_t(n) * team); }

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 
+#include "filter_math.h"
 #include "grid.h"
 #include "packed_quadric.cuh"
 #include "quadric.h"
@@ -20,30 +21,14 @@ namespace fq::cuda {
 template <int T, class F>
 __device__ void team_for_each_neighbor(const GridView& g, Vec3 p, float radius, unsigned lane, F&& f) {
   const float r2 = radius * radius;
-  const float inv = 1.0f / g.cell;
-  const int z0 = clamp_cell((p.z - radius - g.origin.z) * inv, g.nz);
-  const int z1 = clamp_cell((p.z + radius - g.origin.z) * inv, g.nz);
-  const int y0 = clamp_cell((p.y - radius - g.origin.y) * inv, g.ny);
-  const int y1 = clamp_cell((p.y + radius - g.origin.y) * inv, g.ny);
-  for (int iz = z0; iz <= z1; ++iz) {
-    const float gz = gap2(p.z, g.origin.z, g.cell, iz);
-    if (gz > r2) continue;
-    for (int iy = y0; iy <= y1; ++iy) {
-      const float gyz = gz + gap2(p.y, g.origin.y, g.cell, iy);
-      if (gyz > r2) continue;
-      const float rx = sqrtf(r2 - gyz);
-      const int x0 = clamp_cell((p.x - rx - g.origin.x) * inv, g.nx);
-      const int x1 = clamp_cell((p.x + rx - g.origin.x) * inv, g.nx);
-      const uint32_t row = (static_cast<uint32_t>(iz) * g.ny + iy) * g.nx;
-      const uint32_t begin = g.cell_start[row + x0], end = g.cell_start[row + x1 + 1];
-      for (uint32_t j = begin + lane; j < end; j += T) {
-        const Point4 q = load_point(g.points, j);
-        const Vec3 d{q.x - p.x, q.y - p.y, q.z - p.z};
-        const float d2 = norm2(d);
-        if (d2 <= r2) f(j, q, d, d2);
-      }
+  for_each_candidate_run(g, p, radius, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t j = begin + lane; j < end; j += T) {
+      const Point4 q = load_point(g.points, j);
+      const Vec3 d{q.x - p.x, q.y - p.y, q.z - p.z};
+      const float d2 = norm2(d);
+      if (d2 <= r2) f(j, q, d, d2);
     }
-  }
+  });
 }
 
 /// Sum over the team (every lane gets it). All 32 lanes of the warp must call it.
@@ -55,7 +40,9 @@ __device__ float team_sum(float v) {
 }
 
 template <int T>
-__device__ void team_sum(Quadric& q) {
+__device__ void team_sum(QuadricSum& s) {
+  Quadric& q = s.q;
+  s.w = team_sum<T>(s.w);
   q.a00 = team_sum<T>(q.a00);
   q.a01 = team_sum<T>(q.a01);
   q.a02 = team_sum<T>(q.a02);
