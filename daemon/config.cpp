@@ -1,7 +1,9 @@
 #include "config.h"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "toml_reader.h"
 
@@ -121,8 +123,8 @@ Status read_sections(TomlReader& root, DaemonConfig& c) {
   if (Status s = read_engine(root, c.engine); !s.ok()) return s;
   if (const toml::table* t = root.table("threads")) {
     TomlReader r(*t, root.source(), "threads");
-    r.read("decode", c.decode_threads, 1, kMaxThreads);
-    r.read("encode", c.encode_threads, 1, kMaxThreads);
+    r.read("decode", c.decode_threads, 0, kMaxThreads);
+    r.read("encode", c.encode_threads, 0, kMaxThreads);
     if (Status s = r.finish(); !s.ok()) return s;
   }
   if (const toml::table* t = root.table("caps")) {
@@ -153,6 +155,12 @@ Status read_streams(TomlReader& root, DaemonConfig& c) {
 }
 
 }  // namespace
+
+void DaemonConfig::resolve_auto_threads() {
+  const int half = std::max(2, static_cast<int>(std::thread::hardware_concurrency() / 2));
+  if (decode_threads == 0) decode_threads = half;
+  if (encode_threads == 0) encode_threads = half;
+}
 
 const StreamSettings& DaemonConfig::settings_for(const std::string& stream_id) const {
   auto it = streams.find(stream_id);

@@ -37,12 +37,15 @@ struct Caps {
 struct DaemonConfig {
   Endpoints endpoints;
   EngineConfig engine;
-  int decode_threads = 2;
-  int encode_threads = 2;
+  int decode_threads = 0;  ///< decode pool; 0 = half the hardware threads, at least 2
+  int encode_threads = 0;  ///< encode pool; 0 = half the hardware threads, at least 2
   Caps caps;
   StreamSettings defaults;
   std::map<std::string, StreamSettings> streams;  ///< per-stream overrides, resolved
   std::string log_level = "info";
+
+  /// Replaces thread counts of 0 by their automatic value.
+  void resolve_auto_threads();
 
   /// The settings a stream starts with: its [streams.<id>] entry or the defaults.
   const StreamSettings& settings_for(const std::string& stream_id) const;

@@ -56,7 +56,12 @@ Daemon::Daemon(DaemonConfig config)
       registry_(config_),
       pipeline_(config_, registry_),
       input_context_(1),
-      output_context_(1) {}
+      output_context_(1) {
+  config_.resolve_auto_threads();
+  // An engine that outruns the encoders waits instead of queueing results: frames then wait
+  // in their streams' slots, where newer ones supersede them, and latency stays bounded.
+  pipeline_.encode_queue.set_capacity(static_cast<size_t>(config_.encode_threads));
+}
 
 Daemon::~Daemon() { stop(); }
 

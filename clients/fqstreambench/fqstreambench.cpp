@@ -25,7 +25,7 @@ namespace {
 struct Args {
   std::string mesh, mesh_dir, config, engine = "auto", ingest, publish, control, stream_prefix = "bench";
   std::vector<int> gpus{0};
-  int streams = 1, cpu_threads = 0, decode_threads = 2, encode_threads = 2;
+  int streams = 1, cpu_threads = 0, decode_threads = 0, encode_threads = 0;
   double warmup = 1.0, drain = 30.0, budget_ms = 0.0;
   int encode_speed = 10;
   bool connect = false, json = false, markdown = false, decode = false;
@@ -186,8 +186,12 @@ void add_options(CLI::App& app, Args& a) {
   app.add_option("--engine", a.engine, "in-process engine: auto | cuda | cpu")->capture_default_str();
   app.add_option("--gpus", a.gpus, "GPUs of the in-process fqd, one engine each (e.g. 0,1)")->delimiter(',');
   app.add_option("--cpu-threads", a.cpu_threads, "CPU engine threads (0 = all)");
-  app.add_option("--decode-threads", a.decode_threads, "fqd decode pool")->capture_default_str();
-  app.add_option("--encode-threads", a.encode_threads, "fqd encode pool")->capture_default_str();
+  app.add_option("--decode-threads", a.decode_threads,
+                 "fqd decode pool (0 = half the hardware threads, at least 2)")
+      ->capture_default_str();
+  app.add_option("--encode-threads", a.encode_threads,
+                 "fqd encode pool (0 = half the hardware threads, at least 2)")
+      ->capture_default_str();
   app.add_option("--config", a.config, "in-process fqd from this config file (its endpoints are replaced)");
   app.add_flag("--connect", a.connect, "benchmark a running fqd at --ingest, --publish, --control");
   app.add_option("--ingest", a.ingest, "running fqd's ingest endpoint");

@@ -32,7 +32,10 @@ TEST(DaemonConfig, ShippedDefaultConfigIsValid) {
 TEST(DaemonConfig, EmptyFileGivesBuiltInDefaults) {
   DaemonConfig c;
   ASSERT_TRUE(parse("", c).ok());
-  EXPECT_EQ(c.decode_threads, 2);
+  EXPECT_EQ(c.decode_threads, 0);  // automatic
+  c.resolve_auto_threads();
+  EXPECT_GE(c.decode_threads, 2);
+  EXPECT_GE(c.encode_threads, 2);
   EXPECT_EQ(c.defaults.output.position_bits, 16);
   EXPECT_EQ(c.defaults.output.chunks, 0u);
   EXPECT_DOUBLE_EQ(c.defaults.budget_ms, 100.0);
@@ -86,7 +89,7 @@ TEST(DaemonConfig, UnknownKeysAreNamedWithTheirLine) {
 TEST(DaemonConfig, WrongTypesAndRangesAreRejected) {
   EXPECT_NE(error_of("[threads]\ndecode = \"two\"\n").find("threads.decode must be an integer"),
             std::string::npos);
-  EXPECT_NE(error_of("[threads]\nencode = 0\n").find("threads.encode must be in"), std::string::npos);
+  EXPECT_NE(error_of("[threads]\nencode = -1\n").find("threads.encode must be in"), std::string::npos);
   EXPECT_NE(error_of("[defaults.filter]\nsigma_s = \"big\"\n").find("must be a number"), std::string::npos);
   EXPECT_NE(error_of("[defaults.output]\nchunks = 0\n").find("chunks"), std::string::npos);
   EXPECT_NE(error_of("[defaults.output]\nposition_bits = 40\n").find("position_bits"), std::string::npos);

@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <thread>
+
 #include "metrics.h"
+#include "work_queue.h"
 
 namespace fq::daemon {
 namespace {
@@ -84,6 +87,24 @@ TEST(FrameSlots, CloseHandsOutWhatIsWaitingThenStops) {
   EXPECT_NE(out, nullptr);
   out.reset();
   EXPECT_FALSE(slots.take(out, stale));
+}
+
+TEST(WorkQueue, ABoundedQueueNeverHoldsMoreThanItsCapacity) {
+  WorkQueue<int> q(1);
+  ASSERT_TRUE(q.push(1));
+  bool pushed = true;
+  std::thread producer([&] { pushed = q.push(2); });  // waits for room
+  EXPECT_EQ(q.size(), 1u);
+  EXPECT_EQ(q.pop(), 1);
+  producer.join();
+  EXPECT_TRUE(pushed);
+  EXPECT_EQ(q.size(), 1u);
+  std::thread blocked([&] { pushed = q.push(3); });  // full again: waits until close
+  q.close();
+  blocked.join();
+  EXPECT_FALSE(pushed);
+  EXPECT_EQ(q.pop(), 2);  // what was queued is still handed out
+  EXPECT_EQ(q.pop(), std::nullopt);
 }
 
 TEST(Metrics, NearestRankPercentiles) {
