@@ -16,6 +16,8 @@ namespace {
 // Reductions run over fixed-size chunks whose partial results are combined in chunk
 // order, so every sum is bit-identical for any thread count.
 constexpr uint32_t kChunk = 1u << 15;
+// Each chunk is one work item of parallel_for.
+constexpr int kOneChunkAtATime = 1;
 
 uint32_t chunks_of(uint64_t n) { return static_cast<uint32_t>((n + kChunk - 1) / kChunk); }
 
@@ -36,7 +38,7 @@ uint64_t first_bad(uint64_t n, int threads, Bad bad) {
         return;
       }
     }
-  });
+  }, kOneChunkAtATime);
   if (first_chunk == UINT32_MAX) return n;
   for (uint64_t i = uint64_t(first_chunk) * kChunk;; ++i) {
     if (bad(i)) return i;
@@ -76,7 +78,7 @@ double mean_edge_length(const MeshView& mesh, int threads) {
       }
     }
     partial[c] = sum;
-  });
+  }, kOneChunkAtATime);
   double sum = 0.0;
   for (double s : partial) sum += s;
   return sum / (3.0 * mesh.num_triangles);
@@ -98,7 +100,7 @@ Status compute_normalization(const MeshView& mesh, Normalization& out, int threa
         b.hi[k] = std::max(b.hi[k], double(mesh.positions[3 * size_t(i) + k]));
       }
     }
-  });
+  }, kOneChunkAtATime);
   Box all{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}};
   for (const Box& b : boxes) {
     for (int k = 0; k < 3; ++k) {

@@ -10,13 +10,16 @@
 
 namespace fq {
 
+/// `grain` items are handed out at a time: 256 suits per-vertex work; coarse items (whole
+/// chunks of a reduction) need 1, or a few hundred of them all land on one thread.
 template <class F>
-void parallel_for(uint32_t n, int threads, F&& f) {
+void parallel_for(uint32_t n, int threads, F&& f, int grain = 256) {
 #if defined(FQ_HAVE_OPENMP)
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+#pragma omp parallel for schedule(dynamic, grain) num_threads(threads)
   for (int64_t i = 0; i < int64_t(n); ++i) f(static_cast<uint32_t>(i));
 #else
   (void)threads;
+  (void)grain;
   for (uint32_t i = 0; i < n; ++i) f(i);
 #endif
 }
