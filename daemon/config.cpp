@@ -92,9 +92,10 @@ Status read_endpoints(TomlReader& root, Endpoints& e) {
       return invalid_argument(root.source() + ": endpoint \"" + *ep +
                               "\" is not a ZeroMQ address like tcp://127.0.0.1:5555");
   }
-  const bool fixed_dup = (e.ingest == e.publish || e.ingest == e.control || e.publish == e.control) &&
-                         e.ingest.find(":*") == std::string::npos;
-  if (fixed_dup)
+  // Ports * and 0 are picked by the system at bind time, so equal strings do not collide.
+  auto fixed = [](const std::string& ep) { return !ep.ends_with(":*") && !ep.ends_with(":0"); };
+  auto same = [&](const std::string& a, const std::string& b) { return a == b && fixed(a); };
+  if (same(e.ingest, e.publish) || same(e.ingest, e.control) || same(e.publish, e.control))
     return invalid_argument(root.source() + ": the ingest, publish and control endpoints must differ");
   return {};
 }

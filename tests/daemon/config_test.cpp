@@ -115,6 +115,16 @@ TEST(DaemonConfig, BadNamesAndParametersAreRejected) {
   EXPECT_NE(error_of("[engine]\nkind = \"cuda\"\ngpus = []\n").find("gpus"), std::string::npos);
 }
 
+TEST(DaemonConfig, EphemeralPortsMayRepeat) {
+  for (const char* port : {"*", "0"}) {
+    DaemonConfig c;
+    const std::string ep = std::string("\"tcp://127.0.0.1:") + port + "\"";
+    const Status s =
+        parse("[endpoints]\ningest = " + ep + "\npublish = " + ep + "\ncontrol = " + ep + "\n", c);
+    EXPECT_TRUE(s.ok()) << s.message();
+  }
+}
+
 TEST(DaemonConfig, SyntaxErrorsNameTheLine) {
   const std::string m = error_of("[defaults]\nbudget_ms = \n");
   EXPECT_NE(m.find("test.toml:2"), std::string::npos) << m;
