@@ -24,6 +24,12 @@ wire::ResultHeader make_result_header(const FrameJob& f, int64_t publish_ns) {
     st->set_name(t.name);
     st->set_ms(t.ms);
   }
+  // The producer's send -> publish, on two hosts' clocks when the producer is remote.
+  if (f.header.send_time_ns() > 0) {
+    wire::StageTiming* st = h.add_timings();
+    st->set_name("send_to_publish");
+    st->set_ms(ms_between(f.header.send_time_ns(), publish_ns));
+  }
   h.set_engine(f.engine);
   if (!f.error.ok()) {
     h.set_status(wire::ERROR);

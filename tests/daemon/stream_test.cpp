@@ -70,13 +70,17 @@ TEST(DaemonStream, NFramesInGiveNResultsInOrderWithCorrectCounts) {
     EXPECT_EQ(r.header.engine(), "cpu");
     EXPECT_GT(r.header.latency_ms(), 0.0);
     EXPECT_FALSE(r.header.late());
-    bool has_decode = false, has_engine = false, has_encode = false;
+    bool has_decode = false, has_engine = false, has_encode = false, has_send = false;
     for (const wire::StageTiming& t : r.header.timings()) {
       has_decode |= t.name() == "decode";
       has_engine |= t.name() == "engine";
       has_encode |= t.name() == "encode";
+      if (t.name() == "send_to_publish") {
+        has_send = true;
+        EXPECT_GE(t.ms(), r.header.latency_ms());  // sent before fqd received it
+      }
     }
-    EXPECT_TRUE(has_decode && has_engine && has_encode);
+    EXPECT_TRUE(has_decode && has_engine && has_encode && has_send);
   }
   const wire::StreamCounters c = h.counters("cam");
   EXPECT_EQ(c.frames_in(), kFrames);
