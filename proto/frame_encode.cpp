@@ -161,7 +161,7 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
   if (auto s = check_ranges(mesh, labels); !s.ok()) return s;
 
   const detail::Box box = detail::bounding_box(mesh);
-  const auto parts = detail::split_triangles(mesh, box, std::min(chunks, mesh.num_triangles));
+  const auto parts = detail::split_triangles(mesh, box, std::min(chunks, mesh.num_triangles), options.threads);
   std::vector<std::string> encoded(parts.size());
   std::vector<fq::Status> status(parts.size());
   // Per worker, a dense global -> local vertex map: cheaper than sorting each chunk's ids.

@@ -7,6 +7,8 @@
 #include <system_error>
 #include <thread>
 
+#include "parallel_for.h"
+
 namespace fq::wire::detail {
 namespace {
 
@@ -66,8 +68,8 @@ void find_chunk_starts(std::vector<uint64_t>& keys, size_t lo, size_t hi, uint32
 
 }  // namespace
 
-std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box,
-                                                   uint32_t chunks) {
+std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box, uint32_t chunks,
+                                                   int threads) {
   const uint32_t n = mesh.num_triangles;
   std::vector<std::vector<uint32_t>> parts(chunks);
   if (chunks <= 1) {
@@ -78,19 +80,24 @@ std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, con
   const float extent = box.max_extent();
   const float scale = extent > 0.f ? 1023.f / extent : 0.f;
   // (code, triangle) in one integer: keys are unique, so equal counts per chunk are exact and
-  // the split is deterministic.
+  // the split is deterministic. Keys and parts are built on all codec threads: this runs
+  // before the chunks can be encoded in parallel, so it is on every frame's critical path.
   std::vector<uint64_t> keys(n);
-  for (uint32_t t = 0; t < n; ++t) keys[t] = (uint64_t(morton_of_centroid(mesh, t, box, scale)) << 32) | t;
+  fq::parallel_for(n, threads, [&](uint32_t t) {
+    keys[t] = (uint64_t(morton_of_centroid(mesh, t, box, scale)) << 32) | t;
+  }, 4096);
   std::vector<uint64_t> first(chunks, 0);
   std::vector<uint64_t> work = keys;
   find_chunk_starts(work, 0, n, 0, chunks, chunks, first);
   // Within a chunk, triangles keep the input order (usually coherent: good for Draco's
-  // sequential coder, which stores indices in face order).
-  for (auto& p : parts) p.reserve(n / chunks + 1);
-  for (uint32_t t = 0; t < n; ++t) {
-    const auto c = std::upper_bound(first.begin() + 1, first.end(), keys[t]) - first.begin() - 1;
-    parts[c].push_back(t);
-  }
+  // sequential coder, which stores indices in face order). One scan of the keys per chunk.
+  fq::parallel_for(chunks, threads, [&](uint32_t c) {
+    const uint64_t lo = first[c], hi = c + 1 < chunks ? first[c + 1] : ~uint64_t{0};
+    parts[c].reserve(n / chunks + 1);
+    for (uint32_t t = 0; t < n; ++t) {
+      if (keys[t] >= lo && keys[t] < hi) parts[c].push_back(t);
+    }
+  }, 1);
   return parts;
 }
 

@@ -23,8 +23,9 @@ Box bounding_box(const fq::MeshView& mesh);
 /// Triangle ids of each of `chunks` parts: triangles ranked by the Morton code of their
 /// centroid (10 bits per axis on `box`; ties broken by triangle id, so the split is
 /// deterministic) and cut into equal counts, so each part is a spatially coherent patch.
-/// Within a part, triangles keep their input order.
-std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box, uint32_t chunks);
+/// Within a part, triangles keep their input order. Runs on `threads` threads.
+std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box, uint32_t chunks,
+                                                   int threads = 1);
 
 /// Number of workers for_each_chunk uses: min(threads, count), at least 1.
 size_t chunk_workers(size_t count, int threads);
