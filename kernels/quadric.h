@@ -61,12 +61,6 @@ FQ_HD void add_translated(Quadric& acc, const Quadric& q, Vec3 t, float value_at
   acc.c += w * value_at_t;
 }
 
-FQ_HD void scale(Quadric& q, float s) {
-  Quadric z = zero_quadric();
-  add_scaled(z, q, s);
-  q = z;
-}
-
 /// q /= s, component by component. Normalizing a weighted sum by its weight sum this way
 /// stays finite when the sum is denormal (1/s would overflow to inf; each component is
 /// at most s times a finite value, so the quotient is finite).

@@ -83,7 +83,7 @@ TEST(KernelQuadricSolve, ZeroAndConstantQuadricsDoNotMove) {
   constant.c = 4.f;
   EXPECT_EQ(norm2(minimizer_step(constant, 0.f)), 0.f);
   Quadric tiny = planes({{{0, 0, 1}, {0, 0, 1}}}, {0, 0, 0});
-  scale(tiny, 1e-14f);  // trace below kMinTrace: no information
+  divide(tiny, 1e14f);  // trace below kMinTrace: no information
   EXPECT_EQ(norm2(minimizer_step(tiny, 0.f)), 0.f);
   EXPECT_EQ(norm2(constrained_step(tiny, {0, 0, 1}, 0.f)), 0.f);
   EXPECT_EQ(norm2(constrained_step(zero_quadric(), {0, 0, 1}, 0.05f)), 0.f);

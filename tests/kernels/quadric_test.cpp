@@ -63,13 +63,25 @@ TEST_F(KernelQuadric, SumAndWeightsEvaluateLinearly) {
   }
 }
 
-TEST_F(KernelQuadric, ScaleMultipliesEveryValue) {
+TEST_F(KernelQuadric, DivideDividesEveryValue) {
   Quadric q = random_plane_quadric({0, 0, 0});
   const Vec3 y{0.3f, -0.7f, 1.1f};
   const float before = evaluate(q, y);
-  scale(q, 0.125f);
+  divide(q, 8.0f);
   EXPECT_NEAR(evaluate(q, y), 0.125f * before, 1e-6f * (1.f + before));
   EXPECT_EQ(evaluate(zero_quadric(), y), 0.f);
+}
+
+// Normalizing by a denormal weight sum stays finite (1 / w would be inf).
+TEST_F(KernelQuadric, DivideByADenormalWeightSumStaysFinite) {
+  const float w = 1e-40f;  // denormal
+  Quadric q = random_plane_quadric({0, 0, 0});
+  Quadric acc = zero_quadric();
+  add_scaled(acc, q, w);
+  divide(acc, w);
+  const Vec3 y{0.3f, -0.7f, 1.1f};
+  EXPECT_TRUE(std::isfinite(evaluate(acc, y)));
+  EXPECT_NEAR(evaluate(acc, y), evaluate(q, y), 0.05f * (1.f + evaluate(q, y)));
 }
 
 // The frame of `moved` has its origin at t in q's frame: moved(y) == q(t + y).
