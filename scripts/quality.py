@@ -18,7 +18,7 @@ import sys
 DENOISE = [
     ("fandisk.ply", (2.0, 1.0), (2.0, 1.5), "Table 1"),
     ("bunny.ply", (2.0, 0.7), (2.0, 2.0), "Table 1"),
-    ("max_planck.ply", (2.0, 1.0), (2.0, 1.5), "not in Table 1 (fandisk's row)"),
+    ("max_planck.ply", (2.0, 1.0), (2.0, 1.5), "fandisk's Table 1 row; max_planck is not in Table 1"),
     ("gargoyle.ply", (4.0, 1.0), (4.0, 3.0), "Table 1 (paper: 1.7M tris; ours 50K, too coarse)"),
 ]
 # Paper Table 3 rows for meshes we have: (file, sigma_s, sigma_r, sigma_d, sigma_q, theta, paper count, paper ms).
