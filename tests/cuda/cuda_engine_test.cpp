@@ -74,14 +74,7 @@ using CudaEngineTest = CudaTest;
 
 TEST_F(CudaEngineTest, QuadricFilterMatchesCpu) {
   for (const Mesh& m : {noisy_sphere(), noisy_cube()}) {
-    Parity p;
-    run_both(*cpu_, *gpu_, m.view(), qf(3.f, 1.f), p);
-    for (const char* path : kKernelPaths) {
-      SCOPED_TRACE(path);
-      ScopedEnv env("FQ_CUDA_TEAM", path);
-      rerun_gpu(*gpu_, m.view(), qf(3.f, 1.f), p);
-      expect_parity(p, qf(3.f, 1.f));
-    }
+    expect_parity_for_each(*cpu_, *gpu_, m.view(), qf(3.f, 1.f), "FQ_CUDA_TEAM", kKernelPaths);
   }
 }
 
@@ -90,14 +83,7 @@ TEST_F(CudaEngineTest, FastExpWeightsMatchCpu) {
   ScopedEnv fast("FQ_CUDA_FAST_EXP", "1");
   for (const Params& params : {qf(3.f, 1.f), clustering(5.f, 0.8f, 0.9f)}) {
     for (const Mesh& m : {noisy_sphere(), noisy_cube(), make_triangle_soup(noisy_cube())}) {
-      Parity p;
-      run_both(*cpu_, *gpu_, m.view(), params, p);
-      for (const char* team : {"1", "4", "32"}) {
-        SCOPED_TRACE(team);
-        ScopedEnv env("FQ_CUDA_TEAM", team);
-        rerun_gpu(*gpu_, m.view(), params, p);
-        expect_parity(p, params);
-      }
+      expect_parity_for_each(*cpu_, *gpu_, m.view(), params, "FQ_CUDA_TEAM", {"1", "4", "32"});
     }
   }
 }
@@ -106,14 +92,7 @@ TEST_F(CudaEngineTest, FastExpWeightsMatchCpu) {
 TEST_F(CudaEngineTest, BothBaseQuadricVariantsMatchCpu) {
   const Params params = clustering(4.f, 1.f, 0.8f);
   for (const Mesh& m : {noisy_sphere(), noisy_cube()}) {
-    Parity p;
-    run_both(*cpu_, *gpu_, m.view(), params, p);
-    for (const char* base : {"gather", "atomic"}) {
-      SCOPED_TRACE(base);
-      ScopedEnv env("FQ_CUDA_BASE", base);
-      rerun_gpu(*gpu_, m.view(), params, p);
-      expect_parity(p, params);
-    }
+    expect_parity_for_each(*cpu_, *gpu_, m.view(), params, "FQ_CUDA_BASE", {"gather", "atomic"});
   }
 }
 
@@ -143,15 +122,8 @@ TEST_F(CudaEngineTest, BilateralBaselineMatchesCpu) {
 TEST_F(CudaEngineTest, ClusteringMatchesCpu) {
   for (const Params& params : {clustering(5.f, 0.8f, 0.9f), clustering(4.f, 1.f, 0.5f)}) {
     for (const Mesh& m : {noisy_sphere(), noisy_cube()}) {
-      Parity p;
-      run_both(*cpu_, *gpu_, m.view(), params, p);
-      for (const char* path : kKernelPaths) {
-        SCOPED_TRACE(path);
-        ScopedEnv env("FQ_CUDA_TEAM", path);
-        rerun_gpu(*gpu_, m.view(), params, p);
-        expect_parity(p, params);
-        EXPECT_GT(p.gpu.num_clusters, 1u);
-      }
+      expect_parity_for_each(*cpu_, *gpu_, m.view(), params, "FQ_CUDA_TEAM", kKernelPaths,
+                             [](const Parity& p) { EXPECT_GT(p.gpu.num_clusters, 1u); });
     }
   }
   Params euclid = clustering(5.f, 1.f, 0.9f);
@@ -178,14 +150,7 @@ TEST_F(CudaEngineTest, TriangleSoupWithTiesMatchesCpu) {
   add_gaussian_noise(sphere, 0.2, 5);
   const Mesh soup = make_triangle_soup(sphere);
   const Params params = clustering(4.f, 1.f, 0.8f);
-  Parity p;
-  run_both(*cpu_, *gpu_, soup.view(), params, p);
-  for (const char* path : kKernelPaths) {
-    SCOPED_TRACE(path);
-    ScopedEnv env("FQ_CUDA_TEAM", path);
-    rerun_gpu(*gpu_, soup.view(), params, p);
-    expect_parity(p, params);
-  }
+  expect_parity_for_each(*cpu_, *gpu_, soup.view(), params, "FQ_CUDA_TEAM", kKernelPaths);
 }
 
 // Unusual meshes (as tests/kernels/degenerate_input_test.cpp feeds the CPU engine): the
@@ -206,15 +171,8 @@ TEST_F(CudaEngineTest, UnusualMeshesMatchCpu) {
                          with_zero_area};
   Params params = clustering(3.f, 1.f, 0.9f);
   for (const Mesh& m : meshes) {
-    Parity p;
-    run_both(*cpu_, *gpu_, m.view(), params, p);
-    for (const char* path : kKernelPaths) {
-      SCOPED_TRACE(path);
-      ScopedEnv env("FQ_CUDA_TEAM", path);
-      rerun_gpu(*gpu_, m.view(), params, p);
-      EXPECT_TRUE(all_finite(p.gpu.positions));
-      expect_parity(p, params);
-    }
+    expect_parity_for_each(*cpu_, *gpu_, m.view(), params, "FQ_CUDA_TEAM", kKernelPaths,
+                           [](const Parity& p) { EXPECT_TRUE(all_finite(p.gpu.positions)); });
   }
   params.f.method = FilterMethod::kBilateral;
   for (const Mesh& m : meshes) {

@@ -74,6 +74,20 @@ void run_both(Engine& cpu, Engine& gpu, const MeshView& mesh, const Params& para
   rerun_gpu(gpu, mesh, params, out);
 }
 
+void expect_parity_for_each(Engine& cpu, Engine& gpu, const MeshView& mesh, const Params& params,
+                            const char* var, std::initializer_list<const char*> values,
+                            const std::function<void(const Parity&)>& extra) {
+  Parity p;
+  run_both(cpu, gpu, mesh, params, p);
+  for (const char* value : values) {
+    SCOPED_TRACE(std::string(var) + "=" + value);
+    ScopedEnv env(var, value);
+    rerun_gpu(gpu, mesh, params, p);
+    expect_parity(p, params);
+    if (extra) extra(p);
+  }
+}
+
 void rerun_gpu(Engine& gpu, const MeshView& mesh, const Params& params, Parity& out) {
   const Status sg = gpu.process(mesh, params, out.gpu);
   ASSERT_TRUE(sg.ok()) << sg.message();

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <functional>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
@@ -43,7 +45,7 @@ void rerun_gpu(Engine& gpu, const MeshView& mesh, const Params& params, Parity& 
 /// The CUDA engine's kernel paths (environment variable FQ_CUDA_TEAM): "0" one thread per
 /// vertex calling the math headers directly, "auto" the default team per vertex, and
 /// fixed teams of 1 and 32 lanes.
-inline const char* const kKernelPaths[] = {"auto", "0", "1", "32"};
+inline constexpr std::initializer_list<const char*> kKernelPaths = {"auto", "0", "1", "32"};
 
 /// Sets an environment variable for its lifetime (restores the previous value).
 class ScopedEnv {
@@ -62,6 +64,13 @@ class ScopedEnv {
 /// percentile and 1e-2 at most; labels agreeing on >= 99% of vertices; cluster counts
 /// within 2% (at least 1).
 void expect_parity(const Parity& p, const Params& params);
+
+/// Runs the CPU engine once and the GPU engine once per value of the environment variable
+/// `var` (kernel paths or variants), expecting parity each time; `extra` (optional) adds
+/// checks of its own on each GPU result.
+void expect_parity_for_each(Engine& cpu, Engine& gpu, const MeshView& mesh, const Params& params,
+                            const char* var, std::initializer_list<const char*> values,
+                            const std::function<void(const Parity&)>& extra = {});
 
 /// Holds a CUDA engine on device 0; skips the test when none can be made.
 class CudaTest : public ::testing::Test {
