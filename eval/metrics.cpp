@@ -52,24 +52,30 @@ Status check_same_connectivity(const MeshView& reference, const MeshView& candid
   return {};
 }
 
-double rmse_over_diagonal(const MeshView& reference, const float* positions) {
-  if (reference.num_vertices == 0) return std::numeric_limits<double>::quiet_NaN();
+double bbox_diagonal(const MeshView& mesh) {
+  if (mesh.num_vertices == 0) return std::numeric_limits<double>::quiet_NaN();
   D3 lo, hi;
   lo.fill(std::numeric_limits<double>::infinity());
   hi.fill(-std::numeric_limits<double>::infinity());
-  double sum2 = 0.0;
-  for (uint32_t v = 0; v < reference.num_vertices; ++v) {
-    const D3 r = load(reference.positions, v);
-    const D3 d = sub(load(positions, v), r);
-    sum2 += dot(d, d);
+  for (uint32_t v = 0; v < mesh.num_vertices; ++v) {
+    const D3 r = load(mesh.positions, v);
     for (int k = 0; k < 3; ++k) {
       lo[k] = std::min(lo[k], r[k]);
       hi[k] = std::max(hi[k], r[k]);
     }
   }
   const D3 ext = sub(hi, lo);
-  const double diag = std::sqrt(dot(ext, ext));
+  return std::sqrt(dot(ext, ext));
+}
+
+double rmse_over_diagonal(const MeshView& reference, const float* positions) {
+  const double diag = bbox_diagonal(reference);
   if (!(diag > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  double sum2 = 0.0;
+  for (uint32_t v = 0; v < reference.num_vertices; ++v) {
+    const D3 d = sub(load(positions, v), load(reference.positions, v));
+    sum2 += dot(d, d);
+  }
   return std::sqrt(sum2 / reference.num_vertices) / diag;
 }
 

@@ -15,6 +15,10 @@ namespace fq {
 /// two meshes check this before calling the metrics below, which take raw positions.
 Status check_same_connectivity(const MeshView& reference, const MeshView& candidate);
 
+/// Length of the diagonal of the mesh's bounding box: the scale every error measure here is
+/// divided by. NaN without vertices.
+double bbox_diagonal(const MeshView& mesh);
+
 /// Vertex RMSE normalized by the reference's bounding-box diagonal:
 ///   sqrt( (1/V) * sum_i |x_i - x_ref_i|^2 ) / |bbox_max(ref) - bbox_min(ref)|.
 /// Dividing by the diagonal makes numbers comparable across meshes of any scale (a value

@@ -7,6 +7,7 @@
 
 #include "frame_prep.h"
 #include "grid_build.h"
+#include "metrics.h"
 
 namespace fq {
 
@@ -99,26 +100,18 @@ struct TriangleIndex {
 
 SurfaceDistance distance_to_surface(const MeshView& reference, const float* points, uint32_t num_points) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  Normalization n;
-  if (reference.num_triangles == 0 || !compute_normalization(reference, n).ok()) return {kNaN, kNaN};
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (uint32_t v = 0; v < reference.num_vertices; ++v) {
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], double(reference.positions[3 * size_t(v) + k]));
-      hi[k] = std::max(hi[k], double(reference.positions[3 * size_t(v) + k]));
-    }
-  }
-  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                                (hi[2] - lo[2]) * (hi[2] - lo[2]));
-  const TriangleIndex index(reference, 2.0 * n.mean_edge);
+  // The same scale as rmse_over_diagonal, so the two measures compare.
+  const double diag = bbox_diagonal(reference);
+  const double edge = mean_edge_length(reference);
+  if (reference.num_triangles == 0 || num_points == 0 || !(diag > 0.0) || !(edge > 0.0)) return {kNaN, kNaN};
+  const TriangleIndex index(reference, 2.0 * edge);
   double sum2 = 0.0, dmax = 0.0;
   for (uint32_t i = 0; i < num_points; ++i) {
     const float* p = points + 3 * size_t(i);
-    const double d = index.distance({p[0], p[1], p[2]}, index.max_reach + n.mean_edge);
+    const double d = index.distance({p[0], p[1], p[2]}, index.max_reach + edge);
     sum2 += d * d;
     dmax = std::max(dmax, d);
   }
-  if (!(diag > 0.0) || num_points == 0) return {kNaN, kNaN};
   return {std::sqrt(sum2 / num_points) / diag, dmax / diag};
 }
 
