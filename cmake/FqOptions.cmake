@@ -1,5 +1,10 @@
-# Interface target carrying the language standard and warnings for every fq target.
+# Interface target carrying the language standard, warnings and the include roots for every
+# fq target. Every include names its folder from the repository root ("kernels/engine.h",
+# "proto/fq.pb.h"); generated headers mirror that layout under <build>/generated.
 add_library(fq_options INTERFACE)
+target_include_directories(fq_options INTERFACE
+  "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>"
+  "$<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/generated>")
 target_compile_features(fq_options INTERFACE cxx_std_20)
 target_compile_options(fq_options INTERFACE
   $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wpedantic>

@@ -1,11 +1,11 @@
-#include "config.h"
+#include "daemon/config.h"
 
 #include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <thread>
 
-#include "toml_reader.h"
+#include "daemon/toml_reader.h"
 
 namespace fq::daemon {
 namespace {

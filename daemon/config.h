@@ -8,9 +8,9 @@
 #include <string_view>
 #include <vector>
 
-#include "engine.h"
-#include "status.h"
-#include "stream_settings.h"
+#include "kernels/engine.h"
+#include "common/status.h"
+#include "daemon/stream_settings.h"
 
 namespace fq::daemon {
 

@@ -1,8 +1,8 @@
-#include "control_server.h"
+#include "daemon/control_server.h"
 
 #include <spdlog/spdlog.h>
 
-#include "header_codec.h"
+#include "proto/header_codec.h"
 
 namespace fq::daemon {
 namespace {

@@ -6,8 +6,8 @@
 #include <string_view>
 #include <zmq.hpp>
 
-#include "fq.pb.h"
-#include "stream_registry.h"
+#include "proto/fq.pb.h"
+#include "daemon/stream_registry.h"
 
 namespace fq::daemon {
 

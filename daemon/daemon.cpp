@@ -1,10 +1,10 @@
-#include "daemon.h"
+#include "daemon/daemon.h"
 
 #include <spdlog/spdlog.h>
 
-#include "control_server.h"
-#include "ingest.h"
-#include "publisher.h"
+#include "daemon/control_server.h"
+#include "daemon/ingest.h"
+#include "daemon/publisher.h"
 
 namespace fq::daemon {
 namespace {

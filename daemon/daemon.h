@@ -8,10 +8,10 @@
 #include <vector>
 #include <zmq.hpp>
 
-#include "config.h"
-#include "engine.h"
-#include "pipeline.h"
-#include "stream_registry.h"
+#include "daemon/config.h"
+#include "kernels/engine.h"
+#include "daemon/pipeline.h"
+#include "daemon/stream_registry.h"
 
 namespace fq::daemon {
 

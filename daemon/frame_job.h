@@ -9,10 +9,10 @@
 #include <vector>
 #include <zmq.hpp>
 
-#include "engine.h"
-#include "fq.pb.h"
-#include "status.h"
-#include "stream_settings.h"
+#include "kernels/engine.h"
+#include "proto/fq.pb.h"
+#include "common/status.h"
+#include "daemon/stream_settings.h"
 
 namespace fq::daemon {
 

@@ -4,10 +4,10 @@
 #include <chrono>
 #include <exception>
 
-#include "frame_codec.h"
-#include "frame_prep.h"
-#include "header_codec.h"
-#include "pipeline.h"
+#include "proto/frame_codec.h"
+#include "kernels/frame_prep.h"
+#include "proto/header_codec.h"
+#include "daemon/pipeline.h"
 
 namespace fq::daemon {
 namespace {

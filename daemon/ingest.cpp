@@ -1,11 +1,11 @@
-#include "ingest.h"
+#include "daemon/ingest.h"
 
 #include <spdlog/spdlog.h>
 
 #include <zmq_addon.hpp>
 
-#include "frame_codec.h"
-#include "header_codec.h"
+#include "proto/frame_codec.h"
+#include "proto/header_codec.h"
 
 namespace fq::daemon {
 namespace {

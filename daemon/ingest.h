@@ -4,7 +4,7 @@
 
 #include <zmq.hpp>
 
-#include "pipeline.h"
+#include "daemon/pipeline.h"
 
 namespace fq::daemon {
 

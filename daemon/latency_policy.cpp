@@ -1,4 +1,4 @@
-#include "latency_policy.h"
+#include "daemon/latency_policy.h"
 
 namespace fq::daemon {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "frame_job.h"
+#include "daemon/frame_job.h"
 
 namespace fq::daemon {
 

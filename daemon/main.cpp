@@ -7,9 +7,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "config.h"
-#include "daemon.h"
-#include "signals.h"
+#include "daemon/config.h"
+#include "daemon/daemon.h"
+#include "daemon/signals.h"
 
 namespace {
 

@@ -9,12 +9,12 @@
 #include <mutex>
 #include <string>
 
-#include "config.h"
-#include "frame_job.h"
-#include "latency_policy.h"
-#include "object_pool.h"
-#include "stream_registry.h"
-#include "work_queue.h"
+#include "daemon/config.h"
+#include "daemon/frame_job.h"
+#include "daemon/latency_policy.h"
+#include "daemon/object_pool.h"
+#include "daemon/stream_registry.h"
+#include "daemon/work_queue.h"
 
 namespace fq::daemon {
 

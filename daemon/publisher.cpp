@@ -1,10 +1,10 @@
-#include "publisher.h"
+#include "daemon/publisher.h"
 
 #include <spdlog/spdlog.h>
 
 #include <zmq_addon.hpp>
 
-#include "header_codec.h"
+#include "proto/header_codec.h"
 
 namespace fq::daemon {
 

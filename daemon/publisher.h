@@ -8,7 +8,7 @@
 #include <string>
 #include <zmq.hpp>
 
-#include "pipeline.h"
+#include "daemon/pipeline.h"
 
 namespace fq::daemon {
 

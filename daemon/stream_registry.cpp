@@ -1,4 +1,4 @@
-#include "stream_registry.h"
+#include "daemon/stream_registry.h"
 
 namespace fq::daemon {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "config.h"
-#include "metrics.h"
+#include "daemon/config.h"
+#include "daemon/stage_metrics.h"
 
 namespace fq::daemon {
 

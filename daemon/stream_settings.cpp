@@ -1,4 +1,4 @@
-#include "stream_settings.h"
+#include "daemon/stream_settings.h"
 
 #include <cmath>
 

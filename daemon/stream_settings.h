@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string>
 
-#include "params.h"
-#include "status.h"
+#include "kernels/params.h"
+#include "common/status.h"
 
 namespace fq::daemon {
 

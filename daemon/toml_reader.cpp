@@ -1,4 +1,4 @@
-#include "toml_reader.h"
+#include "daemon/toml_reader.h"
 
 #include <cmath>
 

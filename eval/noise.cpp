@@ -1,10 +1,10 @@
-#include "noise.h"
+#include "eval/noise.h"
 
 #include <cmath>
 #include <numbers>
 #include <random>
 
-#include "frame_prep.h"
+#include "kernels/frame_prep.h"
 
 namespace fq {
 

@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "mesh_view.h"
+#include "kernels/mesh_view.h"
 
 namespace fq {
 

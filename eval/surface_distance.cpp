@@ -1,13 +1,13 @@
-#include "surface_distance.h"
+#include "eval/surface_distance.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
-#include "frame_prep.h"
-#include "grid_build.h"
-#include "metrics.h"
+#include "kernels/frame_prep.h"
+#include "kernels/grid_build.h"
+#include "eval/error_metrics.h"
 
 namespace fq {
 

@@ -6,10 +6,10 @@
 
 #include <cstdint>
 
-#include "gaussian.h"
-#include "grid.h"
-#include "hd.h"
-#include "vec3.h"
+#include "kernels/gaussian.h"
+#include "kernels/grid.h"
+#include "kernels/hd.h"
+#include "kernels/vec3.h"
 
 namespace fq {
 

@@ -1,10 +1,10 @@
-#include "cpu_engine.h"
+#include "kernels/cpu_engine.h"
 
 #include <chrono>
 #include <exception>
 
-#include "cpu_stages.h"
-#include "parallel_for.h"
+#include "kernels/cpu_stages.h"
+#include "kernels/parallel_for.h"
 
 namespace fq {
 

@@ -4,8 +4,8 @@
 
 #include <memory>
 
-#include "cpu_frame.h"
-#include "engine.h"
+#include "kernels/cpu_frame.h"
+#include "kernels/engine.h"
 
 namespace fq {
 

@@ -6,11 +6,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "frame_prep.h"
-#include "grid_build.h"
-#include "quadric.h"
-#include "triangle_math.h"
-#include "vec3.h"
+#include "kernels/frame_prep.h"
+#include "kernels/grid_build.h"
+#include "kernels/quadric.h"
+#include "kernels/triangle_math.h"
+#include "kernels/vec3.h"
 
 namespace fq {
 

@@ -1,13 +1,13 @@
-#include "cpu_stages.h"
+#include "kernels/cpu_stages.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "bilateral_math.h"
-#include "cluster_math.h"
-#include "filter_math.h"
-#include "gaussian.h"
-#include "parallel_for.h"
+#include "kernels/bilateral_math.h"
+#include "kernels/cluster_math.h"
+#include "kernels/filter_math.h"
+#include "kernels/gaussian.h"
+#include "kernels/parallel_for.h"
 
 namespace fq::cpu {
 

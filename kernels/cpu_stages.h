@@ -1,9 +1,9 @@
 // The stages of the CPU engine, one function per pass (see cpu_engine.cpp for the order).
 #pragma once
 
-#include "cpu_frame.h"
-#include "mesh_view.h"
-#include "params.h"
+#include "kernels/cpu_frame.h"
+#include "kernels/mesh_view.h"
+#include "kernels/params.h"
 
 namespace fq::cpu {
 

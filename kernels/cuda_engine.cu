@@ -8,16 +8,16 @@
 #include <cstring>
 #include <string>
 
-#include "cuda/cuda_check.cuh"
-#include "cuda/device_frame.cuh"
-#include "cuda/host_staging.h"
-#include "cuda/launch.cuh"
-#include "cuda/passes.cuh"
-#include "cuda/stream.cuh"
-#include "cuda/team_passes.cuh"
-#include "cuda_engine.h"
-#include "frame_prep.h"
-#include "grid_build.h"
+#include "kernels/cuda/cuda_check.cuh"
+#include "kernels/cuda/device_frame.cuh"
+#include "kernels/cuda/host_staging.h"
+#include "kernels/cuda/launch.cuh"
+#include "kernels/cuda/passes.cuh"
+#include "kernels/cuda/stream.cuh"
+#include "kernels/cuda/team_passes.cuh"
+#include "kernels/cuda_engine.h"
+#include "kernels/frame_prep.h"
+#include "kernels/grid_build.h"
 
 namespace fq {
 

@@ -1,13 +1,13 @@
-#include "engine.h"
+#include "kernels/engine.h"
 
 #include <thread>
 
-#include "cpu_engine.h"
-#include "fq_features.h"
-#include "parallel_for.h"
+#include "kernels/cpu_engine.h"
+#include "kernels/fq_features.h"
+#include "kernels/parallel_for.h"
 
 #if FQ_WITH_CUDA
-#include "cuda_engine.h"
+#include "kernels/cuda_engine.h"
 #endif
 
 namespace fq {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "mesh_view.h"
-#include "params.h"
-#include "status.h"
+#include "kernels/mesh_view.h"
+#include "kernels/params.h"
+#include "common/status.h"
 
 namespace fq {
 

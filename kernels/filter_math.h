@@ -6,12 +6,12 @@
 
 #include <cstdint>
 
-#include "gaussian.h"
-#include "grid.h"
-#include "hd.h"
-#include "quadric.h"
-#include "quadric_solve.h"
-#include "vec3.h"
+#include "kernels/gaussian.h"
+#include "kernels/grid.h"
+#include "kernels/hd.h"
+#include "kernels/quadric.h"
+#include "kernels/quadric_solve.h"
+#include "kernels/vec3.h"
 
 namespace fq {
 

@@ -1,4 +1,4 @@
-#include "frame_prep.h"
+#include "kernels/frame_prep.h"
 
 #include <algorithm>
 #include <atomic>
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "parallel_for.h"
+#include "kernels/parallel_for.h"
 
 namespace fq {
 

@@ -9,9 +9,9 @@
 
 #include <cstdint>
 
-#include "mesh_view.h"
-#include "status.h"
-#include "vec3.h"
+#include "kernels/mesh_view.h"
+#include "common/status.h"
+#include "kernels/vec3.h"
 
 namespace fq {
 

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstdint>
 
-#include "hd.h"
-#include "vec3.h"
+#include "kernels/hd.h"
+#include "kernels/vec3.h"
 
 namespace fq {
 

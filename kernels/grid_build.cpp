@@ -1,4 +1,4 @@
-#include "grid_build.h"
+#include "kernels/grid_build.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "grid.h"
-#include "vec3.h"
+#include "kernels/grid.h"
+#include "kernels/vec3.h"
 
 namespace fq {
 

@@ -1,4 +1,4 @@
-#include "params.h"
+#include "kernels/params.h"
 
 #include <cmath>
 #include <sstream>

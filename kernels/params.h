@@ -2,7 +2,7 @@
 // mean edge length, as in the paper; neighbourhoods have radius 2 sigma.
 #pragma once
 
-#include "status.h"
+#include "common/status.h"
 
 namespace fq {
 

@@ -4,8 +4,8 @@
 // enough (a global frame would put c ~ coordinate^2 and lose the result to cancellation).
 #pragma once
 
-#include "hd.h"
-#include "vec3.h"
+#include "kernels/hd.h"
+#include "kernels/vec3.h"
 
 namespace fq {
 

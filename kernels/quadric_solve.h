@@ -11,10 +11,10 @@
 
 #include <cmath>
 
-#include "hd.h"
-#include "quadric.h"
-#include "sym3_eigen.h"
-#include "vec3.h"
+#include "kernels/hd.h"
+#include "kernels/quadric.h"
+#include "kernels/sym3_eigen.h"
+#include "kernels/vec3.h"
 
 namespace fq {
 

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "hd.h"
+#include "kernels/hd.h"
 
 namespace fq {
 

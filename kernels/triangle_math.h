@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "hd.h"
-#include "quadric.h"
-#include "vec3.h"
+#include "kernels/hd.h"
+#include "kernels/quadric.h"
+#include "kernels/vec3.h"
 
 namespace fq {
 

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "hd.h"
+#include "kernels/hd.h"
 
 namespace fq {
 

@@ -1,4 +1,4 @@
-#include "cluster_colors.h"
+#include "proto/cluster_colors.h"
 
 #include <cmath>
 

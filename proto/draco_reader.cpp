@@ -1,4 +1,4 @@
-#include "draco_reader.h"
+#include "proto/draco_reader.h"
 
 #include <cstring>
 #include <filesystem>
@@ -8,7 +8,7 @@
 
 #include "draco/compression/decode.h"
 #include "draco/io/mesh_io.h"
-#include "mesh_io.h"
+#include "proto/mesh_io.h"
 
 namespace fq::io {
 

@@ -1,4 +1,4 @@
-#include "drc_writer.h"
+#include "proto/drc_writer.h"
 
 #include <cerrno>
 #include <cstring>
@@ -8,7 +8,7 @@
 #include "draco/compression/encode.h"
 #include "draco/mesh/mesh.h"
 #include "draco/metadata/geometry_metadata.h"
-#include "mesh_io.h"
+#include "proto/mesh_io.h"
 
 namespace fq::io {
 

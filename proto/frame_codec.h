@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "mesh_view.h"
-#include "status.h"
+#include "kernels/mesh_view.h"
+#include "common/status.h"
 
 namespace fq::wire {
 

@@ -6,8 +6,8 @@
 #include <exception>
 #include <string>
 
-#include "frame_codec.h"
-#include "frame_split.h"
+#include "proto/frame_codec.h"
+#include "proto/frame_split.h"
 
 namespace fq::wire {
 namespace {

@@ -9,9 +9,9 @@
 #include <memory>
 #include <string>
 
-#include "frame_codec.h"
-#include "frame_prep.h"
-#include "frame_split.h"
+#include "proto/frame_codec.h"
+#include "kernels/frame_prep.h"
+#include "proto/frame_split.h"
 
 namespace fq::wire {
 namespace {

@@ -1,5 +1,5 @@
 // Spatial split of a frame into chunks, and the chunk-parallel loop.
-#include "frame_split.h"
+#include "proto/frame_split.h"
 
 #include <algorithm>
 #include <atomic>
@@ -7,7 +7,7 @@
 #include <system_error>
 #include <thread>
 
-#include "parallel_for.h"
+#include "kernels/parallel_for.h"
 
 namespace fq::wire::detail {
 namespace {

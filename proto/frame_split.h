@@ -6,7 +6,7 @@
 #include <functional>
 #include <vector>
 
-#include "mesh_view.h"
+#include "kernels/mesh_view.h"
 
 namespace fq::wire::detail {
 

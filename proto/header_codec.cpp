@@ -1,6 +1,6 @@
 // Strict protobuf parsing (unknown fields and enum values are errors) and the
 // ParamOverrides / StreamParams <-> fq::Params mapping.
-#include "header_codec.h"
+#include "proto/header_codec.h"
 
 #include <google/protobuf/descriptor.h>
 #include <google/protobuf/unknown_field_set.h>

@@ -4,10 +4,10 @@
 #include <cstdint>
 #include <string_view>
 
-#include "fq.pb.h"
-#include "frame_codec.h"
-#include "params.h"
-#include "status.h"
+#include "proto/fq.pb.h"
+#include "proto/frame_codec.h"
+#include "kernels/params.h"
+#include "common/status.h"
 
 namespace fq::wire {
 

@@ -1,4 +1,4 @@
-#include "mesh_io.h"
+#include "proto/mesh_io.h"
 
 #include <algorithm>
 #include <cctype>
@@ -8,10 +8,10 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "draco_reader.h"
-#include "drc_writer.h"
-#include "ply_reader.h"
-#include "ply_writer.h"
+#include "proto/draco_reader.h"
+#include "proto/drc_writer.h"
+#include "proto/ply_reader.h"
+#include "proto/ply_writer.h"
 
 namespace fq::io {
 

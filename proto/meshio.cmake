@@ -7,5 +7,4 @@ add_library(fq_meshio STATIC
   ${CMAKE_CURRENT_LIST_DIR}/ply_extent_check.cpp
   ${CMAKE_CURRENT_LIST_DIR}/ply_reader.cpp
   ${CMAKE_CURRENT_LIST_DIR}/ply_writer.cpp)
-target_include_directories(fq_meshio PUBLIC "${CMAKE_CURRENT_LIST_DIR}")
 target_link_libraries(fq_meshio PUBLIC fq_kernels fq_options PRIVATE draco::draco)

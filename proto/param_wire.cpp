@@ -1,7 +1,7 @@
 // ParamOverrides / StreamParams / Compute <-> fq::Params.
 #include <string>
 
-#include "header_codec.h"
+#include "proto/header_codec.h"
 
 namespace fq::wire {
 namespace {

@@ -1,4 +1,4 @@
-#include "ply_extent_check.h"
+#include "proto/ply_extent_check.h"
 
 #include <cstdint>
 #include <limits>

@@ -1,12 +1,12 @@
-#include "ply_reader.h"
+#include "proto/ply_reader.h"
 
 #include <vector>
 
 #include "draco/core/decoder_buffer.h"
 #include "draco/io/ply_property_reader.h"
 #include "draco/io/ply_reader.h"
-#include "draco_reader.h"
-#include "ply_extent_check.h"
+#include "proto/draco_reader.h"
+#include "proto/ply_extent_check.h"
 
 namespace fq::io {
 

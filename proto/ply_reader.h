@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "mesh_view.h"
-#include "status.h"
+#include "kernels/mesh_view.h"
+#include "common/status.h"
 
 namespace fq::io {
 

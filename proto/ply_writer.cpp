@@ -1,7 +1,7 @@
 // Why we write PLY ourselves: Draco 1.5.5's PlyEncoder silently drops GENERIC attributes,
 // so it cannot carry cluster labels, and its output has no colours for viewers. The
 // format we need is small: a fixed header and two little-endian binary blocks.
-#include "ply_writer.h"
+#include "proto/ply_writer.h"
 
 #include <bit>
 #include <cerrno>
@@ -11,7 +11,7 @@
 #include <sstream>
 #include <vector>
 
-#include "cluster_colors.h"
+#include "proto/cluster_colors.h"
 
 namespace fq::io {
 

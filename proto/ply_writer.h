@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string>
 
-#include "mesh_view.h"
-#include "status.h"
+#include "kernels/mesh_view.h"
+#include "common/status.h"
 
 namespace fq::io {
 

@@ -18,7 +18,6 @@ protobuf_generate(TARGET fq_proto LANGUAGE cpp
   IMPORT_DIRS "${CMAKE_CURRENT_LIST_DIR}"
   PROTOC_OUT_DIR "${FQ_PROTO_GEN_DIR}")
 
-target_include_directories(fq_proto PUBLIC "${CMAKE_CURRENT_LIST_DIR}" "${FQ_PROTO_GEN_DIR}")
 target_link_libraries(fq_proto
   PUBLIC fq_kernels fq_options protobuf::libprotobuf draco::draco
   PRIVATE Threads::Threads)

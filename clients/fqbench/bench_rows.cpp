@@ -1,4 +1,4 @@
-#include "bench_rows.h"
+#include "clients/fqbench/bench_rows.h"
 
 #include <sstream>
 

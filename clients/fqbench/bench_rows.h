@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "params.h"
+#include "kernels/params.h"
 
 namespace fq::bench {
 

@@ -1,4 +1,4 @@
-#include "bench_stats.h"
+#include "clients/fqbench/bench_stats.h"
 
 #include <algorithm>
 #include <cmath>

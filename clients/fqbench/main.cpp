@@ -10,12 +10,12 @@
 #include <memory>
 #include <string>
 
-#include "bench_rows.h"
-#include "bench_stats.h"
-#include "cpu_engine.h"
-#include "engine.h"
-#include "mesh_io.h"
-#include "neighbour_stats.h"
+#include "clients/fqbench/bench_rows.h"
+#include "clients/fqbench/bench_stats.h"
+#include "kernels/cpu_engine.h"
+#include "kernels/engine.h"
+#include "proto/mesh_io.h"
+#include "clients/fqbench/neighbour_stats.h"
 
 namespace {
 

@@ -1,10 +1,10 @@
-#include "neighbour_stats.h"
+#include "clients/fqbench/neighbour_stats.h"
 
 #include <vector>
 
-#include "frame_prep.h"
-#include "grid_build.h"
-#include "parallel_for.h"
+#include "kernels/frame_prep.h"
+#include "kernels/grid_build.h"
+#include "kernels/parallel_for.h"
 
 namespace fq::bench {
 

@@ -3,8 +3,8 @@
 // visitor as the engines).
 #pragma once
 
-#include "mesh_view.h"
-#include "params.h"
+#include "kernels/mesh_view.h"
+#include "kernels/params.h"
 
 namespace fq::bench {
 

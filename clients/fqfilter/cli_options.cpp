@@ -1,4 +1,4 @@
-#include "cli_options.h"
+#include "clients/fqfilter/cli_options.h"
 
 #include <CLI/CLI.hpp>
 #include <iostream>

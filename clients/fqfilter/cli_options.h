@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string>
 
-#include "engine.h"
-#include "params.h"
+#include "kernels/engine.h"
+#include "kernels/params.h"
 
 namespace fq::cli {
 

@@ -1,12 +1,12 @@
-#include "file_job.h"
+#include "clients/fqfilter/file_job.h"
 
 #include <vector>
 
-#include "cpu_engine.h"
-#include "mesh_io.h"
-#include "metrics.h"
-#include "noise.h"
-#include "surface_distance.h"
+#include "kernels/cpu_engine.h"
+#include "proto/mesh_io.h"
+#include "eval/error_metrics.h"
+#include "eval/noise.h"
+#include "eval/surface_distance.h"
 
 namespace fq::cli {
 

@@ -3,10 +3,10 @@
 
 #include <string>
 
-#include "cli_options.h"
-#include "engine.h"
-#include "file_report.h"
-#include "status.h"
+#include "clients/fqfilter/cli_options.h"
+#include "kernels/engine.h"
+#include "clients/fqfilter/file_report.h"
+#include "common/status.h"
 
 namespace fq::cli {
 

@@ -1,4 +1,4 @@
-#include "file_report.h"
+#include "clients/fqfilter/file_report.h"
 
 #include <algorithm>
 #include <charconv>
@@ -8,7 +8,7 @@
 #include <numbers>
 #include <ostream>
 
-#include "cli_options.h"
+#include "clients/fqfilter/cli_options.h"
 
 namespace fq::cli {
 

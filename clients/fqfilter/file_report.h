@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "engine.h"
-#include "metrics.h"
-#include "params.h"
-#include "surface_distance.h"
+#include "kernels/engine.h"
+#include "eval/error_metrics.h"
+#include "kernels/params.h"
+#include "eval/surface_distance.h"
 
 namespace fq::cli {
 

@@ -1,11 +1,11 @@
-#include "folder_mode.h"
+#include "clients/fqfilter/folder_mode.h"
 
 #include <algorithm>
 #include <iostream>
 #include <map>
 
-#include "file_job.h"
-#include "mesh_io.h"
+#include "clients/fqfilter/file_job.h"
+#include "proto/mesh_io.h"
 
 namespace fq::cli {
 

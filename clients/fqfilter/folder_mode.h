@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "cli_options.h"
-#include "engine.h"
+#include "clients/fqfilter/cli_options.h"
+#include "kernels/engine.h"
 
 namespace fq::cli {
 

@@ -3,11 +3,11 @@
 #include <filesystem>
 #include <iostream>
 
-#include "cli_options.h"
-#include "engine.h"
-#include "file_job.h"
-#include "folder_mode.h"
-#include "mesh_io.h"
+#include "clients/fqfilter/cli_options.h"
+#include "kernels/engine.h"
+#include "clients/fqfilter/file_job.h"
+#include "clients/fqfilter/folder_mode.h"
+#include "proto/mesh_io.h"
 
 namespace {
 

@@ -8,9 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "frame_sender.h"
-#include "mesh_source.h"
-#include "override_options.h"
+#include "clients/common/frame_sender.h"
+#include "clients/common/mesh_source.h"
+#include "clients/common/override_options.h"
 
 namespace {
 

@@ -1,7 +1,7 @@
-#include "collector.h"
+#include "clients/fqstreambench/collector.h"
 
-#include "frame_sender.h"
-#include "result_receiver.h"
+#include "clients/common/frame_sender.h"
+#include "clients/common/result_receiver.h"
 
 namespace fq::bench {
 

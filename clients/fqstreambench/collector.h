@@ -9,9 +9,9 @@
 #include <string>
 #include <zmq.hpp>
 
-#include "mesh_view.h"
-#include "status.h"
-#include "stream_stats.h"
+#include "kernels/mesh_view.h"
+#include "common/status.h"
+#include "clients/common/stream_stats.h"
 
 namespace fq::bench {
 

@@ -12,13 +12,13 @@
 #include <filesystem>
 #include <thread>
 
-#include "collector.h"
-#include "control_client.h"
-#include "daemon.h"
-#include "mesh_io.h"
-#include "override_options.h"
-#include "producer.h"
-#include "report.h"
+#include "clients/fqstreambench/collector.h"
+#include "clients/common/control_client.h"
+#include "daemon/daemon.h"
+#include "proto/mesh_io.h"
+#include "clients/common/override_options.h"
+#include "clients/fqstreambench/producer.h"
+#include "clients/fqstreambench/report.h"
 
 namespace {
 

@@ -1,9 +1,9 @@
-#include "producer.h"
+#include "clients/fqstreambench/producer.h"
 
 #include <chrono>
 #include <thread>
 
-#include "noise.h"
+#include "eval/noise.h"
 
 namespace fq::bench {
 

@@ -8,9 +8,9 @@
 #include <vector>
 #include <zmq.hpp>
 
-#include "frame_sender.h"
-#include "mesh_view.h"
-#include "status.h"
+#include "clients/common/frame_sender.h"
+#include "kernels/mesh_view.h"
+#include "common/status.h"
 
 namespace fq::bench {
 

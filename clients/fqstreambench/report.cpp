@@ -1,4 +1,4 @@
-#include "report.h"
+#include "clients/fqstreambench/report.h"
 
 #include <cstdio>
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "fq.pb.h"
-#include "stream_stats.h"
+#include "proto/fq.pb.h"
+#include "clients/common/stream_stats.h"
 
 namespace fq::bench {
 

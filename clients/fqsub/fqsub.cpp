@@ -10,9 +10,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "mesh_io.h"
-#include "result_receiver.h"
-#include "stream_stats.h"
+#include "proto/mesh_io.h"
+#include "clients/common/result_receiver.h"
+#include "clients/common/stream_stats.h"
 
 namespace {
 

@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <cub/device/device_scan.cuh>
 
-#include "cuda_check.cuh"
-#include "launch.cuh"
-#include "passes.cuh"
+#include "kernels/cuda/cuda_check.cuh"
+#include "kernels/cuda/launch.cuh"
+#include "kernels/cuda/passes.cuh"
 
 namespace fq::cuda {
 

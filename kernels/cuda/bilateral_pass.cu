@@ -4,11 +4,11 @@
 #include <climits>
 #include <cstring>
 
-#include "bilateral_math.h"
-#include "cuda_check.cuh"
-#include "gaussian.h"
-#include "launch.cuh"
-#include "passes.cuh"
+#include "kernels/bilateral_math.h"
+#include "kernels/cuda/cuda_check.cuh"
+#include "kernels/gaussian.h"
+#include "kernels/cuda/launch.cuh"
+#include "kernels/cuda/passes.cuh"
 
 namespace fq::cuda {
 

@@ -3,11 +3,11 @@
 // in input order -- the CPU's numbering (roots sorted by input index).
 #include <cub/device/device_scan.cuh>
 
-#include "cluster_math.h"
-#include "cuda_check.cuh"
-#include "gaussian.h"
-#include "launch.cuh"
-#include "passes.cuh"
+#include "kernels/cluster_math.h"
+#include "kernels/cuda/cuda_check.cuh"
+#include "kernels/gaussian.h"
+#include "kernels/cuda/launch.cuh"
+#include "kernels/cuda/passes.cuh"
 
 namespace fq::cuda {
 

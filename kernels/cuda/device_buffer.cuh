@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <utility>
 
-#include "cuda_check.cuh"
+#include "kernels/cuda/cuda_check.cuh"
 
 namespace fq::cuda {
 

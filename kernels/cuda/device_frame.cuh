@@ -5,12 +5,12 @@
 
 #include <cstdint>
 
-#include "device_buffer.cuh"
-#include "device_grid.cuh"
-#include "packed_quadric.cuh"
-#include "quadric.h"
-#include "triangle_math.h"
-#include "vec3.h"
+#include "kernels/cuda/device_buffer.cuh"
+#include "kernels/cuda/device_grid.cuh"
+#include "kernels/cuda/packed_quadric.cuh"
+#include "kernels/quadric.h"
+#include "kernels/triangle_math.h"
+#include "kernels/vec3.h"
 
 namespace fq::cuda {
 

@@ -2,9 +2,9 @@
 #include <cub/device/device_scan.cuh>
 #include <cub/device/device_segmented_sort.cuh>
 
-#include "cuda_check.cuh"
-#include "device_grid.cuh"
-#include "launch.cuh"
+#include "kernels/cuda/cuda_check.cuh"
+#include "kernels/cuda/device_grid.cuh"
+#include "kernels/cuda/launch.cuh"
 
 namespace fq::cuda {
 

@@ -8,10 +8,10 @@
 
 #include <cstdint>
 
-#include "device_buffer.cuh"
-#include "grid.h"
-#include "grid_build.h"
-#include "vec3.h"
+#include "kernels/cuda/device_buffer.cuh"
+#include "kernels/grid.h"
+#include "kernels/grid_build.h"
+#include "kernels/vec3.h"
 
 namespace fq::cuda {
 

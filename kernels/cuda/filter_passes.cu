@@ -1,10 +1,10 @@
 // Filter passes of the CUDA engine: one thread per vertex (grid order) or per triangle,
 // each calling the same host+device math as the CPU engine (kernels/*_math.h).
-#include "cuda_check.cuh"
-#include "filter_math.h"
-#include "gaussian.h"
-#include "launch.cuh"
-#include "passes.cuh"
+#include "kernels/cuda/cuda_check.cuh"
+#include "kernels/filter_math.h"
+#include "kernels/gaussian.h"
+#include "kernels/cuda/launch.cuh"
+#include "kernels/cuda/passes.cuh"
 
 namespace fq::cuda {
 

@@ -2,8 +2,8 @@
 #include <cstring>
 #include <limits>
 
-#include "host_staging.h"
-#include "parallel_for.h"
+#include "kernels/cuda/host_staging.h"
+#include "kernels/parallel_for.h"
 
 namespace fq::cuda {
 

@@ -6,9 +6,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "frame_prep.h"
-#include "mesh_view.h"
-#include "vec3.h"
+#include "kernels/frame_prep.h"
+#include "kernels/mesh_view.h"
+#include "kernels/vec3.h"
 
 namespace fq::cuda {
 

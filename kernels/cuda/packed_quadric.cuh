@@ -7,8 +7,8 @@
 
 #include <cstdint>
 
-#include "quadric.h"
-#include "vec3.h"
+#include "kernels/quadric.h"
+#include "kernels/vec3.h"
 
 namespace fq::cuda {
 

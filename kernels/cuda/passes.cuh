@@ -5,8 +5,8 @@
 
 #include <cuda_runtime.h>
 
-#include "device_frame.cuh"
-#include "params.h"
+#include "kernels/cuda/device_frame.cuh"
+#include "kernels/params.h"
 
 namespace fq::cuda {
 

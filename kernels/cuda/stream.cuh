@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "cuda_check.cuh"
-#include "device_buffer.cuh"
+#include "kernels/cuda/cuda_check.cuh"
+#include "kernels/cuda/device_buffer.cuh"
 
 namespace fq::cuda {
 

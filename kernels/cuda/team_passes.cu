@@ -3,13 +3,13 @@
 // (filter_math.h, cluster_math.h); the lanes' partial sums are combined by shuffles, so
 // the summation order (not the neighbour set or the math) differs from the CPU; link keeps
 // the CPU's tie-break exactly.
-#include "cluster_math.h"
-#include "filter_math.h"
-#include "cuda_check.cuh"
-#include "gaussian.h"
-#include "launch.cuh"
-#include "team_passes.cuh"
-#include "team_visit.cuh"
+#include "kernels/cluster_math.h"
+#include "kernels/filter_math.h"
+#include "kernels/cuda/cuda_check.cuh"
+#include "kernels/gaussian.h"
+#include "kernels/cuda/launch.cuh"
+#include "kernels/cuda/team_passes.cuh"
+#include "kernels/cuda/team_visit.cuh"
 
 // Occupancy experiment (docs/BENCHMARKS.md): build with -DFQ_TEAM_MIN_BLOCKS=6 to cap the
 // team kernels at 40 registers (6 blocks of 256 per SM); 0 leaves the compiler's choice.

@@ -7,11 +7,11 @@
 
 #include <cstdint>
 
-#include "filter_math.h"
-#include "grid.h"
-#include "packed_quadric.cuh"
-#include "quadric.h"
-#include "vec3.h"
+#include "kernels/filter_math.h"
+#include "kernels/grid.h"
+#include "kernels/cuda/packed_quadric.cuh"
+#include "kernels/quadric.h"
+#include "kernels/vec3.h"
 
 namespace fq::cuda {
 

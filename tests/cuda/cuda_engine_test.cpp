@@ -1,6 +1,6 @@
 // The CUDA engine against the CPU engine on meshes made in code, its allocation
 // behaviour and its error paths. Without a device only the availability tests run.
-#include "cuda_engine.h"
+#include "kernels/cuda_engine.h"
 
 #include <gtest/gtest.h>
 
@@ -8,9 +8,9 @@
 #include <limits>
 #include <string>
 
-#include "noise.h"
-#include "parity.h"
-#include "support/test_meshes.h"
+#include "eval/noise.h"
+#include "tests/cuda/parity.h"
+#include "tests/support/test_meshes.h"
 
 namespace fq::test {
 namespace {

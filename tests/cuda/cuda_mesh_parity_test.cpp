@@ -4,9 +4,9 @@
 
 #include <string>
 
-#include "mesh_io.h"
-#include "parity.h"
-#include "support/mesh_dir.h"
+#include "proto/mesh_io.h"
+#include "tests/cuda/parity.h"
+#include "tests/support/mesh_dir.h"
 
 namespace fq::test {
 namespace {

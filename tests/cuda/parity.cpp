@@ -1,4 +1,4 @@
-#include "parity.h"
+#include "tests/cuda/parity.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <map>
 #include <utility>
 
-#include "cpu_engine.h"
-#include "cuda_engine.h"
+#include "kernels/cpu_engine.h"
+#include "kernels/cuda_engine.h"
 
 namespace fq::test {
 

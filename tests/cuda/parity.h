@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "engine.h"
-#include "mesh_view.h"
+#include "kernels/engine.h"
+#include "kernels/mesh_view.h"
 
 namespace fq::test {
 

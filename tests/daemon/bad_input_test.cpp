@@ -6,10 +6,10 @@
 #include <functional>
 #include <limits>
 
-#include "daemon_harness.h"
-#include "draco_plain.h"
-#include "header_codec.h"
-#include "support/test_meshes.h"
+#include "tests/daemon/daemon_harness.h"
+#include "tests/daemon/draco_plain.h"
+#include "proto/header_codec.h"
+#include "tests/support/test_meshes.h"
 
 namespace fq::test {
 namespace {

@@ -7,9 +7,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "child_process.h"
-#include "daemon_harness.h"
-#include "mesh_io.h"
+#include "tests/daemon/child_process.h"
+#include "tests/daemon/daemon_harness.h"
+#include "proto/mesh_io.h"
 
 namespace fq::test {
 namespace {

@@ -1,8 +1,8 @@
 // The control request handler without sockets: malformed and empty requests get ok = false.
 #include <gtest/gtest.h>
 
-#include "control_server.h"
-#include "header_codec.h"
+#include "daemon/control_server.h"
+#include "proto/header_codec.h"
 
 namespace fq::daemon {
 namespace {

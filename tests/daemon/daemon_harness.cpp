@@ -1,9 +1,9 @@
-#include "daemon_harness.h"
+#include "tests/daemon/daemon_harness.h"
 
 #include <gtest/gtest.h>
 
-#include "noise.h"
-#include "support/test_meshes.h"
+#include "eval/noise.h"
+#include "tests/support/test_meshes.h"
 
 namespace fq::test {
 

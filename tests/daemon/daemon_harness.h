@@ -9,11 +9,11 @@
 #include <vector>
 #include <zmq.hpp>
 
-#include "config.h"
-#include "control_client.h"
-#include "daemon.h"
-#include "frame_sender.h"
-#include "result_receiver.h"
+#include "daemon/config.h"
+#include "clients/common/control_client.h"
+#include "daemon/daemon.h"
+#include "clients/common/frame_sender.h"
+#include "clients/common/result_receiver.h"
 
 namespace fq::test {
 

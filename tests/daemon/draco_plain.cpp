@@ -1,4 +1,4 @@
-#include "draco_plain.h"
+#include "tests/daemon/draco_plain.h"
 
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>

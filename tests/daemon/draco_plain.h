@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "mesh_view.h"
+#include "kernels/mesh_view.h"
 
 namespace fq::test {
 

@@ -1,12 +1,12 @@
 // FrameSlots (the latency policy) and the percentile helper, without sockets.
-#include "latency_policy.h"
+#include "daemon/latency_policy.h"
 
 #include <gtest/gtest.h>
 
 #include <thread>
 
-#include "metrics.h"
-#include "work_queue.h"
+#include "daemon/stage_metrics.h"
+#include "daemon/work_queue.h"
 
 namespace fq::daemon {
 namespace {

@@ -6,7 +6,7 @@
 #include <chrono>
 #include <thread>
 
-#include "daemon_harness.h"
+#include "tests/daemon/daemon_harness.h"
 
 namespace fq::test {
 namespace {

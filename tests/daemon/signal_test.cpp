@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "child_process.h"
-#include "daemon_harness.h"
+#include "tests/daemon/child_process.h"
+#include "tests/daemon/daemon_harness.h"
 
 namespace fq::test {
 namespace {

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <array>
 
-#include "cpu_engine.h"
-#include "daemon_harness.h"
-#include "frame_codec.h"
-#include "support/test_meshes.h"
+#include "kernels/cpu_engine.h"
+#include "tests/daemon/daemon_harness.h"
+#include "proto/frame_codec.h"
+#include "tests/support/test_meshes.h"
 
 namespace fq::test {
 namespace {

@@ -1,5 +1,5 @@
 // distance_to_surface against distances known by construction, and against brute force.
-#include "surface_distance.h"
+#include "eval/surface_distance.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "support/test_meshes.h"
+#include "tests/support/test_meshes.h"
 
 namespace fq {
 namespace {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "io_test_util.h"
-#include "mesh_io.h"
+#include "tests/io/io_test_util.h"
+#include "proto/mesh_io.h"
 
 namespace {
 

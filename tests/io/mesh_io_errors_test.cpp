@@ -7,9 +7,9 @@
 
 #include "draco/compression/encode.h"
 #include "draco/point_cloud/point_cloud.h"
-#include "io_test_util.h"
-#include "mesh_io.h"
-#include "support/test_meshes.h"
+#include "tests/io/io_test_util.h"
+#include "proto/mesh_io.h"
+#include "tests/support/test_meshes.h"
 
 namespace fq::io {
 namespace {

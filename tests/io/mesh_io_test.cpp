@@ -1,6 +1,6 @@
 // fq_meshio round trips: our PLY writer, Draco .drc with labels, and real meshes read
 // with their vertex count and order intact.
-#include "mesh_io.h"
+#include "proto/mesh_io.h"
 
 #include <gtest/gtest.h>
 
@@ -9,11 +9,11 @@
 #include <sstream>
 #include <vector>
 
-#include "cluster_colors.h"
+#include "proto/cluster_colors.h"
 #include "draco/compression/decode.h"
-#include "io_test_util.h"
-#include "support/mesh_dir.h"
-#include "support/test_meshes.h"
+#include "tests/io/io_test_util.h"
+#include "tests/support/mesh_dir.h"
+#include "tests/support/test_meshes.h"
 
 namespace fq::io {
 namespace {

@@ -1,7 +1,7 @@
 // Quadric quick shift (kernels/cluster_math.h and the CPU stages): structural invariants
 // of the links and labels, monotonicity in theta, and cluster counts on a cube (one
 // cluster per face) and on the Stanford bunny (the paper's Table 3).
-#include "cluster_math.h"
+#include "kernels/cluster_math.h"
 
 #include <gtest/gtest.h>
 
@@ -10,14 +10,14 @@
 #include <set>
 #include <string>
 
-#include "cpu_engine.h"
-#include "cpu_frame.h"
-#include "cpu_stages.h"
-#include "frame_prep.h"
-#include "mesh_io.h"
-#include "noise.h"
-#include "support/mesh_dir.h"
-#include "support/test_meshes.h"
+#include "kernels/cpu_engine.h"
+#include "kernels/cpu_frame.h"
+#include "kernels/cpu_stages.h"
+#include "kernels/frame_prep.h"
+#include "proto/mesh_io.h"
+#include "eval/noise.h"
+#include "tests/support/mesh_dir.h"
+#include "tests/support/test_meshes.h"
 
 namespace fq {
 namespace {

@@ -1,6 +1,6 @@
 // Broken and unusual meshes: each one either filters and clusters with an ok status and
 // all-finite output, or is refused with a clear kInvalidInput status. Never a crash.
-#include "cpu_engine.h"
+#include "kernels/cpu_engine.h"
 
 #include <gtest/gtest.h>
 
@@ -9,9 +9,9 @@
 #include <limits>
 #include <string>
 
-#include "frame_prep.h"
-#include "noise.h"
-#include "support/test_meshes.h"
+#include "kernels/frame_prep.h"
+#include "eval/noise.h"
+#include "tests/support/test_meshes.h"
 
 namespace fq {
 namespace {

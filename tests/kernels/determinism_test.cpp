@@ -1,15 +1,15 @@
 // Results do not depend on the thread count nor on what the engine processed before:
 // every per-vertex sum runs over neighbours in grid order, so positions and labels must be
 // bit-identical, not merely close.
-#include "cpu_engine.h"
+#include "kernels/cpu_engine.h"
 
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <string>
 
-#include "noise.h"
-#include "support/test_meshes.h"
+#include "eval/noise.h"
+#include "tests/support/test_meshes.h"
 
 namespace fq {
 namespace {

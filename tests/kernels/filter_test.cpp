@@ -1,7 +1,7 @@
 // Behaviour of the CPU engine's filters on meshes whose true surface is known: noise is
 // removed, sharp edges survive, clean meshes stay put. All lengths are in mean edges.
 // Numbers in comments were measured on this code (CpuEngine, 2 threads, x86-64).
-#include "cpu_engine.h"
+#include "kernels/cpu_engine.h"
 
 #include <gtest/gtest.h>
 
@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "frame_prep.h"
-#include "metrics.h"
-#include "noise.h"
-#include "support/test_meshes.h"
+#include "kernels/frame_prep.h"
+#include "eval/error_metrics.h"
+#include "eval/noise.h"
+#include "tests/support/test_meshes.h"
 
 namespace fq {
 namespace {

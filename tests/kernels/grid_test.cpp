@@ -1,7 +1,7 @@
 // The uniform grid and its neighbour visitor (kernels/grid.h, grid_build.h) against brute
 // force: for every query the visitor must report exactly the points within the radius,
 // each once; no missing and no extra neighbours, whatever the cloud, radius or query.
-#include "grid.h"
+#include "kernels/grid.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "grid_build.h"
+#include "kernels/grid_build.h"
 
 namespace fq {
 namespace {

@@ -1,6 +1,6 @@
 // Location of the shared meshes (tests/support/mesh_dir.h): the environment variable
 // FQ_MESH_DIR wins over the folder configured at build time.
-#include "support/mesh_dir.h"
+#include "tests/support/mesh_dir.h"
 
 #include <gtest/gtest.h>
 

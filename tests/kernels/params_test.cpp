@@ -1,7 +1,7 @@
 // Parameter validation (kernels/params.h): every bad value is an kInvalidArgument whose
 // message names the parameter, both from validate() and from the engine, and the engine
 // stays usable afterwards.
-#include "params.h"
+#include "kernels/params.h"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 #include <limits>
 #include <string>
 
-#include "cpu_engine.h"
-#include "support/test_meshes.h"
+#include "kernels/cpu_engine.h"
+#include "tests/support/test_meshes.h"
 
 namespace fq {
 namespace {

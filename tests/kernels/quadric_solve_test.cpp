@@ -2,7 +2,7 @@
 // full rank, a Tikhonov pull that only shortens the step along the constrained directions
 // and never moves along flat ones, finite steps on every singular quadric, and the
 // normal-constrained step.
-#include "quadric_solve.h"
+#include "kernels/quadric_solve.h"
 
 #include <gtest/gtest.h>
 

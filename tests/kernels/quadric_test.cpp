@@ -1,7 +1,7 @@
 // Quadric algebra (kernels/quadric.h): a plane quadric is the squared distance to the
 // plane, sums and weights evaluate linearly, and moving a quadric's frame does not move
 // the function it describes.
-#include "quadric.h"
+#include "kernels/quadric.h"
 
 #include <gtest/gtest.h>
 

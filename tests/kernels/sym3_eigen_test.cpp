@@ -1,6 +1,6 @@
 // Jacobi eigen-decomposition (kernels/sym3_eigen.h) on random symmetric matrices and on
 // the degenerate spectra that quadrics produce (rank 1, rank 2, repeated eigenvalues).
-#include "sym3_eigen.h"
+#include "kernels/sym3_eigen.h"
 
 #include <gtest/gtest.h>
 

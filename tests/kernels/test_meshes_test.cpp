@@ -1,6 +1,6 @@
 // The meshes made in code are what their comments promise: counts, closedness,
 // orientation and exact positions (other tests rely on all of these).
-#include "support/test_meshes.h"
+#include "tests/support/test_meshes.h"
 
 #include <gtest/gtest.h>
 

@@ -8,8 +8,8 @@
 #include <ctime>
 #include <string>
 
-#include "frame_codec.h"
-#include "proto_test_meshes.h"
+#include "proto/frame_codec.h"
+#include "tests/proto/proto_test_meshes.h"
 
 namespace {
 

@@ -10,8 +10,8 @@
 #include <memory>
 #include <string>
 
-#include "frame_codec.h"
-#include "proto_test_meshes.h"
+#include "proto/frame_codec.h"
+#include "tests/proto/proto_test_meshes.h"
 
 namespace fq::wire {
 namespace {

@@ -1,5 +1,5 @@
 // Chunked Draco frames: split, encode, decode and merge give back the input mesh.
-#include "frame_codec.h"
+#include "proto/frame_codec.h"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <cmath>
 #include <string>
 
-#include "frame_split.h"
-#include "proto_test_meshes.h"
+#include "proto/frame_split.h"
+#include "tests/proto/proto_test_meshes.h"
 
 namespace fq::wire {
 namespace {

@@ -1,5 +1,5 @@
 // Strict parsing of the wire headers and the ParamOverrides / StreamParams mapping.
-#include "header_codec.h"
+#include "proto/header_codec.h"
 
 #include <google/protobuf/util/message_differencer.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "proto_test_meshes.h"
+#include "tests/proto/proto_test_meshes.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "mesh_dir.h"
+#include "tests/support/mesh_dir.h"
 
 #include <cstdlib>
 #include <filesystem>

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "mesh_view.h"
-#include "vec3.h"
+#include "kernels/mesh_view.h"
+#include "kernels/vec3.h"
 
 namespace fq::test {
 

@@ -1,5 +1,5 @@
 // RMSE/diagonal and mean face normal error on cases whose answer is known by hand.
-#include "metrics.h"
+#include "eval/error_metrics.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <numbers>
 #include <vector>
 
-#include "support/test_meshes.h"
+#include "tests/support/test_meshes.h"
 
 namespace fq {
 namespace {

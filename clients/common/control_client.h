@@ -4,8 +4,8 @@
 #include <string>
 #include <zmq.hpp>
 
-#include "fq.pb.h"
-#include "status.h"
+#include "proto/fq.pb.h"
+#include "common/status.h"
 
 namespace fq::client {
 

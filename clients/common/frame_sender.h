@@ -7,10 +7,10 @@
 #include <vector>
 #include <zmq.hpp>
 
-#include "fq.pb.h"
-#include "frame_codec.h"
-#include "mesh_view.h"
-#include "status.h"
+#include "proto/fq.pb.h"
+#include "proto/frame_codec.h"
+#include "kernels/mesh_view.h"
+#include "common/status.h"
 
 namespace fq::client {
 

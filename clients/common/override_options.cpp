@@ -1,4 +1,4 @@
-#include "override_options.h"
+#include "clients/common/override_options.h"
 
 namespace fq::client {
 

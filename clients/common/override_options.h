@@ -6,8 +6,8 @@
 #include <optional>
 #include <string>
 
-#include "fq.pb.h"
-#include "status.h"
+#include "proto/fq.pb.h"
+#include "common/status.h"
 
 namespace fq::client {
 

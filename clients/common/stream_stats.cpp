@@ -1,8 +1,8 @@
-#include "stream_stats.h"
+#include "clients/common/stream_stats.h"
 
 #include <cstdio>
 
-#include "metrics.h"
+#include "daemon/stage_metrics.h"
 
 namespace fq::client {
 namespace {

@@ -1,11 +1,11 @@
-#include "result_receiver.h"
+#include "clients/common/result_receiver.h"
 
 #include <cmath>
 #include <zmq_addon.hpp>
 
-#include "frame_codec.h"
-#include "frame_sender.h"
-#include "header_codec.h"
+#include "proto/frame_codec.h"
+#include "clients/common/frame_sender.h"
+#include "proto/header_codec.h"
 
 namespace fq::client {
 

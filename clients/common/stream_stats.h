@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "result_receiver.h"
+#include "clients/common/result_receiver.h"
 
 namespace fq::client {
 

@@ -1,4 +1,4 @@
-#include "metrics.h"
+#include "eval/error_metrics.h"
 
 #include <algorithm>
 #include <array>

@@ -1,6 +1,6 @@
-#include "control_client.h"
+#include "clients/common/control_client.h"
 
-#include "header_codec.h"
+#include "proto/header_codec.h"
 
 namespace fq::client {
 

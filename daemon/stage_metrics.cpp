@@ -1,4 +1,4 @@
-#include "metrics.h"
+#include "daemon/stage_metrics.h"
 
 #include <algorithm>
 #include <cmath>

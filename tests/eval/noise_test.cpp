@@ -1,13 +1,13 @@
 // Gaussian noise: amplitude in mean edge lengths, Gaussian statistics, seed determinism.
-#include "noise.h"
+#include "eval/noise.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "frame_prep.h"
-#include "support/test_meshes.h"
+#include "kernels/frame_prep.h"
+#include "tests/support/test_meshes.h"
 
 namespace fq {
 namespace {

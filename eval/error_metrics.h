@@ -5,8 +5,8 @@
 
 #include <cstdint>
 
-#include "mesh_view.h"
-#include "status.h"
+#include "kernels/mesh_view.h"
+#include "common/status.h"
 
 namespace fq {
 

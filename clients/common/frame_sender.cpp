@@ -1,9 +1,9 @@
-#include "frame_sender.h"
+#include "clients/common/frame_sender.h"
 
 #include <chrono>
 #include <zmq_addon.hpp>
 
-#include "header_codec.h"
+#include "proto/header_codec.h"
 
 namespace fq::client {
 

@@ -1,10 +1,10 @@
-#include "mesh_source.h"
+#include "clients/common/mesh_source.h"
 
 #include <algorithm>
 #include <filesystem>
 
-#include "mesh_io.h"
-#include "noise.h"
+#include "proto/mesh_io.h"
+#include "eval/noise.h"
 
 namespace fq::client {
 

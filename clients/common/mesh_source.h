@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "mesh_view.h"
-#include "status.h"
+#include "kernels/mesh_view.h"
+#include "common/status.h"
 
 namespace fq::client {
 

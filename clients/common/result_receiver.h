@@ -7,9 +7,9 @@
 #include <vector>
 #include <zmq.hpp>
 
-#include "fq.pb.h"
-#include "mesh_view.h"
-#include "status.h"
+#include "proto/fq.pb.h"
+#include "kernels/mesh_view.h"
+#include "common/status.h"
 
 namespace fq::client {
 
