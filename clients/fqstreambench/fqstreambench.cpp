@@ -92,7 +92,7 @@ std::string stream_compute(zmq::context_t& ctx, const std::string& control, cons
   q.mutable_get_params()->set_stream_id(stream);
   fq::wire::ControlReply r;
   if (!fq::client::control_call(req, q, r).ok()) return "?";
-  switch (r.params().compute()) {
+  switch (r.compute()) {
     case fq::wire::FILTER:
       return "filter";
     case fq::wire::CLUSTER:

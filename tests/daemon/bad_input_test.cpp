@@ -152,7 +152,9 @@ TEST(DaemonBadInput, EveryBadFrameGetsAnErrorResultAndTheNextFrameIsServed) {
 }
 
 TEST(DaemonBadInput, APlainDracoMeshFromAnyProducerIsAValidFrame) {
-  DaemonHarness h;
+  daemon::DaemonConfig c = test_config();
+  c.defaults.output.form = daemon::ResultForm::kMesh;  // results that carry their own faces
+  DaemonHarness h(c);
   const Mesh mesh = noisy_sphere();
   h.send_parts(plain_frame(mesh, draco_plain_mesh(mesh)));
   const client::ReceivedResult r = h.receive_decoded("cam");

@@ -45,7 +45,8 @@ TEST(Clients, FqpubToFqdToFqsubGivesCheckedColouredPlys) {
 
   Child sub =
       spawn(FQSUB_PATH, {"--endpoint", ep.at("publish"), "--stream", "cam", "--count", "3", "--idle-timeout",
-                         "30", "--write-every", "1", "--out", (dir / "out").string(), "--json", "--quiet"});
+                         "30", "--write-every", "1", "--out", (dir / "out").string(), "--faces",
+                         (dir / "sphere.ply").string(), "--json", "--quiet"});
   // 20 frames over 2 s: the subscription is active long before the last ones.
   Child pub =
       spawn(FQPUB_PATH, {(dir / "sphere.ply").string(), "--endpoint", ep.at("ingest"), "--stream", "cam",
