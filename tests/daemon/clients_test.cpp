@@ -14,19 +14,8 @@
 namespace fq::test {
 namespace {
 
-constexpr const char* kConfig = R"(
-log_level = "warn"
-[endpoints]
-ingest = "tcp://127.0.0.1:*"
-publish = "tcp://127.0.0.1:*"
-control = "tcp://127.0.0.1:*"
-[engine]
-kind = "cpu"
-cpu_threads = 1
-[defaults]
-compute = "filter_and_cluster"
-budget_ms = 60000
-)";
+const std::string kConfig = child_fqd_config(R"(compute = "filter_and_cluster"
+)");
 
 TEST(Clients, FqpubToFqdToFqsubGivesCheckedColouredPlys) {
   namespace fs = std::filesystem;
