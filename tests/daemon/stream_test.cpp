@@ -188,6 +188,43 @@ TEST(DaemonStream, ChunkedAndUnchunkedFramesGiveTheSameResult) {
   EXPECT_EQ(one.header.cluster_count(), four.header.cluster_count());
 }
 
+TEST(DaemonStream, BothResultFormsCarryTheSamePositionsAndLabels) {
+  daemon::DaemonConfig c = test_config();
+  c.streams["p"] = c.defaults;
+  c.streams["m"] = c.defaults;
+  c.streams["m"].output.form = daemon::ResultForm::kMesh;
+  DaemonHarness h(c);
+  const Mesh mesh = noisy_sphere(5);
+  h.send(mesh, spec_for("p", 3), 0);
+  h.send(mesh, spec_for("m", 3), 0);
+  const client::ReceivedResult p = h.receive_decoded("p", &mesh);
+  const client::ReceivedResult m = h.receive_decoded("m");
+  EXPECT_EQ(p.header.form(), wire::POSITIONS);
+  EXPECT_EQ(m.header.form(), wire::MESH);
+  EXPECT_EQ(p.header.chunk_count(), 3u);
+  EXPECT_EQ(p.mesh.positions, m.mesh.positions);  // one quantization grid in both forms
+  EXPECT_EQ(p.mesh.triangles, mesh.triangles);
+  EXPECT_EQ(canonical_triangles(m.mesh), canonical_triangles(mesh));
+  ASSERT_EQ(p.header.labels_size(), static_cast<int>(mesh.num_vertices()));
+  EXPECT_EQ(p.labels, m.labels);
+  size_t positions_bytes = 0, mesh_bytes = 0;
+  for (const auto& chunk : p.chunks) positions_bytes += chunk.size();
+  for (const auto& chunk : m.chunks) mesh_bytes += chunk.size();
+  EXPECT_LT(positions_bytes, mesh_bytes) << "the positions form carries no connectivity";
+
+  // A consumer that needs the faces asks for the mesh form on the control socket.
+  wire::ControlRequest set;
+  set.mutable_set_params()->set_stream_id("p");
+  set.mutable_set_params()->set_result_form(wire::MESH);
+  const wire::ControlReply r = h.control(set);
+  ASSERT_TRUE(r.ok()) << r.error();
+  EXPECT_EQ(r.result_form(), wire::MESH);
+  h.send(mesh, spec_for("p", 3), 1);
+  const client::ReceivedResult after = h.receive_decoded("p");
+  EXPECT_EQ(after.header.form(), wire::MESH);
+  EXPECT_EQ(after.mesh.positions, p.mesh.positions);
+}
+
 TEST(DaemonStream, ControlListsStreamsAndCountsWithPercentiles) {
   daemon::DaemonConfig c = test_config();
   c.streams["configured"] = c.defaults;
