@@ -50,18 +50,19 @@ class CudaEngine final : public Engine {
 
  private:
   static constexpr int kMaxMarks = 16;
+  static constexpr int kDownloadChunks = 8;  ///< most chunks of one download
   Status run_frame(const MeshView& mesh, const Params& params, FrameResult& out);
   void upload(const MeshView& mesh);
   Status normalize(const MeshView& mesh, float cell, Normalization& norm);
   void enqueue_passes(const Params& params);
   int team_size() const;
-  void finish_output(const MeshView& mesh, const Params& params, FrameResult& out);
   Status fail(const std::string& what, FrameResult& out);
 
   DeviceSelection device_;
   CudaTuning tuning_;
   cuda::Stream stream_;
   cuda::PassEvents events_;
+  cuda::SyncEvents downloads_{2 * kDownloadChunks};
   cuda::DeviceFrame f_;
   std::string name_;
   int sm_count_ = 1;
@@ -69,21 +70,26 @@ class CudaEngine final : public Engine {
   std::string fault_;
 };
 
+// Labels are left in place (and only resized) for clustering frames, so that a stream of
+// same-sized frames does not zero them every time; any failed frame leaves them empty.
 Status CudaEngine::process(const MeshView& mesh, const Params& params, FrameResult& out) {
   out.timings.clear();
-  out.labels.clear();
   out.num_clusters = 0;
-  if (Status s = validate(params); !s.ok()) return s;
-  if (Status s = check_mesh_counts(mesh); !s.ok()) return s;
-  if (!usable_)
-    return {StatusCode::kInternal, "the CUDA engine is unusable after an earlier device fault: " + fault_};
-  try {
-    return run_frame(mesh, params, out);
-  } catch (const cuda::CudaError& e) {
-    return fail(e.what(), out);
-  } catch (const std::bad_alloc&) {
-    return fail("out of host memory (pinned staging)", out);
+  Status st = validate(params);
+  if (st.ok()) st = check_mesh_counts(mesh);
+  if (st.ok() && !usable_)
+    st = {StatusCode::kInternal, "the CUDA engine is unusable after an earlier device fault: " + fault_};
+  if (st.ok()) {
+    try {
+      st = run_frame(mesh, params, out);
+    } catch (const cuda::CudaError& e) {
+      st = fail(e.what(), out);
+    } catch (const std::bad_alloc&) {
+      st = fail("out of host memory (pinned staging)", out);
+    }
   }
+  if (!st.ok() || !params.cluster) out.labels.clear();
+  return st;
 }
 
 // A bad launch is cleared by reading it; a fault inside a kernel is sticky and leaves the
@@ -205,33 +211,40 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
   if (params.filter) {
     cuda::positions_to_input(f_, norm, s);
     events_.mark("output", s);
-    FQ_CUDA_CHECK(cudaMemcpyAsync(f_.h_positions.reserve(3 * size_t(n)), f_.out_coords.data(),
-                                  3 * size_t(n) * sizeof(float), cudaMemcpyDeviceToHost, s));
+  }
+  // Results come down in chunks, each copied out of pinned memory while the next is in flight.
+  const int half = downloads_.size() / 2;
+  cuda::StagedDownload positions, labels;
+  if (params.filter) {
+    const size_t bytes = 3 * size_t(n) * sizeof(float);
+    out.positions.resize(3 * size_t(n));
+    positions = cuda::enqueue_download(f_.out_coords.data(), out.positions.data(), bytes,
+                                       f_.h_download.reserve(bytes), downloads_.data(), half, s);
   }
   if (params.cluster) {
-    FQ_CUDA_CHECK(cudaMemcpyAsync(f_.h_labels.reserve(n + 1), f_.labels.data(), (n + 1) * sizeof(uint32_t),
-                                  cudaMemcpyDeviceToHost, s));
+    const size_t bytes = size_t(n) * sizeof(uint32_t);
+    uint32_t* staging = f_.h_labels.reserve(n + 1);
+    out.labels.resize(n);
+    labels = cuda::enqueue_download(f_.labels.data(), out.labels.data(), bytes,
+                                    reinterpret_cast<unsigned char*>(staging), downloads_.data() + half, half, s);
+    FQ_CUDA_CHECK(cudaMemcpyAsync(staging + n, f_.labels.data() + n, sizeof(uint32_t), cudaMemcpyDeviceToHost, s));
   }
   events_.mark("download", s);
-  stream_.sync();
-
-  const Clock::time_point t1 = Clock::now();
-  finish_output(mesh, params, out);
-  events_.collect([&](const char* name, double ms) { out.timings.push_back({name, ms}); });
-  out.timings.push_back({"finish", ms_since(t1)});  // host: results out of pinned memory
-  return {};
-}
-
-void CudaEngine::finish_output(const MeshView& mesh, const Params& params, FrameResult& out) {
-  const uint32_t n = f_.n;
-  out.positions.resize(3 * size_t(n));
-  const float* positions = params.filter ? f_.h_positions.data() : mesh.positions;
-  cuda::parallel_copy(out.positions.data(), positions, 3 * size_t(n) * sizeof(float));
-  if (params.cluster) {
-    out.labels.resize(n);
-    cuda::parallel_copy(out.labels.data(), f_.h_labels.data(), size_t(n) * sizeof(uint32_t));
-    out.num_clusters = f_.h_labels.data()[n];
+  if (!params.filter) {  // the input positions, copied while the device works
+    out.positions.resize(3 * size_t(n));
+    cuda::parallel_copy(out.positions.data(), mesh.positions, 3 * size_t(n) * sizeof(float));
   }
+  const cuda::StagedDownload& first = params.filter ? positions : labels;
+  if (first.done) FQ_CUDA_CHECK(cudaEventSynchronize(first.done[0]));
+  const Clock::time_point t1 = Clock::now();
+  if (params.filter) cuda::complete_download(positions);
+  if (params.cluster) cuda::complete_download(labels);
+  stream_.sync();
+  if (params.cluster) out.num_clusters = f_.h_labels.data()[n];
+  events_.collect([&](const char* name, double ms) { out.timings.push_back({name, ms}); });
+  // Host: results out of pinned memory from the first downloaded chunk on (overlaps the download).
+  out.timings.push_back({"finish", ms_since(t1)});
+  return {};
 }
 
 }  // namespace

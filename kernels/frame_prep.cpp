@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
@@ -133,9 +134,14 @@ Status normalization_from(const double lo[3], const double hi[3], double mean_ed
     return invalid_input("mesh is degenerate: every edge has zero length");
   double extent = 0.0;
   for (int k = 0; k < 3; ++k) extent = std::max(extent, hi[k] - lo[k]);
-  if (!(extent / out.mean_edge <= kMaxExtentInEdges))
-    return invalid_input("mesh spans " + std::to_string(extent / out.mean_edge) +
+  if (!(extent / out.mean_edge <= kMaxExtentInEdges)) {
+    // Four digits: the CUDA engine's mean edge can differ in its last bits (another
+    // summation order), and both engines must print the same message.
+    char span[32];
+    std::snprintf(span, sizeof span, "%.4g", extent / out.mean_edge);
+    return invalid_input(std::string("mesh spans ") + span +
                          " mean edge lengths (at most 1e6 supported): is there a far outlier vertex?");
+  }
   return {};
 }
 

@@ -28,8 +28,8 @@ struct DeviceFrame {
   // Pinned staging: the raw frame up, positions and labels down.
   PinnedBuffer<unsigned char> h_upload;  ///< coordinates, then indices, as the caller gave them
   PinnedBuffer<FrameStats> h_stats;
-  PinnedBuffer<float> h_positions;  ///< 3 per vertex, input order and units
-  PinnedBuffer<uint32_t> h_labels;  ///< n labels, then the cluster count
+  PinnedBuffer<unsigned char> h_download;  ///< positions: 3 floats per vertex, input order and units
+  PinnedBuffer<uint32_t> h_labels;         ///< n labels, then the cluster count
   PinnedBuffer<int> h_bounds;
 
   DeviceBuffer<float> in_coords;   ///< 3 per vertex, input units and order

@@ -15,6 +15,23 @@ namespace fq::cuda {
 /// caller's memory may then change, the staging not until `s` has passed the copies.
 void upload_staged(const void* src, void* dst, size_t bytes, unsigned char* staging, cudaStream_t s);
 
+/// A download in chunks through pinned staging, each chunk followed by its own event.
+struct StagedDownload {
+  const unsigned char* staging = nullptr;
+  unsigned char* dst = nullptr;
+  size_t bytes = 0, chunk = 0;
+  const cudaEvent_t* done = nullptr;
+};
+
+/// Enqueues staging (pinned, at least `bytes`) = src (device) on `s` in at most `events`
+/// chunks, recording done[k] after chunk k.
+StagedDownload enqueue_download(const void* src, void* dst, size_t bytes, unsigned char* staging,
+                                const cudaEvent_t* done, int events, cudaStream_t s);
+
+/// Waits for the chunks in turn and copies each out of pinned memory on all host threads
+/// while the next one is still in flight.
+void complete_download(const StagedDownload& d);
+
 /// dst = src, `bytes` long, on all host threads.
 void parallel_copy(void* dst, const void* src, size_t bytes);
 
