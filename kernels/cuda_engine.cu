@@ -140,7 +140,7 @@ Status CudaEngine::normalize(const MeshView& mesh, float cell, Normalization& no
 }
 
 // Lanes per vertex in the neighbourhood passes, from vertices per SM. Measured on the H100
-// (docs/BENCHMARKS.md, sweep of FQ_CUDA_TEAM): small meshes need lanes to fill the GPU
+// (docs/BENCHMARKS.md, sweep of the team size): small meshes need lanes to fill the GPU
 // (bunny: 8 lanes 0.31 ms, 1 lane 0.72 ms); up to ~1.6M vertices 4 lanes still win by
 // making the row loop uniform (dragon 1.90 vs 2.34 ms); above that one thread per vertex
 // is best (igea_x16 7.49 ms vs 7.74 with 4). CudaTuning::team overrides it.

@@ -100,11 +100,14 @@ bool bench_row(const Options& o, Engine& engine, CpuEngine* cpu, const Mesh& mes
 
 void print_summary(const std::vector<RowResult>& results, const std::string& engine, const CudaTuning& cuda,
                    int cpu_threads) {
+  std::string tuning;
+  if (engine.rfind("cuda:", 0) == 0)
+    tuning = " (team " + (cuda.team == CudaTuning::kTeamBySize ? std::string("by size") : std::to_string(cuda.team)) +
+             (cuda.fast_exp ? ", __expf weights)" : ")");
   std::printf(
-      "\nEngine: %s (CUDA team %s%s); device time = sum of the passes' CUDA-event times (transfers and host "
-      "work excluded); ms, median (p10–p90).\n\n",
-      engine.c_str(), cuda.team == CudaTuning::kTeamBySize ? "by size" : std::to_string(cuda.team).c_str(),
-      cuda.fast_exp ? ", __expf weights" : "");
+      "\nEngine: %s%s; device time = sum of the passes' CUDA-event times (transfers and host work "
+      "excluded); ms, median (p10–p90).\n\n",
+      engine.c_str(), tuning.c_str());
   std::printf(
       "| row | mesh | V | F | params | paper row | paper ms | ours: device ms | speed-up | upload ms | "
       "download ms | frame wall ms | CPU engine ms (%d thr) | clusters ours / CPU |\n",
