@@ -3,11 +3,13 @@
 #include <draco/mesh/mesh.h>
 
 #include <algorithm>
+#include <cstring>
 #include <exception>
 #include <string>
 
 #include "proto/frame_codec.h"
 #include "proto/frame_split.h"
+#include "proto/vertex_id_runs.h"
 
 namespace fq::wire {
 namespace {
@@ -35,20 +37,47 @@ bool read_uint_attribute(const draco::Mesh& m, const char* name, bool& present, 
   return true;
 }
 
-fq::Status read_mesh(const draco::Mesh& m, Chunk& c) {
+/// Positions of every point: one copy when Draco decoded them as packed float triples with an
+/// identity point mapping (what the codec's own chunks give), a conversion per point otherwise.
+fq::Status read_positions(const draco::Mesh& m, std::vector<float>& out) {
   const draco::PointAttribute* pos = m.GetNamedAttribute(draco::GeometryAttribute::POSITION);
   if (pos == nullptr || pos->num_components() != 3) return invalid_input("no 3D position attribute");
-  if (m.num_faces() == 0) return invalid_input("mesh has no faces");
-  c.positions.resize(3 * size_t(m.num_points()));
+  out.resize(3 * size_t(m.num_points()));
+  if (pos->is_mapping_identity() && pos->data_type() == draco::DT_FLOAT32 && pos->byte_stride() == 3 * 4 &&
+      pos->size() >= m.num_points() && m.num_points() > 0) {
+    std::memcpy(out.data(), pos->GetAddress(draco::AttributeValueIndex(0)), out.size() * sizeof(float));
+    return {};
+  }
   for (uint32_t p = 0; p < m.num_points(); ++p) {
-    if (!pos->ConvertValue<float>(pos->mapped_index(draco::PointIndex(p)), 3, &c.positions[3 * size_t(p)])) {
+    if (!pos->ConvertValue<float>(pos->mapped_index(draco::PointIndex(p)), 3, &out[3 * size_t(p)])) {
       return invalid_input("unreadable position of point " + std::to_string(p));
     }
   }
+  return {};
+}
+
+/// Global vertex ids: the "fq_vid" attribute, or the runs of a sequentially coded chunk.
+fq::Status read_ids(const draco::Mesh& m, bool sequential, std::vector<uint32_t>& ids) {
   bool has = false;
-  if (!read_uint_attribute(m, kVertexIdAttribute, has, c.ids)) {
+  if (!read_uint_attribute(m, kVertexIdAttribute, has, ids)) {
     return invalid_input(std::string(kVertexIdAttribute) + " is not a single uint32 per point");
   }
+  std::vector<uint8_t> runs;
+  if (has || m.GetMetadata() == nullptr || !m.GetMetadata()->GetEntryBinary(kVertexIdRunsEntry, &runs)) return {};
+  // Runs name points in Draco's point order, which only the sequential coder keeps.
+  if (!sequential) return invalid_input(std::string(kVertexIdRunsEntry) + " in a chunk not sequentially coded");
+  if (!detail::decode_id_runs(runs.data(), runs.size(), m.num_points(), kMaxAttributeValue, ids)) {
+    return invalid_input(std::string(kVertexIdRunsEntry) + " is malformed or does not match the " +
+                         std::to_string(m.num_points()) + " points");
+  }
+  return {};
+}
+
+fq::Status read_mesh(const draco::Mesh& m, bool sequential, Chunk& c) {
+  if (m.num_faces() == 0) return invalid_input("mesh has no faces");
+  if (auto s = read_positions(m, c.positions); !s.ok()) return s;
+  if (auto s = read_ids(m, sequential, c.ids); !s.ok()) return s;
+  bool has = false;
   if (!read_uint_attribute(m, kLabelAttribute, has, c.labels)) {
     return invalid_input(std::string(kLabelAttribute) + " is not a single uint32 per point");
   }
@@ -82,7 +111,9 @@ void decode_chunk(std::string_view bytes, Chunk& c) {
     c.status = invalid_input("undecodable Draco data: " + mesh.status().error_msg_string());
     return;
   }
-  c.status = read_mesh(*mesh.value(), c);
+  // Draco's header: "DRACO", version (2 bytes), encoder type, encoder method (0 = sequential).
+  const bool sequential = bytes.size() > 8 && bytes[8] == 0;
+  c.status = read_mesh(*mesh.value(), sequential, c);
 }
 
 /// A single chunk without fq_vid: a plain Draco mesh, taken in Draco's point order.

@@ -30,8 +30,9 @@ std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, con
 /// Number of workers for_each_chunk uses: min(threads, count), at least 1.
 size_t chunk_workers(size_t count, int threads);
 
-/// Calls fn(i, w) for every i in [0, count) on chunk_workers(count, threads) std::threads
-/// (inline when 1); w < chunk_workers() names the worker, for per-worker scratch space.
+/// Calls fn(i, w) for every i in [0, count) on the calling thread and the shared host pool,
+/// at most chunk_workers(count, threads) at a time (inline when 1); w < chunk_workers() names
+/// the worker, for per-worker scratch space.
 /// fn must not throw and must write only the outputs of item i (and worker w's scratch).
 void for_each_chunk(size_t count, int threads, const std::function<void(size_t, size_t)>& fn);
 

@@ -1,0 +1,58 @@
+#include "proto/vertex_id_runs.h"
+
+namespace fq::wire::detail {
+namespace {
+
+void put_varint(uint32_t v, std::vector<uint8_t>& out) {
+  while (v >= 0x80) {
+    out.push_back(static_cast<uint8_t>(v | 0x80));
+    v >>= 7;
+  }
+  out.push_back(static_cast<uint8_t>(v));
+}
+
+/// Reads one varint of at most 32 bits at data[pos]; false at the end or on an overlong one.
+bool get_varint(const uint8_t* data, size_t size, size_t& pos, uint32_t& v) {
+  v = 0;
+  for (int shift = 0; shift < 35; shift += 7) {
+    if (pos >= size) return false;
+    const uint8_t b = data[pos++];
+    if (shift == 28 && (b & 0xf0) != 0) return false;
+    v |= uint32_t(b & 0x7f) << shift;
+    if ((b & 0x80) == 0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void encode_id_runs(const std::vector<uint32_t>& ids, std::vector<uint8_t>& out) {
+  out.clear();
+  out.reserve(ids.size() / 4 + 16);
+  uint32_t end = 0;  // one past the previous run
+  for (size_t i = 0; i < ids.size();) {
+    size_t j = i + 1;
+    while (j < ids.size() && ids[j] == ids[j - 1] + 1) ++j;
+    put_varint(ids[i] - end, out);
+    put_varint(static_cast<uint32_t>(j - i), out);
+    end = ids[j - 1] + 1;
+    i = j;
+  }
+}
+
+bool decode_id_runs(const uint8_t* data, size_t size, size_t count, uint32_t limit, std::vector<uint32_t>& ids) {
+  ids.clear();
+  ids.reserve(count);
+  uint64_t end = 0;
+  for (size_t pos = 0; pos < size;) {
+    uint32_t gap = 0, run = 0;
+    if (!get_varint(data, size, pos, gap) || !get_varint(data, size, pos, run) || run == 0) return false;
+    const uint64_t first = end + gap;
+    end = first + run;
+    if (end > limit || ids.size() + run > count) return false;
+    for (uint64_t id = first; id < end; ++id) ids.push_back(static_cast<uint32_t>(id));
+  }
+  return ids.size() == count;
+}
+
+}  // namespace fq::wire::detail
