@@ -33,28 +33,23 @@ void add_uint_attribute(draco::Mesh& m, const char* name, const std::vector<uint
 /// ids keep the input's vertex order, usually spatially coherent, for Draco's sequential coder,
 /// and make the ids a few long runs. A bitmap of the frame's vertices (V / 8 bytes, cache
 /// resident) marks the chunk's ones; reading it back in order sorts them without a sort.
-std::vector<uint32_t> chunk_vertices(const fq::MeshView& mesh, const std::vector<uint32_t>& tris,
+std::vector<uint32_t> chunk_vertices(const fq::MeshView& mesh, const std::vector<uint32_t>& corners,
                                      ChunkScratch& scratch) {
-  scratch.seen.resize((size_t(mesh.num_vertices) + 63) / 64, 0);
+  const size_t words = (size_t(mesh.num_vertices) + 63) / 64;
+  scratch.seen.resize(words, 0);
   scratch.local.resize(mesh.num_vertices);
   uint64_t* seen = scratch.seen.data();
-  uint32_t lo = ~0u, hi = 0;
-  for (uint32_t t : tris) {
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t g = mesh.triangles[3 * size_t(t) + k];
-      seen[g >> 6] |= uint64_t{1} << (g & 63);
-      lo = std::min(lo, g);
-      hi = std::max(hi, g);
-    }
-  }
+  for (uint32_t g : corners) seen[g >> 6] |= uint64_t{1} << (g & 63);
   std::vector<uint32_t> global;
-  global.reserve(tris.size() / 2 + 16);
-  for (uint32_t w = lo >> 6; !tris.empty() && w <= hi >> 6; ++w) {
+  global.reserve(corners.size() / 6 + 16);
+  for (size_t w = 0; w < words; ++w) {
+    if (seen[w] == 0) continue;
     for (uint64_t bits = seen[w]; bits != 0; bits &= bits - 1) {
-      const uint32_t g = w * 64 + static_cast<uint32_t>(std::countr_zero(bits));
+      const auto g = static_cast<uint32_t>(w * 64 + size_t(std::countr_zero(bits)));
       scratch.local[g] = static_cast<uint32_t>(global.size());
       global.push_back(g);
     }
+    if (scratch.used != nullptr) scratch.used[w].fetch_or(seen[w], std::memory_order_relaxed);
     seen[w] = 0;  // all zero again for the next chunk
   }
   return global;
@@ -63,13 +58,14 @@ std::vector<uint32_t> chunk_vertices(const fq::MeshView& mesh, const std::vector
 }  // namespace
 
 bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids, const CodecOptions& o,
-                 const std::vector<uint32_t>& tris, ChunkScratch& scratch, draco::Mesh& m) {
-  const std::vector<uint32_t> global = chunk_vertices(mesh, tris, scratch);
+                 const std::vector<uint32_t>& corners, ChunkScratch& scratch, draco::Mesh& m) {
+  const std::vector<uint32_t> global = chunk_vertices(mesh, corners, scratch);
   const uint32_t* local = scratch.local.data();
-  m.SetNumFaces(tris.size());
+  const size_t faces = corners.size() / 3;
+  m.SetNumFaces(faces);
   bool repeated_index = false;
-  for (size_t t = 0; t < tris.size(); ++t) {
-    const uint32_t* f = mesh.triangles + 3 * size_t(tris[t]);
+  for (size_t t = 0; t < faces; ++t) {
+    const uint32_t* f = corners.data() + 3 * t;
     repeated_index |= f[0] == f[1] || f[1] == f[2] || f[2] == f[0];
     m.SetFace(
         draco::FaceIndex(static_cast<uint32_t>(t)),

@@ -2,6 +2,7 @@
 // Shared by encode_frame and by fqbench's codec floor (the same chunks, positions only).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -19,18 +20,21 @@ namespace fq::wire::detail {
 
 /// Per-worker scratch space of build_chunk, reused from chunk to chunk and frame to frame.
 struct ChunkScratch {
-  std::vector<uint64_t> seen;   ///< one bit per frame vertex; all zero between chunks
-  std::vector<uint32_t> local;  ///< global -> local point index of the current chunk
+  std::vector<uint64_t> seen;     ///< one bit per frame vertex; all zero between chunks
+  std::vector<uint32_t> local;    ///< global -> local point index of the current chunk
+  /// When set, build_chunk ORs the chunk's vertices into this frame-wide bitmap (shared by the
+  /// workers), so that "every vertex is used" needs no pass of its own.
+  std::atomic<uint64_t>* used = nullptr;
 };
 
-/// The triangles `tris` of `mesh` as a draco::Mesh: points = the chunk's vertices in ascending
+/// The triangles `corners` (3 vertex ids of `mesh` each; see split_corners) as a draco::Mesh: points = the chunk's vertices in ascending
 /// global id, POSITION, then (when `with_ids`) the global ids, and "fq_label" (when `labels`).
 /// Built directly (not with a mesh builder) so that no deduplication can merge two vertices.
 /// `scratch` is the calling worker's. Returns whether the chunk must be coded with Draco's sequential coder: at speed
 /// 10, or when a face repeats a vertex (edgebreaker would drop it). A sequential chunk carries
 /// its ids as kVertexIdRunsEntry (the coder keeps point order), any other as "fq_vid".
 bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids, const CodecOptions& o,
-                 const std::vector<uint32_t>& tris, ChunkScratch& scratch, draco::Mesh& m);
+                 const std::vector<uint32_t>& corners, ChunkScratch& scratch, draco::Mesh& m);
 
 /// Encodes one chunk with the codec's settings: speeds, the frame's shared quantization grid
 /// on `box`, and the coder build_chunk chose (`sequential`).

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 #include <exception>
+#include <memory>
 #include <string>
 
 #include "proto/frame_codec.h"
@@ -17,7 +18,10 @@ namespace {
 /// One decoded chunk, per Draco point.
 struct Chunk {
   fq::Status status;
-  std::vector<float> positions;     ///< 3 per point
+  std::unique_ptr<draco::Mesh> mesh;  ///< kept: xyz may point into its position buffer
+  const float* xyz = nullptr;         ///< 3 per point, in mesh or in positions
+  uint32_t points = 0;
+  std::vector<float> positions;     ///< only when Draco's positions needed converting
   std::vector<uint32_t> ids;        ///< fq_vid per point; empty when the chunk has none
   std::vector<uint32_t> labels;     ///< fq_label per point; empty when the chunk has none
   std::vector<uint32_t> triangles;  ///< point indices
@@ -37,22 +41,25 @@ bool read_uint_attribute(const draco::Mesh& m, const char* name, bool& present, 
   return true;
 }
 
-/// Positions of every point: one copy when Draco decoded them as packed float triples with an
-/// identity point mapping (what the codec's own chunks give), a conversion per point otherwise.
-fq::Status read_positions(const draco::Mesh& m, std::vector<float>& out) {
+/// Positions of every point into c.xyz: Draco's own buffer when it decoded them as packed float
+/// triples with an identity point mapping (what the codec's own chunks give), a conversion per
+/// point into c.positions otherwise.
+fq::Status read_positions(const draco::Mesh& m, Chunk& c) {
   const draco::PointAttribute* pos = m.GetNamedAttribute(draco::GeometryAttribute::POSITION);
   if (pos == nullptr || pos->num_components() != 3) return invalid_input("no 3D position attribute");
-  out.resize(3 * size_t(m.num_points()));
+  c.points = m.num_points();
   if (pos->is_mapping_identity() && pos->data_type() == draco::DT_FLOAT32 && pos->byte_stride() == 3 * 4 &&
       pos->size() >= m.num_points() && m.num_points() > 0) {
-    std::memcpy(out.data(), pos->GetAddress(draco::AttributeValueIndex(0)), out.size() * sizeof(float));
+    c.xyz = reinterpret_cast<const float*>(pos->GetAddress(draco::AttributeValueIndex(0)));
     return {};
   }
+  c.positions.resize(3 * size_t(m.num_points()));
   for (uint32_t p = 0; p < m.num_points(); ++p) {
-    if (!pos->ConvertValue<float>(pos->mapped_index(draco::PointIndex(p)), 3, &out[3 * size_t(p)])) {
+    if (!pos->ConvertValue<float>(pos->mapped_index(draco::PointIndex(p)), 3, &c.positions[3 * size_t(p)])) {
       return invalid_input("unreadable position of point " + std::to_string(p));
     }
   }
+  c.xyz = c.positions.data();
   return {};
 }
 
@@ -75,7 +82,7 @@ fq::Status read_ids(const draco::Mesh& m, bool sequential, std::vector<uint32_t>
 
 fq::Status read_mesh(const draco::Mesh& m, bool sequential, Chunk& c) {
   if (m.num_faces() == 0) return invalid_input("mesh has no faces");
-  if (auto s = read_positions(m, c.positions); !s.ok()) return s;
+  if (auto s = read_positions(m, c); !s.ok()) return s;
   if (auto s = read_ids(m, sequential, c.ids); !s.ok()) return s;
   bool has = false;
   if (!read_uint_attribute(m, kLabelAttribute, has, c.labels)) {
@@ -113,17 +120,18 @@ void decode_chunk(std::string_view bytes, Chunk& c) {
   }
   // Draco's header: "DRACO", version (2 bytes), encoder type, encoder method (0 = sequential).
   const bool sequential = bytes.size() > 8 && bytes[8] == 0;
-  c.status = read_mesh(*mesh.value(), sequential, c);
+  c.mesh = std::move(mesh).value();
+  c.status = read_mesh(*c.mesh, sequential, c);
 }
 
 /// A single chunk without fq_vid: a plain Draco mesh, taken in Draco's point order.
 fq::Status take_plain(Chunk& c, uint32_t vertex_count, fq::Mesh& out, std::vector<uint32_t>* labels) {
-  const auto n = static_cast<uint32_t>(c.positions.size() / 3);
+  const uint32_t n = c.points;
   if (vertex_count != 0 && vertex_count != n) {
     return invalid_input("frame header says " + std::to_string(vertex_count) +
                          " vertices, the Draco mesh has " + std::to_string(n));
   }
-  out.positions = std::move(c.positions);
+  out.positions.assign(c.xyz, c.xyz + 3 * size_t(n));
   out.triangles = std::move(c.triangles);
   if (labels) *labels = std::move(c.labels);
   return {};
@@ -146,16 +154,13 @@ fq::Status merged_count(const std::vector<Chunk>& cs, uint32_t vertex_count, uin
   return {};
 }
 
-fq::Status merge(std::vector<Chunk>& cs, uint32_t n, fq::Mesh& out, std::vector<uint32_t>* labels) {
+fq::Status merge(std::vector<Chunk>& cs, uint32_t n, int threads, fq::Mesh& out, std::vector<uint32_t>* labels) {
   const bool with_labels =
       labels && std::all_of(cs.begin(), cs.end(), [](const Chunk& c) { return !c.labels.empty(); });
   out.positions.assign(3 * size_t(n), 0.f);
-  out.triangles.clear();
   if (with_labels) labels->assign(n, 0);
   std::vector<uint8_t> covered(n, 0);
-  size_t corners = 0;
-  for (const Chunk& c : cs) corners += c.triangles.size();
-  out.triangles.reserve(corners);
+  // Points, serially: a vertex on a cut is in several chunks (with the same position).
   for (size_t i = 0; i < cs.size(); ++i) {
     const Chunk& c = cs[i];
     for (size_t p = 0; p < c.ids.size(); ++p) {
@@ -164,17 +169,28 @@ fq::Status merge(std::vector<Chunk>& cs, uint32_t n, fq::Mesh& out, std::vector<
         return invalid_input("chunk " + std::to_string(i) + ": vertex id " + std::to_string(g) +
                              " out of range (frame has " + std::to_string(n) + " vertices)");
       }
-      std::copy_n(&c.positions[3 * p], 3, &out.positions[3 * size_t(g)]);
+      float* to = &out.positions[3 * size_t(g)];
+      to[0] = c.xyz[3 * p];
+      to[1] = c.xyz[3 * p + 1];
+      to[2] = c.xyz[3 * p + 2];
       if (with_labels) (*labels)[g] = c.labels[p];
       covered[g] = 1;
     }
-    for (uint32_t local : c.triangles) out.triangles.push_back(c.ids[local]);
   }
   const auto hole = std::find(covered.begin(), covered.end(), uint8_t{0});
   if (hole != covered.end()) {
     return invalid_input("vertex " + std::to_string(hole - covered.begin()) +
                          " is in no chunk (missing chunk?)");
   }
+  // Triangles, chunk by chunk in parallel: each chunk writes its own range, in chunk order.
+  std::vector<size_t> first(cs.size() + 1, 0);
+  for (size_t i = 0; i < cs.size(); ++i) first[i + 1] = first[i] + cs[i].triangles.size();
+  out.triangles.resize(first.back());
+  detail::for_each_chunk(cs.size(), threads, [&](size_t i, size_t) {
+    const Chunk& c = cs[i];
+    uint32_t* to = out.triangles.data() + first[i];
+    for (size_t k = 0; k < c.triangles.size(); ++k) to[k] = c.ids[c.triangles[k]];
+  });
   return {};
 }
 
@@ -209,7 +225,7 @@ fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t ve
   }
   uint32_t n = 0;
   if (auto s = merged_count(cs, vertex_count, n); !s.ok()) return s;
-  if (auto s = merge(cs, n, out, labels); !s.ok()) {
+  if (auto s = merge(cs, n, options.threads, out, labels); !s.ok()) {
     out = {};
     if (labels) labels->clear();
     return s;

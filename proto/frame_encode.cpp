@@ -5,6 +5,8 @@
 #include <draco/metadata/geometry_metadata.h>
 
 #include <algorithm>
+#include <atomic>
+#include <bit>
 #include <exception>
 #include <memory>
 #include <string>
@@ -28,14 +30,29 @@ fq::Status check_options(const CodecOptions& o) {
   return {};
 }
 
-/// The codec can only carry vertices that some triangle uses (Draco drops the others).
+fq::Status unused_vertex(size_t v) {
+  return invalid_input("vertex " + std::to_string(v) +
+                       " is used by no triangle (the frame codec carries only vertices of triangles)");
+}
+
+/// The codec can only carry vertices that some triangle uses (Draco drops the others). A pass
+/// of its own, for the error path only: encode_frame marks used vertices while it builds chunks.
 fq::Status check_all_used(const fq::MeshView& mesh) {
   std::vector<uint8_t> used(mesh.num_vertices, 0);
   for (size_t i = 0; i < size_t(mesh.num_triangles) * 3; ++i) used[mesh.triangles[i]] = 1;
   const auto it = std::find(used.begin(), used.end(), uint8_t{0});
-  if (it == used.end()) return {};
-  return invalid_input("vertex " + std::to_string(it - used.begin()) +
-                       " is used by no triangle (the frame codec carries only vertices of triangles)");
+  return it == used.end() ? fq::Status{} : unused_vertex(size_t(it - used.begin()));
+}
+
+/// The smallest vertex whose bit is clear in `used` (one bit per vertex), or n.
+uint32_t first_unused(const std::vector<std::atomic<uint64_t>>& used, uint32_t n) {
+  for (size_t w = 0; w < used.size(); ++w) {
+    const uint64_t missing = ~used[w].load(std::memory_order_relaxed);
+    if (missing == 0) continue;
+    const uint64_t v = w * 64 + static_cast<uint64_t>(std::countr_zero(missing));
+    return v < n ? static_cast<uint32_t>(v) : n;
+  }
+  return n;
 }
 
 fq::Status check_ranges(const fq::MeshView& mesh, const uint32_t* labels) {
@@ -62,15 +79,20 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
     return invalid_argument("chunk count " + std::to_string(chunks) + " outside [1, " +
                             std::to_string(kMaxChunks) + "]");
   }
-  if (auto s = fq::check_mesh(mesh); !s.ok()) return s;
-  if (auto s = check_all_used(mesh); !s.ok()) return s;
-  if (auto s = check_ranges(mesh, labels); !s.ok()) return s;
+  if (auto s = fq::check_mesh(mesh, options.threads); !s.ok()) return s;
+  if (auto s = check_ranges(mesh, labels); !s.ok()) {
+    if (auto u = check_all_used(mesh); !u.ok()) return u;  // the error reported first, as ever
+    return s;
+  }
 
   const detail::Box box = detail::bounding_box(mesh);
-  const auto parts = detail::split_triangles(mesh, box, std::min(chunks, mesh.num_triangles), options.threads);
+  const auto parts = detail::split_corners(mesh, box, std::min(chunks, mesh.num_triangles), options.threads);
   std::vector<std::string> encoded(parts.size());
   std::vector<fq::Status> status(parts.size());
+  // Every vertex must be used: the chunks mark theirs while they are built (no extra pass).
+  std::vector<std::atomic<uint64_t>> used((size_t(mesh.num_vertices) + 63) / 64);
   std::vector<detail::ChunkScratch> scratch(detail::chunk_workers(parts.size(), options.threads));
+  for (auto& s : scratch) s.used = used.data();
   detail::for_each_chunk(parts.size(), options.threads, [&](size_t i, size_t w) {
     try {
       draco::Mesh m;
@@ -80,6 +102,7 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
       status[i] = {fq::StatusCode::kInternal, std::string("encoding failed: ") + e.what()};
     }
   });
+  if (const uint32_t v = first_unused(used, mesh.num_vertices); v < mesh.num_vertices) return unused_vertex(v);
   for (size_t i = 0; i < parts.size(); ++i) {
     if (!status[i].ok()) return {status[i].code(), "chunk " + std::to_string(i) + ": " + status[i].message()};
   }

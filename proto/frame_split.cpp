@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <array>
-#include <numeric>
 
 #include "common/thread_pool.h"
 #include "kernels/parallel_for.h"
@@ -117,59 +116,97 @@ std::vector<uint16_t> bucket_chunks(const std::vector<uint64_t>& first) {
   return out;
 }
 
-}  // namespace
+/// Where each triangle goes: its chunk, and for each block of kBlock triangles the first slot
+/// of its triangles in every chunk, so that blocks fill the chunks in parallel and triangles
+/// keep the input order within a chunk (usually coherent: good for Draco's sequential coder,
+/// which stores indices in face order).
+struct SplitPlan {
+  static constexpr uint32_t kBlock = 1u << 16;
+  uint32_t chunks = 0, blocks = 0;
+  std::vector<uint8_t> chunk_of;  ///< per triangle
+  std::vector<uint32_t> at;       ///< blocks x chunks first slots
+  std::vector<uint32_t> sizes;    ///< triangles per chunk
+};
 
-std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box, uint32_t chunks,
-                                                   int threads) {
+SplitPlan plan_split(const fq::MeshView& mesh, const Box& box, uint32_t chunks, int threads) {
   const uint32_t n = mesh.num_triangles;
-  std::vector<std::vector<uint32_t>> parts(chunks);
+  SplitPlan p;
+  p.chunks = chunks;
+  p.blocks = (n + SplitPlan::kBlock - 1) / SplitPlan::kBlock;
+  p.chunk_of.assign(n, 0);
+  p.at.assign(size_t(p.blocks) * chunks, 0);
+  p.sizes.assign(chunks, 0);
   if (chunks <= 1) {
-    parts[0].resize(n);
-    std::iota(parts[0].begin(), parts[0].end(), 0u);
-    return parts;
+    p.sizes[0] = n;
+    for (uint32_t b = 0; b < p.blocks; ++b) p.at[b] = b * SplitPlan::kBlock;
+    return p;
   }
   const float extent = box.max_extent();
   const float scale = extent > 0.f ? 1023.f / extent : 0.f;
   // Key of triangle t = (code, t) in one integer: keys are unique, so equal counts per chunk
-  // are exact and the split is deterministic. Codes and parts are built on all codec threads:
-  // this runs before the chunks can be encoded in parallel, so it is on every frame's
-  // critical path.
+  // are exact and the split is deterministic. This runs before the chunks can be encoded in
+  // parallel, so it is on every frame's critical path: all codec threads work on it.
   std::vector<uint32_t> codes(n);
   fq::parallel_for(n, threads, [&](uint32_t t) { codes[t] = morton_of_centroid(mesh, t, box, scale); }, 4096);
   const std::vector<uint64_t> first = chunk_starts(codes, chunks);
   const std::vector<uint16_t> bucket_chunk = bucket_chunks(first);
-  // Chunk of each triangle, then parts filled block by block: each block counts its triangles
-  // per chunk, so every block knows where to write and triangles keep the input order within
-  // a chunk (usually coherent: good for Draco's sequential coder, which stores indices in
-  // face order).
-  constexpr uint32_t kBlock = 1u << 16;
-  const uint32_t blocks = (n + kBlock - 1) / kBlock;
-  std::vector<uint8_t> chunk_of(n);
-  std::vector<uint32_t> counts(size_t(blocks) * chunks, 0);
-  fq::parallel_for(blocks, threads, [&](uint32_t b) {
-    uint32_t* count = &counts[size_t(b) * chunks];
-    for (uint32_t t = b * kBlock; t < std::min(n, (b + 1) * kBlock); ++t) {
+  fq::parallel_for(p.blocks, threads, [&](uint32_t b) {
+    uint32_t* count = &p.at[size_t(b) * chunks];
+    for (uint32_t t = b * SplitPlan::kBlock; t < std::min(n, (b + 1) * SplitPlan::kBlock); ++t) {
       uint32_t c = bucket_chunk[bucket_of(codes[t])];
       if (c == kMixed)
         c = static_cast<uint32_t>(std::upper_bound(first.begin() + 1, first.end(), key_of(codes, t)) - first.begin()) - 1;
-      chunk_of[t] = static_cast<uint8_t>(c);
+      p.chunk_of[t] = static_cast<uint8_t>(c);
       ++count[c];
     }
   }, 1);
   for (uint32_t c = 0; c < chunks; ++c) {
-    uint32_t offset = 0;  // counts become each block's first slot in parts[c]
-    for (uint32_t b = 0; b < blocks; ++b) {
-      uint32_t& count = counts[size_t(b) * chunks + c];
+    uint32_t offset = 0;  // counts become each block's first slot in chunk c
+    for (uint32_t b = 0; b < p.blocks; ++b) {
+      uint32_t& count = p.at[size_t(b) * chunks + c];
       const uint32_t own = count;
       count = offset;
       offset += own;
     }
-    parts[c].resize(offset);
+    p.sizes[c] = offset;
   }
-  fq::parallel_for(blocks, threads, [&](uint32_t b) {
-    uint32_t* at = &counts[size_t(b) * chunks];
-    for (uint32_t t = b * kBlock; t < std::min(n, (b + 1) * kBlock); ++t) parts[chunk_of[t]][at[chunk_of[t]]++] = t;
+  return p;
+}
+
+/// Calls put(c, slot, t) for every triangle t: its chunk and its place there. Consumes p.at.
+template <class Put>
+void fill_split(const fq::MeshView& mesh, SplitPlan& p, int threads, Put put) {
+  fq::parallel_for(p.blocks, threads, [&](uint32_t b) {
+    uint32_t* at = &p.at[size_t(b) * p.chunks];
+    for (uint32_t t = b * SplitPlan::kBlock; t < std::min(mesh.num_triangles, (b + 1) * SplitPlan::kBlock); ++t)
+      put(p.chunk_of[t], at[p.chunk_of[t]]++, t);
   }, 1);
+}
+
+}  // namespace
+
+std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box, uint32_t chunks,
+                                                   int threads) {
+  SplitPlan p = plan_split(mesh, box, chunks, threads);
+  std::vector<std::vector<uint32_t>> parts(chunks);
+  for (uint32_t c = 0; c < chunks; ++c) parts[c].resize(p.sizes[c]);
+  fill_split(mesh, p, threads, [&](uint32_t c, uint32_t slot, uint32_t t) { parts[c][slot] = t; });
+  return parts;
+}
+
+std::vector<std::vector<uint32_t>> split_corners(const fq::MeshView& mesh, const Box& box, uint32_t chunks,
+                                                 int threads) {
+  SplitPlan p = plan_split(mesh, box, chunks, threads);
+  std::vector<std::vector<uint32_t>> parts(chunks);
+  for (uint32_t c = 0; c < chunks; ++c) parts[c].resize(3 * size_t(p.sizes[c]));
+  // The frame's triangles are read in order here, so building a chunk reads only its own.
+  fill_split(mesh, p, threads, [&](uint32_t c, uint32_t slot, uint32_t t) {
+    const uint32_t* in = mesh.triangles + 3 * size_t(t);
+    uint32_t* out = parts[c].data() + 3 * size_t(slot);
+    out[0] = in[0];  // three stores, not a memmove call per triangle
+    out[1] = in[1];
+    out[2] = in[2];
+  });
   return parts;
 }
 

@@ -27,6 +27,11 @@ Box bounding_box(const fq::MeshView& mesh);
 std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box, uint32_t chunks,
                                                    int threads = 1);
 
+/// The same split as split_triangles, as the corners (3 vertex ids per triangle) of each
+/// part's triangles: what a chunk is built from.
+std::vector<std::vector<uint32_t>> split_corners(const fq::MeshView& mesh, const Box& box, uint32_t chunks,
+                                                 int threads = 1);
+
 /// Number of workers for_each_chunk uses: min(threads, count), at least 1.
 size_t chunk_workers(size_t count, int threads);
 

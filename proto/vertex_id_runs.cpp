@@ -41,18 +41,19 @@ void encode_id_runs(const std::vector<uint32_t>& ids, std::vector<uint8_t>& out)
 }
 
 bool decode_id_runs(const uint8_t* data, size_t size, size_t count, uint32_t limit, std::vector<uint32_t>& ids) {
-  ids.clear();
-  ids.reserve(count);
+  ids.resize(count);
+  size_t filled = 0;
   uint64_t end = 0;
   for (size_t pos = 0; pos < size;) {
     uint32_t gap = 0, run = 0;
     if (!get_varint(data, size, pos, gap) || !get_varint(data, size, pos, run) || run == 0) return false;
     const uint64_t first = end + gap;
     end = first + run;
-    if (end > limit || ids.size() + run > count) return false;
-    for (uint64_t id = first; id < end; ++id) ids.push_back(static_cast<uint32_t>(id));
+    if (end > limit || filled + run > count) return false;
+    for (uint32_t k = 0; k < run; ++k) ids[filled + k] = static_cast<uint32_t>(first + k);
+    filled += run;
   }
-  return ids.size() == count;
+  return filled == count;
 }
 
 }  // namespace fq::wire::detail

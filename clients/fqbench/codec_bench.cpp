@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -28,10 +29,21 @@ namespace {
 
 namespace wd = fq::wire::detail;
 
-double ms_of(const std::function<bool()>& step, bool& ok) {
+/// CPU time of the whole process (all threads), in ms: the work done, less sensitive than wall
+/// time to other jobs on a shared machine.
+double cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
+}
+
+/// Wall and CPU ms of one step, appended to `wall` and `cpu`.
+void time_step(const std::function<bool()>& step, bool& ok, std::vector<double>& wall, std::vector<double>& cpu) {
+  const double c0 = cpu_ms();
   const auto t0 = std::chrono::steady_clock::now();
   ok = step() && ok;
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  cpu.push_back(cpu_ms() - c0);
 }
 
 size_t total_bytes(const std::vector<std::string>& parts) {
@@ -50,11 +62,11 @@ struct FloorChunks {
 FloorChunks floor_chunks(const MeshView& mesh, uint32_t chunks, const wire::CodecOptions& opt) {
   FloorChunks f;
   f.box = wd::bounding_box(mesh);
-  const auto parts = wd::split_triangles(mesh, f.box, std::min(chunks, mesh.num_triangles), opt.threads);
+  const auto parts = wd::split_corners(mesh, f.box, std::min(chunks, mesh.num_triangles), opt.threads);
   wd::ChunkScratch scratch;
-  for (const auto& tris : parts) {
+  for (const auto& corners : parts) {
     f.meshes.push_back(std::make_unique<draco::Mesh>());
-    f.sequential.push_back(wd::build_chunk(mesh, nullptr, false, opt, tris, scratch, *f.meshes.back()));
+    f.sequential.push_back(wd::build_chunk(mesh, nullptr, false, opt, corners, scratch, *f.meshes.back()));
   }
   return f;
 }
@@ -80,7 +92,8 @@ bool floor_decode(const std::vector<std::string>& encoded, int threads) {
 }
 
 struct Samples {
-  std::vector<double> encode, decode, floor_encode, floor_decode;
+  std::vector<double> encode, decode, floor_encode, floor_decode;  // wall ms
+  std::vector<double> encode_cpu, decode_cpu, floor_encode_cpu, floor_decode_cpu;
   size_t bytes = 0, floor_bytes = 0, chunks = 0;
 };
 
@@ -88,13 +101,15 @@ struct Samples {
 bool one_round(const Mesh& mesh, const FloorChunks& f, uint32_t chunks, const wire::CodecOptions& opt, Samples& s) {
   bool ok = true;
   std::vector<std::string> ours, floor;
-  s.encode.push_back(ms_of([&] { return wire::encode_frame(mesh.view(), nullptr, chunks, opt, ours).ok(); }, ok));
+  time_step([&] { return wire::encode_frame(mesh.view(), nullptr, chunks, opt, ours).ok(); }, ok, s.encode,
+            s.encode_cpu);
   const std::vector<std::string_view> views(ours.begin(), ours.end());
   Mesh back;
-  s.decode.push_back(ms_of([&] { return wire::decode_frame(views, mesh.num_vertices(), opt, back, nullptr).ok(); }, ok));
+  time_step([&] { return wire::decode_frame(views, mesh.num_vertices(), opt, back, nullptr).ok(); }, ok, s.decode,
+            s.decode_cpu);
   ok = ok && back.num_vertices() == mesh.num_vertices() && back.num_triangles() == mesh.num_triangles();
-  s.floor_encode.push_back(ms_of([&] { return floor_encode(f, opt, floor); }, ok));
-  s.floor_decode.push_back(ms_of([&] { return floor_decode(floor, opt.threads); }, ok));
+  time_step([&] { return floor_encode(f, opt, floor); }, ok, s.floor_encode, s.floor_encode_cpu);
+  time_step([&] { return floor_decode(floor, opt.threads); }, ok, s.floor_decode, s.floor_decode_cpu);
   s.bytes = total_bytes(ours);
   s.floor_bytes = total_bytes(floor);
   s.chunks = ours.size();
@@ -106,26 +121,48 @@ std::string resolve_path(const CodecBenchOptions& o) {
   return o.mesh_dir + "/" + o.mesh;
 }
 
+double median(const std::vector<double>& v) { return spread_of(v).median; }
+
 void print(const CodecBenchOptions& o, const Mesh& m, const Samples& s) {
-  const double enc = spread_of(s.encode).median, dec = spread_of(s.decode).median;
-  const double fenc = spread_of(s.floor_encode).median, fdec = spread_of(s.floor_decode).median;
+  const double enc = median(s.encode), dec = median(s.decode);
+  const double fenc = median(s.floor_encode), fdec = median(s.floor_decode);
+  const double cenc = median(s.encode_cpu), cdec = median(s.decode_cpu);
+  const double cfenc = median(s.floor_encode_cpu), cfdec = median(s.floor_decode_cpu);
   if (o.json) {
     const nlohmann::json j = {
-        {"mesh", o.mesh},           {"vertices", m.num_vertices()}, {"triangles", m.num_triangles()},
-        {"chunks", s.chunks},       {"threads", o.threads},         {"speed", o.speed},
-        {"position_bits", o.position_bits}, {"repeat", o.repeat},
-        {"encode_ms", enc},         {"decode_ms", dec},             {"floor_encode_ms", fenc},
-        {"floor_decode_ms", fdec},  {"encode_ratio", enc / fenc},   {"decode_ratio", dec / fdec},
-        {"bytes", s.bytes},         {"floor_bytes", s.floor_bytes}};
+        {"mesh", o.mesh},
+        {"vertices", m.num_vertices()},
+        {"triangles", m.num_triangles()},
+        {"chunks", s.chunks},
+        {"threads", o.threads},
+        {"speed", o.speed},
+        {"position_bits", o.position_bits},
+        {"repeat", o.repeat},
+        {"encode_ms", enc},
+        {"decode_ms", dec},
+        {"floor_encode_ms", fenc},
+        {"floor_decode_ms", fdec},
+        {"encode_ratio", enc / fenc},
+        {"decode_ratio", dec / fdec},
+        {"encode_cpu_ms", cenc},
+        {"decode_cpu_ms", cdec},
+        {"floor_encode_cpu_ms", cfenc},
+        {"floor_decode_cpu_ms", cfdec},
+        {"encode_cpu_ratio", cenc / cfenc},
+        {"decode_cpu_ratio", cdec / cfdec},
+        {"bytes", s.bytes},
+        {"floor_bytes", s.floor_bytes}};
     std::printf("%s\n", j.dump().c_str());
     return;
   }
-  std::printf("\n%s (%u V, %u F): %zu chunks, %d threads, Draco speed %d, %d-bit positions; wall ms, median of %d\n\n",
+  std::printf("\n%s (%u V, %u F): %zu chunks, %d threads, Draco speed %d, %d-bit positions; median of %d\n\n",
               o.mesh.c_str(), m.num_vertices(), m.num_triangles(), s.chunks, o.threads, o.speed, o.position_bits,
               o.repeat);
   std::printf("| | fq | floor (plain Draco, positions only) | fq / floor |\n|---|---:|---:|---:|\n");
-  std::printf("| encode ms | %.2f | %.2f | %.2f |\n", enc, fenc, enc / fenc);
-  std::printf("| decode ms | %.2f | %.2f | %.2f |\n", dec, fdec, dec / fdec);
+  std::printf("| encode wall ms | %.2f | %.2f | %.2f |\n", enc, fenc, enc / fenc);
+  std::printf("| decode wall ms | %.2f | %.2f | %.2f |\n", dec, fdec, dec / fdec);
+  std::printf("| encode CPU ms | %.2f | %.2f | %.2f |\n", cenc, cfenc, cenc / cfenc);
+  std::printf("| decode CPU ms | %.2f | %.2f | %.2f |\n", cdec, cfdec, cdec / cfdec);
   std::printf("| bytes | %zu | %zu | %.2f |\n", s.bytes, s.floor_bytes, double(s.bytes) / double(s.floor_bytes));
 }
 
