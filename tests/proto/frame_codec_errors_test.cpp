@@ -102,6 +102,49 @@ TEST(FrameCodecErrors, PlainMeshCannotJoinAMultiChunkFrame) {
   EXPECT_NE(s.message().find("fq_vid"), std::string::npos) << s.message();
 }
 
+/// A two-chunk frame of `m` whose second chunk is `m` again, carrying `runs` as its id runs and
+/// coded with Draco's sequential coder or edgebreaker.
+std::vector<std::string> frame_with_forged_runs(const Mesh& m, const std::vector<uint8_t>& runs, bool sequential) {
+  std::vector<std::string> chunks = encode(m, 2);
+  draco::Mesh dm;
+  dm.set_num_points(m.num_vertices());
+  draco::GeometryAttribute ga;
+  ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 12, 0);
+  auto* pa = dm.attribute(dm.AddAttribute(ga, true, m.num_vertices()));
+  for (uint32_t v = 0; v < m.num_vertices(); ++v)
+    pa->SetAttributeValue(draco::AttributeValueIndex(v), &m.positions[3 * v]);
+  for (uint32_t t = 0; t < m.num_triangles(); ++t) {
+    dm.AddFace({draco::PointIndex(m.triangles[3 * t]), draco::PointIndex(m.triangles[3 * t + 1]),
+                draco::PointIndex(m.triangles[3 * t + 2])});
+  }
+  auto md = std::make_unique<draco::GeometryMetadata>();
+  md->AddEntryBinary(kVertexIdRunsEntry, runs);
+  dm.AddMetadata(std::move(md));
+  draco::Encoder enc;
+  enc.SetEncodingMethod(sequential ? draco::MESH_SEQUENTIAL_ENCODING : draco::MESH_EDGEBREAKER_ENCODING);
+  draco::EncoderBuffer buf;
+  EXPECT_TRUE(enc.EncodeMeshToBuffer(dm, &buf).ok());
+  chunks[1].assign(buf.data(), buf.size());
+  return chunks;
+}
+
+TEST(FrameCodecErrors, IdRunsNeedTheSequentialCoderAndOneIdPerPoint) {
+  const Mesh m = test_proto::make_bumpy_grid(6, 6);
+  const auto n = static_cast<uint8_t>(m.num_vertices());  // 36: one varint byte
+  Mesh out;
+  // Runs (gap 0, n points) name every vertex in order: valid when point order is kept.
+  EXPECT_TRUE(decode(frame_with_forged_runs(m, {0, n}, true), m.num_vertices(), out).ok());
+  Status s = decode(frame_with_forged_runs(m, {0, n}, false), m.num_vertices(), out);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(s.message().find("not sequentially coded"), std::string::npos) << s.message();
+  for (const std::vector<uint8_t>& bad : {std::vector<uint8_t>{0, uint8_t(n - 1)}, std::vector<uint8_t>{0, 0},
+                                          std::vector<uint8_t>{0, 0x80}, std::vector<uint8_t>{0xff, 0xff, 0xff, 0xff, 0x7f, 1}}) {
+    s = decode(frame_with_forged_runs(m, bad, true), m.num_vertices(), out);
+    EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+    EXPECT_NE(s.message().find(kVertexIdRunsEntry), std::string::npos) << s.message();
+  }
+}
+
 TEST(FrameCodecErrors, PointCloudRejected) {
   Mesh out;
   const Status s = decode({plain_draco(test_proto::make_bumpy_grid(3, 3), true)}, 0, out);
