@@ -35,15 +35,25 @@ Status decode(const std::vector<std::string>& chunks, uint32_t vertex_count, Mes
 /// `m` as a plain Draco mesh (no fq attributes, float positions kept exactly), as any
 /// producer using draco::Encoder would send it. With `cloud`, a point cloud instead. With
 /// `vid`, also an "fq_vid" attribute of type `vid_type` holding vid[v] for vertex v.
-std::string plain_draco(const Mesh& m, bool cloud = false, const std::vector<uint32_t>* vid = nullptr,
-                        draco::DataType vid_type = draco::DT_UINT32) {
-  draco::Mesh dm;
+/// Points (float positions, kept exactly) and faces of `m`, one point per vertex, into `dm`.
+void fill_draco_mesh(const Mesh& m, draco::Mesh& dm) {
   dm.set_num_points(m.num_vertices());
   draco::GeometryAttribute ga;
   ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 12, 0);
   auto* pa = dm.attribute(dm.AddAttribute(ga, true, m.num_vertices()));
   for (uint32_t v = 0; v < m.num_vertices(); ++v)
     pa->SetAttributeValue(draco::AttributeValueIndex(v), &m.positions[3 * v]);
+  for (uint32_t t = 0; t < m.num_triangles(); ++t) {
+    dm.AddFace({draco::PointIndex(m.triangles[3 * t]), draco::PointIndex(m.triangles[3 * t + 1]),
+                draco::PointIndex(m.triangles[3 * t + 2])});
+  }
+}
+
+std::string plain_draco(const Mesh& m, bool cloud = false, const std::vector<uint32_t>* vid = nullptr,
+                        draco::DataType vid_type = draco::DT_UINT32) {
+  draco::Mesh dm;
+  fill_draco_mesh(m, dm);
+  draco::GeometryAttribute ga;
   if (vid) {
     ga.Init(draco::GeometryAttribute::GENERIC, nullptr, 1, vid_type, false, draco::DataTypeLength(vid_type),
             0);
@@ -57,10 +67,6 @@ std::string plain_draco(const Mesh& m, bool cloud = false, const std::vector<uin
     auto md = std::make_unique<draco::AttributeMetadata>();
     md->AddEntryString("name", kVertexIdAttribute);
     dm.AddAttributeMetadata(id, std::move(md));
-  }
-  for (uint32_t t = 0; t < m.num_triangles(); ++t) {
-    dm.AddFace({draco::PointIndex(m.triangles[3 * t]), draco::PointIndex(m.triangles[3 * t + 1]),
-                draco::PointIndex(m.triangles[3 * t + 2])});
   }
   draco::Encoder enc;
   draco::EncoderBuffer buf;
@@ -107,16 +113,7 @@ TEST(FrameCodecErrors, PlainMeshCannotJoinAMultiChunkFrame) {
 std::vector<std::string> frame_with_forged_runs(const Mesh& m, const std::vector<uint8_t>& runs, bool sequential) {
   std::vector<std::string> chunks = encode(m, 2);
   draco::Mesh dm;
-  dm.set_num_points(m.num_vertices());
-  draco::GeometryAttribute ga;
-  ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 12, 0);
-  auto* pa = dm.attribute(dm.AddAttribute(ga, true, m.num_vertices()));
-  for (uint32_t v = 0; v < m.num_vertices(); ++v)
-    pa->SetAttributeValue(draco::AttributeValueIndex(v), &m.positions[3 * v]);
-  for (uint32_t t = 0; t < m.num_triangles(); ++t) {
-    dm.AddFace({draco::PointIndex(m.triangles[3 * t]), draco::PointIndex(m.triangles[3 * t + 1]),
-                draco::PointIndex(m.triangles[3 * t + 2])});
-  }
+  fill_draco_mesh(m, dm);
   auto md = std::make_unique<draco::GeometryMetadata>();
   md->AddEntryBinary(kVertexIdRunsEntry, runs);
   dm.AddMetadata(std::move(md));
