@@ -33,7 +33,7 @@ void add_uint_attribute(draco::Mesh& m, const char* name, const std::vector<uint
 /// ids keep the input's vertex order, usually spatially coherent, for Draco's sequential coder,
 /// and make the ids a few long runs. A bitmap of the frame's vertices (V / 8 bytes, cache
 /// resident) marks the chunk's ones; reading it back in order sorts them without a sort.
-std::vector<uint32_t> chunk_vertices(const fq::MeshView& mesh, const std::vector<uint32_t>& corners,
+std::vector<uint32_t> chunk_vertices(const fq::MeshView& mesh, std::span<const uint32_t> corners,
                                      ChunkScratch& scratch) {
   const size_t words = (size_t(mesh.num_vertices) + 63) / 64;
   scratch.seen.resize(words, 0);
@@ -58,7 +58,7 @@ std::vector<uint32_t> chunk_vertices(const fq::MeshView& mesh, const std::vector
 }  // namespace
 
 bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids, const CodecOptions& o,
-                 const std::vector<uint32_t>& corners, ChunkScratch& scratch, draco::Mesh& m) {
+                 std::span<const uint32_t> corners, ChunkScratch& scratch, draco::Mesh& m) {
   const std::vector<uint32_t> global = chunk_vertices(mesh, corners, scratch);
   const uint32_t* local = scratch.local.data();
   const size_t faces = corners.size() / 3;

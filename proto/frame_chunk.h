@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -27,14 +28,14 @@ struct ChunkScratch {
   std::atomic<uint64_t>* used = nullptr;
 };
 
-/// The triangles `corners` (3 vertex ids of `mesh` each; see split_corners) as a draco::Mesh: points = the chunk's vertices in ascending
-/// global id, POSITION, then (when `with_ids`) the global ids, and "fq_label" (when `labels`).
+/// The triangles `corners` (3 vertex ids of `mesh` each; see split_corners) as a draco::Mesh:
+/// points = the chunk's vertices in ascending global id, POSITION, then (when `with_ids`) the global ids, and "fq_label" (when `labels`).
 /// Built directly (not with a mesh builder) so that no deduplication can merge two vertices.
 /// `scratch` is the calling worker's. Returns whether the chunk must be coded with Draco's sequential coder: at speed
 /// 10, or when a face repeats a vertex (edgebreaker would drop it). A sequential chunk carries
 /// its ids as kVertexIdRunsEntry (the coder keeps point order), any other as "fq_vid".
 bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids, const CodecOptions& o,
-                 const std::vector<uint32_t>& corners, ChunkScratch& scratch, draco::Mesh& m);
+                 std::span<const uint32_t> corners, ChunkScratch& scratch, draco::Mesh& m);
 
 /// Encodes one chunk with the codec's settings: speeds, the frame's shared quantization grid
 /// on `box`, and the coder build_chunk chose (`sequential`).

@@ -3,6 +3,7 @@
 #include <draco/mesh/mesh.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <exception>
 #include <memory>
@@ -154,27 +155,44 @@ fq::Status merged_count(const std::vector<Chunk>& cs, uint32_t vertex_count, uin
   return {};
 }
 
+/// Writes chunk c's points to their global slots and maps its triangles to global ids, at
+/// `triangles`. Returns the index of its first point with an id >= n, or c.ids.size().
+/// Chunks run concurrently: a vertex on a cut is in several chunks, which write the same
+/// position (one quantization grid), label and coverage, through relaxed atomic stores (plain
+/// stores on x86) so that the concurrent writes are well defined.
+size_t scatter_chunk(const Chunk& c, uint32_t n, bool with_labels, float* positions, uint32_t* labels,
+                     uint8_t* covered, uint32_t* triangles) {
+  for (size_t p = 0; p < c.ids.size(); ++p) {
+    const uint32_t g = c.ids[p];
+    if (g >= n) return p;
+    for (int k = 0; k < 3; ++k)
+      std::atomic_ref<float>(positions[3 * size_t(g) + k]).store(c.xyz[3 * p + k], std::memory_order_relaxed);
+    if (with_labels) std::atomic_ref<uint32_t>(labels[g]).store(c.labels[p], std::memory_order_relaxed);
+    std::atomic_ref<uint8_t>(covered[g]).store(1, std::memory_order_relaxed);
+  }
+  for (size_t k = 0; k < c.triangles.size(); ++k) triangles[k] = c.ids[c.triangles[k]];
+  return c.ids.size();
+}
+
 fq::Status merge(std::vector<Chunk>& cs, uint32_t n, int threads, fq::Mesh& out, std::vector<uint32_t>* labels) {
   const bool with_labels =
       labels && std::all_of(cs.begin(), cs.end(), [](const Chunk& c) { return !c.labels.empty(); });
   out.positions.assign(3 * size_t(n), 0.f);
   if (with_labels) labels->assign(n, 0);
   std::vector<uint8_t> covered(n, 0);
-  // Points, serially: a vertex on a cut is in several chunks (with the same position).
-  for (size_t i = 0; i < cs.size(); ++i) {
-    const Chunk& c = cs[i];
-    for (size_t p = 0; p < c.ids.size(); ++p) {
-      const uint32_t g = c.ids[p];
-      if (g >= n) {
-        return invalid_input("chunk " + std::to_string(i) + ": vertex id " + std::to_string(g) +
-                             " out of range (frame has " + std::to_string(n) + " vertices)");
-      }
-      float* to = &out.positions[3 * size_t(g)];
-      to[0] = c.xyz[3 * p];
-      to[1] = c.xyz[3 * p + 1];
-      to[2] = c.xyz[3 * p + 2];
-      if (with_labels) (*labels)[g] = c.labels[p];
-      covered[g] = 1;
+  // Triangles come out chunk after chunk, each chunk's at its own offset.
+  std::vector<size_t> first(cs.size() + 1, 0);
+  for (size_t i = 0; i < cs.size(); ++i) first[i + 1] = first[i] + cs[i].triangles.size();
+  out.triangles.resize(first.back());
+  std::vector<size_t> bad(cs.size());
+  detail::for_each_chunk(cs.size(), threads, [&](size_t i, size_t) {
+    bad[i] = scatter_chunk(cs[i], n, with_labels, out.positions.data(), with_labels ? labels->data() : nullptr,
+                           covered.data(), out.triangles.data() + first[i]);
+  });
+  for (size_t i = 0; i < cs.size(); ++i) {  // the first bad id in chunk order, whatever the threads did
+    if (bad[i] < cs[i].ids.size()) {
+      return invalid_input("chunk " + std::to_string(i) + ": vertex id " + std::to_string(cs[i].ids[bad[i]]) +
+                           " out of range (frame has " + std::to_string(n) + " vertices)");
     }
   }
   const auto hole = std::find(covered.begin(), covered.end(), uint8_t{0});
@@ -182,15 +200,6 @@ fq::Status merge(std::vector<Chunk>& cs, uint32_t n, int threads, fq::Mesh& out,
     return invalid_input("vertex " + std::to_string(hole - covered.begin()) +
                          " is in no chunk (missing chunk?)");
   }
-  // Triangles, chunk by chunk in parallel: each chunk writes its own range, in chunk order.
-  std::vector<size_t> first(cs.size() + 1, 0);
-  for (size_t i = 0; i < cs.size(); ++i) first[i + 1] = first[i] + cs[i].triangles.size();
-  out.triangles.resize(first.back());
-  detail::for_each_chunk(cs.size(), threads, [&](size_t i, size_t) {
-    const Chunk& c = cs[i];
-    uint32_t* to = out.triangles.data() + first[i];
-    for (size_t k = 0; k < c.triangles.size(); ++k) to[k] = c.ids[c.triangles[k]];
-  });
   return {};
 }
 

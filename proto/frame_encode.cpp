@@ -85,7 +85,7 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
     return s;
   }
 
-  const detail::Box box = detail::bounding_box(mesh);
+  const detail::Box box = detail::bounding_box(mesh, options.threads);
   const auto parts = detail::split_corners(mesh, box, std::min(chunks, mesh.num_triangles), options.threads);
   std::vector<std::string> encoded(parts.size());
   std::vector<fq::Status> status(parts.size());
@@ -96,16 +96,16 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
   detail::for_each_chunk(parts.size(), options.threads, [&](size_t i, size_t w) {
     try {
       draco::Mesh m;
-      const bool sequential = detail::build_chunk(mesh, labels, true, options, parts[i], scratch[w], m);
+      const bool sequential = detail::build_chunk(mesh, labels, true, options, parts[i].span(), scratch[w], m);
       status[i] = detail::encode_chunk(m, sequential, options, box, encoded[i]);
     } catch (const std::exception& e) {  // bad_alloc: a fault of this frame, not of the process
       status[i] = {fq::StatusCode::kInternal, std::string("encoding failed: ") + e.what()};
     }
   });
-  if (const uint32_t v = first_unused(used, mesh.num_vertices); v < mesh.num_vertices) return unused_vertex(v);
-  for (size_t i = 0; i < parts.size(); ++i) {
+  for (size_t i = 0; i < parts.size(); ++i) {  // first: a failed chunk may not have marked its vertices
     if (!status[i].ok()) return {status[i].code(), "chunk " + std::to_string(i) + ": " + status[i].message()};
   }
+  if (const uint32_t v = first_unused(used, mesh.num_vertices); v < mesh.num_vertices) return unused_vertex(v);
   out = std::move(encoded);
   return {};
 }

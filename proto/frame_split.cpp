@@ -44,14 +44,28 @@ uint32_t morton_of_centroid(const fq::MeshView& mesh, uint32_t t, const Box& box
 
 float Box::max_extent() const { return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}); }
 
-Box bounding_box(const fq::MeshView& mesh) {
+Box bounding_box(const fq::MeshView& mesh, int threads) {
   Box b;
   if (mesh.num_vertices == 0) return b;
-  for (int a = 0; a < 3; ++a) b.lo[a] = b.hi[a] = mesh.positions[a];
-  for (uint32_t v = 1; v < mesh.num_vertices; ++v) {
+  // Per block of vertices, on the codec threads; min and max do not depend on the order.
+  constexpr uint32_t kBlock = 1u << 16;
+  std::vector<Box> boxes((mesh.num_vertices + kBlock - 1) / kBlock);
+  fq::parallel_for(static_cast<uint32_t>(boxes.size()), threads, [&](uint32_t k) {
+    Box& bk = boxes[k];
+    const uint32_t first = k * kBlock, end = std::min(mesh.num_vertices, first + kBlock);
+    for (int a = 0; a < 3; ++a) bk.lo[a] = bk.hi[a] = mesh.positions[3 * size_t(first) + a];
+    for (uint32_t v = first + 1; v < end; ++v) {
+      for (int a = 0; a < 3; ++a) {
+        bk.lo[a] = std::min(bk.lo[a], mesh.positions[3 * size_t(v) + a]);
+        bk.hi[a] = std::max(bk.hi[a], mesh.positions[3 * size_t(v) + a]);
+      }
+    }
+  }, 1);
+  b = boxes[0];
+  for (const Box& bk : boxes) {
     for (int a = 0; a < 3; ++a) {
-      b.lo[a] = std::min(b.lo[a], mesh.positions[3 * size_t(v) + a]);
-      b.hi[a] = std::max(b.hi[a], mesh.positions[3 * size_t(v) + a]);
+      b.lo[a] = std::min(b.lo[a], bk.lo[a]);
+      b.hi[a] = std::max(b.hi[a], bk.hi[a]);
     }
   }
   return b;
@@ -194,15 +208,17 @@ std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, con
   return parts;
 }
 
-std::vector<std::vector<uint32_t>> split_corners(const fq::MeshView& mesh, const Box& box, uint32_t chunks,
-                                                 int threads) {
+std::vector<PartCorners> split_corners(const fq::MeshView& mesh, const Box& box, uint32_t chunks, int threads) {
   SplitPlan p = plan_split(mesh, box, chunks, threads);
-  std::vector<std::vector<uint32_t>> parts(chunks);
-  for (uint32_t c = 0; c < chunks; ++c) parts[c].resize(3 * size_t(p.sizes[c]));
+  std::vector<PartCorners> parts(chunks);
+  for (uint32_t c = 0; c < chunks; ++c) {
+    parts[c].size = 3 * size_t(p.sizes[c]);
+    parts[c].data.reset(new uint32_t[parts[c].size]);  // every slot is written by fill_split
+  }
   // The frame's triangles are read in order here, so building a chunk reads only its own.
   fill_split(mesh, p, threads, [&](uint32_t c, uint32_t slot, uint32_t t) {
     const uint32_t* in = mesh.triangles + 3 * size_t(t);
-    uint32_t* out = parts[c].data() + 3 * size_t(slot);
+    uint32_t* out = parts[c].data.get() + 3 * size_t(slot);
     out[0] = in[0];  // three stores, not a memmove call per triangle
     out[1] = in[1];
     out[2] = in[2];
