@@ -37,7 +37,10 @@ std::vector<uint32_t> chunk_vertices(const fq::MeshView& mesh, std::span<const u
                                      ChunkScratch& scratch) {
   const size_t words = (size_t(mesh.num_vertices) + 63) / 64;
   scratch.seen.resize(words, 0);
-  scratch.local.resize(mesh.num_vertices);
+  if (scratch.local_size < mesh.num_vertices) {
+    scratch.local.reset(new uint32_t[mesh.num_vertices]);
+    scratch.local_size = mesh.num_vertices;
+  }
   uint64_t* seen = scratch.seen.data();
   for (uint32_t g : corners) seen[g >> 6] |= uint64_t{1} << (g & 63);
   std::vector<uint32_t> global;
@@ -60,7 +63,7 @@ std::vector<uint32_t> chunk_vertices(const fq::MeshView& mesh, std::span<const u
 bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids, const CodecOptions& o,
                  std::span<const uint32_t> corners, ChunkScratch& scratch, draco::Mesh& m) {
   const std::vector<uint32_t> global = chunk_vertices(mesh, corners, scratch);
-  const uint32_t* local = scratch.local.data();
+  const uint32_t* local = scratch.local.get();
   const size_t faces = corners.size() / 3;
   m.SetNumFaces(faces);
   bool repeated_index = false;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <atomic>
+#include <memory>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -22,7 +23,10 @@ namespace fq::wire::detail {
 /// Per-worker scratch space of build_chunk, reused from chunk to chunk and frame to frame.
 struct ChunkScratch {
   std::vector<uint64_t> seen;     ///< one bit per frame vertex; all zero between chunks
-  std::vector<uint32_t> local;    ///< global -> local point index of the current chunk
+  /// global -> local point index of the current chunk; only its vertices' entries are ever read,
+  /// so it is never initialized (a memset of the whole frame per worker and frame saved).
+  std::unique_ptr<uint32_t[]> local;
+  size_t local_size = 0;
   /// When set, build_chunk ORs the chunk's vertices into this frame-wide bitmap (shared by the
   /// workers), so that "every vertex is used" needs no pass of its own.
   std::atomic<uint64_t>* used = nullptr;

@@ -145,7 +145,7 @@ fq::Status merged_count(const std::vector<Chunk>& cs, uint32_t vertex_count, uin
   uint32_t max_id = 0;
   for (const auto& c : cs) {
     points += c.ids.size();
-    for (uint32_t id : c.ids) max_id = std::max(max_id, id);
+    if (vertex_count == 0) max_id = std::max(max_id, *std::max_element(c.ids.begin(), c.ids.end()));
   }
   n = vertex_count != 0 ? vertex_count : max_id + 1;
   if (n > points) {

@@ -74,35 +74,55 @@ Box bounding_box(const fq::MeshView& mesh, int threads) {
 namespace {
 
 /// Morton codes are bucketed by their top kBucketBits bits to find the cut keys without sorting.
-constexpr int kBucketBits = 16;
+/// 4096 buckets: few enough for a histogram per worker, while a cut's bucket holds a small share
+/// of the triangles (a surface occupies a few hundred of the 16^3 cells).
+constexpr int kBucketBits = 12;
 constexpr uint32_t kBuckets = 1u << kBucketBits;
 uint32_t bucket_of(uint32_t code) { return code >> (30 - kBucketBits); }
 uint64_t key_of(const std::vector<uint32_t>& codes, uint32_t t) { return (uint64_t(codes[t]) << 32) | t; }
 
+/// Triangles handed to a worker at a time by the split's passes.
+constexpr size_t kSplitGrain = size_t(1) << 16;
+
 /// first[c] for c in [1, chunks): the key of rank n c / chunks (keys are unique). A histogram of
-/// the buckets locates each rank's bucket; only the keys of those buckets are sorted.
-std::vector<uint64_t> chunk_starts(const std::vector<uint32_t>& codes, uint32_t chunks) {
+/// the buckets locates each rank's bucket; only the keys of those buckets are sorted. Both
+/// passes over the codes run on the codec threads (per-worker histograms and key lists); the
+/// result does not depend on the thread count.
+std::vector<uint64_t> chunk_starts(const std::vector<uint32_t>& codes, uint32_t chunks, int threads) {
   const auto n = static_cast<uint32_t>(codes.size());
+  const size_t workers = size_t(std::max(threads, 1));
+  std::vector<std::vector<uint32_t>> hist(workers, std::vector<uint32_t>(kBuckets, 0));
+  fq::ThreadPool::shared().run(n, static_cast<int>(workers), [&](size_t begin, size_t end, size_t w) {
+    uint32_t* h = hist[w].data();
+    for (size_t t = begin; t < end; ++t) ++h[bucket_of(codes[t])];
+  }, kSplitGrain);
   std::vector<uint32_t> start(kBuckets + 1, 0);
-  for (uint32_t code : codes) ++start[bucket_of(code) + 1];
-  for (uint32_t b = 0; b < kBuckets; ++b) start[b + 1] += start[b];
-  // The buckets holding a cut, each with the keys it holds (one pass over the codes).
+  for (uint32_t b = 0; b < kBuckets; ++b) {
+    start[b + 1] = start[b];
+    for (const auto& h : hist) start[b + 1] += h[b];
+  }
+  // The buckets holding a cut, each with the keys it holds.
   std::vector<int32_t> slot(kBuckets, -1);
-  std::vector<std::vector<uint64_t>> cut_keys;
   std::vector<uint32_t> cut_bucket(chunks, 0);
+  size_t slots = 0;
   for (uint32_t c = 1; c < chunks; ++c) {
     const uint64_t rank = uint64_t(n) * c / chunks;
     const uint32_t b = static_cast<uint32_t>(std::upper_bound(start.begin(), start.end(), rank) - start.begin()) - 1;
     cut_bucket[c] = b;
-    if (slot[b] < 0) {
-      slot[b] = static_cast<int32_t>(cut_keys.size());
-      cut_keys.emplace_back().reserve(start[b + 1] - start[b]);
+    if (slot[b] < 0) slot[b] = static_cast<int32_t>(slots++);
+  }
+  std::vector<std::vector<std::vector<uint64_t>>> found(workers, std::vector<std::vector<uint64_t>>(slots));
+  fq::ThreadPool::shared().run(n, static_cast<int>(workers), [&](size_t begin, size_t end, size_t w) {
+    for (size_t t = begin; t < end; ++t) {
+      if (const int32_t s = slot[bucket_of(codes[t])]; s >= 0)
+        found[w][size_t(s)].push_back(key_of(codes, static_cast<uint32_t>(t)));
     }
+  }, kSplitGrain);
+  std::vector<std::vector<uint64_t>> cut_keys(slots);
+  for (size_t k = 0; k < slots; ++k) {
+    for (auto& f : found) cut_keys[k].insert(cut_keys[k].end(), f[k].begin(), f[k].end());
+    std::sort(cut_keys[k].begin(), cut_keys[k].end());
   }
-  for (uint32_t t = 0; t < n; ++t) {
-    if (const int32_t s = slot[bucket_of(codes[t])]; s >= 0) cut_keys[size_t(s)].push_back(key_of(codes, t));
-  }
-  for (auto& v : cut_keys) std::sort(v.begin(), v.end());
   std::vector<uint64_t> first(chunks, 0);
   for (uint32_t c = 1; c < chunks; ++c) {
     const uint32_t b = cut_bucket[c];
@@ -162,7 +182,7 @@ SplitPlan plan_split(const fq::MeshView& mesh, const Box& box, uint32_t chunks, 
   // parallel, so it is on every frame's critical path: all codec threads work on it.
   std::vector<uint32_t> codes(n);
   fq::parallel_for(n, threads, [&](uint32_t t) { codes[t] = morton_of_centroid(mesh, t, box, scale); }, 4096);
-  const std::vector<uint64_t> first = chunk_starts(codes, chunks);
+  const std::vector<uint64_t> first = chunk_starts(codes, chunks, threads);
   const std::vector<uint16_t> bucket_chunk = bucket_chunks(first);
   fq::parallel_for(p.blocks, threads, [&](uint32_t b) {
     uint32_t* count = &p.at[size_t(b) * chunks];

@@ -3,12 +3,14 @@
 namespace fq::wire::detail {
 namespace {
 
-void put_varint(uint32_t v, std::vector<uint8_t>& out) {
+/// Writes v as a LEB128 varint at `at`; returns the end.
+inline uint8_t* put_varint(uint32_t v, uint8_t* at) {
   while (v >= 0x80) {
-    out.push_back(static_cast<uint8_t>(v | 0x80));
+    *at++ = static_cast<uint8_t>(v | 0x80);
     v >>= 7;
   }
-  out.push_back(static_cast<uint8_t>(v));
+  *at++ = static_cast<uint8_t>(v);
+  return at;
 }
 
 /// Reads one varint of at most 32 bits at data[pos]; false at the end or on an overlong one.
@@ -27,17 +29,20 @@ bool get_varint(const uint8_t* data, size_t size, size_t& pos, uint32_t& v) {
 }  // namespace
 
 void encode_id_runs(const std::vector<uint32_t>& ids, std::vector<uint8_t>& out) {
-  out.clear();
-  out.reserve(ids.size() / 4 + 16);
+  size_t runs = ids.empty() ? 0 : 1;
+  for (size_t i = 1; i < ids.size(); ++i) runs += ids[i] != ids[i - 1] + 1;
+  out.resize(runs * 10);  // two varints of at most 5 bytes per run
+  uint8_t* at = out.data();
   uint32_t end = 0;  // one past the previous run
   for (size_t i = 0; i < ids.size();) {
     size_t j = i + 1;
     while (j < ids.size() && ids[j] == ids[j - 1] + 1) ++j;
-    put_varint(ids[i] - end, out);
-    put_varint(static_cast<uint32_t>(j - i), out);
+    at = put_varint(ids[i] - end, at);
+    at = put_varint(static_cast<uint32_t>(j - i), at);
     end = ids[j - 1] + 1;
     i = j;
   }
+  out.resize(static_cast<size_t>(at - out.data()));
 }
 
 bool decode_id_runs(const uint8_t* data, size_t size, size_t count, uint32_t limit, std::vector<uint32_t>& ids) {
