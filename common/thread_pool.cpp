@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <exception>
 #include <system_error>
 
 namespace fq {
@@ -45,8 +46,11 @@ ThreadPool::~ThreadPool() {
 }
 
 ThreadPool& ThreadPool::shared() {
-  static ThreadPool pool(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) - 1);
-  return pool;
+  // Never destroyed: joining at static destruction would deadlock if exit() were called from a
+  // pool thread, and could race a loop still running on another thread. The helpers sleep in
+  // their wait and end with the process.
+  static ThreadPool* pool = new ThreadPool(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) - 1);
+  return *pool;
 }
 
 void ThreadPool::run_ranges(size_t count, int max_workers, size_t grain, RangeFn fn, void* ctx) {
@@ -64,10 +68,17 @@ void ThreadPool::run_ranges(size_t count, int max_workers, size_t grain, RangeFn
     jobs_.push_back(&job);
   }
   for (size_t i = 1; i < workers; ++i) work_.notify_one();
-  job.work(0);
+  std::exception_ptr failed;
+  try {
+    job.work(0);
+  } catch (...) {  // fn must not throw; if it does, no helper may be left inside this job
+    failed = std::current_exception();
+    job.next.store(job.count);
+  }
   std::unique_lock lock(mutex_);
   if (auto it = std::find(jobs_.begin(), jobs_.end(), &job); it != jobs_.end()) jobs_.erase(it);
   done_.wait(lock, [&] { return job.inside == 0; });
+  if (failed) std::rethrow_exception(failed);
 }
 
 void ThreadPool::helper_loop() {

@@ -34,7 +34,7 @@ class ThreadPool {
   ThreadPool& operator=(const ThreadPool&) = delete;
 
   /// The process-wide pool: hardware threads - 1 helpers (the caller is the last core).
-  /// Started on first use, stopped at exit.
+  /// Started on first use; its threads end with the process.
   static ThreadPool& shared();
 
   /// Threads of the pool (not counting callers).
@@ -44,7 +44,9 @@ class ThreadPool {
   /// calling thread (worker 0) and at most max_workers - 1 pool threads (workers 1, 2, ...):
   /// worker < max_workers, and no two calls of one run() share a worker id at the same time.
   /// Returns when every range is done. Which worker runs which range is not fixed, so fn
-  /// must write only the outputs of its items (and its worker's scratch). fn must not throw.
+  /// must write only the outputs of its items (and its worker's scratch). fn must not throw
+  /// (on a pool thread that ends the process, as in an OpenMP loop; on the caller, the other
+  /// ranges are dropped and the exception is rethrown once no helper is inside the loop).
   template <class F>
   void run(size_t count, int max_workers, F&& fn, size_t grain = 1) {
     using Fn = std::remove_reference_t<F>;

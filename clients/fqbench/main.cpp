@@ -2,6 +2,7 @@
 // the median and spread (p10/p90) of device time over repeated frames for the paper's
 // rows of Tables 2 and 3, with the paper's figure, the speed-up, host<->device transfers
 // (pinned) and the CPU engine's time on the same row. Prints a markdown table.
+// With --codec MESH it times the frame codec against plain Draco instead (codec_bench.h).
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -69,6 +70,21 @@ TEST(ThreadPool, NestedAndConcurrentCallsComplete) {
   }
   for (auto& t : callers) t.join();
   EXPECT_EQ(total.load(), size_t(4) * 20 * 8 * 100);
+}
+
+TEST(ThreadPool, AnExceptionOnTheCallerReachesItAndThePoolGoesOn) {
+  ThreadPool pool(2);
+  // Only worker 0 (the caller) throws: on a pool thread an exception would end the process.
+  // Helpers hold their first range until the caller has one, so that the caller surely does.
+  std::atomic<bool> caller_in{false};
+  EXPECT_THROW(pool.run(10000, 3, [&](size_t, size_t, size_t w) {
+    if (w == 0) {
+      caller_in = true;
+      throw std::runtime_error("item failed");
+    }
+    while (!caller_in) std::this_thread::yield();
+  }), std::runtime_error);
+  check_run(pool, 1000, 3, 8);
 }
 
 TEST(ThreadPool, SharedPoolLeavesTheCallerOneCore) {
