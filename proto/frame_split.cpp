@@ -48,7 +48,7 @@ Box bounding_box(const fq::MeshView& mesh, int threads) {
   Box b;
   if (mesh.num_vertices == 0) return b;
   // Per block of vertices, on the codec threads; min and max do not depend on the order.
-  constexpr uint32_t kBlock = 1u << 16;
+  constexpr uint32_t kBlock = 1u << 14;
   std::vector<Box> boxes((mesh.num_vertices + kBlock - 1) / kBlock);
   fq::parallel_for(static_cast<uint32_t>(boxes.size()), threads, [&](uint32_t k) {
     Box& bk = boxes[k];
@@ -82,7 +82,7 @@ uint32_t bucket_of(uint32_t code) { return code >> (30 - kBucketBits); }
 uint64_t key_of(const std::vector<uint32_t>& codes, uint32_t t) { return (uint64_t(codes[t]) << 32) | t; }
 
 /// Triangles handed to a worker at a time by the split's passes.
-constexpr size_t kSplitGrain = size_t(1) << 16;
+constexpr size_t kSplitGrain = size_t(1) << 14;
 
 /// first[c] for c in [1, chunks): the key of rank n c / chunks (keys are unique). A histogram of
 /// the buckets locates each rank's bucket; only the keys of those buckets are sorted. Both
@@ -155,7 +155,7 @@ std::vector<uint16_t> bucket_chunks(const std::vector<uint64_t>& first) {
 /// keep the input order within a chunk (usually coherent: good for Draco's sequential coder,
 /// which stores indices in face order).
 struct SplitPlan {
-  static constexpr uint32_t kBlock = 1u << 16;
+  static constexpr uint32_t kBlock = 1u << 14;  // igea: 17 blocks, enough for 16 threads
   uint32_t chunks = 0, blocks = 0;
   std::vector<uint8_t> chunk_of;  ///< per triangle
   std::vector<uint32_t> at;       ///< blocks x chunks first slots
