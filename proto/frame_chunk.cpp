@@ -42,7 +42,17 @@ std::vector<uint32_t> chunk_vertices(const fq::MeshView& mesh, std::span<const u
     scratch.local_size = mesh.num_vertices;
   }
   uint64_t* seen = scratch.seen.data();
-  for (uint32_t g : corners) seen[g >> 6] |= uint64_t{1} << (g & 63);
+  // Four interleaved streams over the corners: neighbouring corners hit the same word, and one
+  // stream's read-modify-writes would wait on each other.
+  const size_t q = corners.size() / 4;
+  const uint32_t* c = corners.data();
+  for (size_t i = 0; i < q; ++i) {
+    seen[c[i] >> 6] |= uint64_t{1} << (c[i] & 63);
+    seen[c[q + i] >> 6] |= uint64_t{1} << (c[q + i] & 63);
+    seen[c[2 * q + i] >> 6] |= uint64_t{1} << (c[2 * q + i] & 63);
+    seen[c[3 * q + i] >> 6] |= uint64_t{1} << (c[3 * q + i] & 63);
+  }
+  for (size_t i = 4 * q; i < corners.size(); ++i) seen[c[i] >> 6] |= uint64_t{1} << (c[i] & 63);
   std::vector<uint32_t> global;
   global.reserve(corners.size() / 6 + 16);
   for (size_t w = 0; w < words; ++w) {
