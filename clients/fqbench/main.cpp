@@ -2,6 +2,7 @@
 // the median and spread (p10/p90) of device time over repeated frames for the paper's
 // rows of Tables 2 and 3, with the paper's figure, the speed-up, host<->device transfers
 // (pinned) and the CPU engine's time on the same row. Prints a markdown table.
+// With --codec MESH it times the frame codec against plain Draco instead (codec_bench.h).
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -12,6 +13,7 @@
 
 #include "clients/fqbench/bench_rows.h"
 #include "clients/fqbench/bench_stats.h"
+#include "clients/fqbench/codec_bench.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/engine.h"
 #include "proto/mesh_io.h"
@@ -175,7 +177,30 @@ int main(int argc, char** argv) {
   app.add_flag("--stats-only", o.stats_only, "print only the neighbour statistics (no engine runs)");
   bool list = false;
   app.add_flag("--list", list, "list the rows and exit");
+  CodecBenchOptions codec;
+  auto* codec_opt = app.add_option("--codec", codec.mesh,
+                                   "codec mode: time the frame codec on MESH (a file, or a name in the mesh "
+                                   "folder) against plain Draco on the same chunks, instead of the engine rows");
+  app.add_option("--chunks", codec.chunks, "codec mode: chunks per frame")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 256u));
+  app.add_option("--threads", codec.threads, "codec mode: codec threads")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  app.add_option("--speed", codec.speed, "codec mode: Draco encoding = decoding speed")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 10));
+  app.add_option("--bits", codec.position_bits, "codec mode: position quantization bits")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 30));
+  app.add_flag("--json", codec.json, "codec mode: print one JSON object instead of a table");
   CLI11_PARSE(app, argc, argv);
+
+  if (*codec_opt) {
+    codec.mesh_dir = o.mesh_dir;
+    codec.repeat = o.repeat;
+    return run_codec_bench(codec);
+  }
 
   if (list) {
     for (const BenchRow& r : paper_rows())
