@@ -1,0 +1,76 @@
+#include "tests/daemon/fqd_process.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <fstream>
+
+namespace fq::test {
+
+std::string ops_config(const std::string& extra) {
+  return R"(
+log_level = "warn"
+[endpoints]
+ingest = "tcp://127.0.0.1:*"
+publish = "tcp://127.0.0.1:*"
+control = "tcp://127.0.0.1:*"
+[engine]
+kind = "cpu"
+cpu_threads = 1
+[defaults]
+compute = "filter_and_cluster"
+budget_ms = 60000
+)" + extra;
+}
+
+std::string write_temp_file(const std::string& name, const std::string& text) {
+  const std::string path = testing::TempDir() + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+FqdProcess::FqdProcess(const std::vector<std::string>& args) {
+  std::vector<std::string> all = args;
+  all.push_back("--print-endpoints");
+  child_ = spawn(FQD_PATH, all);
+  char line[2048] = {0};
+  if (child_.out && std::fgets(line, sizeof line, child_.out)) {
+    endpoints_ = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
+    if (!endpoints_.is_object()) endpoints_ = nlohmann::json::object();
+  }
+}
+
+FqdProcess::~FqdProcess() { stop(); }
+
+int FqdProcess::stop() {
+  if (status_ != -2 || child_.pid <= 0) return status_;
+  kill(child_.pid, SIGTERM);
+  status_ = wait_exit(child_.pid);
+  if (child_.out) std::fclose(child_.out);
+  child_.out = nullptr;
+  return status_;
+}
+
+ToolRun run_tool(const std::string& path, const std::vector<std::string>& args, int seconds) {
+  // stderr joins stdout through the shell, so that one-line error messages can be checked.
+  // coreutils timeout ends a tool that hangs, so the test reports instead of waiting forever.
+  std::string command = "exec timeout -k 5 " + std::to_string(seconds) + " '" + path + "'";
+  for (const std::string& a : args) command += " '" + a + "'";
+  command += " 2>&1";
+  Child c = spawn("/bin/sh", {"-c", command});
+  ToolRun run;
+  if (c.pid <= 0) return run;
+  run.output = read_all(c.out);
+  std::fclose(c.out);
+  run.status = wait_exit(c.pid, seconds + 10);
+  return run;
+}
+
+ToolRun publish_fandisk(const std::string& ingest, const std::string& stream, int count, int fps) {
+  return run_tool(FQPUB_PATH, {std::string(FQ_SOURCE_DIR) + "/data/fandisk.ply", "--endpoint", ingest, "--stream",
+                               stream, "--fps", std::to_string(fps), "--count", std::to_string(count), "--noise",
+                               "0.1", "--quiet"});
+}
+
+}  // namespace fq::test

@@ -1,0 +1,53 @@
+// fqd as a child process for the operations tests, and one-shot runs of the command-line
+// tools with their stdout and stderr captured together.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tests/daemon/child_process.h"
+
+namespace fq::test {
+
+/// A config with every endpoint on tcp://127.0.0.1:*, the CPU engine on one thread, log
+/// level warn and a generous budget; `extra` is appended (more sections).
+std::string ops_config(const std::string& extra = "");
+
+/// Writes `text` into the test's temporary folder as `name`; returns the path.
+std::string write_temp_file(const std::string& name, const std::string& text);
+
+class FqdProcess {
+ public:
+  /// Starts fqd with `args` plus --print-endpoints and reads the endpoints line
+  /// (endpoints() is empty when fqd printed none, e.g. when it failed to start).
+  explicit FqdProcess(const std::vector<std::string>& args);
+  /// SIGTERM, then waits (exit status in stop()).
+  ~FqdProcess();
+  FqdProcess(const FqdProcess&) = delete;
+  FqdProcess& operator=(const FqdProcess&) = delete;
+
+  const nlohmann::json& endpoints() const { return endpoints_; }
+  std::string endpoint(const char* role) const { return endpoints_.value(role, ""); }
+  pid_t pid() const { return child_.pid; }
+  /// Sends SIGTERM and returns the exit status (-1 when killed); idempotent.
+  int stop();
+
+ private:
+  Child child_;
+  nlohmann::json endpoints_ = nlohmann::json::object();
+  int status_ = -2;
+};
+
+struct ToolRun {
+  int status = -1;     ///< exit status; 124 past the time limit, -1 when killed by a signal
+  std::string output;  ///< stdout and stderr, interleaved
+};
+
+/// Runs `path args…` to completion (killed after `seconds`).
+ToolRun run_tool(const std::string& path, const std::vector<std::string>& args, int seconds = 120);
+
+/// Runs fqpub on the bundled data/fandisk.ply: `count` frames at `fps` on `stream`.
+ToolRun publish_fandisk(const std::string& ingest, const std::string& stream, int count, int fps = 20);
+
+}  // namespace fq::test
