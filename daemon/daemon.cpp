@@ -89,6 +89,11 @@ Status Daemon::start() {
   if (Status s = make_engines(config_.engine, engines_); !s.ok()) return s;
   zmq::socket_t ingest, publish, control;
   if (Status s = bind_sockets(ingest, publish, control); !s.ok()) return s;
+  if (!config_.http.listen.empty()) {
+    http_ = std::make_unique<HttpServer>(config_, registry_, pipeline_.latest, engine_names(), healthy_);
+    if (Status s = http_->start(); !s.ok()) return s;
+    endpoints_.http = http_->url();
+  }
   // Sockets were made on this thread and are handed over whole to their owner threads.
   publisher_thread_ =
       std::thread([this, s = std::move(publish)]() mutable { Publisher(std::move(s), pipeline_).run(); });
@@ -103,18 +108,24 @@ Status Daemon::start() {
   ingest_thread_ =
       std::thread([this, s = std::move(ingest)]() mutable { run_ingest(std::move(s), pipeline_); });
   running_ = true;
+  healthy_ = true;
+  if (config_.stats.interval_s > 0) stats_log_ = std::make_unique<StatsLog>(registry_, config_.stats.interval_s);
   std::string names;
   for (const std::string& n : engine_names()) names += (names.empty() ? "" : ", ") + n;
   spdlog::info("fqd: engines [{}], {} decode / {} encode threads", names, config_.decode_threads,
                config_.encode_threads);
   spdlog::info("fqd: ingest {} (PULL), publish {} (PUB), control {} (REP)", endpoints_.ingest,
                endpoints_.publish, endpoints_.control);
+  if (http_) spdlog::info("fqd: http {} (/metrics /healthz /streams, viewer at /)", endpoints_.http);
   return {};
 }
 
 void Daemon::stop() {
   if (!running_) return;
   running_ = false;
+  healthy_ = false;
+  if (http_) http_->stop();
+  if (stats_log_) stats_log_->stop();
   // Blocking receives on the input sockets return ETERM; their threads close them.
   input_context_.shutdown();
   if (ingest_thread_.joinable()) ingest_thread_.join();

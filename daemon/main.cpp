@@ -14,7 +14,9 @@
 namespace {
 
 std::string endpoints_json(const fq::daemon::BoundEndpoints& e) {
-  return nlohmann::json{{"ingest", e.ingest}, {"publish", e.publish}, {"control", e.control}}.dump();
+  nlohmann::json j{{"ingest", e.ingest}, {"publish", e.publish}, {"control", e.control}};
+  if (!e.http.empty()) j["http"] = e.http;
+  return j.dump();
 }
 
 }  // namespace

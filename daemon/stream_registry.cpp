@@ -80,7 +80,7 @@ std::vector<std::string> StreamRegistry::list() const {
 }
 
 StreamSnapshot StreamRegistry::snapshot_of(const std::string& id, const Entry& e) const {
-  return {id, e.counters, e.metrics.summary()};
+  return {id, e.counters, e.metrics.summary(), e.metrics.histograms()};
 }
 
 bool StreamRegistry::snapshot(const std::string& stream_id, std::vector<StreamSnapshot>& out) const {

@@ -31,6 +31,7 @@ struct StreamSnapshot {
   std::string stream_id;
   StreamCounters counters;
   std::map<std::string, Percentiles> stages;
+  std::map<std::string, LatencyHistogram> histograms;  ///< since start, by stage (for /metrics)
 };
 
 class StreamRegistry {

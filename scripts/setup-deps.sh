@@ -11,6 +11,8 @@ packages=(
   libspdlog-dev libfmt-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev
+  libcpp-httplib-dev
+  python3-prometheus-client
 )
 
 missing=()
