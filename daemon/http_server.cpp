@@ -121,6 +121,12 @@ void HttpServer::add_viewer_routes() {
   const std::filesystem::path root(config_.http.web_root);
   if (viewer_installed(root)) {
     server_->set_mount_point("/", root.string());
+    // Module scripts need a JavaScript type, and WebAssembly streams only as application/wasm.
+    // application/x-javascript (a JavaScript type to browsers) rather than text/javascript:
+    // httplib compresses text/* on every request, and brotli at its default quality took
+    // 4 s for three.core.js (1.4 MB) on the 2-core development machine.
+    server_->set_file_extension_and_mimetype_mapping("js", "application/x-javascript");
+    server_->set_file_extension_and_mimetype_mapping("wasm", "application/wasm");
     return;
   }
   spdlog::info("http: no viewer in {} (run scripts/web-deps.sh); / explains how to install it", root.string());

@@ -9,19 +9,10 @@
 namespace fq::test {
 
 std::string ops_config(const std::string& extra) {
-  return R"(
-log_level = "warn"
-[endpoints]
-ingest = "tcp://127.0.0.1:*"
-publish = "tcp://127.0.0.1:*"
-control = "tcp://127.0.0.1:*"
-[engine]
-kind = "cpu"
-cpu_threads = 1
-[defaults]
-compute = "filter_and_cluster"
-budget_ms = 60000
-)" + extra;
+  std::ifstream in(std::string(FQ_SOURCE_DIR) + "/tests/daemon/child_fqd.toml");
+  std::string base((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_FALSE(base.empty()) << "tests/daemon/child_fqd.toml is missing";
+  return base + "\n" + extra;
 }
 
 std::string write_temp_file(const std::string& name, const std::string& text) {

@@ -10,8 +10,8 @@
 
 namespace fq::test {
 
-/// A config with every endpoint on tcp://127.0.0.1:*, the CPU engine on one thread, log
-/// level warn and a generous budget; `extra` is appended (more sections).
+/// tests/daemon/child_fqd.toml (every endpoint on tcp://127.0.0.1:*, the CPU engine on one
+/// thread, log level warn, a generous budget) with `extra` appended (more sections).
 std::string ops_config(const std::string& extra = "");
 
 /// Writes `text` into the test's temporary folder as `name`; returns the path.
