@@ -120,6 +120,25 @@ Status Daemon::start() {
   return {};
 }
 
+std::vector<std::string> Daemon::reload_streams(const DaemonConfig& fresh) {
+  registry_.reload(fresh.defaults, fresh.streams);
+  std::vector<std::string> restart;
+  const DaemonConfig& c = config_;
+  const Endpoints& e = fresh.endpoints;
+  if (e.ingest != c.endpoints.ingest || e.publish != c.endpoints.publish || e.control != c.endpoints.control)
+    restart.push_back("endpoints");
+  if (fresh.http.listen != c.http.listen || fresh.http.web_root != c.http.web_root) restart.push_back("http");
+  if (fresh.engine.kind != c.engine.kind || fresh.engine.gpus != c.engine.gpus ||
+      fresh.engine.cpu_engines != c.engine.cpu_engines || fresh.engine.cpu_threads != c.engine.cpu_threads ||
+      fresh.engine.cpu_alongside_gpus != c.engine.cpu_alongside_gpus)
+    restart.push_back("engine");
+  if (fresh.caps.max_vertices != c.caps.max_vertices || fresh.caps.max_frame_bytes != c.caps.max_frame_bytes ||
+      fresh.caps.max_streams != c.caps.max_streams)
+    restart.push_back("caps");
+  if (fresh.stats.interval_s != c.stats.interval_s) restart.push_back("stats");
+  return restart;
+}
+
 void Daemon::stop() {
   if (!running_) return;
   running_ = false;

@@ -43,6 +43,9 @@ class Daemon {
 
   const BoundEndpoints& endpoints() const { return endpoints_; }
   const DaemonConfig& config() const { return config_; }
+  /// Applies a reloaded configuration's per-stream settings ([defaults], [streams.*]) to the
+  /// running daemon; other sections need a restart (the returned list names those that differ).
+  std::vector<std::string> reload_streams(const DaemonConfig& fresh);
   StreamRegistry& registry() { return registry_; }
   /// Names of the engines in use ("cpu", "cuda:<device>").
   std::vector<std::string> engine_names() const;

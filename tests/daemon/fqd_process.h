@@ -20,8 +20,11 @@ std::string write_temp_file(const std::string& name, const std::string& text);
 class FqdProcess {
  public:
   /// Starts fqd with `args` plus --print-endpoints and reads the endpoints line
-  /// (endpoints() is empty when fqd printed none, e.g. when it failed to start).
-  explicit FqdProcess(const std::vector<std::string>& args);
+  /// (endpoints() is empty when fqd printed none, e.g. when it failed to start). With a
+  /// `shell` prefix/suffix fqd runs as `/bin/sh -c "<prefix> exec fqd ARGS <suffix>"`
+  /// (to set its directory, environment or stderr).
+  explicit FqdProcess(const std::vector<std::string>& args, const std::string& prefix = "",
+                      const std::string& suffix = "");
   /// SIGTERM, then waits (exit status in stop()).
   ~FqdProcess();
   FqdProcess(const FqdProcess&) = delete;
@@ -30,6 +33,8 @@ class FqdProcess {
   const nlohmann::json& endpoints() const { return endpoints_; }
   std::string endpoint(const char* role) const { return endpoints_.value(role, ""); }
   pid_t pid() const { return child_.pid; }
+  /// True while fqd has not exited.
+  bool alive() const;
   /// Sends SIGTERM and returns the exit status (-1 when killed); idempotent.
   int stop();
 
@@ -43,6 +48,9 @@ struct ToolRun {
   int status = -1;     ///< exit status; 124 past the time limit, -1 when killed by a signal
   std::string output;  ///< stdout and stderr, interleaved
 };
+
+/// `path` and `args` single-quoted for /bin/sh.
+std::string shell_words(const std::string& path, const std::vector<std::string>& args);
 
 /// Runs `path args…` to completion (killed after `seconds`).
 ToolRun run_tool(const std::string& path, const std::vector<std::string>& args, int seconds = 120);
