@@ -46,6 +46,7 @@ struct DaemonConfig {
   std::string log_level = "info";
   HttpConfig http;        ///< [http]: metrics, health, streams and the live viewer
   StatsLogConfig stats;   ///< [stats]: the periodic one-line log per stream
+  SubIngestConfig sub_ingest;  ///< [ingest]: SUB-connect to producers too (scale-out)
 
   /// Replaces thread counts of 0 by their automatic value.
   void resolve_auto_threads();

@@ -5,6 +5,7 @@
 #include "daemon/control_server.h"
 #include "daemon/ingest.h"
 #include "daemon/publisher.h"
+#include "daemon/sub_ingest.h"
 
 namespace fq::daemon {
 namespace {
@@ -89,6 +90,10 @@ Status Daemon::start() {
   if (Status s = make_engines(config_.engine, engines_); !s.ok()) return s;
   zmq::socket_t ingest, publish, control;
   if (Status s = bind_sockets(ingest, publish, control); !s.ok()) return s;
+  zmq::socket_t sub;  // stays empty without [ingest] connect
+  if (!config_.sub_ingest.connect.empty()) {
+    if (Status s = make_sub_socket(input_context_, config_.sub_ingest, sub); !s.ok()) return s;
+  }
   if (!config_.http.listen.empty()) {
     http_ = std::make_unique<HttpServer>(config_, registry_, pipeline_.latest, engine_names(), healthy_);
     if (Status s = http_->start(); !s.ok()) return s;
@@ -105,8 +110,15 @@ Status Daemon::start() {
     decoders_.emplace_back([this] { run_decode_worker(pipeline_); });
   control_thread_ =
       std::thread([this, s = std::move(control)]() mutable { run_control(std::move(s), registry_); });
-  ingest_thread_ =
-      std::thread([this, s = std::move(ingest)]() mutable { run_ingest(std::move(s), pipeline_); });
+  if (sub) {
+    ingest_thread_ = std::thread([this, pull = std::move(ingest), sub = std::move(sub)]() mutable {
+      const auto& ids = config_.sub_ingest.streams;
+      run_sub_ingest(std::move(pull), std::move(sub), pipeline_, std::set<std::string>(ids.begin(), ids.end()));
+    });
+  } else {
+    ingest_thread_ =
+        std::thread([this, s = std::move(ingest)]() mutable { run_ingest(std::move(s), pipeline_); });
+  }
   running_ = true;
   healthy_ = true;
   if (config_.stats.interval_s > 0) stats_log_ = std::make_unique<StatsLog>(registry_, config_.stats.interval_s);
@@ -117,6 +129,9 @@ Status Daemon::start() {
   spdlog::info("fqd: ingest {} (PULL), publish {} (PUB), control {} (REP)", endpoints_.ingest,
                endpoints_.publish, endpoints_.control);
   if (http_) spdlog::info("fqd: http {} (/metrics /healthz /streams, viewer at /)", endpoints_.http);
+  for (const std::string& ep : config_.sub_ingest.connect)
+    spdlog::info("fqd: ingest also from {} (SUB), streams [{}]", ep,
+                 config_.sub_ingest.streams.empty() ? std::string("all") : fmt::format("{}", fmt::join(config_.sub_ingest.streams, ", ")));
   return {};
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "common/status.h"
 
@@ -18,12 +19,22 @@ struct HttpConfig {
   std::string web_root = "web";
 };
 
+/// [ingest]: SUB-connect to producers' PUB endpoints as well as the PULL bind (scale-out).
+struct SubIngestConfig {
+  std::vector<std::string> connect;  ///< producers' PUB endpoints; empty = PULL only
+  std::vector<std::string> streams;  ///< stream ids this fqd serves; empty = every stream
+};
+
 struct StatsLogConfig {
   double interval_s = 60.0;  ///< seconds between `[stats]` log lines; 0 = none
 };
 
-/// Reads [http] and [stats] from the root table into `http` and `stats`.
-Status read_service_sections(TomlReader& root, HttpConfig& http, StatsLogConfig& stats);
+/// Reads [http], [stats] and [ingest] from the root table.
+Status read_service_sections(TomlReader& root, HttpConfig& http, StatsLogConfig& stats,
+                             SubIngestConfig& sub_ingest);
+
+/// Reads [ingest] (connect, streams: arrays of strings).
+Status read_sub_ingest(TomlReader& root, SubIngestConfig& out);
 
 /// Splits "host:port" ("[::1]:8080" for IPv6); false when it is not of that form or the
 /// port is outside 0..65535.
