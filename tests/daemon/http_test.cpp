@@ -27,13 +27,16 @@ nlohmann::json fqctl_counters(const FqdProcess& fqd) {
 }
 
 // Waits until every one of `sent` frames of `stream` is accounted for.
-nlohmann::json settled(const FqdProcess& fqd, uint64_t sent) {
+nlohmann::json settled(const FqdProcess& fqd, uint64_t sent, const std::string& stream = "cam0") {
   nlohmann::json c;
   for (int i = 0; i < 600; ++i) {
-    c = fqctl_counters(fqd).at("streams").at(0);
-    const uint64_t done = c.at("frames_out").get<uint64_t>() + c.at("errors").get<uint64_t>() +
-                          c.at("superseded").get<uint64_t>() + c.at("dropped_stale").get<uint64_t>();
-    if (done == sent) break;
+    const nlohmann::json all = fqctl_counters(fqd);  // kept: the loop refers into it
+    for (const nlohmann::json& s : all.at("streams"))
+      if (s.at("stream") == stream) c = s;
+    if (!c.is_null() && c.at("frames_out").get<uint64_t>() + c.at("errors").get<uint64_t>() +
+                                c.at("superseded").get<uint64_t>() + c.at("dropped_stale").get<uint64_t>() ==
+                            sent)
+      break;
     std::this_thread::sleep_for(std::chrono::milliseconds(100));  // polling fqd, not ordering
   }
   return c;
@@ -43,8 +46,13 @@ TEST(Http, MetricsParseAndAgreeWithFqctl) {
   FqdProcess fqd({"--config", write_temp_file("http_metrics.toml", ops_config(kHttp))});
   ASSERT_FALSE(fqd.endpoint("http").empty()) << "fqd did not report an http endpoint";
   ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam0", 10).status, 0);
+  // A stream id with the characters the text format escapes in label values.
+  const std::string odd = "cam \"1\"\\x";
+  ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), odd, 2).status, 0);
   const nlohmann::json ctl = settled(fqd, 10);
+  const nlohmann::json ctl_odd = settled(fqd, 2, odd);
   EXPECT_GT(ctl.at("frames_out").get<int>(), 0);
+  ASSERT_EQ(ctl_odd.at("stream"), odd);
 
   const ToolRun parsed = run_tool("/usr/bin/python3", {METRICS_CHECK_PY, fqd.endpoint("http") + "/metrics"});
   ASSERT_EQ(parsed.status, 0) << parsed.output;
@@ -53,8 +61,10 @@ TEST(Http, MetricsParseAndAgreeWithFqctl) {
   EXPECT_EQ(m.at("families").at("fq_frames_in"), "counter");
   EXPECT_EQ(m.at("families").at("fq_engine_info"), "gauge");
   const nlohmann::json& prom = m.at("streams").at("cam0");
-  for (const char* k : {"frames_in", "frames_out", "superseded", "dropped_stale", "late", "errors"})
+  for (const char* k : {"frames_in", "frames_out", "superseded", "dropped_stale", "late", "errors"}) {
     EXPECT_EQ(prom.at(k), ctl.at(k)) << k;
+    EXPECT_EQ(m.at("streams").at(odd).at(k), ctl_odd.at(k)) << k;
+  }
   ASSERT_FALSE(ctl.at("stages").empty());
   for (const auto& [stage, p] : ctl.at("stages").items()) EXPECT_EQ(prom.at("stages").at(stage), p.at("count")) << stage;
 
