@@ -11,10 +11,12 @@
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/device_frame.cuh"
 #include "kernels/cuda/host_staging.h"
+#include "kernels/cuda/link_export_pass.cuh"
 #include "kernels/cuda/launch.cuh"
 #include "kernels/cuda/passes.cuh"
 #include "kernels/cuda/stream.cuh"
 #include "kernels/cuda/team_passes.cuh"
+#include "kernels/cluster_control.h"
 #include "kernels/cuda_engine.h"
 #include "kernels/frame_prep.h"
 #include "kernels/grid_build.h"
@@ -74,7 +76,11 @@ Status CudaEngine::process(const MeshView& mesh, const Params& params, FrameResu
   out.timings.clear();
   out.labels.clear();
   out.num_clusters = 0;
+  out.theta = 0.f;
+  out.link_parent.clear();
+  out.link_p.clear();
   if (Status s = validate(params); !s.ok()) return s;
+  if (needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
   const Clock::time_point t0 = Clock::now();
   if (Status s = check_mesh(mesh); !s.ok()) return s;
   Normalization norm;
@@ -194,6 +200,10 @@ void CudaEngine::enqueue_passes(const Params& params) {
     events_.mark("link", s);
     cuda::cluster_labels(f_, s);
     events_.mark("modes", s);
+    if (params.c.keep_links) {
+      cuda::export_links(f_, params.c, s);  // downloads too
+      events_.mark("export_links", s);
+    }
   }
   if (params.filter) {
     cuda::gather_moved(f_, s);
@@ -248,6 +258,11 @@ void CudaEngine::finish_output(const MeshView& mesh, const Params& params, const
   if (params.cluster) {
     out.labels.assign(f_.h_labels.data(), f_.h_labels.data() + n);
     out.num_clusters = f_.h_labels.data()[n];
+    out.theta = params.c.theta;
+  }
+  if (params.cluster && params.c.keep_links) {
+    out.link_parent.assign(f_.h_link_parent.data(), f_.h_link_parent.data() + n);
+    out.link_p.assign(f_.h_link_p.data(), f_.h_link_p.data() + n);
   }
 }
 
