@@ -43,7 +43,10 @@ CutLadder::CutLadder(const LinkForest& f) {
 }
 
 float CutLadder::cut(uint32_t t) const {
-  if (t < sorted_.size()) return sorted_[t];
+  // Halfway between the last link cut and the first kept, so that theta = 1 - cut survives
+  // float rounding when given back; no cut at all is theta = 1.
+  if (t == 0) return 0.f;
+  if (t < sorted_.size()) return 0.5f * (sorted_[t - 1] + sorted_[t]);
   const float top = sorted_.empty() ? 0.f : sorted_.back();
   return std::nextafter(std::max(top, 0.f), std::numeric_limits<float>::infinity());
 }

@@ -28,7 +28,8 @@ class CutLadder {
   explicit CutLadder(const LinkForest& forest);
   uint32_t roots() const { return roots_; }
   uint32_t links() const { return static_cast<uint32_t>(sorted_.size()); }
-  /// Cut value for `t` cut links: the (t+1)-th weakest p, or above every p for t = links().
+  /// Cut value for `t` cut links: 0 for none, above every p for t = links(), else halfway
+  /// between the t-th and (t+1)-th weakest p.
   float cut(uint32_t t) const;
   /// The t that gives `target` clusters without ties (clamped to [0, links()]).
   uint32_t t_for(uint32_t target) const;
