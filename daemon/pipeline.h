@@ -11,6 +11,7 @@
 
 #include "daemon/config.h"
 #include "daemon/frame_job.h"
+#include "daemon/label_tracks.h"
 #include "daemon/latency_policy.h"
 #include "daemon/object_pool.h"
 #include "daemon/stream_registry.h"
@@ -30,6 +31,7 @@ struct Pipeline {
   std::map<std::string, uint64_t> arrivals;  ///< per-stream arrival counter, ingest thread only
   ObjectPool<Mesh> meshes;                   ///< decoded frames, reused
   ObjectPool<FrameResult> results;           ///< engine outputs, reused
+  LabelTracks label_tracks;                  ///< stable cluster ids per stream
 
   /// Marks `frame` failed (message logged) and sends it straight to the publisher.
   void fail(FramePtr frame, Status why);

@@ -42,6 +42,22 @@ Status check_sigma(const char* name, float v, bool zero_means_default) {
 
 }  // namespace
 
+bool parse_cluster_geometry(const std::string& s, ClusterGeometry& out) {
+  if (s == "auto")
+    out = ClusterGeometry::kAuto;
+  else if (s == "input")
+    out = ClusterGeometry::kInput;
+  else if (s == "filtered")
+    out = ClusterGeometry::kFiltered;
+  else
+    return false;
+  return true;
+}
+
+const char* cluster_geometry_name(ClusterGeometry g) {
+  return g == ClusterGeometry::kInput ? "input" : g == ClusterGeometry::kFiltered ? "filtered" : "auto";
+}
+
 Status validate(const Params& p) {
   if (!p.filter && !p.cluster) return invalid_argument("nothing to compute: enable filter and/or cluster");
   const FilterParams& f = p.f;

@@ -2,6 +2,8 @@
 // mean edge length, as in the paper; neighbourhoods have radius 2 sigma.
 #pragma once
 
+#include <string>
+
 #include "common/status.h"
 
 namespace fq {
@@ -55,6 +57,10 @@ struct Params {
   FilterParams f;
   ClusterParams c;
 };
+
+/// "auto" | "input" | "filtered" (command lines, config files).
+bool parse_cluster_geometry(const std::string& s, ClusterGeometry& out);
+const char* cluster_geometry_name(ClusterGeometry g);
 
 /// Clear message for the first bad value (sigma <= 0, NaN, theta outside (0, 1], ...).
 Status validate(const Params& p);

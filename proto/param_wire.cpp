@@ -36,6 +36,35 @@ fq::Status set_method(ClusterMethodWire m, fq::ClusterParams& c) {
   }
 }
 
+fq::Status set_geometry(ClusterGeometryWire g, fq::ClusterParams& c) {
+  switch (g) {
+    case GEOMETRY_DEFAULT:
+      return {};
+    case GEOMETRY_AUTO:
+      c.geometry = fq::ClusterGeometry::kAuto;
+      return {};
+    case GEOMETRY_INPUT:
+      c.geometry = fq::ClusterGeometry::kInput;
+      return {};
+    case GEOMETRY_FILTERED:
+      c.geometry = fq::ClusterGeometry::kFiltered;
+      return {};
+    default:
+      return invalid_argument("cluster geometry " + std::to_string(g) + " is not a ClusterGeometryWire");
+  }
+}
+
+ClusterGeometryWire geometry_of(const fq::ClusterParams& c) {
+  switch (c.geometry) {
+    case fq::ClusterGeometry::kInput:
+      return GEOMETRY_INPUT;
+    case fq::ClusterGeometry::kFiltered:
+      return GEOMETRY_FILTERED;
+    default:
+      return GEOMETRY_AUTO;
+  }
+}
+
 FilterMode mode_of(const fq::FilterParams& f) { return f.method == fq::FilterMethod::kBilateral ? BF : QF; }
 
 ClusterMethodWire method_of(const fq::ClusterParams& c) {
@@ -61,6 +90,12 @@ fq::Status apply_overrides(const ParamOverrides& o, fq::Params& inout) {
   if (o.has_cluster_method()) {
     if (auto s = set_method(o.cluster_method(), p.c); !s.ok()) return s;
   }
+  if (o.has_target_clusters()) p.c.target_clusters = o.target_clusters();
+  if (o.has_cluster_geometry()) {
+    if (auto s = set_geometry(o.cluster_geometry(), p.c); !s.ok()) return s;
+  }
+  if (o.has_min_cluster_size()) p.c.min_cluster_size = o.min_cluster_size();
+  if (o.has_track_ids()) p.c.track_ids = o.track_ids();
   inout = p;
   return {};
 }
@@ -104,6 +139,10 @@ void params_to_wire(const fq::Params& p, StreamParams& out) {
   out.set_theta(p.c.theta);
   out.set_cluster_method(method_of(p.c));
   out.set_compute(compute_of(p));
+  out.set_target_clusters(p.c.target_clusters);
+  out.set_cluster_geometry(geometry_of(p.c));
+  out.set_min_cluster_size(p.c.min_cluster_size);
+  out.set_track_ids(p.c.track_ids);
 }
 
 fq::Status params_from_wire(const StreamParams& w, fq::Params& out) {
@@ -120,6 +159,10 @@ fq::Status params_from_wire(const StreamParams& w, fq::Params& out) {
   p.c.theta = w.theta();
   if (auto s = set_method(w.cluster_method(), p.c); !s.ok()) return s;
   if (auto s = apply_compute(w.compute(), p); !s.ok()) return s;
+  p.c.target_clusters = w.target_clusters();
+  if (auto s = set_geometry(w.cluster_geometry(), p.c); !s.ok()) return s;
+  p.c.min_cluster_size = w.min_cluster_size();
+  p.c.track_ids = w.track_ids();
   out = p;
   return {};
 }
@@ -136,6 +179,10 @@ void params_to_overrides(const fq::Params& p, ParamOverrides& out) {
   out.set_sigma_q(p.c.sigma_q);
   out.set_theta(p.c.theta);
   out.set_cluster_method(method_of(p.c));
+  out.set_target_clusters(p.c.target_clusters);
+  out.set_cluster_geometry(geometry_of(p.c));
+  out.set_min_cluster_size(p.c.min_cluster_size);
+  out.set_track_ids(p.c.track_ids);
 }
 
 }  // namespace fq::wire

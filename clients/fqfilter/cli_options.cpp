@@ -110,9 +110,7 @@ const char* filter_method_name(FilterMethod m) { return m == FilterMethod::kQuad
 const char* cluster_method_name(ClusterMethod m) {
   return m == ClusterMethod::kQuadric ? "quadric" : "euclidean";
 }
-const char* cluster_geometry_name(ClusterGeometry g) {
-  return g == ClusterGeometry::kAuto ? "auto" : g == ClusterGeometry::kInput ? "input" : "filtered";
-}
+
 
 ParseOutcome parse_options(int argc, char** argv, Options& o) {
   CLI::App app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
@@ -133,9 +131,7 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
   }
   o.params.f.method = mode == "qf" ? FilterMethod::kQuadric : FilterMethod::kBilateral;
   o.params.c.method = method == "quadric" ? ClusterMethod::kQuadric : ClusterMethod::kEuclidean;
-  o.params.c.geometry = geometry == "auto"    ? ClusterGeometry::kAuto
-                        : geometry == "input" ? ClusterGeometry::kInput
-                                              : ClusterGeometry::kFiltered;
+  parse_cluster_geometry(geometry, o.params.c.geometry);  // checked by IsMember above
   parse_engine_kind(engine, o.engine.kind);
   if (no_filter) {
     o.params.filter = false;

@@ -37,6 +37,5 @@ ParseOutcome parse_options(int argc, char** argv, Options& out);
 /// "qf" / "bf", "quadric" / "euclidean": the names used on the command line and in JSON.
 const char* filter_method_name(FilterMethod m);
 const char* cluster_method_name(ClusterMethod m);
-const char* cluster_geometry_name(ClusterGeometry g);
 
 }  // namespace fq::cli

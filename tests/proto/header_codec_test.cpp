@@ -197,6 +197,11 @@ TEST(HeaderCodec, BadEnumOverrideLeavesParamsUntouched) {
   EXPECT_EQ(apply_overrides(o, p).code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(p.f.sigma_s, Params{}.f.sigma_s);
   EXPECT_EQ(apply_compute(static_cast<Compute>(5), p).code(), StatusCode::kInvalidArgument);
+  ParamOverrides g;
+  g.set_target_clusters(12);
+  g.set_cluster_geometry(static_cast<ClusterGeometryWire>(9));
+  EXPECT_EQ(apply_overrides(g, p).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(p.c.target_clusters, 0u);
 }
 
 TEST(HeaderCodec, ComputeMapping) {
@@ -218,6 +223,10 @@ TEST(HeaderCodec, StreamParamsRoundTrip) {
   p.cluster = true;
   p.f = {FilterMethod::kBilateral, 3.f, 0.5f, 1.25f, 0.75f, true, 0.f};
   p.c = {ClusterMethod::kEuclidean, 7.f, 2.f, 0.8f};
+  p.c.target_clusters = 42;
+  p.c.geometry = ClusterGeometry::kFiltered;
+  p.c.min_cluster_size = 9;
+  p.c.track_ids = false;
   StreamParams w;
   params_to_wire(p, w);
   StreamParams via_bytes;
@@ -237,6 +246,10 @@ TEST(HeaderCodec, StreamParamsRoundTrip) {
   EXPECT_EQ(back.c.sigma_d, p.c.sigma_d);
   EXPECT_EQ(back.c.sigma_q, p.c.sigma_q);
   EXPECT_EQ(back.c.theta, p.c.theta);
+  EXPECT_EQ(back.c.target_clusters, p.c.target_clusters);
+  EXPECT_EQ(back.c.geometry, p.c.geometry);
+  EXPECT_EQ(back.c.min_cluster_size, p.c.min_cluster_size);
+  EXPECT_EQ(back.c.track_ids, p.c.track_ids);
 
   ParamOverrides o;
   params_to_overrides(p, o);
@@ -245,6 +258,10 @@ TEST(HeaderCodec, StreamParamsRoundTrip) {
   EXPECT_EQ(again.f.sigma_b, p.f.sigma_b);
   EXPECT_EQ(again.f.method, p.f.method);
   EXPECT_EQ(again.c.theta, p.c.theta);
+  EXPECT_EQ(again.c.target_clusters, p.c.target_clusters);
+  EXPECT_EQ(again.c.geometry, p.c.geometry);
+  EXPECT_EQ(again.c.min_cluster_size, p.c.min_cluster_size);
+  EXPECT_EQ(again.c.track_ids, p.c.track_ids);
 }
 
 }  // namespace
