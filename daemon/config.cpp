@@ -40,6 +40,7 @@ void read_cluster(TomlReader& r, ClusterParams& c) {
   if (!parse_cluster_geometry(geometry, c.geometry))
     r.fail("geometry", "must be \"auto\", \"input\" or \"filtered\" (got \"" + geometry + "\")");
   r.read("track_ids", c.track_ids);
+  r.read("sticky_rings", c.sticky_rings, 0, 64);
 }
 
 void read_output(TomlReader& r, OutputEncoding& o) {

@@ -27,6 +27,7 @@ void LabelTracks::apply(FrameJob& f, int threads) {
   o.threads = threads;
   o.triangles = f.mesh.triangles.data();
   o.num_triangles = f.mesh.num_triangles();
+  o.sticky_rings = static_cast<int>(c.sticky_rings);
   r.num_clusters = t.tracker.track(r.positions.data(), f.mesh.num_vertices(), r.labels, r.num_clusters, o);
 }
 

@@ -71,6 +71,8 @@ Status validate(const Params& p) {
     for (Status s : {check_sigma("sigma_d", p.c.sigma_d, false), check_sigma("sigma_q", p.c.sigma_q, false)}) {
       if (!s.ok()) return s;
     }
+    if (p.c.sticky_rings > 64)
+      return invalid_argument("sticky_rings must be at most 64 (got " + std::to_string(p.c.sticky_rings) + ")");
     if (!(p.c.theta > 0.f && p.c.theta <= 1.f))
       return invalid_argument("theta must be in (0, 1] (got " + show(p.c.theta) + ")");
   }

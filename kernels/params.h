@@ -45,8 +45,10 @@ struct ClusterParams {
   /// > 0: labels are split into mesh-connected parts and parts under this many vertices are
   /// merged into the neighbour they share most edges with; 0: the paper's labels.
   uint32_t min_cluster_size = 0;
-  /// fqd only: keep cluster ids stable from frame to frame of a stream (engines ignore it).
+  /// fqd only (engines ignore them): keep cluster ids stable from frame to frame of a stream,
+  /// and how many edge rings a border may move back to the previous frame's (0: ids only).
   bool track_ids = true;
+  uint32_t sticky_rings = 2;
   /// Also return the link forest before the theta cut (FrameResult::link_parent, link_p).
   bool keep_links = false;
 };

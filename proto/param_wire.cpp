@@ -96,6 +96,7 @@ fq::Status apply_overrides(const ParamOverrides& o, fq::Params& inout) {
   }
   if (o.has_min_cluster_size()) p.c.min_cluster_size = o.min_cluster_size();
   if (o.has_track_ids()) p.c.track_ids = o.track_ids();
+  if (o.has_sticky_rings()) p.c.sticky_rings = o.sticky_rings();
   inout = p;
   return {};
 }
@@ -143,6 +144,7 @@ void params_to_wire(const fq::Params& p, StreamParams& out) {
   out.set_cluster_geometry(geometry_of(p.c));
   out.set_min_cluster_size(p.c.min_cluster_size);
   out.set_track_ids(p.c.track_ids);
+  out.set_sticky_rings(p.c.sticky_rings);
 }
 
 fq::Status params_from_wire(const StreamParams& w, fq::Params& out) {
@@ -163,6 +165,7 @@ fq::Status params_from_wire(const StreamParams& w, fq::Params& out) {
   if (auto s = set_geometry(w.cluster_geometry(), p.c); !s.ok()) return s;
   p.c.min_cluster_size = w.min_cluster_size();
   p.c.track_ids = w.track_ids();
+  p.c.sticky_rings = w.sticky_rings();
   out = p;
   return {};
 }
@@ -183,6 +186,7 @@ void params_to_overrides(const fq::Params& p, ParamOverrides& out) {
   out.set_cluster_geometry(geometry_of(p.c));
   out.set_min_cluster_size(p.c.min_cluster_size);
   out.set_track_ids(p.c.track_ids);
+  out.set_sticky_rings(p.c.sticky_rings);
 }
 
 }  // namespace fq::wire

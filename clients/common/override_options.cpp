@@ -21,6 +21,7 @@ void add_override_options(CLI::App& app, OverrideArgs& a) {
   app.add_option("--min-cluster-size", a.min_cluster_size, "connected clusters, small parts merged (0 = off)")
       ->group(g);
   app.add_option("--track-ids", a.track_ids, "stable cluster ids across frames (true/false)")->group(g);
+  app.add_option("--sticky-rings", a.sticky_rings, "rings a cluster border may move back (0 = ids only)")->group(g);
   app.add_option("--compute", a.compute, "filter | cluster | filter_and_cluster")->group(g);
 }
 
@@ -38,6 +39,7 @@ Status to_wire(const OverrideArgs& a, wire::ParamOverrides& o, wire::Compute& co
   if (a.target_clusters) o.set_target_clusters(*a.target_clusters);
   if (a.min_cluster_size) o.set_min_cluster_size(*a.min_cluster_size);
   if (a.track_ids) o.set_track_ids(*a.track_ids);
+  if (a.sticky_rings) o.set_sticky_rings(*a.sticky_rings);
   if (a.cluster_geometry == "auto")
     o.set_cluster_geometry(wire::GEOMETRY_AUTO);
   else if (a.cluster_geometry == "input")

@@ -227,6 +227,7 @@ TEST(HeaderCodec, StreamParamsRoundTrip) {
   p.c.geometry = ClusterGeometry::kFiltered;
   p.c.min_cluster_size = 9;
   p.c.track_ids = false;
+  p.c.sticky_rings = 5;
   StreamParams w;
   params_to_wire(p, w);
   StreamParams via_bytes;
@@ -250,6 +251,7 @@ TEST(HeaderCodec, StreamParamsRoundTrip) {
   EXPECT_EQ(back.c.geometry, p.c.geometry);
   EXPECT_EQ(back.c.min_cluster_size, p.c.min_cluster_size);
   EXPECT_EQ(back.c.track_ids, p.c.track_ids);
+  EXPECT_EQ(back.c.sticky_rings, p.c.sticky_rings);
 
   ParamOverrides o;
   params_to_overrides(p, o);
@@ -262,6 +264,7 @@ TEST(HeaderCodec, StreamParamsRoundTrip) {
   EXPECT_EQ(again.c.geometry, p.c.geometry);
   EXPECT_EQ(again.c.min_cluster_size, p.c.min_cluster_size);
   EXPECT_EQ(again.c.track_ids, p.c.track_ids);
+  EXPECT_EQ(again.c.sticky_rings, p.c.sticky_rings);
 }
 
 }  // namespace
