@@ -149,12 +149,12 @@ void print_human(const FileReport& r, std::ostream& os) {
   os << "\n";
   if (r.clusters) {
     os << "  clusters: " << *r.clusters;
-    if (r.theta_used) os << " (theta " << std::setprecision(4) << *r.theta_used << ")";
+    if (r.theta_used && r.params.c.target_clusters > 0) os << " (theta " << std::setprecision(4) << *r.theta_used << ")";
     os << "\n";
   }
   if (r.sharp_edges)
     os << "  sharp-edge recall: " << std::setprecision(3) << r.sharp_edges->recall << " of "
-       << r.sharp_edges->sharp_edges << " edges over " << kSharpEdgeDegrees << " deg\n";
+       << r.sharp_edges->sharp_edges << " edges over " << std::setprecision(0) << kSharpEdgeDegrees << " deg\n";
   if (!r.reference.empty()) {
     os << "  error vs " << r.reference << "\n  " << std::left << std::setw(14) << "" << std::right
        << std::setw(12) << "RMSE/diag" << std::setw(12) << "surf RMS" << std::setw(12) << "surf max"
