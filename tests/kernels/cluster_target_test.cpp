@@ -7,6 +7,7 @@
 
 #include "eval/noise.h"
 #include "eval/sharp_edge_recall.h"
+#include "kernels/cluster_connect.h"
 #include "kernels/cluster_control.h"
 #include "kernels/cluster_forest.h"
 #include "kernels/cpu_engine.h"
@@ -89,6 +90,27 @@ TEST(KernelClusterTarget, BelowThePermanentRootsGivesThemAll) {
   const FrameResult out = run(m, p);
   EXPECT_EQ(out.theta, 1.f);
   EXPECT_EQ(out.num_clusters, run(m, clustering(1.f)).num_clusters);
+}
+
+// With connected clusters the count after splitting and merging is found by bisection over
+// the cut: close to the target, every label one piece of at least the minimum size (the
+// cube is closed, so every piece has a neighbour to merge into).
+TEST(KernelClusterTarget, ConnectedClustersNearTheTarget) {
+  const Mesh m = noisy_cube();
+  Params p = clustering();
+  p.c.geometry = ClusterGeometry::kInput;
+  p.c.target_clusters = 30;
+  p.c.min_cluster_size = 10;
+  const FrameResult out = run(m, p);
+  EXPECT_NEAR(double(out.num_clusters), 30.0, 3.0);
+  std::vector<uint32_t> size(out.num_clusters, 0);
+  for (uint32_t l : out.labels) {
+    ASSERT_LT(l, out.num_clusters);
+    ++size[l];
+  }
+  for (uint32_t s : size) EXPECT_GE(s, p.c.min_cluster_size);
+  std::vector<uint32_t> again = out.labels;
+  EXPECT_EQ(connect_clusters(m.view(), again, 1), out.num_clusters) << "a label has two pieces";
 }
 
 TEST(KernelClusterTarget, FilteredGeometryKeepsTheOutputPositions) {
