@@ -10,6 +10,7 @@
 #include "daemon/config.h"
 #include "daemon/daemon.h"
 #include "daemon/signals.h"
+#include "common/version.h"
 
 namespace {
 
@@ -21,6 +22,7 @@ std::string endpoints_json(const fq::daemon::BoundEndpoints& e) {
 
 int main(int argc, char** argv) {
   CLI::App app{"fqd: filters and clusters streamed mesh frames within a latency budget"};
+  app.set_version_flag("--version", fq::version_line("fqd"));
   std::string config_path = "configs/fqd.toml", log_level, endpoints_file;
   bool print_endpoints = false, check_only = false;
   app.add_option("-c,--config", config_path, "TOML configuration file")->capture_default_str();

@@ -16,6 +16,7 @@
 #include "kernels/engine.h"
 #include "proto/mesh_io.h"
 #include "clients/fqbench/neighbour_stats.h"
+#include "common/version.h"
 
 namespace {
 
@@ -141,6 +142,7 @@ int main(int argc, char** argv) {
   Options o;
   o.mesh_dir = default_mesh_dir();
   CLI::App app{"fqbench: device time per pass for the paper's Table 2 and 3 rows"};
+  app.set_version_flag("--version", fq::version_line("fqbench"));
   app.add_option("--mesh-dir", o.mesh_dir,
                  "folder of the shared meshes (default: $FQ_MESH_DIR or ../shared/meshes)");
   app.add_option("--rows", o.rows, "comma-separated row ids, or all")->capture_default_str();

@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "common/version.h"
+
 namespace fq::cli {
 
 namespace {
@@ -96,6 +98,7 @@ const char* cluster_method_name(ClusterMethod m) {
 ParseOutcome parse_options(int argc, char** argv, Options& o) {
   CLI::App app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
                "fqfilter"};
+  app.set_version_flag("--version", fq::version_line("fqfilter"));
   std::string mode = "qf", method = "quadric", engine = "auto";
   bool no_filter = false;
   add_run_options(app, o, engine);
@@ -103,7 +106,7 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
   add_cluster_options(app, o, method, no_filter);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
+  } catch (const CLI::Success& e) {  // --help, --version
     return {false, app.exit(e)};
   } catch (const CLI::ParseError& e) {
     std::cerr << "fqfilter: error: " << e.what() << " (see fqfilter --help)\n";

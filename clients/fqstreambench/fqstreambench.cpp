@@ -19,6 +19,7 @@
 #include "clients/common/override_options.h"
 #include "clients/fqstreambench/producer.h"
 #include "clients/fqstreambench/report.h"
+#include "common/version.h"
 
 namespace {
 
@@ -209,6 +210,7 @@ void add_options(CLI::App& app, Args& a) {
 
 int main(int argc, char** argv) {
   CLI::App app{"fqstreambench: latency and throughput of fqd at a sustained frame rate"};
+  app.set_version_flag("--version", fq::version_line("fqstreambench"));
   Args a;
   add_options(app, a);
   CLI11_PARSE(app, argc, argv);
