@@ -56,6 +56,11 @@ bool is_readable_mesh_file(const std::string& path) {
   return std::find(std::begin(kReadable), std::end(kReadable), ext) != std::end(kReadable);
 }
 
+bool is_writable_mesh_file(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".ply" || ext == ".drc";
+}
+
 Status read_mesh(const std::string& path, Mesh& out) {
   out = Mesh{};
   std::error_code ec;
@@ -83,7 +88,7 @@ Status read_mesh(const std::string& path, Mesh& out) {
 Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t* labels,
                   uint32_t num_clusters, int drc_position_bits) {
   const std::string ext = lower_extension(path);
-  if (ext != ".ply" && ext != ".drc")
+  if (!is_writable_mesh_file(path))
     return invalid_argument("cannot write '" + path + "': unsupported output extension '" + ext +
                             "' (expected .ply or .drc)");
   if (Status s = check_for_writing(path, mesh, labels, num_clusters); !s.ok()) return s;

@@ -17,6 +17,9 @@ std::string lower_extension(const std::string& path);
 /// True for the extensions read_mesh accepts (.ply, .obj, .stl, .drc; any case).
 bool is_readable_mesh_file(const std::string& path);
 
+/// True for the extensions write_mesh accepts (.ply, .drc; any case).
+bool is_writable_mesh_file(const std::string& path);
+
 /// Reads a triangle mesh with Draco. PLY keeps the file's vertex count and order
 /// (coincident vertices stay separate) and must have triangle faces only; .drc gives the
 /// decoded points; OBJ and STL (binary only) are welded: one vertex per distinct position,

@@ -11,6 +11,7 @@ packages=(
   libspdlog-dev libfmt-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-open3d
 )
 
 missing=()

@@ -24,8 +24,7 @@ std::string single_output_path(const Options& o) {
 
 int run_single(const Options& o, fq::Engine& engine) {
   const std::string output = single_output_path(o);
-  const std::string ext = fq::io::lower_extension(output);
-  if (!output.empty() && ext != ".ply" && ext != ".drc") {
+  if (!output.empty() && !fq::io::is_writable_mesh_file(output)) {
     std::cerr << "fqfilter: error: OUT '" << output << "' must end in .ply or .drc\n";
     return 2;
   }
