@@ -28,7 +28,7 @@ std::string path_string(const pyb::handle& path) { return pyb::str(pyb::module_:
 pyb::tuple read_mesh(const pyb::handle& path_like) {
   const std::string path = path_string(path_like);
   if (!io::is_readable_mesh_file(path))
-    throw pyb::value_error("cannot read '" + path + "': unsupported extension (expected .ply, .obj, .stl or .drc)");
+    throw pyb::value_error("cannot read '" + path + "': unsupported extension " + io::expected_read_extensions());
   if (!std::filesystem::exists(path)) {
     PyErr_SetObject(PyExc_FileNotFoundError, pyb::make_tuple(2, "no such file", path).ptr());
     throw pyb::error_already_set();
@@ -50,7 +50,7 @@ void write_mesh(const pyb::handle& path_like, const pyb::handle& v, const pyb::h
   const std::string path = path_string(path_like);
   if (!io::is_writable_mesh_file(path))
     throw pyb::value_error("cannot write '" + path + "': unsupported output extension '" + io::lower_extension(path) +
-                           "' (expected .ply or .drc)");
+                           "' " + io::expected_write_extensions());
   const Mesh mesh = to_mesh(v, f);
   std::vector<uint32_t> labels;
   uint32_t num_clusters = 0;
@@ -109,7 +109,7 @@ void bind_mesh_functions(pyb::module_& m) {
   m.def("read_mesh", &read_mesh, "path"_a,
         "(V, F) of a mesh file (.ply .obj .stl .drc): float32 (n, 3) positions, int64 (m, 3) triangles.");
   m.def("write_mesh", &write_mesh, "path"_a, "V"_a, "F"_a, "labels"_a = pyb::none(), pyb::kw_only(),
-        "drc_bits"_a = 16, "Writes (V, F) as .ply or .drc, with one cluster label per vertex when given.");
+        "drc_bits"_a = 16, "Writes (V, F) as .ply, .drc, .obj or .glb, with one cluster label per vertex when given.");
   m.def("add_noise", &add_noise, "V"_a, "F"_a, "sigma"_a, "seed"_a = 1,
         "V plus Gaussian noise of std sigma mean edge lengths per coordinate; the same seed gives "
         "the same noise everywhere (fqfilter --noise).");

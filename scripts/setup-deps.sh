@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libdraco-dev draco
+  libdraco-dev draco libassimp-dev
   libzmq3-dev cppzmq-dev
   libprotobuf-dev protobuf-compiler
   libspdlog-dev libfmt-dev

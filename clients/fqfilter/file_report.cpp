@@ -106,7 +106,8 @@ nlohmann::json to_json(const FileReport& r) {
                                         : nlohmann::json(nullptr)},
             {"repeat", r.repeat},
             {"timings_ms", {{"passes", passes}, {"total", r.total_ms}}},
-            {"clusters", r.clusters ? nlohmann::json(*r.clusters) : nlohmann::json(nullptr)}});
+            {"clusters", r.clusters ? nlohmann::json(*r.clusters) : nlohmann::json(nullptr)},
+            {"warnings", r.warnings}});
   if (r.reference.empty()) {
     j["metrics"] = nullptr;
   } else {
