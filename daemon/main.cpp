@@ -7,10 +7,10 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "common/version.h"
 #include "daemon/config.h"
 #include "daemon/daemon.h"
 #include "daemon/signals.h"
-#include "common/version.h"
 
 namespace {
 

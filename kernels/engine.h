@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "common/status.h"
 #include "kernels/mesh_view.h"
 #include "kernels/params.h"
-#include "common/status.h"
 
 namespace fq {
 

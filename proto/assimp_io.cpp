@@ -1,12 +1,12 @@
 #include "proto/assimp_io.h"
 
-#include <assimp/Exporter.hpp>
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <algorithm>
 #include <array>
+#include <assimp/Exporter.hpp>
+#include <assimp/Importer.hpp>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -35,7 +35,8 @@ void weld(const aiMesh& m, Mesh& out) {
 
 /// The first pair of vertex properties that are texture coordinates, or nulls.
 std::array<const ElementProperty*, 2> texture_coordinates(const MeshAttributes& a) {
-  for (auto [u, v] : {std::pair{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}}) {
+  for (auto [u, v] :
+       {std::pair{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}}) {
     if (a.find_vertex(u) && a.find_vertex(v)) return {a.find_vertex(u), a.find_vertex(v)};
   }
   return {nullptr, nullptr};
@@ -59,8 +60,8 @@ bool fill_colours(aiMesh& m, const uint32_t* labels, const MeshAttributes& a, bo
       const Rgb8 c = cluster_color(labels[v]);
       m.mColors[0][v] = aiColor4D(c.r / 255.f, c.g / 255.f, c.b / 255.f, 1.f);
     } else {
-      m.mColors[0][v] = aiColor4D(float(unit_channel(*r, v)), float(unit_channel(*g, v)), float(unit_channel(*b, v)),
-                                  alpha ? float(unit_channel(*alpha, v)) : 1.f);
+      m.mColors[0][v] = aiColor4D(float(unit_channel(*r, v)), float(unit_channel(*g, v)),
+                                  float(unit_channel(*b, v)), alpha ? float(unit_channel(*alpha, v)) : 1.f);
     }
   }
   if (r && g && b && !clusters) used.insert(used.end(), {"red", "green", "blue", "alpha"});
@@ -73,10 +74,10 @@ std::unique_ptr<aiScene> make_scene(const MeshView& mesh) {
   scene->mRootNode->mNumMeshes = 1;
   scene->mRootNode->mMeshes = new unsigned[1]{0};
   scene->mNumMaterials = 1;
-  scene->mMaterials = new aiMaterial*[1]{new aiMaterial()};
+  scene->mMaterials = new aiMaterial* [1] { new aiMaterial() };
   scene->mNumMeshes = 1;
   auto* m = new aiMesh();
-  scene->mMeshes = new aiMesh*[1]{m};
+  scene->mMeshes = new aiMesh* [1] { m };
   m->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
   m->mNumVertices = mesh.num_vertices;
   m->mVertices = new aiVector3D[mesh.num_vertices];
@@ -127,7 +128,8 @@ Status read_ascii_stl(const std::string& path, Mesh& out) {
 }
 
 Status write_with_assimp(const std::string& path, const MeshView& mesh, const uint32_t* labels,
-                         const MeshAttributes* attributes, bool colour_clusters, std::vector<std::string>& dropped) {
+                         const MeshAttributes* attributes, bool colour_clusters,
+                         std::vector<std::string>& dropped) {
   const bool glb = lower_extension(path) == ".glb";
   const std::unique_ptr<aiScene> scene = make_scene(mesh);
   const MeshAttributes none;
@@ -141,10 +143,11 @@ Status write_with_assimp(const std::string& path, const MeshView& mesh, const ui
   }
   for (const ElementProperty& p : a.face) dropped.push_back("face property '" + p.name + "'");
   if (labels)
-    dropped.push_back(glb ? (coloured && (colour_clusters || !a.find_vertex("red"))
-                                 ? "cluster labels as integers (the vertex colours show the clusters)"
-                                 : "cluster labels (glb has no per-vertex integer property; try --colour-clusters)")
-                          : "cluster labels (OBJ has no per-vertex property for them)");
+    dropped.push_back(
+        glb ? (coloured && (colour_clusters || !a.find_vertex("red"))
+                   ? "cluster labels as integers (the vertex colours show the clusters)"
+                   : "cluster labels (glb has no per-vertex integer property; try --colour-clusters)")
+            : "cluster labels (OBJ has no per-vertex property for them)");
   Assimp::Exporter exporter;
   if (exporter.Export(scene.get(), glb ? "glb2" : "objnomtl", path) != aiReturn_SUCCESS)
     return invalid_argument("cannot write '" + path + "': " + exporter.GetErrorString());

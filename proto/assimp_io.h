@@ -23,6 +23,7 @@ Status read_ascii_stl(const std::string& path, Mesh& out);
 /// no standard vertex colour). With `colour_clusters` the colours are the cluster colours.
 /// Everything else (labels, scalars, face properties) is named in `dropped`.
 Status write_with_assimp(const std::string& path, const MeshView& mesh, const uint32_t* labels,
-                         const MeshAttributes* attributes, bool colour_clusters, std::vector<std::string>& dropped);
+                         const MeshAttributes* attributes, bool colour_clusters,
+                         std::vector<std::string>& dropped);
 
 }  // namespace fq::io

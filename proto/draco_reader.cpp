@@ -75,7 +75,8 @@ StlHead stl_head(const std::string& path) {
   h.size = std::filesystem::file_size(path, ec);
   h.says_solid = got >= 5 && std::memcmp(head, "solid", 5) == 0;
   h.has_count = got >= 84;
-  for (int i = 0; i < 4 && h.has_count; ++i) h.count |= uint32_t(static_cast<unsigned char>(head[80 + i])) << (8 * i);
+  for (int i = 0; i < 4 && h.has_count; ++i)
+    h.count |= uint32_t(static_cast<unsigned char>(head[80 + i])) << (8 * i);
   return h;
 }
 
@@ -83,8 +84,9 @@ Status check_stl_size(const std::string& path) {
   const StlHead h = stl_head(path);
   if (!h.has_count) return invalid_input("cannot decode '" + path + "': too short for an STL file");
   if (h.binary_size()) return {};
-  return invalid_input("cannot decode '" + path + "': binary STL header announces " + std::to_string(h.count) +
-                       " triangles but the file has " + std::to_string(h.size) + " bytes");
+  return invalid_input("cannot decode '" + path + "': binary STL header announces " +
+                       std::to_string(h.count) + " triangles but the file has " + std::to_string(h.size) +
+                       " bytes");
 }
 
 /// Names the attributes of `dm` other than positions in `attributes->dropped`.
@@ -92,11 +94,20 @@ void name_dropped(const draco::Mesh& dm, const std::string& why, MeshAttributes*
   if (!attributes) return;
   for (int i = 0; i < dm.num_attributes(); ++i) {
     switch (dm.attribute(i)->attribute_type()) {
-      case draco::GeometryAttribute::NORMAL: attributes->dropped.push_back("normals" + why); break;
-      case draco::GeometryAttribute::COLOR: attributes->dropped.push_back("colours" + why); break;
-      case draco::GeometryAttribute::TEX_COORD: attributes->dropped.push_back("texture coordinates" + why); break;
-      case draco::GeometryAttribute::GENERIC: attributes->dropped.push_back("a generic attribute" + why); break;
-      default: break;
+      case draco::GeometryAttribute::NORMAL:
+        attributes->dropped.push_back("normals" + why);
+        break;
+      case draco::GeometryAttribute::COLOR:
+        attributes->dropped.push_back("colours" + why);
+        break;
+      case draco::GeometryAttribute::TEX_COORD:
+        attributes->dropped.push_back("texture coordinates" + why);
+        break;
+      case draco::GeometryAttribute::GENERIC:
+        attributes->dropped.push_back("a generic attribute" + why);
+        break;
+      default:
+        break;
     }
   }
 }
@@ -141,7 +152,8 @@ Status read_obj_or_stl(const std::string& path, Mesh& out, MeshAttributes* attri
   const std::unique_ptr<draco::Mesh> dm = std::move(decoded).value();
   if (!dm) return invalid_input("cannot decode '" + path + "': Draco returned no mesh");
   // STL facet normals follow from the triangles; an OBJ's normals and UVs are data.
-  if (lower_extension(path) == ".obj") name_dropped(*dm, " (per-corner values; vertices are welded by position)", attributes);
+  if (lower_extension(path) == ".obj")
+    name_dropped(*dm, " (per-corner values; vertices are welded by position)", attributes);
   // Welded: Draco splits a position into one point per texture coordinate or normal it
   // carries, which would cut the surface open along every seam.
   return from_draco(path, *dm, Vertices::kPositionValues, out);

@@ -8,14 +8,22 @@ namespace fq::io {
 
 const char* ply_type_name(ScalarType t) {
   switch (t) {
-    case ScalarType::kInt8: return "char";
-    case ScalarType::kUInt8: return "uchar";
-    case ScalarType::kInt16: return "short";
-    case ScalarType::kUInt16: return "ushort";
-    case ScalarType::kInt32: return "int";
-    case ScalarType::kUInt32: return "uint";
-    case ScalarType::kFloat32: return "float";
-    case ScalarType::kFloat64: return "double";
+    case ScalarType::kInt8:
+      return "char";
+    case ScalarType::kUInt8:
+      return "uchar";
+    case ScalarType::kInt16:
+      return "short";
+    case ScalarType::kUInt16:
+      return "ushort";
+    case ScalarType::kInt32:
+      return "int";
+    case ScalarType::kUInt32:
+      return "uint";
+    case ScalarType::kFloat32:
+      return "float";
+    case ScalarType::kFloat64:
+      return "double";
   }
   return "float";
 }
@@ -32,10 +40,13 @@ ElementProperty* MeshAttributes::find_vertex(const std::string& name) {
 }
 
 bool recompute_normals(const MeshView& mesh, MeshAttributes& attributes) {
-  ElementProperty* n[3] = {attributes.find_vertex("nx"), attributes.find_vertex("ny"), attributes.find_vertex("nz")};
+  ElementProperty* n[3] = {attributes.find_vertex("nx"), attributes.find_vertex("ny"),
+                           attributes.find_vertex("nz")};
   if (!n[0] || !n[1] || !n[2]) return false;
   std::vector<Vec3> sum(mesh.num_vertices, Vec3{0.f, 0.f, 0.f});
-  auto at = [&](uint32_t v) { return Vec3{mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]}; };
+  auto at = [&](uint32_t v) {
+    return Vec3{mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]};
+  };
   for (uint32_t t = 0; t < mesh.num_triangles; ++t) {
     const uint32_t* c = &mesh.triangles[3 * size_t(t)];
     // The cross product's length is twice the area: larger triangles weigh more.

@@ -25,7 +25,7 @@ struct ElementProperty {
   bool is_list = false;
   ScalarType count_type = ScalarType::kUInt8;  ///< lists only: type of the per-element count
   std::vector<double> values;                  ///< one per element; lists: all items in order
-  std::vector<uint32_t> offsets;               ///< lists only: element i's items are [offsets[i], offsets[i+1])
+  std::vector<uint32_t> offsets;  ///< lists only: element i's items are [offsets[i], offsets[i+1])
 };
 
 struct MeshAttributes {

@@ -46,10 +46,11 @@ Status check_attributes(const std::string& path, const MeshView& mesh, const Mes
   for (const auto* list : {&a.vertex, &a.face}) {
     const size_t n = list == &a.vertex ? mesh.num_vertices : mesh.num_triangles;
     for (const ElementProperty& p : *list) {
-      const bool ok = p.is_list ? p.offsets.size() == n + 1 && p.offsets.back() == p.values.size()
-                                : p.values.size() == n;
+      const bool ok =
+          p.is_list ? p.offsets.size() == n + 1 && p.offsets.back() == p.values.size() : p.values.size() == n;
       if (!ok)
-        return invalid_argument("cannot write '" + path + "': property '" + p.name + "' does not match the mesh");
+        return invalid_argument("cannot write '" + path + "': property '" + p.name +
+                                "' does not match the mesh");
     }
   }
   return {};
@@ -113,8 +114,8 @@ Status read_mesh(const std::string& path, Mesh& out, MeshAttributes* attributes)
   return s;
 }
 
-Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t* labels, uint32_t num_clusters,
-                  const WriteOptions& options, std::vector<std::string>* dropped) {
+Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t* labels,
+                  uint32_t num_clusters, const WriteOptions& options, std::vector<std::string>* dropped) {
   const std::string ext = lower_extension(path);
   if (!is_writable_mesh_file(path))
     return invalid_argument("cannot write '" + path + "': unsupported output extension '" + ext + "' " +
@@ -128,7 +129,8 @@ Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t*
   std::vector<std::string>& lost = dropped ? *dropped : ignored;
   try {
     if (ext == ".ply") return write_ply(path, mesh, labels, a, options.colour_clusters);
-    if (ext == ".obj" || ext == ".glb") return write_with_assimp(path, mesh, labels, a, options.colour_clusters, lost);
+    if (ext == ".obj" || ext == ".glb")
+      return write_with_assimp(path, mesh, labels, a, options.colour_clusters, lost);
     if (options.drc_position_bits < 0 || options.drc_position_bits > 30)
       return invalid_argument("Draco position bits must be in 0..30 (got " +
                               std::to_string(options.drc_position_bits) + ")");

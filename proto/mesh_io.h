@@ -60,8 +60,9 @@ struct WriteOptions {
 /// What the format cannot hold is named in `dropped` (when given).
 /// `labels` is null or holds one label per vertex, each < num_clusters (checked).
 /// Errors: other extensions, bad labels, bits or attributes, unopenable or unwritable output.
-Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t* labels, uint32_t num_clusters,
-                  const WriteOptions& options, std::vector<std::string>* dropped = nullptr);
+Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t* labels,
+                  uint32_t num_clusters, const WriteOptions& options,
+                  std::vector<std::string>* dropped = nullptr);
 
 /// write_mesh without attributes.
 Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t* labels,

@@ -62,15 +62,32 @@ Status read_faces(const std::string& path, const draco::PlyElement* face, Mesh& 
 
 bool scalar_type(draco::DataType t, ScalarType& out) {
   switch (t) {
-    case draco::DT_INT8: out = ScalarType::kInt8; return true;
-    case draco::DT_UINT8: out = ScalarType::kUInt8; return true;
-    case draco::DT_INT16: out = ScalarType::kInt16; return true;
-    case draco::DT_UINT16: out = ScalarType::kUInt16; return true;
-    case draco::DT_INT32: out = ScalarType::kInt32; return true;
-    case draco::DT_UINT32: out = ScalarType::kUInt32; return true;
-    case draco::DT_FLOAT32: out = ScalarType::kFloat32; return true;
-    case draco::DT_FLOAT64: out = ScalarType::kFloat64; return true;
-    default: return false;
+    case draco::DT_INT8:
+      out = ScalarType::kInt8;
+      return true;
+    case draco::DT_UINT8:
+      out = ScalarType::kUInt8;
+      return true;
+    case draco::DT_INT16:
+      out = ScalarType::kInt16;
+      return true;
+    case draco::DT_UINT16:
+      out = ScalarType::kUInt16;
+      return true;
+    case draco::DT_INT32:
+      out = ScalarType::kInt32;
+      return true;
+    case draco::DT_UINT32:
+      out = ScalarType::kUInt32;
+      return true;
+    case draco::DT_FLOAT32:
+      out = ScalarType::kFloat32;
+      return true;
+    case draco::DT_FLOAT64:
+      out = ScalarType::kFloat64;
+      return true;
+    default:
+      return false;
   }
 }
 
@@ -106,8 +123,10 @@ void keep_properties(const draco::PlyReader& reader, const std::string& name,
     const draco::PlyProperty& p = element->property(i);
     if (std::find(skip.begin(), skip.end(), p.name()) != skip.end()) continue;
     ElementProperty kept;
-    if (copy_property(*element, p, kept)) out.push_back(std::move(kept));
-    else dropped.push_back(name + " property '" + p.name() + "' (64-bit integer type)");
+    if (copy_property(*element, p, kept))
+      out.push_back(std::move(kept));
+    else
+      dropped.push_back(name + " property '" + p.name() + "' (64-bit integer type)");
   }
 }
 

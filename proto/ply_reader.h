@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "kernels/mesh_view.h"
 #include "common/status.h"
+#include "kernels/mesh_view.h"
 #include "proto/mesh_attributes.h"
 
 namespace fq::io {

@@ -21,20 +21,37 @@ namespace {
 /// Appends `value` as the little-endian bytes of `type`, whatever the host order.
 void put(std::vector<char>& out, ScalarType type, double value) {
   auto le = [&out](auto v) {
-    const auto bits = std::bit_cast<std::conditional_t<sizeof(v) == 8, uint64_t,
-                                    std::conditional_t<sizeof(v) == 4, uint32_t,
-                                                       std::conditional_t<sizeof(v) == 2, uint16_t, uint8_t>>>>(v);
+    const auto bits = std::bit_cast<std::conditional_t<
+        sizeof(v) == 8, uint64_t,
+        std::conditional_t<sizeof(v) == 4, uint32_t, std::conditional_t<sizeof(v) == 2, uint16_t, uint8_t>>>>(
+        v);
     for (size_t i = 0; i < sizeof(v); ++i) out.push_back(static_cast<char>((bits >> (8 * i)) & 0xffu));
   };
   switch (type) {
-    case ScalarType::kInt8: le(static_cast<int8_t>(value)); break;
-    case ScalarType::kUInt8: le(static_cast<uint8_t>(value)); break;
-    case ScalarType::kInt16: le(static_cast<int16_t>(value)); break;
-    case ScalarType::kUInt16: le(static_cast<uint16_t>(value)); break;
-    case ScalarType::kInt32: le(static_cast<int32_t>(value)); break;
-    case ScalarType::kUInt32: le(static_cast<uint32_t>(value)); break;
-    case ScalarType::kFloat32: le(static_cast<float>(value)); break;
-    case ScalarType::kFloat64: le(value); break;
+    case ScalarType::kInt8:
+      le(static_cast<int8_t>(value));
+      break;
+    case ScalarType::kUInt8:
+      le(static_cast<uint8_t>(value));
+      break;
+    case ScalarType::kInt16:
+      le(static_cast<int16_t>(value));
+      break;
+    case ScalarType::kUInt16:
+      le(static_cast<uint16_t>(value));
+      break;
+    case ScalarType::kInt32:
+      le(static_cast<int32_t>(value));
+      break;
+    case ScalarType::kUInt32:
+      le(static_cast<uint32_t>(value));
+      break;
+    case ScalarType::kFloat32:
+      le(static_cast<float>(value));
+      break;
+    case ScalarType::kFloat64:
+      le(value);
+      break;
   }
 }
 
@@ -63,8 +80,8 @@ void fill_cluster_colour(ElementProperty& c, const uint32_t* labels, int k) {
   }
 }
 
-std::vector<ElementProperty> vertex_columns(const MeshView& mesh, const uint32_t* labels, const MeshAttributes* a,
-                                            bool colour_clusters) {
+std::vector<ElementProperty> vertex_columns(const MeshView& mesh, const uint32_t* labels,
+                                            const MeshAttributes* a, bool colour_clusters) {
   const size_t n = mesh.num_vertices;
   std::vector<ElementProperty> cols;
   for (int k = 0; k < 3; ++k) {
@@ -106,7 +123,8 @@ std::vector<ElementProperty> face_columns(const MeshView& mesh, const MeshAttrib
   return cols;
 }
 
-void header_element(std::ostringstream& h, const char* name, size_t n, const std::vector<ElementProperty>& cols) {
+void header_element(std::ostringstream& h, const char* name, size_t n,
+                    const std::vector<ElementProperty>& cols) {
   h << "element " << name << " " << n << "\n";
   for (const ElementProperty& c : cols) {
     h << "property ";

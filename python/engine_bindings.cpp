@@ -43,9 +43,12 @@ FilterParams filter_params(float sigma_s, float sigma_r, float sigma_b, const st
   f.sigma_s = sigma_s;
   f.sigma_r = sigma_r;
   f.sigma_b = sigma_b;
-  if (mode == "qf") f.method = FilterMethod::kQuadric;
-  else if (mode == "bf") f.method = FilterMethod::kBilateral;
-  else throw pyb::value_error("mode must be 'qf' or 'bf', got '" + mode + "'");
+  if (mode == "qf")
+    f.method = FilterMethod::kQuadric;
+  else if (mode == "bf")
+    f.method = FilterMethod::kBilateral;
+  else
+    throw pyb::value_error("mode must be 'qf' or 'bf', got '" + mode + "'");
   return f;
 }
 
@@ -71,9 +74,12 @@ pyb::array cluster(const pyb::handle& v, const pyb::handle& f, float sigma_d, fl
   p.c.sigma_d = sigma_d;
   p.c.sigma_q = sigma_q;
   p.c.theta = theta;
-  if (method == "quadric") p.c.method = ClusterMethod::kQuadric;
-  else if (method == "euclidean") p.c.method = ClusterMethod::kEuclidean;
-  else throw pyb::value_error("method must be 'quadric' or 'euclidean', got '" + method + "'");
+  if (method == "quadric")
+    p.c.method = ClusterMethod::kQuadric;
+  else if (method == "euclidean")
+    p.c.method = ClusterMethod::kEuclidean;
+  else
+    throw pyb::value_error("method must be 'quadric' or 'euclidean', got '" + method + "'");
   return labels_array(run(v, f, p, engine_options(engine, threads)).labels);
 }
 

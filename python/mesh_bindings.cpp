@@ -23,12 +23,15 @@ namespace {
 namespace pyb = pybind11;
 using namespace pybind11::literals;
 
-std::string path_string(const pyb::handle& path) { return pyb::str(pyb::module_::import("os").attr("fspath")(path)); }
+std::string path_string(const pyb::handle& path) {
+  return pyb::str(pyb::module_::import("os").attr("fspath")(path));
+}
 
 pyb::tuple read_mesh(const pyb::handle& path_like) {
   const std::string path = path_string(path_like);
   if (!io::is_readable_mesh_file(path))
-    throw pyb::value_error("cannot read '" + path + "': unsupported extension " + io::expected_read_extensions());
+    throw pyb::value_error("cannot read '" + path + "': unsupported extension " +
+                           io::expected_read_extensions());
   if (!std::filesystem::exists(path)) {
     PyErr_SetObject(PyExc_FileNotFoundError, pyb::make_tuple(2, "no such file", path).ptr());
     throw pyb::error_already_set();
@@ -49,8 +52,8 @@ void write_mesh(const pyb::handle& path_like, const pyb::handle& v, const pyb::h
                 const std::optional<pyb::handle>& labels_like, int drc_bits) {
   const std::string path = path_string(path_like);
   if (!io::is_writable_mesh_file(path))
-    throw pyb::value_error("cannot write '" + path + "': unsupported output extension '" + io::lower_extension(path) +
-                           "' " + io::expected_write_extensions());
+    throw pyb::value_error("cannot write '" + path + "': unsupported output extension '" +
+                           io::lower_extension(path) + "' " + io::expected_write_extensions());
   const Mesh mesh = to_mesh(v, f);
   std::vector<uint32_t> labels;
   uint32_t num_clusters = 0;
@@ -60,7 +63,8 @@ void write_mesh(const pyb::handle& path_like, const pyb::handle& v, const pyb::h
       throw pyb::value_error("labels must be a 1-D integer array with one label per vertex");
     for (ssize_t i = 0; i < l.size(); ++i) {
       if (l.data()[i] < 0 || l.data()[i] > int64_t(UINT32_MAX - 1))
-        throw pyb::value_error("labels: vertex " + std::to_string(i) + " has label " + std::to_string(l.data()[i]));
+        throw pyb::value_error("labels: vertex " + std::to_string(i) + " has label " +
+                               std::to_string(l.data()[i]));
       labels.push_back(uint32_t(l.data()[i]));
       num_clusters = std::max(num_clusters, labels.back() + 1);
     }
@@ -97,10 +101,10 @@ pyb::dict metrics(const pyb::handle& v_ref, const pyb::handle& f, const pyb::han
     surface = distance_to_surface(reference.view(), candidate.data(), reference.num_vertices());
     mfne = mean_face_normal_error(reference.view(), candidate.data());
   }
-  return pyb::dict("rmse_over_diagonal"_a = rmse, "surface_rms_over_diagonal"_a = surface.rms_over_diagonal,
-                   "surface_max_over_diagonal"_a = surface.max_over_diagonal, "mfne_rad"_a = mfne.mean_radians,
-                   "mfne_deg"_a = mfne.mean_radians * 180.0 / std::numbers::pi,
-                   "faces_skipped"_a = mfne.faces_skipped);
+  return pyb::dict(
+      "rmse_over_diagonal"_a = rmse, "surface_rms_over_diagonal"_a = surface.rms_over_diagonal,
+      "surface_max_over_diagonal"_a = surface.max_over_diagonal, "mfne_rad"_a = mfne.mean_radians,
+      "mfne_deg"_a = mfne.mean_radians * 180.0 / std::numbers::pi, "faces_skipped"_a = mfne.faces_skipped);
 }
 
 }  // namespace
@@ -109,7 +113,8 @@ void bind_mesh_functions(pyb::module_& m) {
   m.def("read_mesh", &read_mesh, "path"_a,
         "(V, F) of a mesh file (.ply .obj .stl .drc): float32 (n, 3) positions, int64 (m, 3) triangles.");
   m.def("write_mesh", &write_mesh, "path"_a, "V"_a, "F"_a, "labels"_a = pyb::none(), pyb::kw_only(),
-        "drc_bits"_a = 16, "Writes (V, F) as .ply, .drc, .obj or .glb, with one cluster label per vertex when given.");
+        "drc_bits"_a = 16,
+        "Writes (V, F) as .ply, .drc, .obj or .glb, with one cluster label per vertex when given.");
   m.def("add_noise", &add_noise, "V"_a, "F"_a, "sigma"_a, "seed"_a = 1,
         "V plus Gaussian noise of std sigma mean edge lengths per coordinate; the same seed gives "
         "the same noise everywhere (fqfilter --noise).");

@@ -45,8 +45,8 @@ Mesh to_mesh(const pyb::handle& vertices, const pyb::handle& faces) {
   for (ssize_t i = 0; i < f.size(); ++i) {
     const int64_t v = f.data()[i];
     if (v < 0 || v >= n)
-      value_error("F: triangle " + std::to_string(i / 3) + " references vertex " + std::to_string(v) + " of " +
-                  std::to_string(n));
+      value_error("F: triangle " + std::to_string(i / 3) + " references vertex " + std::to_string(v) +
+                  " of " + std::to_string(n));
     mesh.triangles[size_t(i)] = static_cast<uint32_t>(v);
   }
   return mesh;

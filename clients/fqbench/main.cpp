@@ -12,11 +12,11 @@
 
 #include "clients/fqbench/bench_rows.h"
 #include "clients/fqbench/bench_stats.h"
+#include "clients/fqbench/neighbour_stats.h"
+#include "common/version.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/engine.h"
 #include "proto/mesh_io.h"
-#include "clients/fqbench/neighbour_stats.h"
-#include "common/version.h"
 
 namespace {
 

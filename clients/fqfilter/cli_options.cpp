@@ -40,8 +40,9 @@ void add_cluster_options(CLI::App& app, Options& o, std::string& method, bool& n
   const std::string g = "Clustering";
   app.add_flag("--cluster", o.params.cluster, "Compute a cluster label per vertex (written with the output)")
       ->group(g);
-  app.add_flag("--colour-clusters", o.colour_clusters,
-               "Cluster colours replace the input's vertex colours (default: they go to cluster_red/green/blue)")
+  app.add_flag(
+         "--colour-clusters", o.colour_clusters,
+         "Cluster colours replace the input's vertex colours (default: they go to cluster_red/green/blue)")
       ->group(g);
   app.add_flag("--no-filter", no_filter, "Cluster only: keep the input positions (implies --cluster)")
       ->group(g);
@@ -64,7 +65,8 @@ void add_run_options(CLI::App& app, Options& o, std::string& engine) {
   app.add_option("IN", o.input, "Mesh file (.ply .obj .stl .drc) or folder of them")->required();
   app.add_option("OUT", o.output,
                  "Output file (.ply .drc .obj .glb), or folder when IN is a folder; none: write nothing");
-  app.add_flag("--in-place", o.in_place, "Allow OUT to be IN: the input is replaced once the result is written");
+  app.add_flag("--in-place", o.in_place,
+               "Allow OUT to be IN: the input is replaced once the result is written");
   app.add_option("--engine", engine, "auto (CUDA when a GPU is present), cpu or cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
       ->capture_default_str();

@@ -7,11 +7,11 @@
 #include <vector>
 
 #include "clients/fqfilter/progress.h"
-#include "kernels/cpu_engine.h"
-#include "proto/mesh_io.h"
 #include "eval/error_metrics.h"
 #include "eval/noise.h"
 #include "eval/surface_distance.h"
+#include "kernels/cpu_engine.h"
+#include "proto/mesh_io.h"
 
 namespace fq::cli {
 
@@ -75,7 +75,8 @@ void warn(FileReport& r, const std::string& what) {
 /// a failed write never leaves the input half-replaced. Through a symbolic link the
 /// link's target is replaced.
 Status write_in_place(const std::string& output, const MeshView& mesh, const uint32_t* labels,
-                      uint32_t num_clusters, const io::WriteOptions& options, std::vector<std::string>& dropped) {
+                      uint32_t num_clusters, const io::WriteOptions& options,
+                      std::vector<std::string>& dropped) {
   namespace fs = std::filesystem;
   const fs::path target = fs::canonical(output);
   fs::path temp = target;
@@ -88,8 +89,8 @@ Status write_in_place(const std::string& output, const MeshView& mesh, const uin
   return s;
 }
 
-Status write_output(const Options& o, const std::string& output, const MeshView& mesh, const FrameResult& result,
-                    io::MeshAttributes& attributes, FileReport& r) {
+Status write_output(const Options& o, const std::string& output, const MeshView& mesh,
+                    const FrameResult& result, io::MeshAttributes& attributes, FileReport& r) {
   if (is_same_file(r.file, output) && !o.in_place)
     return invalid_argument("OUT '" + output + "' is the input file; pass --in-place to replace it");
   MeshView out = mesh;
@@ -118,7 +119,8 @@ Status run_file_job(const std::string& input, const std::string& output, const O
   progress.show("reading");
   Mesh mesh, clean;
   io::MeshAttributes attributes;
-  if (Status s = io::read_mesh(input, mesh, output.empty() ? nullptr : &attributes); !s.ok()) return fail(r, s);
+  if (Status s = io::read_mesh(input, mesh, output.empty() ? nullptr : &attributes); !s.ok())
+    return fail(r, s);
   for (const std::string& d : attributes.dropped) warn(r, "cannot keep " + d);
   r.vertices = mesh.num_vertices();
   r.triangles = mesh.num_triangles();
@@ -150,7 +152,8 @@ Status run_file_job(const std::string& input, const std::string& output, const O
 bool is_same_file(const std::string& a, const std::string& b) {
   // stat() follows symbolic links; equal device and inode is the same file, whatever the
   // path (symbolic links, hard links, "./", "..").
-  struct stat sa {}, sb {};
+  struct stat sa {
+  }, sb{};
   return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev &&
          sa.st_ino == sb.st_ino;
 }

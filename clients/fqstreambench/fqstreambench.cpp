@@ -12,14 +12,14 @@
 #include <filesystem>
 #include <thread>
 
-#include "clients/fqstreambench/collector.h"
 #include "clients/common/control_client.h"
-#include "daemon/daemon.h"
-#include "proto/mesh_io.h"
 #include "clients/common/override_options.h"
+#include "clients/fqstreambench/collector.h"
 #include "clients/fqstreambench/producer.h"
 #include "clients/fqstreambench/report.h"
 #include "common/version.h"
+#include "daemon/daemon.h"
+#include "proto/mesh_io.h"
 
 namespace {
 

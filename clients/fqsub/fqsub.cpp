@@ -10,10 +10,10 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "proto/mesh_io.h"
 #include "clients/common/result_receiver.h"
 #include "clients/common/stream_stats.h"
 #include "common/version.h"
+#include "proto/mesh_io.h"
 
 namespace {
 

@@ -8,15 +8,15 @@
 #include <string>
 #include <vector>
 
+#include "proto/mesh_io.h"
 #include "tests/io/fqfilter_run.h"
 #include "tests/io/io_test_util.h"
-#include "proto/mesh_io.h"
 
 namespace {
 
 namespace fs = std::filesystem;
-using fq::test::RunResult;
 using fq::test::run_fqfilter;
+using fq::test::RunResult;
 
 const std::string kFandisk = std::string(FQ_DATA_DIR) + "/fandisk.ply";
 

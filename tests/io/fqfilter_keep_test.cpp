@@ -21,8 +21,8 @@
 namespace {
 
 namespace fs = std::filesystem;
-using fq::test::RunResult;
 using fq::test::run_fqfilter;
+using fq::test::RunResult;
 using fq::test::ScratchDir;
 
 constexpr int kN = 8;  // grid of kN x kN vertices
@@ -172,12 +172,13 @@ TEST_F(KeepFixture, InPlaceReplacesTheInputThroughALink) {
 TEST(FqfilterFormats, ReadsAsciiStl) {
   ScratchDir dir;
   const std::string stl = dir.file("square.stl");
-  fq::test::write_bytes(stl,
-                        "solid square\n"
-                        " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 1 1 0\n"
-                        "  endloop\n endfacet\n"
-                        " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 1 0\n   vertex 0 1 0\n"
-                        "  endloop\n endfacet\nendsolid square\n");
+  fq::test::write_bytes(
+      stl,
+      "solid square\n"
+      " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 1 1 0\n"
+      "  endloop\n endfacet\n"
+      " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 1 0\n   vertex 0 1 0\n"
+      "  endloop\n endfacet\nendsolid square\n");
   fq::Mesh mesh;
   ASSERT_TRUE(fq::io::read_mesh(stl, mesh).ok());
   EXPECT_EQ(mesh.num_vertices(), 4u);  // welded: the shared edge's corners are one vertex each

@@ -25,7 +25,9 @@ inline std::string quote(const std::string& s) {
 }
 
 /// Exit code of a std::system status.
-inline int exit_code_of(int status) { return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status); }
+inline int exit_code_of(int status) {
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
 
 /// Runs fqfilter with `args` (each passed as one shell word), capturing both streams.
 inline RunResult run_fqfilter(const std::vector<std::string>& args, const ScratchDir& dir) {

@@ -48,9 +48,10 @@ TEST(MeshIoPly, RoundTripIsExactAndCarriesLabelsAndColours) {
   ASSERT_NE(end, std::string::npos);
   const std::string header = bytes.substr(0, end);
   EXPECT_NE(header.find("format binary_little_endian 1.0"), std::string::npos);
-  EXPECT_NE(header.find("property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uint label\n"
-                        "property uchar cluster_red\nproperty uchar cluster_green\nproperty uchar cluster_blue\n"),
-            std::string::npos);
+  EXPECT_NE(
+      header.find("property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uint label\n"
+                  "property uchar cluster_red\nproperty uchar cluster_green\nproperty uchar cluster_blue\n"),
+      std::string::npos);
   EXPECT_NE(header.find("property list uchar int vertex_indices"), std::string::npos);
   // Vertex records: 3 floats, 3 colour bytes (the input had none: the cluster colours),
   // uint label, 3 cluster colour bytes.

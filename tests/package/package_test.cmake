@@ -1,5 +1,6 @@
 # Steps of the package test (run with cmake -P), chosen by STEP:
-#   install:   fresh install of the build tree into PREFIX
+#   install:   fresh install of the build tree into PREFIX (and, when PYTHON is set, an
+#              `import fq` from the installed module)
 #   cmake:     configure and build tests/package/consumer against PREFIX with find_package(fq)
 #   pkgconfig: compile the same consumer with `pkg-config --cflags --libs fq`
 # The cmake and pkgconfig steps then run the consumer on MESH and check that it printed the
@@ -32,6 +33,10 @@ if(STEP STREQUAL "install")
       message(FATAL_ERROR "${f} not installed")
     endif()
   endforeach()
+  if(PYTHON)
+    run("${CMAKE_COMMAND}" -E env "PYTHONPATH=${PREFIX}/${PYTHON_DIR}" "${PYTHON}" -c
+        "import fq, os; assert fq.__file__.startswith(os.environ['PYTHONPATH']), fq.__file__; print(fq.__version__)")
+  endif()
 elseif(STEP STREQUAL "cmake")
   file(REMOVE_RECURSE "${work}")
   run("${CMAKE_COMMAND}" -S "${SOURCE}/tests/package/consumer" -B "${work}" -G "${GENERATOR}"

@@ -1,8 +1,9 @@
 // Reads a mesh, smooths it with the CPU engine and prints what it did. Uses both include
 // styles the installed package supports.
+#include <fq/kernels/engine.h>
+
 #include <cmath>
 #include <cstdio>
-#include <fq/kernels/engine.h>
 
 #include "common/version.h"
 #include "proto/mesh_io.h"
@@ -27,7 +28,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   double moved = 0.0;
-  for (size_t i = 0; i < mesh.positions.size(); ++i) moved += std::abs(result.positions[i] - mesh.positions[i]);
+  for (size_t i = 0; i < mesh.positions.size(); ++i)
+    moved += std::abs(result.positions[i] - mesh.positions[i]);
   std::printf("fq %s, engine %s\nvertices %u\nmoved %g\n", fq::version_string(), engine->name().c_str(),
               mesh.num_vertices(), moved);
   return 0;
