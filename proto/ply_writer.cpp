@@ -72,10 +72,10 @@ bool is_label_property(const std::string& name) {
   return name == "label" || name == "cluster_red" || name == "cluster_green" || name == "cluster_blue";
 }
 
-/// Fills the colour columns of `c` (red/green/blue or cluster_red/...) from the labels.
-void fill_cluster_colour(ElementProperty& c, const uint32_t* labels, int k) {
+/// Fills colour channel `k` (0 red, 1 green, 2 blue) of column `c` from the labels' colours.
+void fill_cluster_colour(ElementProperty& c, const std::vector<Rgb8>& colours, int k) {
   for (size_t v = 0; v < c.values.size(); ++v) {
-    const Rgb8 colour = cluster_color(labels[v]);
+    const Rgb8 colour = colours[v];
     c.values[v] = channel(k == 0 ? colour.r : k == 1 ? colour.g : colour.b, c.type);
   }
 }
@@ -93,20 +93,22 @@ std::vector<ElementProperty> vertex_columns(const MeshView& mesh, const uint32_t
     if (!labels || !is_label_property(p.name)) cols.push_back(p);
   }
   if (!labels) return cols;
+  std::vector<Rgb8> colours(n);  // once per vertex: cluster_color is an HSV conversion
+  for (size_t v = 0; v < n; ++v) colours[v] = cluster_color(labels[v]);
   const char* rgb[3] = {"red", "green", "blue"};
   const bool has_rgb = a && a->find_vertex(rgb[0]) && a->find_vertex(rgb[1]) && a->find_vertex(rgb[2]);
   for (int k = 0; k < 3; ++k) {
     if (has_rgb && !colour_clusters) continue;
     if (!has_rgb) cols.push_back(scalar(rgb[k], ScalarType::kUInt8, n));
     for (ElementProperty& c : cols) {
-      if (c.name == rgb[k] && !c.is_list) fill_cluster_colour(c, labels, k);
+      if (c.name == rgb[k] && !c.is_list) fill_cluster_colour(c, colours, k);
     }
   }
   cols.push_back(scalar("label", ScalarType::kUInt32, n));
   for (size_t v = 0; v < n; ++v) cols.back().values[v] = labels[v];
   for (int k = 0; k < 3; ++k) {
     cols.push_back(scalar(std::string("cluster_") + rgb[k], ScalarType::kUInt8, n));
-    fill_cluster_colour(cols.back(), labels, k);
+    fill_cluster_colour(cols.back(), colours, k);
   }
   return cols;
 }
