@@ -14,16 +14,19 @@ namespace {
 // Appends the wall time of each pass to the frame's timings.
 class PassClock {
  public:
-  explicit PassClock(std::vector<PassTiming>& out) : out_(out), t0_(Clock::now()) {}
+  PassClock(std::vector<PassTiming>& out, const PassObserver& observer)
+      : out_(out), observer_(observer), t0_(Clock::now()) {}
   void lap(const char* name) {
     const auto t = Clock::now();
     out_.push_back({name, std::chrono::duration<double, std::milli>(t - t0_).count()});
+    if (observer_) observer_(out_.back());
     t0_ = t;
   }
 
  private:
   using Clock = std::chrono::steady_clock;
   std::vector<PassTiming>& out_;
+  const PassObserver& observer_;
   Clock::time_point t0_;
 };
 
@@ -40,7 +43,7 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
   out.link_p.clear();
   if (Status s = validate(params); !s.ok()) return s;
   if (needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
-  PassClock clock(out.timings);
+  PassClock clock(out.timings, observer_);
   if (Status s = check_mesh(mesh, threads_); !s.ok()) return s;
   if (Status s = compute_normalization(mesh, f_.norm, threads_); !s.ok()) return s;
   out.mean_edge = f_.norm.mean_edge;

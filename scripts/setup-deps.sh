@@ -9,12 +9,13 @@ here=$(cd "$(dirname "$0")" && pwd)
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libdraco-dev draco
+  libdraco-dev draco libassimp-dev
   libzmq3-dev cppzmq-dev
   libprotobuf-dev protobuf-compiler
   libspdlog-dev libfmt-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-open3d
   python3-zmq python3-protobuf   # clients/examples/consume.py and its test
   libcpp-httplib-dev
   python3-prometheus-client

@@ -14,10 +14,11 @@
 #include "clients/fqbench/bench_rows.h"
 #include "clients/fqbench/bench_stats.h"
 #include "clients/fqbench/codec_bench.h"
+#include "clients/fqbench/neighbour_stats.h"
+#include "common/version.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/engine.h"
 #include "proto/mesh_io.h"
-#include "clients/fqbench/neighbour_stats.h"
 
 namespace {
 
@@ -150,6 +151,7 @@ int main(int argc, char** argv) {
   Options o;
   o.mesh_dir = default_mesh_dir();
   CLI::App app{"fqbench: device time per pass for the paper's Table 2 and 3 rows"};
+  app.set_version_flag("--version", fq::version_line("fqbench"));
   app.add_option("--mesh-dir", o.mesh_dir,
                  "folder of the shared meshes (default: $FQ_MESH_DIR or ../shared/meshes)");
   app.add_option("--rows", o.rows, "comma-separated row ids, or all")->capture_default_str();

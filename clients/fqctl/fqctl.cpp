@@ -15,6 +15,7 @@
 #include "clients/common/control_client.h"
 #include "clients/fqctl/counters_table.h"
 #include "clients/fqctl/param_assign.h"
+#include "common/version.h"
 #include "daemon/counters_json.h"
 
 namespace {
@@ -133,6 +134,7 @@ int cmd_watch(const Args& a) {
 
 int main(int argc, char** argv) {
   CLI::App app{"fqctl: inspect and steer a running fqd through its control socket"};
+  app.set_version_flag("--version", fq::version_line("fqctl"));
   Args a;
   app.add_option("-c,--control", a.control, "fqd's control endpoint")->capture_default_str();
   app.add_option("--timeout-ms", a.timeout_ms, "how long to wait for fqd's reply")

@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "common/version.h"
+
 namespace fq::cli {
 
 namespace {
@@ -56,6 +58,10 @@ void add_cluster_options(CLI::App& app, Options& o, std::string& method, bool& n
   const std::string g = "Clustering";
   app.add_flag("--cluster", o.params.cluster, "Compute a cluster label per vertex (written with the output)")
       ->group(g);
+  app.add_flag(
+         "--colour-clusters", o.colour_clusters,
+         "Cluster colours replace the input's vertex colours (default: they go to cluster_red/green/blue)")
+      ->group(g);
   app.add_flag("--no-filter", no_filter, "Cluster only: keep the input positions (implies --cluster)")
       ->group(g);
   app.add_option("--cluster-method", method, "quadric (the paper) or euclidean (plain quick shift)")
@@ -76,7 +82,9 @@ void add_cluster_options(CLI::App& app, Options& o, std::string& method, bool& n
 void add_run_options(CLI::App& app, Options& o, std::string& engine) {
   app.add_option("IN", o.input, "Mesh file (.ply .obj .stl .drc) or folder of them")->required();
   app.add_option("OUT", o.output,
-                 "Output file (.ply or .drc), or folder when IN is a folder; none: write nothing");
+                 "Output file (.ply .drc .obj .glb), or folder when IN is a folder; none: write nothing");
+  app.add_flag("--in-place", o.in_place,
+               "Allow OUT to be IN: the input is replaced once the result is written");
   app.add_option("--engine", engine, "auto (CUDA when a GPU is present), cpu or cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
       ->capture_default_str();
@@ -115,6 +123,7 @@ const char* cluster_method_name(ClusterMethod m) {
 ParseOutcome parse_options(int argc, char** argv, Options& o) {
   CLI::App app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
                "fqfilter"};
+  app.set_version_flag("--version", fq::version_line("fqfilter"));
   std::string mode = "qf", method = "quadric", engine = "auto", geometry = "auto";
   bool no_filter = false;
   add_run_options(app, o, engine);
@@ -123,7 +132,7 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
   add_cluster_control_options(app, o, geometry);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
+  } catch (const CLI::Success& e) {  // --help, --version
     return {false, app.exit(e)};
   } catch (const CLI::ParseError& e) {
     std::cerr << "fqfilter: error: " << e.what() << " (see fqfilter --help)\n";

@@ -11,7 +11,7 @@ namespace fq::cli {
 
 struct Options {
   std::string input;   ///< a mesh file or a folder of them
-  std::string output;  ///< file (.ply/.drc) or folder; empty: write nothing
+  std::string output;  ///< file (.ply/.drc/.obj/.glb) or folder; empty: write nothing
   EngineOptions engine;
   Params params;           ///< defaults from fq::Params
   double noise_sigma = 0;  ///< in mean edge lengths; 0: no noise
@@ -20,6 +20,8 @@ struct Options {
   int repeat = 1;         ///< engine runs per frame; timings are medians
   int drc_bits = 16;      ///< position quantization of .drc outputs
   bool json = false;
+  bool colour_clusters = false;  ///< cluster colours replace the input's vertex colours
+  bool in_place = false;         ///< OUT may be IN itself (replaced once the result is written)
 
   bool has_metrics() const { return noise_sigma > 0 || !reference.empty(); }
 };

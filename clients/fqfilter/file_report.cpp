@@ -119,7 +119,8 @@ nlohmann::json to_json(const FileReport& r) {
             {"repeat", r.repeat},
             {"timings_ms", {{"passes", passes}, {"total", r.total_ms}}},
             {"clusters", r.clusters ? nlohmann::json(*r.clusters) : nlohmann::json(nullptr)},
-            {"theta_used", r.theta_used ? nlohmann::json(as_typed(*r.theta_used)) : nlohmann::json(nullptr)}});
+            {"theta_used", r.theta_used ? nlohmann::json(as_typed(*r.theta_used)) : nlohmann::json(nullptr)},
+            {"warnings", r.warnings}});
   if (r.reference.empty()) {
     j["metrics"] = nullptr;
   } else {

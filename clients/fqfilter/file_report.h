@@ -43,6 +43,7 @@ struct FileReport {
   std::string reference;                  ///< what the metrics compare to; empty: no metrics
   std::optional<MeshError> input_error;   ///< engine input (noisy) vs reference
   std::optional<MeshError> output_error;  ///< result vs reference (when filtering)
+  std::vector<std::string> warnings;      ///< what the output could not keep of the input
   std::string error;                      ///< non-empty when the file failed
 };
 

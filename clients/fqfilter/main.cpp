@@ -24,9 +24,12 @@ std::string single_output_path(const Options& o) {
 
 int run_single(const Options& o, fq::Engine& engine) {
   const std::string output = single_output_path(o);
-  const std::string ext = fq::io::lower_extension(output);
-  if (!output.empty() && ext != ".ply" && ext != ".drc") {
-    std::cerr << "fqfilter: error: OUT '" << output << "' must end in .ply or .drc\n";
+  if (!output.empty() && !fq::io::is_writable_mesh_file(output)) {
+    std::cerr << "fqfilter: error: OUT '" << output << "' must end in .ply, .drc, .obj or .glb\n";
+    return 2;
+  }
+  if (!output.empty() && !o.in_place && fq::cli::is_same_file(o.input, output)) {
+    std::cerr << "fqfilter: error: OUT '" << output << "' is the input file; pass --in-place to replace it\n";
     return 2;
   }
   fq::cli::FileReport report;

@@ -11,6 +11,7 @@
 #include "clients/common/frame_sender.h"
 #include "clients/common/mesh_source.h"
 #include "clients/common/override_options.h"
+#include "common/version.h"
 
 namespace {
 
@@ -112,6 +113,7 @@ void add_options(CLI::App& app, Args& a) {
 
 int main(int argc, char** argv) {
   CLI::App app{"fqpub: publish mesh frames to fqd (a file, or a folder as a looped sequence)"};
+  app.set_version_flag("--version", fq::version_line("fqpub"));
   Args a;
   add_options(app, a);
   CLI11_PARSE(app, argc, argv);

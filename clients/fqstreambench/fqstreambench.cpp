@@ -12,14 +12,15 @@
 #include <filesystem>
 #include <thread>
 
-#include "clients/fqstreambench/collector.h"
 #include "clients/common/control_client.h"
+#include "clients/common/override_options.h"
+#include "clients/fqstreambench/collector.h"
+#include "clients/fqstreambench/producer.h"
+#include "clients/fqstreambench/report.h"
+#include "common/version.h"
 #include "daemon/daemon.h"
 #include "proto/header_codec.h"
 #include "proto/mesh_io.h"
-#include "clients/common/override_options.h"
-#include "clients/fqstreambench/producer.h"
-#include "clients/fqstreambench/report.h"
 
 namespace {
 
@@ -214,6 +215,7 @@ void add_options(CLI::App& app, Args& a) {
 
 int main(int argc, char** argv) {
   CLI::App app{"fqstreambench: latency and throughput of fqd at a sustained frame rate"};
+  app.set_version_flag("--version", fq::version_line("fqstreambench"));
   Args a;
   add_options(app, a);
   CLI11_PARSE(app, argc, argv);

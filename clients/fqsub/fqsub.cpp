@@ -11,9 +11,10 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "proto/mesh_io.h"
 #include "clients/common/result_receiver.h"
 #include "clients/common/stream_stats.h"
+#include "common/version.h"
+#include "proto/mesh_io.h"
 
 namespace {
 
@@ -113,6 +114,7 @@ std::string receive_loop(const Args& a, zmq::socket_t& sub, fq::client::StreamSt
 
 int main(int argc, char** argv) {
   CLI::App app{"fqsub: receive, check and save fqd results"};
+  app.set_version_flag("--version", fq::version_line("fqsub"));
   Args a;
   app.add_option("-e,--endpoint", a.endpoint, "fqd publish endpoint (SUB connects)")->capture_default_str();
   app.add_option("-s,--stream", a.streams, "stream id to subscribe to (repeatable; none = all streams)");

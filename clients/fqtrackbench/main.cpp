@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "common/version.h"
 #include "eval/capture_sequence.h"
 #include "eval/label_persistence.h"
 #include "eval/sharp_edge_recall.h"
@@ -30,6 +31,7 @@ struct Totals {
 int main(int argc, char** argv) {
   int to_rings = 2;
   CLI::App app{"fqtrackbench: cluster id persistence over synthetic capture frames"};
+  app.set_version_flag("--version", fq::version_line("fqtrackbench"));
   std::string mesh_path;
   int frames = 10, threads = 0;
   double noise = 0.2, degrees = 0.0;

@@ -1,6 +1,5 @@
 // The built fqfilter binary, run as a user would: exit codes, error lines, JSON, folders.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cmath>
 #include <cstdio>
@@ -9,41 +8,17 @@
 #include <string>
 #include <vector>
 
-#include "tests/io/io_test_util.h"
 #include "proto/mesh_io.h"
+#include "tests/io/fqfilter_run.h"
+#include "tests/io/io_test_util.h"
 
 namespace {
 
 namespace fs = std::filesystem;
+using fq::test::run_fqfilter;
+using fq::test::RunResult;
 
 const std::string kFandisk = std::string(FQ_DATA_DIR) + "/fandisk.ply";
-
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-/// Single-quoted for the shell (built with append: GCC 12 gives a false -Wrestrict
-/// warning on "literal" + std::string).
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  q.append(s).append("'");
-  return q;
-}
-
-/// Runs fqfilter with `args` (each passed as one shell word), capturing both streams.
-RunResult run_fqfilter(const std::vector<std::string>& args, const fq::test::ScratchDir& dir) {
-  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  std::string cmd = quote(FQFILTER_BIN);
-  for (const std::string& a : args) cmd.append(" ").append(quote(a));
-  cmd.append(" >").append(quote(out)).append(" 2>").append(quote(err));
-  const int status = std::system(cmd.c_str());
-  RunResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  r.out = fq::test::read_bytes(out);
-  r.err = fq::test::read_bytes(err);
-  return r;
-}
 
 size_t count_lines(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
 

@@ -158,9 +158,9 @@ TEST(MeshIoErrors, DracoPointCloudIsNotATriangleMesh) {
 TEST(MeshIoErrors, WriteUnknownExtension) {
   test::ScratchDir dir;
   const Mesh m = test::make_single_triangle();
-  const Status s = write_mesh(dir.file("out.obj"), m.view(), nullptr, 0);
+  const Status s = write_mesh(dir.file("out.stl"), m.view(), nullptr, 0);
   EXPECT_FALSE(s.ok());
-  EXPECT_NE(s.message().find("unsupported output extension '.obj'"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("unsupported output extension '.stl'"), std::string::npos) << s.message();
 }
 
 TEST(MeshIoErrors, WriteUnwritablePath) {
