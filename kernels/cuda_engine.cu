@@ -13,6 +13,7 @@
 #include "kernels/cuda/host_staging.h"
 #include "kernels/cuda/launch.cuh"
 #include "kernels/cuda/passes.cuh"
+#include "kernels/cuda/refine_passes.cuh"
 #include "kernels/cuda/stream.cuh"
 #include "kernels/cuda/team_passes.cuh"
 #include "kernels/cuda_engine.h"
@@ -63,6 +64,7 @@ class CudaEngine final : public Engine {
   cuda::Stream stream_;
   cuda::PassEvents events_;
   cuda::DeviceFrame f_;
+  cuda::RefineBuffers refine_;
   std::string name_;
   int sm_count_ = 1;
   double normalize_ms_ = 0.0;
@@ -157,12 +159,13 @@ void CudaEngine::enqueue_passes(const Params& params) {
   const bool fast_exp = fast_exp_enabled();
   cuda::sort_into_grid(f_, f_.grid.layout, s);
   events_.mark("grid", s);
-  if (gather_base_quadrics())
+  const bool refine = params.filter && fp.method == FilterMethod::kQuadricRefined;
+  if (gather_base_quadrics() || refine)  // the refinement needs the gather's vertex -> triangle table
     cuda::base_quadrics_gather(f_, s);
   else
     cuda::base_quadrics(f_, s);
   events_.mark("base_quadrics", s);
-  if (params.cluster || fp.method == FilterMethod::kQuadric) {
+  if (params.cluster || fp.uses_quadrics()) {
     if (team)
       cuda::team_neighbourhood_quadrics(f_, fp.effective_sigma_b(), team, fast_exp, s);
     else
@@ -175,11 +178,15 @@ void CudaEngine::enqueue_passes(const Params& params) {
     events_.mark("diffusion", s);
   }
   if (params.filter) {
-    if (fp.method == FilterMethod::kQuadric)
+    if (fp.uses_quadrics())
       cuda::update_positions(f_, fp, s);
     else
       cuda::bilateral_filter(f_, fp, s);
-    events_.mark(fp.method == FilterMethod::kQuadric ? "update" : "bilateral_filter", s);
+    events_.mark(fp.uses_quadrics() ? "update" : "bilateral_filter", s);
+  }
+  if (refine) {
+    cuda::refine_positions(f_, refine_, fp.refine, s);
+    events_.mark("refine", s);
   }
   if (params.cluster) {
     if (team)

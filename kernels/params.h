@@ -2,15 +2,31 @@
 // mean edge length, as in the paper; neighbourhoods have radius 2 sigma.
 #pragma once
 
+#include <string>
+
 #include "common/status.h"
 
 namespace fq {
 
-enum class FilterMethod { kQuadric, kBilateral };   ///< "qf" (the paper) | "bf" (Jones 2003)
+/// "qf+" (the paper's filter, then the refinement below; the default) | "qf" (the paper
+/// exactly) | "bf" (Jones 2003).
+enum class FilterMethod { kQuadric, kBilateral, kQuadricRefined };
 enum class ClusterMethod { kQuadric, kEuclidean };  ///< the paper | plain quick shift (Fig. 17)
 
+/// Feature-preserving refinement after QF (method "qf+"; docs/ALGORITHM.md, kernels/refine_math.h).
+/// Distances in mean edge lengths of the frame.
+struct RefineParams {
+  int relax_iterations = 5;      ///< tangential relaxation passes (un-fold triangles)
+  float relax_step = 0.5f;       ///< fraction of the way to the 1-ring mean per pass, in (0, 1]
+  float feature_ratio = 0.1f;    ///< normal-tensor eigenvalues below ratio × largest are free directions
+  int normal_iterations = 3;     ///< bilateral face-normal filtering passes
+  float normal_sigma_s = 1.0f;   ///< spatial extent (face centroid distance)
+  float normal_sigma_r = 0.35f;  ///< range extent (|n_i − n_j|)
+  int vertex_iterations = 10;    ///< normal-driven vertex update passes (Sun et al. 2007)
+};
+
 struct FilterParams {
-  FilterMethod method = FilterMethod::kQuadric;
+  FilterMethod method = FilterMethod::kQuadricRefined;
   float sigma_s = 2.0f;  ///< spatial extent of the quadric diffusion (BF: of the filter)
   float sigma_r = 1.0f;  ///< range extent (RMS quadric distance; BF: prediction distance)
   float sigma_b = 0.0f;  ///< finest detail captured by Q'; 0 means sigma_s / 2
@@ -19,6 +35,9 @@ struct FilterParams {
   /// Tikhonov pull toward the current position, relative to tr(A)/3. 0.05 keeps a clean
   /// mesh intact and improves noisy ones (see docs/QUALITY.md); 0 is the paper's solver.
   float tikhonov = 0.05f;
+  RefineParams refine;  ///< used by "qf+" only
+
+  bool uses_quadrics() const { return method != FilterMethod::kBilateral; }
 
   float effective_sigma_b() const { return sigma_b > 0.f ? sigma_b : 0.5f * sigma_s; }
   float effective_sigma_n() const { return sigma_n > 0.f ? sigma_n : 0.5f * sigma_s; }
@@ -37,6 +56,14 @@ struct Params {
   FilterParams f;
   ClusterParams c;
 };
+
+/// "qf+", "qf", "bf": the names of configs, the command line and JSON.
+const char* filter_method_name(FilterMethod m);
+/// Parses a name of filter_method_name(); false for anything else.
+bool parse_filter_method(const std::string& s, FilterMethod& out);
+
+/// Clear message for the first bad refinement value (negative or huge iteration count, ...).
+Status validate(const RefineParams& r);
 
 /// Clear message for the first bad value (sigma <= 0, NaN, theta outside (0, 1], ...).
 Status validate(const Params& p);
