@@ -27,8 +27,10 @@ struct RefineParams {
 
 struct FilterParams {
   FilterMethod method = FilterMethod::kQuadricRefined;
-  float sigma_s = 2.0f;  ///< spatial extent of the quadric diffusion (BF: of the filter)
-  float sigma_r = 1.0f;  ///< range extent (RMS quadric distance; BF: prediction distance)
+  /// Defaults 1.5 / 0.7: the best setting of "qf+" on docs/QUALITY.md's benchmark (the
+  /// paper's Table 1 uses 2 / 1 and 2 / 0.7; pass them for the paper's rows).
+  float sigma_s = 1.5f;  ///< spatial extent of the quadric diffusion (BF: of the filter)
+  float sigma_r = 0.7f;  ///< range extent (RMS quadric distance; BF: prediction distance)
   float sigma_b = 0.0f;  ///< finest detail captured by Q'; 0 means sigma_s / 2
   float sigma_n = 0.0f;  ///< normal smoothing for constrained mode; 0 means sigma_s / 2
   bool constrained = false;  ///< move along the smoothed normal instead of to the minimizer

@@ -101,6 +101,8 @@ void add_run_options(CLI::App& app, Options& o, std::string& engine, std::string
       ->check(CLI::IsMember({"iso", "normal"}))
       ->capture_default_str();
   app.add_option("--seed", o.seed, "Seed of --noise")->capture_default_str();
+  app.add_option("--noisy-out", o.noisy_out,
+                 "Also write the noisy input mesh to this file (to run other smoothers on the same input)");
   app.add_option("--reference", o.reference,
                  "Clean mesh (same vertices and faces) to measure errors against");
   app.add_option("--repeat", o.repeat, "Run the engine N times per mesh; timings are medians")

@@ -16,6 +16,7 @@ struct Options {
   Params params;           ///< defaults from fq::Params
   double noise_sigma = 0;  ///< in mean edge lengths; 0: no noise
   bool noise_along_normal = false;  ///< --noise-direction normal
+  std::string noisy_out;            ///< also write the noisy input here (.ply/.drc); empty: don't
   uint64_t seed = 1;
   std::string reference;  ///< clean mesh for the metrics; empty: the input when noise is added
   int repeat = 1;         ///< engine runs per frame; timings are medians

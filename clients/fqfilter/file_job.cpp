@@ -77,6 +77,9 @@ Status run_file_job(const std::string& input, const std::string& output, const O
       add_normal_noise(mesh, o.noise_sigma, o.seed);
     else
       add_gaussian_noise(mesh, o.noise_sigma, o.seed);
+    if (!o.noisy_out.empty()) {
+      if (Status s = io::write_mesh(o.noisy_out, mesh.view(), nullptr, 0, 0); !s.ok()) return fail(r, s);
+    }
   }
   if (!r.reference.empty()) {
     if (Status s = check_same_connectivity(clean.view(), mesh.view()); !s.ok())
