@@ -40,11 +40,11 @@ FQ_METHODS = [
 ]
 
 # Peer sweeps: label -> list of (setting text, runner argument).
-O3D_TAUBIN = [10, 30, 100]
-O3D_LAPLACIAN = [1, 3, 10]
+O3D_TAUBIN = [5, 10, 30, 100]
+O3D_LAPLACIAN = [1, 3, 10, 30]
 ML_TAUBIN = [10, 30, 100]
-ML_HC = [1, 3, 10]
-ML_TWOSTEP = [(1, 60), (3, 60), (3, 30), (6, 30)]
+ML_HC = [1, 3, 10, 30]
+ML_TWOSTEP = [(3, 60), (10, 60), (10, 30), (30, 30)]
 
 
 def run_fq(fqfilter, mesh, noise, direction, extra, noisy_out=None):

@@ -4,7 +4,9 @@
     python3 scripts/quality.py [--fqfilter build/clients/fqfilter/fqfilter] [--meshes ../shared/meshes]
 
 Prints markdown on stdout: the denoising table (noise 0.2 mean edge, seed 1) and the clustering
-table at the paper's Table 3 parameters. Every number comes from the run it prints.
+table at the paper's Table 3 parameters, for the paper's filter (--mode qf); the comparison of
+fq's default (qf+) with other smoothers is scripts/peer_quality.py. Every number comes from the
+run it prints.
 """
 import argparse
 import json
@@ -56,8 +58,8 @@ def denoise_table(fqfilter, meshes):
         base = [path, "--noise", str(NOISE), "--seed", str(SEED), "--repeat", "3"]
         runs = [
             ("BF (Jones 2003)", bf, run(fqfilter, base + ["--mode", "bf", "--sigma-s", str(bf[0]), "--sigma-r", str(bf[1])])),
-            ("QF unconstrained", qf, run(fqfilter, base + ["--sigma-s", str(qf[0]), "--sigma-r", str(qf[1])])),
-            ("QF constrained", qf, run(fqfilter, base + ["--sigma-s", str(qf[0]), "--sigma-r", str(qf[1]), "--constrained"])),
+            ("QF unconstrained", qf, run(fqfilter, base + ["--mode", "qf", "--sigma-s", str(qf[0]), "--sigma-r", str(qf[1])])),
+            ("QF constrained", qf, run(fqfilter, base + ["--mode", "qf", "--sigma-s", str(qf[0]), "--sigma-r", str(qf[1]), "--constrained"])),
         ]
         first = runs[0][2]
         print(f"| {name} ({first['vertices']} V; σ from {source}) | noisy input | – "
@@ -86,7 +88,7 @@ def clean_table(fqfilter, meshes):
     for name, (ss, sr), _, _ in DENOISE[:3]:
         path = os.path.join(meshes, name)
         for label, eps in (("Tikhonov ε = 0.05 (default)", "0.05"), ("ε = 0 (paper's −A⁻¹b, eigenvalues < 1e-3 λmax dropped)", "0")):
-            r = run(fqfilter, [path, "--reference", path, "--sigma-s", str(ss), "--sigma-r", str(sr), "--tikhonov", eps])
+            r = run(fqfilter, [path, "--reference", path, "--mode", "qf", "--sigma-s", str(ss), "--sigma-r", str(sr), "--tikhonov", eps])
             print(f"| {name} (σ_s {ss:g}, σ_r {sr:g}) | {label} | {fmt_metrics(r['metrics']['output'])} |")
             sys.stdout.flush()
 
