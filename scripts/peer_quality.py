@@ -11,7 +11,9 @@ Taubin and Laplacian (python3-open3d) and MeshLab's Taubin, HC Laplacian and Two
 sweep. Prints the markdown tables of docs/QUALITY.md: per row the best setting of each peer.
 MFNE is measured here the way eval/error_metrics.cpp does (faces degenerate in either mesh
 skipped); the script checks that it agrees with fqfilter's own number on the noisy input.
---quick runs one row (fandisk, iso 0.2) with one setting per peer: a smoke test.
+A last table gives fq's methods on the clean meshes (damage to a clean input); --clean-only
+prints only that one. --quick runs one row (fandisk, iso 0.2) with one setting per peer: a
+smoke test.
 """
 import argparse
 import json
@@ -32,6 +34,7 @@ ROWS = ["fandisk:0.3:iso", "bunny:0.3:iso", "igea:0.3:iso", "dragon:0.3:iso",
         "fandisk:0.2:iso", "max_planck:0.2:iso", "bunny:0.2:iso", "igea:0.2:iso",
         "fandisk:0.3:normal", "bunny:0.3:normal"]
 SEED = 7
+CLEAN = ["fandisk", "max_planck", "bunny", "igea"]
 
 # fq's methods: label, fqfilter arguments.
 FQ_METHODS = [
@@ -171,17 +174,39 @@ def row_table(fqfilter, meshes, row, quick, tmp):
     return f"{name} {direction} {noise}", len(clean), results
 
 
+def clean_table(fqfilter, meshes):
+    """fq's methods on clean meshes against themselves: how much a clean input is damaged."""
+    print("#### Clean meshes filtered, against themselves\n")
+    print("| mesh | " + " | ".join(f"{label} MFNE (rad)" for label, _ in FQ_METHODS) + " |")
+    print("|---|" + "---:|" * len(FQ_METHODS))
+    for name in CLEAN:
+        path = os.path.join(meshes, name + ".ply")
+        errs = []
+        for _, extra in FQ_METHODS:
+            out = subprocess.run([fqfilter, path, "--reference", path, "--engine", "cpu", "--json", *extra],
+                                 check=True, capture_output=True, text=True)
+            errs.append(json.loads(out.stdout)["metrics"]["output"]["mfne_rad"])
+        print(f"| {name} | " + " | ".join(f"{e:.3f}" for e in errs) + " |")
+        sys.stdout.flush()
+    print()
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--fqfilter", default="build/clients/fqfilter/fqfilter")
     ap.add_argument("--meshes", default=os.path.join("..", "shared", "meshes"))
     ap.add_argument("--rows", default=",".join(ROWS), help="mesh:noise:iso|normal, comma separated")
     ap.add_argument("--quick", action="store_true", help="one row, one setting per peer (smoke test)")
+    ap.add_argument("--clean-only", action="store_true", help="only the clean-mesh table")
     a = ap.parse_args()
     rows = ["fandisk:0.2:iso"] if a.quick else a.rows.split(",")
     cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
     print(f"Machine: {platform.machine()} {cpu}, {os.cpu_count()} hardware threads; fq on its CPU engine; "
           f"Open3D {o3d.__version__}; noise seed {SEED}.\n")
+    if a.clean_only or not a.quick:
+        clean_table(a.fqfilter, a.meshes)
+    if a.clean_only:
+        return
     summary = []
     with tempfile.TemporaryDirectory(prefix="fq_peers_") as tmp:
         for row in rows:
