@@ -28,6 +28,7 @@ struct CpuFrame {
   std::vector<Vec3> vnormal, moved;
   // Refinement ("qf+"): double buffers of positions and face normals.
   std::vector<Vec3> refine_x;
+  std::vector<uint8_t> refine_closed;  ///< closed_fan per vertex
   std::vector<TriangleGeom> refine_geom;
   std::vector<Vec3> refine_n[2];
   // Bilateral baseline: triangles in centroid-grid order.

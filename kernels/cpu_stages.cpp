@@ -102,13 +102,16 @@ void refine_positions(CpuFrame& f, const RefineParams& r, int threads) {
   const uint32_t m = static_cast<uint32_t>(f.tris.size() / 3);
   const FanView fan{f.tris.data(), f.vf_offsets.data(), f.vf_faces.data()};
   f.refine_x.resize(n);
+  f.refine_closed.resize(n);
+  parallel_for(n, threads, [&](uint32_t v) { f.refine_closed[v] = closed_fan(fan, v) ? 1 : 0; });
   // Every pass reads one buffer and writes the other; f.moved holds the result.
   auto vertex_pass = [&](auto&& position) {
     parallel_for(n, threads, [&](uint32_t v) { f.refine_x[v] = position(f.moved.data(), v); });
     f.moved.swap(f.refine_x);
   };
   for (int it = 0; it < r.relax_iterations; ++it) {
-    vertex_pass([&](const Vec3* x, uint32_t v) { return relaxed_position(fan, x, v, r.relax_step, r.feature_ratio); });
+    vertex_pass([&](const Vec3* x, uint32_t v) { return relaxed_position(fan, x, v, f.refine_closed[v] != 0, r.relax_step, r.feature_ratio);
+    });
   }
   f.refine_geom.resize(m);
   f.refine_n[0].resize(m);

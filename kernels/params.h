@@ -22,7 +22,7 @@ struct RefineParams {
   int normal_iterations = 3;     ///< bilateral face-normal filtering passes
   float normal_sigma_s = 1.0f;   ///< spatial extent (face centroid distance)
   float normal_sigma_r = 0.35f;  ///< range extent (|n_i − n_j|)
-  int vertex_iterations = 10;    ///< normal-driven vertex update passes (Sun et al. 2007)
+  int vertex_iterations = 20;    ///< normal-driven vertex update passes (Sun et al. 2007)
 };
 
 struct FilterParams {

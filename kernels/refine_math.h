@@ -12,6 +12,7 @@
 // results do not depend on the thread count.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "kernels/gaussian.h"
@@ -33,9 +34,11 @@ namespace detail {
 
 FQ_HD bool has_vertex(const uint32_t* tri, uint32_t v) { return tri[0] == v || tri[1] == v || tri[2] == v; }
 
+}  // namespace detail
+
 /// Interior manifold vertex: every 1-ring neighbour lies in exactly two incident triangles.
 /// Boundary and non-manifold vertices are left where they are by the relaxation (a
-/// 1-ring mean there pulls the boundary inward).
+/// 1-ring mean there pulls the boundary inward). Connectivity only: computed once per frame.
 FQ_HD bool closed_fan(const FanView& m, uint32_t v) {
   const uint32_t b = m.vf_offsets[v], e = m.vf_offsets[v + 1];
   for (uint32_t k = b; k < e; ++k) {
@@ -44,23 +47,23 @@ FQ_HD bool closed_fan(const FanView& m, uint32_t v) {
       const uint32_t o = tri[c];
       if (o == v) continue;
       int count = 0;
-      for (uint32_t k2 = b; k2 < e; ++k2) count += has_vertex(m.tris + 3 * size_t(m.vf_faces[k2]), o) ? 1 : 0;
+      for (uint32_t k2 = b; k2 < e; ++k2) count += detail::has_vertex(m.tris + 3 * size_t(m.vf_faces[k2]), o) ? 1 : 0;
       if (count != 2) return false;
     }
   }
   return e > b;
 }
 
-}  // namespace detail
-
 /// Step 1. x_v + step * P (mean of the 1-ring − x_v), with P the projector on the
 /// eigen-directions of T = Σ_f a_f n_f n_fᵀ (incident faces) whose eigenvalue is below
 /// `feature_ratio` × the largest: the tangent plane on a smooth or flat region, the
 /// crease line on a crease, nothing at a corner. A folded triangle still contributes
 /// n nᵀ along the surface normal, so T keeps seeing the surface through the fold.
-FQ_HD Vec3 relaxed_position(const FanView& m, const Vec3* x, uint32_t v, float step, float feature_ratio) {
+/// `closed` is closed_fan(m, v).
+FQ_HD Vec3 relaxed_position(const FanView& m, const Vec3* x, uint32_t v, bool closed, float step,
+                            float feature_ratio) {
   const Vec3 xv = x[v];
-  if (!detail::closed_fan(m, v)) return xv;
+  if (!closed) return xv;
   float t00 = 0.f, t01 = 0.f, t02 = 0.f, t11 = 0.f, t12 = 0.f, t22 = 0.f;
   Vec3 ring{0.f, 0.f, 0.f};
   float count = 0.f;
@@ -111,8 +114,9 @@ FQ_HD Vec3 filtered_face_normal(const FanView& m, const TriangleGeom* geom, cons
       // Counted at the first corner of f it shares.
       if (c >= 1 && detail::has_vertex(tj, tri[0])) continue;
       if (c >= 2 && detail::has_vertex(tj, tri[1])) continue;
-      const float w = geom[j].area * gs.of_squared(norm2(cf - geom[j].centroid)) *
-                      gr.of_squared(norm2(nf - normals[j]));
+      // G_s G_r as one exp of the summed exponents (half the exps of the hot loop).
+      const float w = geom[j].area * std::exp(norm2(cf - geom[j].centroid) * gs.neg_inv_two_sigma2 +
+                                              norm2(nf - normals[j]) * gr.neg_inv_two_sigma2);
       acc = acc + w * normals[j];
     }
   }

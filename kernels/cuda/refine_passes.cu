@@ -11,9 +11,15 @@ namespace fq::cuda {
 
 namespace {
 
-__global__ void relax_kernel(uint32_t n, FanView fan, const Vec3* x, float step, float ratio, Vec3* out) {
+__global__ void closed_fan_kernel(uint32_t n, FanView fan, uint8_t* closed) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
-  if (v < n) out[v] = relaxed_position(fan, x, v, step, ratio);
+  if (v < n) closed[v] = closed_fan(fan, v) ? 1 : 0;
+}
+
+__global__ void relax_kernel(uint32_t n, FanView fan, const Vec3* x, const uint8_t* closed, float step, float ratio,
+                             Vec3* out) {
+  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  if (v < n) out[v] = relaxed_position(fan, x, v, closed[v] != 0, step, ratio);
 }
 
 __global__ void face_geometry_kernel(uint32_t m, const uint32_t* tris, const Vec3* x, TriangleGeom* geom,
@@ -42,10 +48,14 @@ void refine_positions(DeviceFrame& f, RefineBuffers& b, const RefineParams& r, c
   const uint32_t n = f.n, m = f.m;
   const FanView fan{f.tris.data(), f.vf_start.data(), f.vf_faces.data()};
   b.x.reserve(n);
+  if (r.relax_iterations > 0) {
+    closed_fan_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, fan, b.closed.reserve(n));
+    FQ_CUDA_CHECK_LAUNCH("closed_fan_kernel");
+  }
   // Every vertex pass reads f.moved and writes b.x, then the buffers trade places.
   for (int it = 0; it < r.relax_iterations; ++it) {
-    relax_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, fan, f.moved.data(), r.relax_step, r.feature_ratio,
-                                                        b.x.data());
+    relax_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, fan, f.moved.data(), b.closed.data(), r.relax_step,
+                                                        r.feature_ratio, b.x.data());
     FQ_CUDA_CHECK_LAUNCH("relax_kernel");
     std::swap(f.moved, b.x);
   }

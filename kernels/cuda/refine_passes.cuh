@@ -12,6 +12,7 @@ namespace fq::cuda {
 /// Scratch of the refinement, kept between frames (grow-only).
 struct RefineBuffers {
   DeviceBuffer<Vec3> x;  ///< the other position buffer of the ping-pong with f.moved
+  DeviceBuffer<uint8_t> closed;  ///< closed_fan per vertex
   DeviceBuffer<TriangleGeom> geom;
   DeviceBuffer<Vec3> normals[2];
 };

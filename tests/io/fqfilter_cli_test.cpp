@@ -132,7 +132,7 @@ TEST(FqfilterCli, DefaultRefinementAndNormalNoise) {
   ASSERT_EQ(qf.exit_code, 0) << qf.err;
   const nlohmann::json a = nlohmann::json::parse(plus.out), b = nlohmann::json::parse(qf.out);
   EXPECT_EQ(a.at("params").at("mode").get<std::string>(), "qf+");
-  EXPECT_EQ(a.at("params").at("refine").at("vertex_iterations").get<int>(), 10);
+  EXPECT_EQ(a.at("params").at("refine").at("vertex_iterations").get<int>(), 20);
   EXPECT_TRUE(b.at("params").at("refine").is_null());
   EXPECT_EQ(a.at("noise").at("direction").get<std::string>(), "normal");
   EXPECT_LT(a.at("metrics").at("output").at("mfne_rad").get<double>(),

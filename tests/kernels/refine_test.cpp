@@ -46,7 +46,8 @@ Vec3 normal_of(const Fan& f, uint32_t t) {
 void relax(Fan& f, int iterations) {
   for (int it = 0; it < iterations; ++it) {
     std::vector<Vec3> next(f.x.size());
-    for (uint32_t v = 0; v < f.x.size(); ++v) next[v] = relaxed_position(f.view(), f.x.data(), v, 0.5f, 0.1f);
+    for (uint32_t v = 0; v < f.x.size(); ++v)
+      next[v] = relaxed_position(f.view(), f.x.data(), v, closed_fan(f.view(), v), 0.5f, 0.1f);
     f.x = next;
   }
 }
@@ -58,6 +59,8 @@ TEST(KernelRefine, RelaxationUnfoldsATriangleFoldedInThePlane) {
   int folded = 0;
   for (uint32_t t = 0; t < f.tris.size() / 3; ++t) folded += normal_of(f, t).z < 0.f ? 1 : 0;
   ASSERT_GT(folded, 0);
+  EXPECT_FALSE(closed_fan(f.view(), 0));  // a boundary corner of the grid stays put
+  EXPECT_TRUE(closed_fan(f.view(), centre));
   relax(f, 20);
   for (uint32_t t = 0; t < f.tris.size() / 3; ++t) EXPECT_GT(normal_of(f, t).z, 0.99f) << "triangle " << t;
   for (const Vec3& p : f.x) EXPECT_EQ(p.z, 0.f);  // moves stay in the tangent plane
@@ -75,7 +78,7 @@ TEST(KernelRefine, RelaxationMovesACreaseVertexOnlyAlongTheCrease) {
   }
   ASSERT_LT(v, f.x.size());
   f.x[v].z += 0.2f;
-  const Vec3 moved = relaxed_position(f.view(), f.x.data(), v, 0.5f, 0.1f);
+  const Vec3 moved = relaxed_position(f.view(), f.x.data(), v, closed_fan(f.view(), v), 0.5f, 0.1f);
   EXPECT_FLOAT_EQ(moved.x, 1.f);
   EXPECT_FLOAT_EQ(moved.y, 1.f);
   EXPECT_LT(moved.z, f.x[v].z);  // pulled back toward the middle of its ring
@@ -85,7 +88,7 @@ TEST(KernelRefine, RelaxationMovesACreaseVertexOnlyAlongTheCrease) {
     const Vec3 p = f.x[corner];
     if (std::fabs(p.x) == 1.f && std::fabs(p.y) == 1.f && std::fabs(p.z) == 1.f) break;
   }
-  const Vec3 c = relaxed_position(f.view(), f.x.data(), corner, 0.5f, 0.1f);
+  const Vec3 c = relaxed_position(f.view(), f.x.data(), corner, closed_fan(f.view(), corner), 0.5f, 0.1f);
   EXPECT_EQ(std::memcmp(&c, &f.x[corner], sizeof(Vec3)), 0);
 }
 
