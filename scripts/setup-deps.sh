@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages fq builds against, skipping those already present.
 # Safe to run repeatedly; needs root (or sudo) only when something is missing.
+# --peers also installs the other smoothers scripts/peer_quality.py compares with (Open3D,
+# MeshLab run headless under Xvfb); neither the build nor the tests need them.
 set -euo pipefail
 
 packages=(
@@ -12,6 +14,9 @@ packages=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev
 )
+if [[ "${1:-}" == "--peers" ]]; then
+  packages+=(python3-numpy python3-open3d meshlab xvfb xauth)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
