@@ -3,7 +3,11 @@
 # Safe to run repeatedly; needs root (or sudo) only when something is missing.
 # --peers also installs the other smoothers scripts/peer_quality.py compares with (Open3D,
 # MeshLab run headless under Xvfb); neither the build nor the tests need them.
+# Then installs the live viewer's npm packages (scripts/web-deps.sh).
+# FQ_SETUP_BROWSER=0 leaves out Chromium and yamllint (only tests use them; the Docker image
+# sets it, Ubuntu's chromium package being a snap stub).
 set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
 
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -13,9 +17,15 @@ packages=(
   libspdlog-dev libfmt-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev
+  python3-zmq python3-protobuf   # clients/examples/consume.py and its test
+  libcpp-httplib-dev
+  python3-prometheus-client
 )
 if [[ "${1:-}" == "--peers" ]]; then
   packages+=(python3-numpy python3-open3d meshlab xvfb xauth)
+fi
+if [[ ${FQ_SETUP_BROWSER:-1} != 0 ]]; then
+  packages+=(chromium yamllint)
 fi
 
 missing=()
@@ -24,7 +34,7 @@ for p in "${packages[@]}"; do
 done
 if ((${#missing[@]} == 0)); then
   echo "setup-deps: all ${#packages[@]} packages present"
-  exit 0
+  exec bash "$here/web-deps.sh"
 fi
 
 echo "setup-deps: installing ${missing[*]}"
@@ -36,3 +46,4 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 $sudo apt-get update -qq
 $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+exec bash "$here/web-deps.sh"

@@ -1,5 +1,5 @@
 // The "qf+" refinement on the device (kernels/refine_math.h; the CPU engine's
-// cpu::refine_positions). Needs the vertex -> triangle table of base_quadrics_gather.
+// cpu::refine_positions). Needs the vertex -> triangle table of base_quadrics.
 #pragma once
 
 #include <cuda_runtime.h>

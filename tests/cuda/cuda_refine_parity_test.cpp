@@ -1,7 +1,6 @@
 // The "qf+" refinement on the CUDA engine against the CPU engine: noisy synthetic shapes
 // and the shared real meshes (FQ_MESH_DIR), under every kernel path of the quadric passes
-// and both base-quadric variants (the refinement needs the gather's vertex -> triangle
-// table and builds it even when the atomic variant is selected). Skips without a device.
+// (the refinement reads base_quadrics' vertex -> triangle table). Skips without a device.
 #include <gtest/gtest.h>
 
 #include "eval/noise.h"
@@ -25,8 +24,7 @@ TEST_F(CudaRefineParity, NoisyCubeAndSphere) {
   Mesh shapes[] = {make_cube(16), make_icosphere(5)};
   for (Mesh& m : shapes) {
     add_gaussian_noise(m, 0.3, 7);
-    expect_parity_for_each(*cpu_, *gpu_, m.view(), refined(), "FQ_CUDA_TEAM", kKernelPaths);
-    expect_parity_for_each(*cpu_, *gpu_, m.view(), refined(), "FQ_CUDA_BASE", {"gather", "atomic"});
+    expect_parity_for_each(*cpu_, m.view(), refined(), kKernelPaths);
   }
 }
 
@@ -39,7 +37,7 @@ TEST_F(CudaRefineParity, RealMeshesWithNoise) {
     ASSERT_TRUE(rs.ok()) << rs.message();
     add_gaussian_noise(mesh, 0.2, 7);
     std::printf("  %s (%u vertices):\n", file, mesh.num_vertices());
-    expect_parity_for_each(*cpu_, *gpu_, mesh.view(), refined(), "FQ_CUDA_TEAM", {"auto", "0"});
+    expect_parity_for_each(*cpu_, mesh.view(), refined(), {{CudaTuning::kTeamBySize, false}, {0, false}});
   }
 }
 
