@@ -16,7 +16,7 @@ void read_filter(TomlReader& r, FilterParams& f) {
   std::string method = filter_method_name(f.method);
   r.read("method", method);
   if (!parse_filter_method(method, f.method))
-    r.fail("method", "must be \"qf\" or \"bf\" (got \"" + method + "\")");
+    r.fail("method", "must be \"qf+\", \"qf\" or \"bf\" (got \"" + method + "\")");
   r.read("sigma_s", f.sigma_s);
   r.read("sigma_r", f.sigma_r);
   r.read("sigma_b", f.sigma_b);

@@ -22,16 +22,6 @@ const char* compute_name(const Params& p) {
   return "filter";
 }
 
-bool parse_filter_method(const std::string& s, FilterMethod& out) {
-  if (s == "qf")
-    out = FilterMethod::kQuadric;
-  else if (s == "bf")
-    out = FilterMethod::kBilateral;
-  else
-    return false;
-  return true;
-}
-
 bool parse_cluster_method(const std::string& s, ClusterMethod& out) {
   if (s == "quadric")
     out = ClusterMethod::kQuadric;
@@ -42,7 +32,6 @@ bool parse_cluster_method(const std::string& s, ClusterMethod& out) {
   return true;
 }
 
-const char* filter_method_name(FilterMethod m) { return m == FilterMethod::kQuadric ? "qf" : "bf"; }
 const char* cluster_method_name(ClusterMethod m) {
   return m == ClusterMethod::kQuadric ? "quadric" : "euclidean";
 }

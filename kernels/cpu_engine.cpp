@@ -49,7 +49,7 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
   out.mean_edge = f_.norm.mean_edge;
   clock.lap("normalize");
   const FilterParams& fp = params.f;
-  const bool need_quadrics = params.cluster || fp.method == FilterMethod::kQuadric;
+  const bool need_quadrics = params.cluster || fp.uses_quadrics();
 
   cpu::sort_into_grid(mesh, fp.sigma_s, f_);
   clock.lap("grid");
@@ -62,12 +62,16 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
     clock.lap("diffusion");
   }
   if (params.filter) {
-    if (fp.method == FilterMethod::kQuadric) {
+    if (fp.uses_quadrics()) {
       cpu::update_positions(f_, fp, threads_);
     } else {
       cpu::bilateral_filter(f_, fp, threads_);
     }
-    clock.lap(fp.method == FilterMethod::kQuadric ? "update" : "bilateral_filter");
+    clock.lap(fp.uses_quadrics() ? "update" : "bilateral_filter");
+    if (fp.method == FilterMethod::kQuadricRefined) {
+      cpu::refine_positions(f_, fp.refine, threads_);
+      clock.lap("refine");
+    }
   }
   if (params.cluster) {
     cpu::cluster_scores(f_, params.c, threads_);

@@ -29,6 +29,8 @@ std::string show(float v) {
 // Upper bound on any sigma: beyond it the neighbourhood is the whole mesh anyway and
 // the grid visitor would only waste time.
 constexpr float kMaxSigma = 1e4f;
+// Each refinement pass is one sweep over the mesh; beyond this a frame only burns time.
+constexpr int kMaxRefineIterations = 100;
 
 Status check_sigma(const char* name, float v, bool zero_means_default) {
   if (std::isnan(v)) return invalid_argument(std::string(name) + " is NaN");
@@ -40,7 +42,48 @@ Status check_sigma(const char* name, float v, bool zero_means_default) {
   return {};
 }
 
+Status check_iterations(const char* name, int v) {
+  if (v < 0 || v > kMaxRefineIterations)
+    return invalid_argument(std::string(name) + " must be in [0, " + std::to_string(kMaxRefineIterations) +
+                            "] (got " + std::to_string(v) + ")");
+  return {};
+}
+
 }  // namespace
+
+const char* filter_method_name(FilterMethod m) {
+  switch (m) {
+    case FilterMethod::kQuadric: return "qf";
+    case FilterMethod::kBilateral: return "bf";
+    case FilterMethod::kQuadricRefined: return "qf+";
+  }
+  return "?";
+}
+
+bool parse_filter_method(const std::string& s, FilterMethod& out) {
+  for (FilterMethod m : {FilterMethod::kQuadric, FilterMethod::kBilateral, FilterMethod::kQuadricRefined}) {
+    if (s == filter_method_name(m)) {
+      out = m;
+      return true;
+    }
+  }
+  return false;
+}
+
+Status validate(const RefineParams& r) {
+  for (Status s : {check_iterations("refine relax_iterations", r.relax_iterations),
+                   check_iterations("refine normal_iterations", r.normal_iterations),
+                   check_iterations("refine vertex_iterations", r.vertex_iterations),
+                   check_sigma("refine normal_sigma_s", r.normal_sigma_s, false),
+                   check_sigma("refine normal_sigma_r", r.normal_sigma_r, false)}) {
+    if (!s.ok()) return s;
+  }
+  if (!(r.relax_step > 0.f && r.relax_step <= 1.f))
+    return invalid_argument("refine relax_step must be in (0, 1] (got " + show(r.relax_step) + ")");
+  if (!(r.feature_ratio >= 0.f && r.feature_ratio <= 1.f))
+    return invalid_argument("refine feature_ratio must be in [0, 1] (got " + show(r.feature_ratio) + ")");
+  return {};
+}
 
 bool parse_cluster_geometry(const std::string& s, ClusterGeometry& out) {
   if (s == "auto")
@@ -67,6 +110,7 @@ Status validate(const Params& p) {
   }
   if (!(f.tikhonov >= 0.f && f.tikhonov <= 1e3f))
     return invalid_argument("tikhonov must be in [0, 1000] (got " + show(f.tikhonov) + ")");
+  if (Status s = validate(f.refine); !s.ok()) return s;
   if (p.cluster) {
     for (Status s : {check_sigma("sigma_d", p.c.sigma_d, false), check_sigma("sigma_q", p.c.sigma_q, false)}) {
       if (!s.ok()) return s;

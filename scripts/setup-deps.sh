@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages fq builds against, skipping those already present.
 # Safe to run repeatedly; needs root (or sudo) only when something is missing.
+# --peers also installs the other smoothers scripts/peer_quality.py compares with (Open3D,
+# MeshLab run headless under Xvfb); neither the build nor the tests need them.
 # Then installs the live viewer's npm packages (scripts/web-deps.sh).
 # FQ_SETUP_BROWSER=0 leaves out Chromium and yamllint (only tests use them; the Docker image
 # sets it, Ubuntu's chromium package being a snap stub).
@@ -20,6 +22,9 @@ packages=(
   libcpp-httplib-dev
   python3-prometheus-client
 )
+if [[ "${1:-}" == "--peers" ]]; then
+  packages+=(python3-numpy python3-open3d meshlab xvfb xauth)
+fi
 if [[ ${FQ_SETUP_BROWSER:-1} != 0 ]]; then
   packages+=(chromium yamllint)
 fi

@@ -10,7 +10,7 @@ void add_override_options(CLI::App& app, OverrideArgs& a) {
   app.add_option("--sigma-n", a.sigma_n, "normal smoothing of the constrained update")->group(g);
   app.add_option("--constrained", a.constrained, "normal-constrained update (true/false)")->group(g);
   app.add_option("--tikhonov", a.tikhonov, "pull toward the current position")->group(g);
-  app.add_option("--mode", a.mode, "filter: qf | bf")->group(g);
+  app.add_option("--mode", a.mode, "filter: qf+ | qf | bf")->group(g);
   app.add_option("--sigma-d", a.sigma_d, "clustering spatial extent")->group(g);
   app.add_option("--sigma-q", a.sigma_q, "clustering range extent")->group(g);
   app.add_option("--theta", a.theta, "clustering threshold in (0, 1]")->group(g);
@@ -52,8 +52,10 @@ Status to_wire(const OverrideArgs& a, wire::ParamOverrides& o, wire::Compute& co
     o.set_mode(wire::QF);
   else if (a.mode == "bf")
     o.set_mode(wire::BF);
+  else if (a.mode == "qf+")
+    o.set_mode(wire::QF_PLUS);
   else if (!a.mode.empty())
-    return invalid_argument("--mode must be qf or bf (got " + a.mode + ")");
+    return invalid_argument("--mode must be qf+, qf or bf (got " + a.mode + ")");
   if (a.cluster_method == "quadric")
     o.set_cluster_method(wire::QUADRIC);
   else if (a.cluster_method == "euclidean")

@@ -15,6 +15,8 @@ struct Options {
   EngineOptions engine;
   Params params;           ///< defaults from fq::Params
   double noise_sigma = 0;  ///< in mean edge lengths; 0: no noise
+  bool noise_along_normal = false;  ///< --noise-direction normal
+  std::string noisy_out;            ///< also write the noisy input here (.ply/.drc); empty: don't
   uint64_t seed = 1;
   std::string reference;  ///< clean mesh for the metrics; empty: the input when noise is added
   int repeat = 1;         ///< engine runs per frame; timings are medians
@@ -36,8 +38,8 @@ struct ParseOutcome {
 /// stderr (exit code 2) for a bad option, a bad value or inconsistent options.
 ParseOutcome parse_options(int argc, char** argv, Options& out);
 
-/// "qf" / "bf", "quadric" / "euclidean": the names used on the command line and in JSON.
-const char* filter_method_name(FilterMethod m);
+/// "quadric" / "euclidean": the names used on the command line and in JSON (filter
+/// methods: fq::filter_method_name).
 const char* cluster_method_name(ClusterMethod m);
 
 }  // namespace fq::cli

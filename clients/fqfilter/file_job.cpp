@@ -61,6 +61,7 @@ void describe(const std::string& input, const Options& o, const Engine& engine, 
   if (const auto* cpu = dynamic_cast<const CpuEngine*>(&engine)) r.threads = cpu->threads();
   r.params = o.params;
   r.noise_sigma = o.noise_sigma;
+  r.noise_along_normal = o.noise_along_normal;
   r.seed = o.seed;
   r.repeat = o.repeat;
 }
@@ -131,7 +132,13 @@ Status run_file_job(const std::string& input, const std::string& output, const O
   if (Status s = load_reference(o, input, clean, r.reference); !s.ok()) return fail(r, s);
   if (o.noise_sigma > 0) {
     if (o.reference.empty()) clean = mesh;
-    add_gaussian_noise(mesh, o.noise_sigma, o.seed);
+    if (o.noise_along_normal)
+      add_normal_noise(mesh, o.noise_sigma, o.seed);
+    else
+      add_gaussian_noise(mesh, o.noise_sigma, o.seed);
+    if (!o.noisy_out.empty()) {
+      if (Status s = io::write_mesh(o.noisy_out, mesh.view(), nullptr, 0, 0); !s.ok()) return fail(r, s);
+    }
   }
   if (!r.reference.empty()) {
     if (Status s = check_same_connectivity(clean.view(), mesh.view()); !s.ok())

@@ -29,6 +29,16 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
+nlohmann::json refine_json(const RefineParams& r) {
+  return {{"relax_iterations", r.relax_iterations},
+          {"relax_step", as_typed(r.relax_step)},
+          {"feature_ratio", as_typed(r.feature_ratio)},
+          {"normal_iterations", r.normal_iterations},
+          {"normal_sigma_s", as_typed(r.normal_sigma_s)},
+          {"normal_sigma_r", as_typed(r.normal_sigma_r)},
+          {"vertex_iterations", r.vertex_iterations}};
+}
+
 nlohmann::json params_json(const Params& p) {
   const FilterParams& f = p.f;
   return {{"filter", p.filter},
@@ -46,7 +56,8 @@ nlohmann::json params_json(const Params& p) {
           {"theta", as_typed(p.c.theta)},
           {"target_clusters", p.c.target_clusters},
           {"cluster_geometry", cluster_geometry_name(p.c.geometry)},
-          {"min_cluster_size", p.c.min_cluster_size}};
+          {"min_cluster_size", p.c.min_cluster_size},
+          {"refine", f.method == FilterMethod::kQuadricRefined ? refine_json(f.refine) : nullptr}};
 }
 
 nlohmann::json error_json(const std::optional<MeshError>& e) {
@@ -114,7 +125,9 @@ nlohmann::json to_json(const FileReport& r) {
             {"triangles", r.triangles},
             {"mean_edge", r.mean_edge},
             {"params", params_json(r.params)},
-            {"noise", r.noise_sigma > 0 ? nlohmann::json{{"sigma", r.noise_sigma}, {"seed", r.seed}}
+            {"noise", r.noise_sigma > 0 ? nlohmann::json{{"sigma", r.noise_sigma},
+                                                                      {"direction", r.noise_along_normal ? "normal" : "iso"},
+                                                                      {"seed", r.seed}}
                                         : nlohmann::json(nullptr)},
             {"repeat", r.repeat},
             {"timings_ms", {{"passes", passes}, {"total", r.total_ms}}},

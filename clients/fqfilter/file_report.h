@@ -33,6 +33,7 @@ struct FileReport {
   double mean_edge = 0.0;  ///< of the engine's input, in input units
   Params params;
   double noise_sigma = 0.0;
+  bool noise_along_normal = false;
   uint64_t seed = 0;
   int repeat = 1;
   std::vector<PassTiming> passes;  ///< median ms of each pass over the repeats

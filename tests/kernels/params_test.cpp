@@ -62,8 +62,8 @@ TEST(KernelParams, OptionalSigmasAcceptZeroAsDefault) {
       expect_rejected(p, name);
     }
   }
-  EXPECT_FLOAT_EQ(Params{}.f.effective_sigma_b(), 1.f);  // sigma_s / 2
-  EXPECT_FLOAT_EQ(Params{}.f.effective_sigma_n(), 1.f);
+  EXPECT_FLOAT_EQ(Params{}.f.effective_sigma_b(), 0.75f);  // sigma_s / 2 (default sigma_s 1.5)
+  EXPECT_FLOAT_EQ(Params{}.f.effective_sigma_n(), 0.75f);
 }
 
 TEST(KernelParams, TikhonovRange) {
