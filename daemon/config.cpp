@@ -72,9 +72,9 @@ Status read_stream(const toml::table& t, const std::string& source, const std::s
     if (!st) continue;
     TomlReader sr(*st, source, r.name(sub.key));
     sub.fn(sr, s);
-    if (Status e = sr.finish(); !e.ok()) return e;
+    FQ_RETURN_IF_ERROR(sr.finish());
   }
-  if (Status st = r.finish(); !st.ok()) return st;
+  FQ_RETURN_IF_ERROR(r.finish());
   if (Status v = validate(s); !v.ok()) return invalid_argument(source + ": [" + path + "] " + v.message());
   return {};
 }
@@ -86,7 +86,7 @@ Status read_endpoints(TomlReader& root, Endpoints& e) {
   r.read("ingest", e.ingest);
   r.read("publish", e.publish);
   r.read("control", e.control);
-  if (Status s = r.finish(); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(r.finish());
   for (const std::string* ep : {&e.ingest, &e.publish, &e.control}) {
     if (ep->find("://") == std::string::npos)
       return invalid_argument(root.source() + ": endpoint \"" + *ep +
@@ -112,7 +112,7 @@ Status read_engine(TomlReader& root, EngineConfig& e) {
   r.read("cpu_alongside_gpus", e.cpu_alongside_gpus);
   r.read("cpu_threads", e.cpu_threads, 0, kMaxThreads);
   r.read("cpu_engines", e.cpu_engines, 1, 64);
-  if (Status s = r.finish(); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(r.finish());
   if (e.kind == EngineKind::kCuda && e.gpus.empty())
     return invalid_argument(root.source() +
                             ": engine.kind = \"cuda\" needs at least one entry in engine.gpus");
@@ -120,27 +120,27 @@ Status read_engine(TomlReader& root, EngineConfig& e) {
 }
 
 Status read_sections(TomlReader& root, DaemonConfig& c) {
-  if (Status s = read_endpoints(root, c.endpoints); !s.ok()) return s;
-  if (Status s = read_engine(root, c.engine); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(read_endpoints(root, c.endpoints));
+  FQ_RETURN_IF_ERROR(read_engine(root, c.engine));
   if (const toml::table* t = root.table("threads")) {
     TomlReader r(*t, root.source(), "threads");
     r.read("decode", c.decode_threads, 0, kMaxThreads);
     r.read("encode", c.encode_threads, 0, kMaxThreads);
-    if (Status s = r.finish(); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(r.finish());
   }
   if (const toml::table* t = root.table("caps")) {
     TomlReader r(*t, root.source(), "caps");
     r.read("max_vertices", c.caps.max_vertices, 3, 1ll << 31);
     r.read("max_frame_bytes", c.caps.max_frame_bytes, 64, 1ll << 40);
     r.read("max_streams", c.caps.max_streams, 1, 1 << 20);
-    if (Status s = r.finish(); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(r.finish());
   }
   return {};
 }
 
 Status read_streams(TomlReader& root, DaemonConfig& c) {
   if (const toml::table* t = root.table("defaults")) {
-    if (Status s = read_stream(*t, root.source(), "defaults", c.defaults); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(read_stream(*t, root.source(), "defaults", c.defaults));
   }
   const toml::table* streams = root.table("streams");
   if (!streams) return {};
@@ -149,7 +149,7 @@ Status read_streams(TomlReader& root, DaemonConfig& c) {
     const toml::table* st = v.as_table();
     if (!st) return invalid_argument(root.source() + ": streams." + id + " must be a table");
     StreamSettings s = c.defaults;
-    if (Status e = read_stream(*st, root.source(), "streams." + id, s); !e.ok()) return e;
+    FQ_RETURN_IF_ERROR(read_stream(*st, root.source(), "streams." + id, s));
     c.streams[id] = s;
   }
   return {};
@@ -187,9 +187,9 @@ Status parse_config(std::string_view text, const std::string& source, DaemonConf
   root.read("log_level", c.log_level);
   if (!valid_log_level(c.log_level))
     root.fail("log_level", "must be one of trace, debug, info, warn, error, critical, off");
-  if (Status s = read_sections(root, c); !s.ok()) return s;
-  if (Status s = read_streams(root, c); !s.ok()) return s;
-  if (Status s = root.finish(); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(read_sections(root, c));
+  FQ_RETURN_IF_ERROR(read_streams(root, c));
+  FQ_RETURN_IF_ERROR(root.finish());
   out = std::move(c);
   return {};
 }

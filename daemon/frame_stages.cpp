@@ -29,8 +29,8 @@ Status guarded(const char* stage, Fn&& fn) {
 
 // The stream's settings with the frame's own overrides and compute mode applied.
 Status resolve_settings(FrameJob& f) {
-  if (Status s = wire::apply_overrides(f.header.params(), f.settings.params); !s.ok()) return s;
-  if (Status s = wire::apply_compute(f.header.compute(), f.settings.params); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(wire::apply_overrides(f.header.params(), f.settings.params));
+  FQ_RETURN_IF_ERROR(wire::apply_compute(f.header.compute(), f.settings.params));
   if (Status s = fq::validate(f.settings.params); !s.ok())
     return invalid_argument("invalid parameters: " + s.message());
   return {};
@@ -41,7 +41,7 @@ Status decode(FrameJob& f, const DaemonConfig& c) {
   for (const zmq::message_t& m : f.chunks) views.emplace_back(m.data<char>(), m.size());
   wire::CodecOptions opt;
   opt.threads = std::max(1, std::min<int>(c.decode_threads, static_cast<int>(views.size())));
-  if (Status s = wire::decode_frame(views, f.header.vertex_count(), opt, f.mesh, nullptr); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(wire::decode_frame(views, f.header.vertex_count(), opt, f.mesh, nullptr));
   f.chunks.clear();
   if (f.mesh.num_vertices() > c.caps.max_vertices)
     return invalid_input("frame has " + std::to_string(f.mesh.num_vertices()) +

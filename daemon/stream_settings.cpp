@@ -52,7 +52,7 @@ Status validate(const StreamSettings& s) {
   // control request may switch clustering on at any time.
   Params all = s.params;
   all.filter = all.cluster = true;
-  if (Status st = fq::validate(all); !st.ok()) return st;
+  FQ_RETURN_IF_ERROR(fq::validate(all));
   if (!(s.budget_ms > 0.0 && std::isfinite(s.budget_ms)))
     return invalid_argument("budget_ms must be > 0 (got " + std::to_string(s.budget_ms) + ")");
   if (s.output.position_bits < 8 || s.output.position_bits > 30)

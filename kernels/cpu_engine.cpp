@@ -34,10 +34,10 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
   out.timings.clear();
   out.labels.clear();
   out.num_clusters = 0;
-  if (Status s = validate(params); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(validate(params));
   PassClock clock(out.timings);
-  if (Status s = check_mesh(mesh, threads_); !s.ok()) return s;
-  if (Status s = compute_normalization(mesh, f_.norm, threads_); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(check_mesh(mesh, threads_));
+  FQ_RETURN_IF_ERROR(compute_normalization(mesh, f_.norm, threads_));
   out.mean_edge = f_.norm.mean_edge;
   clock.lap("normalize");
   const FilterParams& fp = params.f;

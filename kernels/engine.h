@@ -10,6 +10,7 @@
 #include "kernels/mesh_view.h"
 #include "kernels/params.h"
 #include "common/status.h"
+#include "common/status_or.h"
 
 namespace fq {
 
@@ -51,7 +52,7 @@ struct EngineOptions {
 bool parse_engine_kind(const std::string& s, EngineKind& out);
 
 /// CUDA when asked for or (auto) when a device is present, the CPU engine otherwise.
-/// Null with a status when an explicitly requested engine is unavailable.
-std::unique_ptr<Engine> make_engine(const EngineOptions& options, Status* why = nullptr);
+/// kUnavailable (with the reason) when an explicitly requested engine is not present.
+StatusOr<std::unique_ptr<Engine>> make_engine(const EngineOptions& options);
 
 }  // namespace fq

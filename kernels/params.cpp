@@ -6,17 +6,6 @@
 
 namespace fq {
 
-const char* status_code_name(StatusCode code) {
-  switch (code) {
-    case StatusCode::kOk: return "ok";
-    case StatusCode::kInvalidArgument: return "invalid argument";
-    case StatusCode::kInvalidInput: return "invalid input";
-    case StatusCode::kUnavailable: return "unavailable";
-    case StatusCode::kInternal: return "internal error";
-  }
-  return "unknown";
-}
-
 namespace {
 
 // "-1" or "0.25" rather than std::to_string's "-1.000000".
@@ -46,15 +35,13 @@ Status validate(const Params& p) {
   if (!p.filter && !p.cluster) return invalid_argument("nothing to compute: enable filter and/or cluster");
   const FilterParams& f = p.f;
   for (Status s : {check_sigma("sigma_s", f.sigma_s, false), check_sigma("sigma_r", f.sigma_r, false),
-                   check_sigma("sigma_b", f.sigma_b, true), check_sigma("sigma_n", f.sigma_n, true)}) {
-    if (!s.ok()) return s;
-  }
+                   check_sigma("sigma_b", f.sigma_b, true), check_sigma("sigma_n", f.sigma_n, true)})
+    FQ_RETURN_IF_ERROR(s);
   if (!(f.tikhonov >= 0.f && f.tikhonov <= 1e3f))
     return invalid_argument("tikhonov must be in [0, 1000] (got " + show(f.tikhonov) + ")");
   if (p.cluster) {
-    for (Status s : {check_sigma("sigma_d", p.c.sigma_d, false), check_sigma("sigma_q", p.c.sigma_q, false)}) {
-      if (!s.ok()) return s;
-    }
+    for (Status s : {check_sigma("sigma_d", p.c.sigma_d, false), check_sigma("sigma_q", p.c.sigma_q, false)})
+      FQ_RETURN_IF_ERROR(s);
     if (!(p.c.theta > 0.f && p.c.theta <= 1.f))
       return invalid_argument("theta must be in (0, 1] (got " + show(p.c.theta) + ")");
   }

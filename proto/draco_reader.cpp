@@ -77,15 +77,15 @@ Status check_stl_size(const std::string& path) {
 
 Status read_file_bytes(const std::string& path, std::vector<char>& bytes) {
   std::ifstream f(path, std::ios::binary);
-  if (!f) return invalid_argument("cannot open '" + path + "' for reading");
+  if (!f) return io_error("cannot open '" + path + "' for reading");
   bytes.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-  if (f.bad()) return invalid_argument("cannot read '" + path + "': read error");
+  if (f.bad()) return io_error("cannot read '" + path + "': read error");
   return {};
 }
 
 Status read_drc(const std::string& path, Mesh& out) {
   std::vector<char> bytes;
-  if (Status s = read_file_bytes(path, bytes); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(read_file_bytes(path, bytes));
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
   auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
@@ -100,7 +100,7 @@ Status read_drc(const std::string& path, Mesh& out) {
 
 Status read_obj_or_stl(const std::string& path, Mesh& out) {
   if (lower_extension(path) == ".stl") {
-    if (Status s = check_stl_size(path); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(check_stl_size(path));
   }
   auto decoded = draco::ReadMeshFromFile(path);
   if (!decoded.ok()) return invalid_input("cannot decode '" + path + "': " + draco_message(decoded.status()));

@@ -59,9 +59,9 @@ bool is_readable_mesh_file(const std::string& path) {
 Status read_mesh(const std::string& path, Mesh& out) {
   out = Mesh{};
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return invalid_argument("cannot read '" + path + "': no such file");
+  if (!std::filesystem::exists(path, ec)) return io_error("cannot read '" + path + "': no such file");
   if (std::filesystem::is_directory(path, ec))
-    return invalid_argument("cannot read '" + path + "': is a folder");
+    return io_error("cannot read '" + path + "': is a folder");
   if (!is_readable_mesh_file(path))
     return invalid_argument("cannot read '" + path + "': unsupported extension '" + lower_extension(path) +
                             "' (expected .ply, .obj, .stl or .drc)");
@@ -86,7 +86,7 @@ Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t*
   if (ext != ".ply" && ext != ".drc")
     return invalid_argument("cannot write '" + path + "': unsupported output extension '" + ext +
                             "' (expected .ply or .drc)");
-  if (Status s = check_for_writing(path, mesh, labels, num_clusters); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(check_for_writing(path, mesh, labels, num_clusters));
   if (ext == ".ply") return write_ply(path, mesh, labels);
   if (drc_position_bits < 0 || drc_position_bits > 30)
     return invalid_argument("Draco position bits must be in 0..30 (got " + std::to_string(drc_position_bits) +

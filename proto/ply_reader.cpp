@@ -60,8 +60,8 @@ Status read_faces(const std::string& path, const draco::PlyElement* face, Mesh& 
 
 Status read_ply(const std::string& path, Mesh& out) {
   std::vector<char> bytes;
-  if (Status s = read_file_bytes(path, bytes); !s.ok()) return s;
-  if (Status s = check_binary_ply_extent(path, bytes); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(read_file_bytes(path, bytes));
+  FQ_RETURN_IF_ERROR(check_binary_ply_extent(path, bytes));
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
   draco::PlyReader reader;
@@ -70,9 +70,8 @@ Status read_ply(const std::string& path, Mesh& out) {
     const std::string msg = s.error_msg_string();
     return invalid_input("cannot decode '" + path + "': " + (msg.empty() ? "not a valid PLY file" : msg));
   }
-  Status st = read_vertices(path, reader.GetElementByName("vertex"), out);
-  if (st.ok()) st = read_faces(path, reader.GetElementByName("face"), out);
-  return st;
+  FQ_RETURN_IF_ERROR(read_vertices(path, reader.GetElementByName("vertex"), out));
+  return read_faces(path, reader.GetElementByName("face"), out);
 }
 
 }  // namespace fq::io

@@ -61,13 +61,13 @@ Status write_ply(const std::string& path, const MeshView& mesh, const uint32_t* 
   if (mesh.num_vertices > uint32_t(std::numeric_limits<int32_t>::max()))
     return invalid_argument("cannot write '" + path + "': too many vertices for a PLY int index");
   std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  if (!f) return invalid_argument("cannot open '" + path + "' for writing: " + std::strerror(errno));
+  if (!f) return io_error("cannot open '" + path + "' for writing: " + std::strerror(errno));
   const std::string h = header(mesh, labels != nullptr);
   const std::vector<char> b = body(mesh, labels);
   f.write(h.data(), std::streamsize(h.size()));
   f.write(b.data(), std::streamsize(b.size()));
   f.close();
-  if (!f) return invalid_argument("cannot write '" + path + "': write failed (disk full?)");
+  if (!f) return io_error("cannot write '" + path + "': write failed (disk full?)");
   return {};
 }
 

@@ -21,7 +21,7 @@ Status build_frame(const MeshView& mesh, const FrameSpec& spec, uint64_t sequenc
   opt.encode_speed = spec.encode_speed;
   opt.decode_speed = spec.decode_speed;
   opt.threads = spec.encode_threads;
-  if (Status s = wire::encode_frame(mesh, nullptr, spec.chunks, opt, chunks); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(wire::encode_frame(mesh, nullptr, spec.chunks, opt, chunks));
   wire::FrameHeader h;
   h.set_version(wire::kWireVersion);
   h.set_stream_id(spec.stream_id);

@@ -178,12 +178,12 @@ int main(int argc, char** argv) {
   }
   EngineKind kind{};
   parse_engine_kind(o.engine, kind);
-  Status why;
-  std::unique_ptr<Engine> engine = make_engine({kind, o.cpu_threads, 0}, &why);
-  if (!engine) {
-    std::fprintf(stderr, "fqbench: engine %s unavailable: %s\n", o.engine.c_str(), why.message().c_str());
+  StatusOr<std::unique_ptr<Engine>> made = make_engine({kind, o.cpu_threads, 0});
+  if (!made.ok()) {
+    std::fprintf(stderr, "fqbench: engine %s unavailable: %s\n", o.engine.c_str(), made.status().message().c_str());
     return 3;
   }
+  std::unique_ptr<Engine> engine = std::move(made).value();
   std::unique_ptr<CpuEngine> cpu;
   if (o.cpu_repeat > 0) cpu = std::make_unique<CpuEngine>(o.cpu_threads);
 

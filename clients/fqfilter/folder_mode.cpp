@@ -69,7 +69,7 @@ int run_folder(const Options& o, Engine& engine) {
     FileReport report;
     Status s;
     if (!output.empty() && claimed.count(out_name)) {
-      s = invalid_argument("output '" + output + "' would also be written by " + claimed[out_name]);
+      s = io_error("output '" + output + "' would also be written by " + claimed[out_name]);
       report.file = files[i].string();
       report.error = s.message();
     } else {

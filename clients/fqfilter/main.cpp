@@ -54,13 +54,12 @@ int run(int argc, char** argv) {
     std::cerr << "fqfilter: error: --reference needs a single input file, not a folder\n";
     return 2;
   }
-  fq::Status why;
-  const std::unique_ptr<fq::Engine> engine = fq::make_engine(o.engine, &why);
-  if (!engine) {
-    std::cerr << "fqfilter: error: " << why.message() << "\n";
+  const fq::StatusOr<std::unique_ptr<fq::Engine>> engine = fq::make_engine(o.engine);
+  if (!engine.ok()) {
+    std::cerr << "fqfilter: error: " << engine.status().message() << "\n";
     return 1;
   }
-  return folder ? fq::cli::run_folder(o, *engine) : run_single(o, *engine);
+  return folder ? fq::cli::run_folder(o, **engine) : run_single(o, **engine);
 }
 
 }  // namespace

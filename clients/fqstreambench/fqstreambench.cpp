@@ -49,7 +49,7 @@ fq::Status start_daemon(const Args& a, std::unique_ptr<fq::daemon::Daemon>& d, E
                         std::string& engine) {
   fq::daemon::DaemonConfig c;
   if (!a.config.empty()) {
-    if (fq::Status s = fq::daemon::load_config(a.config, c); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(fq::daemon::load_config(a.config, c));
   } else {
     if (!fq::parse_engine_kind(a.engine, c.engine.kind))
       return fq::invalid_argument("--engine must be auto, cuda or cpu");
@@ -63,7 +63,7 @@ fq::Status start_daemon(const Args& a, std::unique_ptr<fq::daemon::Daemon>& d, E
   for (fq::daemon::StreamSettings* s : {&c.defaults})
     s->output.encode_speed = s->output.decode_speed = a.encode_speed;
   d = std::make_unique<fq::daemon::Daemon>(c);
-  if (fq::Status s = d->start(); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(d->start());
   ep = {d->endpoints().ingest, d->endpoints().publish, d->endpoints().control};
   for (const std::string& n : d->engine_names()) engine += (engine.empty() ? "" : "+") + n;
   return {};
@@ -123,13 +123,13 @@ bool settled(const fq::bench::RunInfo& run, const std::map<std::string, fq::wire
 fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep, fq::bench::RunInfo& run) {
   zmq::context_t ctx(1);
   fq::bench::Collector col;
-  if (fq::Status s = col.connect(ctx, ep.publish, ep.ingest); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(col.connect(ctx, ep.publish, ep.ingest));
   std::vector<fq::bench::Producer> producers(static_cast<size_t>(a.streams));
   for (int i = 0; i < a.streams; ++i) {
     fq::bench::ProducerOptions o = a.producer;
     o.spec.stream_id = a.stream_prefix + std::to_string(i);
     o.seed += static_cast<uint64_t>(i) * 1000;
-    if (fq::Status s = producers[size_t(i)].prepare(mesh, o); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(producers[size_t(i)].prepare(mesh, o));
   }
   run.before = counters(ctx, ep.control);
   std::atomic<bool> stop_sending{false}, stop_collecting{false};

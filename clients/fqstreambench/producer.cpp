@@ -16,7 +16,7 @@ Status Producer::prepare(const Mesh& mesh, const ProducerOptions& o) {
     Mesh m = mesh;
     if (o.noise > 0) add_gaussian_noise(m, o.noise, o.seed + static_cast<uint64_t>(i));
     std::vector<std::string> parts;
-    if (Status s = client::build_frame(m.view(), o.spec, 0, parts); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(client::build_frame(m.view(), o.spec, 0, parts));
     frames_.push_back(std::move(parts));
   }
   encode_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / n;

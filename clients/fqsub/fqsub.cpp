@@ -88,12 +88,12 @@ std::string receive_loop(const Args& a, zmq::socket_t& sub, fq::client::StreamSt
       last_line = now;
     }
     fq::client::ReceivedResult r;
-    fq::Status why;
-    if (!fq::client::receive_result(sub, r, why)) continue;
+    const fq::StatusOr<bool> got = fq::client::receive_result(sub, r);
+    if (fq::client::timed_out(got)) continue;
     if (!a.streams.empty() && std::find(a.streams.begin(), a.streams.end(), r.topic) == a.streams.end())
       continue;
     last_result = clock::now();
-    const bool ok = inspect(a, r, why);
+    const bool ok = inspect(a, r, got.status());
     stats.add(r, ok);
     if (ok && r.header.status() != fq::wire::ERROR && a.write_every > 0 && good++ % a.write_every == 0) {
       if (std::string p = write_ply(a, r); !p.empty()) last_ply = p;

@@ -176,6 +176,19 @@ TEST(MeshIoErrors, WriteUnwritablePath) {
   EXPECT_FALSE(write_mesh(dir.file("taken.ply"), m.view(), nullptr, 0).ok());
 }
 
+// Files that cannot be found, opened or written are i/o errors; bad content is invalid input.
+TEST(MeshIoErrors, FileErrorsAreIoErrors) {
+  test::ScratchDir dir;
+  Mesh m;
+  EXPECT_EQ(read_mesh("/nonexistent/dir/mesh.ply", m).code(), StatusCode::kIoError);
+  EXPECT_EQ(read_mesh(dir.path().string(), m).code(), StatusCode::kIoError);
+  const Mesh tri = test::make_single_triangle();
+  EXPECT_EQ(write_mesh("/nonexistent/dir/out.ply", tri.view(), nullptr, 0).code(), StatusCode::kIoError);
+  EXPECT_EQ(write_mesh("/nonexistent/dir/out.drc", tri.view(), nullptr, 0).code(), StatusCode::kIoError);
+  test::write_bytes(dir.file("g.ply"), "ply\nnot a header");
+  EXPECT_EQ(read_mesh(dir.file("g.ply"), m).code(), StatusCode::kInvalidInput);
+}
+
 TEST(MeshIoErrors, WriteRejectsBadLabelsIndicesAndBits) {
   test::ScratchDir dir;
   const Mesh m = test::make_single_triangle();
