@@ -6,15 +6,14 @@
 #include <string>
 #include <vector>
 
+#include "common/sample_stats.h"
+
 namespace fq::daemon {
 
 struct Percentiles {
   double p50_ms = 0, p95_ms = 0, p99_ms = 0;
   uint64_t count = 0;  ///< samples ever recorded (the percentiles cover the last kWindow)
 };
-
-/// Nearest-rank percentile (q in [0, 1]) of unsorted values; 0 for none.
-double percentile(std::vector<double> values, double q);
 
 /// The last kWindow samples of one quantity.
 class SampleWindow {

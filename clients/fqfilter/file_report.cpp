@@ -9,6 +9,7 @@
 #include <ostream>
 
 #include "clients/fqfilter/cli_options.h"
+#include "common/sample_stats.h"
 
 namespace fq::cli {
 
@@ -20,13 +21,6 @@ double as_typed(float v) {
   char buf[32];
   const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
   return std::strtod(std::string(buf, end).c_str(), nullptr);
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
 nlohmann::json params_json(const Params& p) {

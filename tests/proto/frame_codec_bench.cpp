@@ -8,6 +8,7 @@
 #include <ctime>
 #include <string>
 
+#include "common/sample_stats.h"
 #include "proto/frame_codec.h"
 #include "tests/proto/proto_test_meshes.h"
 
@@ -26,10 +27,7 @@ double cpu_ms() {
   return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using fq::median;
 
 void bench(const std::string& name, const fq::Mesh& m, const fq::wire::CodecOptions& o,
            const std::vector<uint32_t>& chunk_counts, int repeats) {
