@@ -1,6 +1,7 @@
 #include "daemon/config.h"
 
 #include <algorithm>
+#include <optional>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -12,11 +13,19 @@ namespace {
 
 constexpr int64_t kMaxThreads = 256;
 
+// "method" by its name (kernels/params.h), FilterMethod or ClusterMethod.
+template <typename Method>
+void read_method(TomlReader& r, Method& m) {
+  std::string name = method_name(m);
+  r.read("method", name);
+  if (const std::optional<Method> parsed = parse_method<Method>(name))
+    m = *parsed;
+  else
+    r.fail("method", "must be " + join_names(method_names<Method>(), " or ", true) + " (got \"" + name + "\")");
+}
+
 void read_filter(TomlReader& r, FilterParams& f) {
-  std::string method = filter_method_name(f.method);
-  r.read("method", method);
-  if (!parse_filter_method(method, f.method))
-    r.fail("method", "must be \"qf\" or \"bf\" (got \"" + method + "\")");
+  read_method(r, f.method);
   r.read("sigma_s", f.sigma_s);
   r.read("sigma_r", f.sigma_r);
   r.read("sigma_b", f.sigma_b);
@@ -26,10 +35,7 @@ void read_filter(TomlReader& r, FilterParams& f) {
 }
 
 void read_cluster(TomlReader& r, ClusterParams& c) {
-  std::string method = cluster_method_name(c.method);
-  r.read("method", method);
-  if (!parse_cluster_method(method, c.method))
-    r.fail("method", "must be \"quadric\" or \"euclidean\" (got \"" + method + "\")");
+  read_method(r, c.method);
   r.read("sigma_d", c.sigma_d);
   r.read("sigma_q", c.sigma_q);
   r.read("theta", c.theta);

@@ -22,31 +22,6 @@ const char* compute_name(const Params& p) {
   return "filter";
 }
 
-bool parse_filter_method(const std::string& s, FilterMethod& out) {
-  if (s == "qf")
-    out = FilterMethod::kQuadric;
-  else if (s == "bf")
-    out = FilterMethod::kBilateral;
-  else
-    return false;
-  return true;
-}
-
-bool parse_cluster_method(const std::string& s, ClusterMethod& out) {
-  if (s == "quadric")
-    out = ClusterMethod::kQuadric;
-  else if (s == "euclidean")
-    out = ClusterMethod::kEuclidean;
-  else
-    return false;
-  return true;
-}
-
-const char* filter_method_name(FilterMethod m) { return m == FilterMethod::kQuadric ? "qf" : "bf"; }
-const char* cluster_method_name(ClusterMethod m) {
-  return m == ClusterMethod::kQuadric ? "quadric" : "euclidean";
-}
-
 Status validate(const StreamSettings& s) {
   // The clustering parameters are checked even when the stream only filters: a frame or a
   // control request may switch clustering on at any time.

@@ -30,12 +30,6 @@ bool parse_compute(const std::string& s, Params& inout);
 /// The name parse_compute accepts for the params' compute mode.
 const char* compute_name(const Params& p);
 
-/// "qf" | "bf" and "quadric" | "euclidean".
-bool parse_filter_method(const std::string& s, FilterMethod& out);
-bool parse_cluster_method(const std::string& s, ClusterMethod& out);
-const char* filter_method_name(FilterMethod m);
-const char* cluster_method_name(ClusterMethod m);
-
 /// fq::validate (of the clustering parameters too, whatever the compute mode) plus the
 /// budget and the encoding ranges.
 Status validate(const StreamSettings& s);

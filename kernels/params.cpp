@@ -3,10 +3,26 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace fq {
 
 namespace {
+
+constexpr std::pair<FilterMethod, const char*> kFilterMethodNames[] = {
+    {FilterMethod::kQuadric, "qf"}, {FilterMethod::kBilateral, "bf"}};
+constexpr std::pair<ClusterMethod, const char*> kClusterMethodNames[] = {
+    {ClusterMethod::kQuadric, "quadric"}, {ClusterMethod::kEuclidean, "euclidean"}};
+
+constexpr const auto& names_of(FilterMethod) { return kFilterMethodNames; }
+constexpr const auto& names_of(ClusterMethod) { return kClusterMethodNames; }
+
+template <typename Method>
+const char* name_in_table(Method m) {
+  for (const auto& [method, name] : names_of(Method{}))
+    if (method == m) return name;
+  return "?";
+}
 
 // "-1" or "0.25" rather than std::to_string's "-1.000000".
 std::string show(float v) {
@@ -46,6 +62,36 @@ Status validate(const Params& p) {
       return invalid_argument("theta must be in (0, 1] (got " + show(p.c.theta) + ")");
   }
   return {};
+}
+
+const char* method_name(FilterMethod m) { return name_in_table(m); }
+const char* method_name(ClusterMethod m) { return name_in_table(m); }
+
+template <typename Method>
+std::optional<Method> parse_method(std::string_view name) {
+  for (const auto& [method, n] : names_of(Method{}))
+    if (name == n) return method;
+  return std::nullopt;
+}
+template std::optional<FilterMethod> parse_method<FilterMethod>(std::string_view);
+template std::optional<ClusterMethod> parse_method<ClusterMethod>(std::string_view);
+
+template <typename Method>
+std::vector<std::string> method_names() {
+  std::vector<std::string> out;
+  for (const auto& entry : names_of(Method{})) out.emplace_back(entry.second);
+  return out;
+}
+template std::vector<std::string> method_names<FilterMethod>();
+template std::vector<std::string> method_names<ClusterMethod>();
+
+std::string join_names(const std::vector<std::string>& names, std::string_view separator, bool quoted) {
+  std::string out;
+  for (const std::string& n : names) {
+    if (!out.empty()) out += separator;
+    out += quoted ? "\"" + n + "\"" : n;
+  }
+  return out;
 }
 
 }  // namespace fq

@@ -11,7 +11,7 @@ void add_filter_options(CLI::App& app, Options& o, std::string& mode) {
   FilterParams& f = o.params.f;
   const std::string g = "Filter";
   app.add_option("--mode", mode, "Filter: qf (filtered quadrics, the paper) or bf (bilateral baseline)")
-      ->check(CLI::IsMember({"qf", "bf"}))
+      ->check(CLI::IsMember(method_names<FilterMethod>()))
       ->capture_default_str()
       ->group(g);
   app.add_option("--sigma-s", f.sigma_s, "Spatial extent of the diffusion, in mean edge lengths")
@@ -41,7 +41,7 @@ void add_cluster_options(CLI::App& app, Options& o, std::string& method, bool& n
   app.add_flag("--no-filter", no_filter, "Cluster only: keep the input positions (implies --cluster)")
       ->group(g);
   app.add_option("--cluster-method", method, "quadric (the paper) or euclidean (plain quick shift)")
-      ->check(CLI::IsMember({"quadric", "euclidean"}))
+      ->check(CLI::IsMember(method_names<ClusterMethod>()))
       ->capture_default_str()
       ->group(g);
   app.add_option("--sigma-d", c.sigma_d, "Spatial extent of score and proximity, in mean edge lengths")
@@ -80,23 +80,16 @@ void add_run_options(CLI::App& app, Options& o, std::string& engine) {
   app.add_flag("--json", o.json, "One JSON object per mesh on stdout (see docs/FQFILTER.md)");
 }
 
-/// Checks that need several options together; empty when consistent.
-std::string cross_check(const Options& o) {
-  if (Status s = validate(o.params); !s.ok()) return s.message();
-  return {};
-}
+/// fq::validate of the parsed parameters (CLI11 checks each option alone: not NaN, theta
+/// in (0, 1], nothing to compute); the message, empty when valid.
+std::string check_params(const Options& o) { return validate(o.params).message(); }
 
 }  // namespace
-
-const char* filter_method_name(FilterMethod m) { return m == FilterMethod::kQuadric ? "qf" : "bf"; }
-const char* cluster_method_name(ClusterMethod m) {
-  return m == ClusterMethod::kQuadric ? "quadric" : "euclidean";
-}
 
 ParseOutcome parse_options(int argc, char** argv, Options& o) {
   CLI::App app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
                "fqfilter"};
-  std::string mode = "qf", method = "quadric", engine = "auto";
+  std::string mode = method_name(o.params.f.method), method = method_name(o.params.c.method), engine = "auto";
   bool no_filter = false;
   add_run_options(app, o, engine);
   add_filter_options(app, o, mode);
@@ -109,14 +102,15 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
     std::cerr << "fqfilter: error: " << e.what() << " (see fqfilter --help)\n";
     return {false, 2};
   }
-  o.params.f.method = mode == "qf" ? FilterMethod::kQuadric : FilterMethod::kBilateral;
-  o.params.c.method = method == "quadric" ? ClusterMethod::kQuadric : ClusterMethod::kEuclidean;
+  // CLI::IsMember has accepted only known names.
+  o.params.f.method = *parse_method<FilterMethod>(mode);
+  o.params.c.method = *parse_method<ClusterMethod>(method);
   parse_engine_kind(engine, o.engine.kind);
   if (no_filter) {
     o.params.filter = false;
     o.params.cluster = true;
   }
-  if (const std::string why = cross_check(o); !why.empty()) {
+  if (const std::string why = check_params(o); !why.empty()) {
     std::cerr << "fqfilter: error: " << why << "\n";
     return {false, 2};
   }

@@ -34,8 +34,4 @@ struct ParseOutcome {
 /// stderr (exit code 2) for a bad option, a bad value or inconsistent options.
 ParseOutcome parse_options(int argc, char** argv, Options& out);
 
-/// "qf" / "bf", "quadric" / "euclidean": the names used on the command line and in JSON.
-const char* filter_method_name(FilterMethod m);
-const char* cluster_method_name(ClusterMethod m);
-
 }  // namespace fq::cli

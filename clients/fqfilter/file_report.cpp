@@ -27,14 +27,14 @@ nlohmann::json params_json(const Params& p) {
   const FilterParams& f = p.f;
   return {{"filter", p.filter},
           {"cluster", p.cluster},
-          {"mode", filter_method_name(f.method)},
+          {"mode", method_name(f.method)},
           {"sigma_s", as_typed(f.sigma_s)},
           {"sigma_r", as_typed(f.sigma_r)},
           {"sigma_b", as_typed(f.effective_sigma_b())},
           {"sigma_n", as_typed(f.effective_sigma_n())},
           {"constrained", f.constrained},
           {"tikhonov", as_typed(f.tikhonov)},
-          {"cluster_method", cluster_method_name(p.c.method)},
+          {"cluster_method", method_name(p.c.method)},
           {"sigma_d", as_typed(p.c.sigma_d)},
           {"sigma_q", as_typed(p.c.sigma_q)},
           {"theta", as_typed(p.c.theta)}};
