@@ -58,7 +58,6 @@ void Pipeline::fail(FramePtr frame, Status why) {
 }
 
 void Pipeline::recycle(FrameJob& f) {
-  meshes.release(std::move(f.mesh));
   results.release(std::move(f.result));
 }
 
@@ -86,7 +85,6 @@ void run_decode_worker(Pipeline& p) {
       spdlog::debug("stream '{}' frame {}: superseded before decode", f->stream_id, f->header.sequence());
       continue;
     }
-    f->mesh = p.meshes.acquire();
     const auto t0 = std::chrono::steady_clock::now();
     Status s = guarded("decode", [&] { return decode(*f, p.config); });
     if (s.ok()) s = resolve_settings(*f);

@@ -39,11 +39,15 @@ Status build_frame(const MeshView& mesh, const FrameSpec& spec, uint64_t sequenc
   return {};
 }
 
-void restamp_send_time(std::vector<std::string>& parts) {
+int64_t restamp_frame(std::vector<std::string>& parts, uint64_t sequence) {
   wire::FrameHeader h;
-  if (parts.size() < 2 || !h.ParseFromString(parts[1])) return;
-  h.set_send_time_ns(now_ns());
+  if (parts.size() < 2 || !h.ParseFromString(parts[1])) return 0;
+  h.set_sequence(sequence);
+  const int64_t now = now_ns();
+  h.set_capture_time_ns(now);
+  h.set_send_time_ns(now);
   parts[1] = h.SerializeAsString();
+  return now;
 }
 
 void send_parts(zmq::socket_t& push, const std::vector<std::string>& parts) {

@@ -59,12 +59,7 @@ Totals publish(const Args& a, const fq::client::MeshSource& source, zmq::socket_
       if (a.noise <= 0) slot = parts;
     } else {
       parts = slot;
-      fq::wire::FrameHeader h;
-      h.ParseFromString(parts[1]);
-      h.set_sequence(i);
-      h.set_capture_time_ns(fq::client::now_ns());
-      h.set_send_time_ns(fq::client::now_ns());
-      parts[1] = h.SerializeAsString();
+      fq::client::restamp_frame(parts, i);
     }
     t.encode_ms += std::chrono::duration<double, std::milli>(clock::now() - t0).count();
     fq::client::send_parts(push, parts);

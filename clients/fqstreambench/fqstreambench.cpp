@@ -60,8 +60,7 @@ fq::Status start_daemon(const Args& a, std::unique_ptr<fq::daemon::Daemon>& d, E
   }
   c.endpoints = {"tcp://127.0.0.1:*", "tcp://127.0.0.1:*", "tcp://127.0.0.1:*"};
   if (a.budget_ms > 0) c.defaults.budget_ms = a.budget_ms;
-  for (fq::daemon::StreamSettings* s : {&c.defaults})
-    s->output.encode_speed = s->output.decode_speed = a.encode_speed;
+  c.defaults.output.encode_speed = c.defaults.output.decode_speed = a.encode_speed;
   d = std::make_unique<fq::daemon::Daemon>(c);
   FQ_RETURN_IF_ERROR(d->start());
   ep = {d->endpoints().ingest, d->endpoints().publish, d->endpoints().control};

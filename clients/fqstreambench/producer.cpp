@@ -32,18 +32,12 @@ Producer::Sent Producer::run(zmq::context_t& ctx, const std::string& endpoint, c
   const auto start = clock::now();
   const auto period = std::chrono::duration<double>(1.0 / options_.fps);
   Sent sent;
-  wire::FrameHeader h;
   for (uint64_t i = 0; !stop; ++i) {
     const auto due = start + std::chrono::duration_cast<clock::duration>(period * static_cast<double>(i));
     if (std::chrono::duration<double>(due - start).count() >= options_.seconds) break;
     std::this_thread::sleep_until(due);  // pacing the frame rate
     std::vector<std::string>& parts = frames_[i % frames_.size()];
-    h.ParseFromString(parts[1]);
-    h.set_sequence(i);
-    h.set_capture_time_ns(client::now_ns());
-    const int64_t now = client::now_ns();
-    h.set_send_time_ns(now);
-    parts[1] = h.SerializeAsString();
+    const int64_t now = client::restamp_frame(parts, i);
     client::send_parts(push, parts);
     ++sent.all;
     if (now >= measure_from_ns) ++sent.measured;
