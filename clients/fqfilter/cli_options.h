@@ -20,8 +20,6 @@ struct Options {
   int repeat = 1;         ///< engine runs per frame; timings are medians
   int drc_bits = 16;      ///< position quantization of .drc outputs
   bool json = false;
-
-  bool has_metrics() const { return noise_sigma > 0 || !reference.empty(); }
 };
 
 /// Outcome of parsing: run, or exit with `exit_code` (help printed, or an error line).
