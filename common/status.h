@@ -40,8 +40,8 @@ const char* status_code_name(StatusCode code);
 
 /// Evaluates `expression` (a Status) once and returns it from the enclosing function when it
 /// is an error (Draco's DRACO_RETURN_IF_ERROR). The enclosing function returns Status or StatusOr.
-#define FQ_RETURN_IF_ERROR(expression)                  \
-  do {                                                  \
-    ::fq::Status fq_status_macro_ = (expression);       \
+#define FQ_RETURN_IF_ERROR(expression)                   \
+  do {                                                   \
+    ::fq::Status fq_status_macro_ = (expression);        \
     if (!fq_status_macro_.ok()) return fq_status_macro_; \
   } while (false)

@@ -20,7 +20,8 @@ class StatusOr {
   }
   StatusOr(T value) : value_(std::move(value)) {}  // NOLINT(google-explicit-constructor)
   /// Converts a value of another type (a unique_ptr<Derived> into a unique_ptr<Base>).
-  template <typename U, typename = std::enable_if_t<std::is_convertible_v<U&&, T> && !std::is_same_v<std::decay_t<U>, T> &&
+  template <typename U, typename = std::enable_if_t<std::is_convertible_v<U&&, T> &&
+                                                    !std::is_same_v<std::decay_t<U>, T> &&
                                                     !std::is_convertible_v<U&&, Status>>>
   StatusOr(U&& value) : value_(T(std::forward<U>(value))) {}  // NOLINT(google-explicit-constructor)
 
@@ -52,7 +53,10 @@ class StatusOr {
 #define FQ_ASSIGN_OR_RETURN(lhs, expression) \
   FQ_ASSIGN_OR_RETURN_IMPL(FQ_STATUS_MACROS_CONCAT(fq_status_or_, __LINE__), lhs, expression)
 
+// NOLINTBEGIN(bugprone-macro-parentheses): lhs is a declaration and tmp a name; neither
+// can stand in parentheses.
 #define FQ_ASSIGN_OR_RETURN_IMPL(tmp, lhs, expression) \
   auto tmp = (expression);                             \
   if (!tmp.ok()) return tmp.status();                  \
   lhs = std::move(tmp).value()
+// NOLINTEND(bugprone-macro-parentheses)

@@ -1,8 +1,8 @@
 #include "daemon/config.h"
 
 #include <algorithm>
-#include <optional>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -21,7 +21,8 @@ void read_method(TomlReader& r, Method& m) {
   if (const std::optional<Method> parsed = parse_method<Method>(name))
     m = *parsed;
   else
-    r.fail("method", "must be " + join_names(method_names<Method>(), " or ", true) + " (got \"" + name + "\")");
+    r.fail("method",
+           "must be " + join_names(method_names<Method>(), " or ", true) + " (got \"" + name + "\")");
 }
 
 void read_filter(TomlReader& r, FilterParams& f) {

@@ -46,7 +46,8 @@ Status make_engines(const EngineConfig& c, std::vector<std::unique_ptr<Engine>>&
   }
   if (out.empty() || c.cpu_alongside_gpus) {
     // The CPU engine is always there: make_engine cannot fail for it.
-    for (int i = 0; i < c.cpu_engines; ++i) out.push_back(make_engine({EngineKind::kCpu, c.cpu_threads, 0}).value());
+    for (int i = 0; i < c.cpu_engines; ++i)
+      out.push_back(make_engine({EngineKind::kCpu, c.cpu_threads, 0}).value());
   }
   return {};
 }

@@ -57,9 +57,7 @@ void Pipeline::fail(FramePtr frame, Status why) {
   publish_queue.push(std::move(frame));
 }
 
-void Pipeline::recycle(FrameJob& f) {
-  results.release(std::move(f.result));
-}
+void Pipeline::recycle(FrameJob& f) { results.release(std::move(f.result)); }
 
 void Pipeline::note_queued(const FrameJob& f) {
   std::lock_guard<std::mutex> lock(newest_mutex_);

@@ -39,7 +39,8 @@ StatusOr<std::unique_ptr<Engine>> make_engine(const EngineOptions& options) {
   if (options.kind == EngineKind::kCuda) return s;
 #else
   if (options.kind == EngineKind::kCuda)
-    return Status{StatusCode::kUnavailable, "this build of fq has no CUDA support (configure with FQ_CUDA=ON)"};
+    return Status{StatusCode::kUnavailable,
+                  "this build of fq has no CUDA support (configure with FQ_CUDA=ON)"};
 #endif
   return std::make_unique<CpuEngine>(options.threads);
 }

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "kernels/mesh_view.h"
-#include "kernels/params.h"
 #include "common/status.h"
 #include "common/status_or.h"
+#include "kernels/mesh_view.h"
+#include "kernels/params.h"
 
 namespace fq {
 

@@ -9,8 +9,8 @@ namespace fq {
 
 namespace {
 
-constexpr std::pair<FilterMethod, const char*> kFilterMethodNames[] = {
-    {FilterMethod::kQuadric, "qf"}, {FilterMethod::kBilateral, "bf"}};
+constexpr std::pair<FilterMethod, const char*> kFilterMethodNames[] = {{FilterMethod::kQuadric, "qf"},
+                                                                       {FilterMethod::kBilateral, "bf"}};
 constexpr std::pair<ClusterMethod, const char*> kClusterMethodNames[] = {
     {ClusterMethod::kQuadric, "quadric"}, {ClusterMethod::kEuclidean, "euclidean"}};
 
@@ -50,13 +50,14 @@ Status check_sigma(const char* name, float v, bool zero_means_default) {
 Status validate(const Params& p) {
   if (!p.filter && !p.cluster) return invalid_argument("nothing to compute: enable filter and/or cluster");
   const FilterParams& f = p.f;
-  for (Status s : {check_sigma("sigma_s", f.sigma_s, false), check_sigma("sigma_r", f.sigma_r, false),
-                   check_sigma("sigma_b", f.sigma_b, true), check_sigma("sigma_n", f.sigma_n, true)})
+  for (const Status& s : {check_sigma("sigma_s", f.sigma_s, false), check_sigma("sigma_r", f.sigma_r, false),
+                          check_sigma("sigma_b", f.sigma_b, true), check_sigma("sigma_n", f.sigma_n, true)})
     FQ_RETURN_IF_ERROR(s);
   if (!(f.tikhonov >= 0.f && f.tikhonov <= 1e3f))
     return invalid_argument("tikhonov must be in [0, 1000] (got " + show(f.tikhonov) + ")");
   if (p.cluster) {
-    for (Status s : {check_sigma("sigma_d", p.c.sigma_d, false), check_sigma("sigma_q", p.c.sigma_q, false)})
+    for (const Status& s :
+         {check_sigma("sigma_d", p.c.sigma_d, false), check_sigma("sigma_q", p.c.sigma_q, false)})
       FQ_RETURN_IF_ERROR(s);
     if (!(p.c.theta > 0.f && p.c.theta <= 1.f))
       return invalid_argument("theta must be in (0, 1] (got " + show(p.c.theta) + ")");
@@ -89,7 +90,9 @@ std::string join_names(const std::vector<std::string>& names, std::string_view s
   std::string out;
   for (const std::string& n : names) {
     if (!out.empty()) out += separator;
-    out += quoted ? "\"" + n + "\"" : n;
+    if (quoted) out += '"';
+    out += n;
+    if (quoted) out += '"';
   }
   return out;
 }

@@ -60,8 +60,7 @@ Status read_mesh(const std::string& path, Mesh& out) {
   out = Mesh{};
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return io_error("cannot read '" + path + "': no such file");
-  if (std::filesystem::is_directory(path, ec))
-    return io_error("cannot read '" + path + "': is a folder");
+  if (std::filesystem::is_directory(path, ec)) return io_error("cannot read '" + path + "': is a folder");
   if (!is_readable_mesh_file(path))
     return invalid_argument("cannot read '" + path + "': unsupported extension '" + lower_extension(path) +
                             "' (expected .ply, .obj, .stl or .drc)");

@@ -67,7 +67,7 @@ Status read_ply(const std::string& path, Mesh& out) {
   draco::PlyReader reader;
   const draco::Status s = reader.Read(&buffer);
   if (!s.ok()) {
-    const std::string msg = s.error_msg_string();
+    const std::string& msg = s.error_msg_string();
     return invalid_input("cannot decode '" + path + "': " + (msg.empty() ? "not a valid PLY file" : msg));
   }
   FQ_RETURN_IF_ERROR(read_vertices(path, reader.GetElementByName("vertex"), out));

@@ -11,6 +11,7 @@ packages=(
   libspdlog-dev libfmt-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev
+  clang-tidy
 )
 
 missing=()

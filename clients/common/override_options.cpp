@@ -18,7 +18,8 @@ void add_override_options(CLI::App& app, OverrideArgs& a) {
   app.add_option("--sigma-d", a.sigma_d, "clustering spatial extent")->group(g);
   app.add_option("--sigma-q", a.sigma_q, "clustering range extent")->group(g);
   app.add_option("--theta", a.theta, "clustering threshold in (0, 1]")->group(g);
-  app.add_option("--cluster-method", a.cluster_method, join_names(method_names<ClusterMethod>(), " | "))->group(g);
+  app.add_option("--cluster-method", a.cluster_method, join_names(method_names<ClusterMethod>(), " | "))
+      ->group(g);
   app.add_option("--compute", a.compute, "filter | cluster | filter_and_cluster")->group(g);
 }
 
@@ -35,14 +36,16 @@ Status to_wire(const OverrideArgs& a, wire::ParamOverrides& o, wire::Compute& co
   if (a.theta) o.set_theta(*a.theta);
   if (!a.mode.empty()) {
     const std::optional<FilterMethod> m = parse_method<FilterMethod>(a.mode);
-    if (!m) return invalid_argument("--mode must be " + join_names(method_names<FilterMethod>()) + " (got " + a.mode + ")");
+    if (!m)
+      return invalid_argument("--mode must be " + join_names(method_names<FilterMethod>()) + " (got " +
+                              a.mode + ")");
     o.set_mode(*m == FilterMethod::kQuadric ? wire::QF : wire::BF);
   }
   if (!a.cluster_method.empty()) {
     const std::optional<ClusterMethod> m = parse_method<ClusterMethod>(a.cluster_method);
     if (!m)
-      return invalid_argument("--cluster-method must be " + join_names(method_names<ClusterMethod>()) + " (got " +
-                              a.cluster_method + ")");
+      return invalid_argument("--cluster-method must be " + join_names(method_names<ClusterMethod>()) +
+                              " (got " + a.cluster_method + ")");
     o.set_cluster_method(*m == ClusterMethod::kQuadric ? wire::QUADRIC : wire::EUCLIDEAN);
   }
   compute = wire::COMPUTE_DEFAULT;

@@ -14,9 +14,11 @@ StatusOr<bool> receive_result(zmq::socket_t& sub, ReceivedResult& out) {
   if (!zmq::recv_multipart(sub, std::back_inserter(parts))) return false;
   out = ReceivedResult{};
   out.receive_ns = now_ns();
-  if (parts.size() < 2) return invalid_input("published message has " + std::to_string(parts.size()) + " part(s)");
+  if (parts.size() < 2)
+    return invalid_input("published message has " + std::to_string(parts.size()) + " part(s)");
   out.topic = parts[0].to_string();
-  const Status header = wire::parse_result_header(std::string_view(parts[1].data<char>(), parts[1].size()), out.header);
+  const Status header =
+      wire::parse_result_header(std::string_view(parts[1].data<char>(), parts[1].size()), out.header);
   for (size_t i = 2; i < parts.size(); ++i) out.chunks.push_back(std::move(parts[i]));
   FQ_RETURN_IF_ERROR(header);
   if (out.header.chunk_count() != out.chunks.size())

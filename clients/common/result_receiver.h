@@ -7,10 +7,10 @@
 #include <vector>
 #include <zmq.hpp>
 
-#include "proto/fq.pb.h"
-#include "kernels/mesh_view.h"
 #include "common/status.h"
 #include "common/status_or.h"
+#include "kernels/mesh_view.h"
+#include "proto/fq.pb.h"
 
 namespace fq::client {
 

@@ -12,10 +12,11 @@
 
 #include "clients/fqbench/bench_rows.h"
 #include "clients/fqbench/bench_stats.h"
+#include "clients/fqbench/neighbour_stats.h"
+#include "common/tool_main.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/engine.h"
 #include "proto/mesh_io.h"
-#include "clients/fqbench/neighbour_stats.h"
 
 namespace {
 
@@ -135,9 +136,7 @@ void print_passes(const std::vector<RowResult>& results) {
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   Options o;
   o.mesh_dir = default_mesh_dir();
   CLI::App app{"fqbench: device time per pass for the paper's Table 2 and 3 rows"};
@@ -180,7 +179,8 @@ int main(int argc, char** argv) {
   parse_engine_kind(o.engine, kind);
   StatusOr<std::unique_ptr<Engine>> made = make_engine({kind, o.cpu_threads, 0});
   if (!made.ok()) {
-    std::fprintf(stderr, "fqbench: engine %s unavailable: %s\n", o.engine.c_str(), made.status().message().c_str());
+    std::fprintf(stderr, "fqbench: engine %s unavailable: %s\n", o.engine.c_str(),
+                 made.status().message().c_str());
     return 3;
   }
   std::unique_ptr<Engine> engine = std::move(made).value();
@@ -225,3 +225,7 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return fq::tool_main("fqbench", run, argc, argv); }

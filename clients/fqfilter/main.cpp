@@ -4,9 +4,10 @@
 #include <iostream>
 
 #include "clients/fqfilter/cli_options.h"
-#include "kernels/engine.h"
 #include "clients/fqfilter/file_job.h"
 #include "clients/fqfilter/folder_mode.h"
+#include "common/tool_main.h"
+#include "kernels/engine.h"
 #include "proto/mesh_io.h"
 
 namespace {
@@ -64,12 +65,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    // Faults (out of memory, a filesystem error) end the run with one line, not a trace.
-    std::cerr << "fqfilter: error: " << e.what() << "\n";
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return fq::tool_main("fqfilter", run, argc, argv); }

@@ -11,6 +11,7 @@
 #include "clients/common/frame_sender.h"
 #include "clients/common/mesh_source.h"
 #include "clients/common/override_options.h"
+#include "common/tool_main.h"
 
 namespace {
 
@@ -100,9 +101,7 @@ void add_options(CLI::App& app, Args& a) {
   fq::client::add_override_options(app, a.overrides);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"fqpub: publish mesh frames to fqd (a file, or a folder as a looped sequence)"};
   Args a;
   add_options(app, a);
@@ -149,3 +148,7 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return fq::tool_main("fqpub", run, argc, argv); }

@@ -12,13 +12,14 @@
 #include <filesystem>
 #include <thread>
 
-#include "clients/fqstreambench/collector.h"
 #include "clients/common/control_client.h"
-#include "daemon/daemon.h"
-#include "proto/mesh_io.h"
 #include "clients/common/override_options.h"
+#include "clients/fqstreambench/collector.h"
 #include "clients/fqstreambench/producer.h"
 #include "clients/fqstreambench/report.h"
+#include "common/tool_main.h"
+#include "daemon/daemon.h"
+#include "proto/mesh_io.h"
 
 namespace {
 
@@ -204,9 +205,7 @@ void add_options(CLI::App& app, Args& a) {
   fq::client::add_override_options(app, a.overrides);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"fqstreambench: latency and throughput of fqd at a sustained frame rate"};
   Args a;
   add_options(app, a);
@@ -249,3 +248,7 @@ int main(int argc, char** argv) {
                 fq::bench::report_markdown_row(run).c_str());
   return run.overall.results() > 0 && run.overall.bad() == 0 ? 0 : 1;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return fq::tool_main("fqstreambench", run, argc, argv); }

@@ -10,9 +10,10 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "proto/mesh_io.h"
 #include "clients/common/result_receiver.h"
 #include "clients/common/stream_stats.h"
+#include "common/tool_main.h"
+#include "proto/mesh_io.h"
 
 namespace {
 
@@ -30,9 +31,9 @@ struct Args {
 
 // Writes one result as <out>/<stream>_<sequence>.ply; returns the path or "" on failure.
 std::string write_ply(const Args& a, const fq::client::ReceivedResult& r) {
-  const std::string path = (std::filesystem::path(a.out_dir) /
-                            (r.header.stream_id() + "_" + std::to_string(r.header.sequence()) + ".ply"))
-                               .string();
+  std::string path = (std::filesystem::path(a.out_dir) /
+                      (r.header.stream_id() + "_" + std::to_string(r.header.sequence()) + ".ply"))
+                         .string();
   const uint32_t* labels = r.labels.empty() ? nullptr : r.labels.data();
   if (fq::Status s = fq::io::write_mesh(path, r.mesh.view(), labels, r.header.cluster_count()); !s.ok()) {
     std::fprintf(stderr, "\nfqsub: %s\n", s.message().c_str());
@@ -102,9 +103,7 @@ std::string receive_loop(const Args& a, zmq::socket_t& sub, fq::client::StreamSt
   return last_ply;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"fqsub: receive, check and save fqd results"};
   Args a;
   app.add_option("-e,--endpoint", a.endpoint, "fqd publish endpoint (SUB connects)")->capture_default_str();
@@ -148,3 +147,7 @@ int main(int argc, char** argv) {
   }
   return stats.results() > 0 && stats.bad() == 0 && stats.errors() == 0 ? 0 : 1;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return fq::tool_main("fqsub", run, argc, argv); }

@@ -1,9 +1,9 @@
 // The one nearest-rank definition of percentiles and medians.
+#include "common/sample_stats.h"
+
 #include <gtest/gtest.h>
 
 #include <vector>
-
-#include "common/sample_stats.h"
 
 namespace fq {
 namespace {

@@ -1,11 +1,12 @@
 // StatusOr and the FQ_RETURN_IF_ERROR / FQ_ASSIGN_OR_RETURN macros.
+#include "common/status_or.h"
+
 #include <gtest/gtest.h>
 
 #include <memory>
 #include <string>
 
 #include "common/status.h"
-#include "common/status_or.h"
 
 namespace fq {
 namespace {

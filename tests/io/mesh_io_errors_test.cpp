@@ -99,7 +99,7 @@ TEST(MeshIoErrors, TruncatedBinaryPly) {
   }
   // A face whose list count runs past the end.
   std::string lying = bytes;
-  lying[body + vertex_bytes + 13 * (mesh.num_triangles() - 1)] = char(200);
+  lying[body + vertex_bytes + size_t{13} * (mesh.num_triangles() - 1)] = char(200);
   test::write_bytes(dir.file("lying.ply"), lying);
   expect_read_error(dir.file("lying.ply"), "truncated");
 }
@@ -147,7 +147,7 @@ TEST(MeshIoErrors, DracoPointCloudIsNotATriangleMesh) {
   ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 12, 0);
   const int id = pc.AddAttribute(ga, true, 3);
   const float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-  for (int i = 0; i < 3; ++i) pc.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(i), p + 3 * i);
+  for (int i = 0; i < 3; ++i) pc.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(i), p + std::ptrdiff_t{3} * i);
   draco::Encoder encoder;
   draco::EncoderBuffer buffer;
   ASSERT_TRUE(encoder.EncodePointCloudToBuffer(pc, &buffer).ok());

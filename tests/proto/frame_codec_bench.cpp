@@ -9,6 +9,7 @@
 #include <string>
 
 #include "common/sample_stats.h"
+#include "common/tool_main.h"
 #include "proto/frame_codec.h"
 #include "tests/proto/proto_test_meshes.h"
 
@@ -57,9 +58,7 @@ void bench(const std::string& name, const fq::Mesh& m, const fq::wire::CodecOpti
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"Encode/decode time of the chunked Draco frame codec on the shared meshes"};
   fq::wire::CodecOptions o;
   o.threads = 2;
@@ -88,3 +87,7 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return fq::tool_main("fq_frame_codec_bench", run, argc, argv); }
