@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # clang-tidy with the repository's .clang-tidy over our C++ sources, using the compile
 # database of BUILD_DIR (default: build; scripts/build.sh writes it). Any finding fails.
-#   bash scripts/tidy.sh          the .cpp files changed since TIDY_BASE (default: origin/main when
-#                                 it exists and differs from HEAD, else HEAD~1), as CI runs it
+#   bash scripts/tidy.sh          the .cpp files changed (committed or not) since TIDY_BASE
+#                                 (default: the merge base with origin/main, else main), as CI runs it
 #   bash scripts/tidy.sh --all    every .cpp file (minutes per core: each file parses protobuf,
 #                                 CLI11, spdlog... headers)
 #   bash scripts/tidy.sh FILE...  those files
@@ -22,14 +22,16 @@ elif (($# > 0)); then
   files=("$@")
 else
   base=${TIDY_BASE:-}
-  if [[ -z $base ]]; then
-    if git rev-parse -q --verify origin/main >/dev/null && [[ $(git rev-parse origin/main) != $(git rev-parse HEAD) ]]; then
-      base=$(git merge-base origin/main HEAD)
-    else
-      base=HEAD~1
+  for ref in origin/main main; do
+    if [[ -z $base ]] && git rev-parse -q --verify "$ref" >/dev/null; then
+      base=$(git merge-base "$ref" HEAD)
     fi
+  done
+  files=()
+  # No main branch (an archive, not a clone): nothing to compare against.
+  if [[ -n $base ]]; then
+    mapfile -t files < <(git diff --name-only --diff-filter=d "$base" -- '*.cpp')
   fi
-  mapfile -t files < <(git diff --name-only --diff-filter=d "$base" -- '*.cpp')
 fi
 if ((${#files[@]} == 0)); then
   echo "tidy: no C++ sources to check"
