@@ -40,9 +40,21 @@ void read_cluster(TomlReader& r, ClusterParams& c) {
   r.read("sigma_d", c.sigma_d);
   r.read("sigma_q", c.sigma_q);
   r.read("theta", c.theta);
+  r.read("target_clusters", c.target_clusters, 0, 10'000'000);
+  r.read("min_cluster_size", c.min_cluster_size, 0, 10'000'000);
+  std::string geometry = cluster_geometry_name(c.geometry);
+  r.read("geometry", geometry);
+  if (!parse_cluster_geometry(geometry, c.geometry))
+    r.fail("geometry", "must be \"auto\", \"input\" or \"filtered\" (got \"" + geometry + "\")");
+  r.read("track_ids", c.track_ids);
+  r.read("sticky_rings", c.sticky_rings, 0, 64);
 }
 
 void read_output(TomlReader& r, OutputEncoding& o) {
+  std::string form = result_form_name(o.form);
+  r.read("result_form", form);
+  if (!parse_result_form(form, o.form))
+    r.fail("result_form", "must be \"positions\" or \"mesh\" (got \"" + form + "\")");
   r.read("position_bits", o.position_bits, 8, 30);
   r.read("encode_speed", o.encode_speed, 0, 10);
   r.read("decode_speed", o.decode_speed, 0, 10);
@@ -196,6 +208,7 @@ Status parse_config(std::string_view text, const std::string& source, DaemonConf
     root.fail("log_level", "must be one of trace, debug, info, warn, error, critical, off");
   FQ_RETURN_IF_ERROR(read_sections(root, c));
   FQ_RETURN_IF_ERROR(read_streams(root, c));
+  FQ_RETURN_IF_ERROR(read_service_sections(root, c.http, c.stats, c.sub_ingest));
   FQ_RETURN_IF_ERROR(root.finish());
   out = std::move(c);
   return {};

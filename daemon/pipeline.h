@@ -11,7 +11,9 @@
 
 #include "daemon/config.h"
 #include "daemon/frame_job.h"
+#include "daemon/label_tracks.h"
 #include "daemon/latency_policy.h"
+#include "daemon/latest_results.h"
 #include "daemon/object_pool.h"
 #include "daemon/stream_registry.h"
 #include "daemon/work_queue.h"
@@ -31,6 +33,8 @@ struct Pipeline {
   /// Engine outputs, reused: the engines keep a result's buffers (grow-only). Decoded meshes
   /// are not pooled: decode_frame starts from an empty mesh, so a pooled one kept nothing.
   ObjectPool<FrameResult> results;
+  LatestResults latest;                      ///< each watched stream's last result (HTTP viewer)
+  LabelTracks label_tracks;                  ///< stable cluster ids per stream
 
   /// Marks `frame` failed (message logged) and sends it straight to the publisher.
   void fail(FramePtr frame, Status why);

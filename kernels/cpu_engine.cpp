@@ -3,6 +3,7 @@
 #include <chrono>
 #include <exception>
 
+#include "kernels/cluster_control.h"
 #include "kernels/cpu_stages.h"
 #include "kernels/parallel_for.h"
 
@@ -34,7 +35,11 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
   out.timings.clear();
   out.labels.clear();
   out.num_clusters = 0;
+  out.theta = 0.f;
+  out.link_parent.clear();
+  out.link_p.clear();
   FQ_RETURN_IF_ERROR(validate(params));
+  if (needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
   PassClock clock(out.timings);
   FQ_RETURN_IF_ERROR(check_mesh(mesh, threads_));
   FQ_RETURN_IF_ERROR(compute_normalization(mesh, f_.norm, threads_));
@@ -67,7 +72,12 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
     cpu::cluster_links(f_, params.c, threads_);
     clock.lap("link");
     out.num_clusters = cpu::cluster_labels(f_, out.labels, threads_);
+    out.theta = params.c.theta;
     clock.lap("modes");
+    if (params.c.keep_links) {
+      cpu::export_links(f_, params.c, out.link_parent, out.link_p, threads_);
+      clock.lap("export_links");
+    }
   }
   const uint32_t n = mesh.num_vertices;
   out.positions.resize(3 * size_t(n));

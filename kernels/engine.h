@@ -24,6 +24,12 @@ struct FrameResult {
   std::vector<float> positions;   ///< 3 per vertex, input order; the input when !filter
   std::vector<uint32_t> labels;   ///< one per vertex in 0..num_clusters-1; empty when !cluster
   uint32_t num_clusters = 0;
+  float theta = 0.f;              ///< theta that gave the labels (found per frame with a target)
+  /// With ClusterParams::keep_links, per vertex (input order): the vertex it links to
+  /// before the theta cut (itself for a root at any theta) and that link's proximity p;
+  /// the labels at theta are those of the links with p >= 1 - theta.
+  std::vector<uint32_t> link_parent;
+  std::vector<float> link_p;
   double mean_edge = 0.0;         ///< the unit of every sigma, in input units
   std::vector<PassTiming> timings;
 
@@ -42,11 +48,28 @@ class Engine {
 
 enum class EngineKind { kAuto, kCpu, kCuda };
 
+/// Kernel choices of the CUDA engine (docs/BENCHMARKS.md has the measurements behind the
+/// defaults). Fixed for an engine's lifetime.
+struct CudaTuning {
+  /// Lanes per vertex in the neighbourhood passes: kTeamBySize picks 8, 4 or 1 from the
+  /// vertices per SM; 0 runs the one-thread-per-vertex kernels that call the math headers
+  /// directly; 1, 2, 4, 8, 16 or 32 a fixed team.
+  static constexpr int kTeamBySize = -1;
+  int team = kTeamBySize;
+  /// Gaussian weights of the team kernels through the hardware __expf instead of the
+  /// accurate exp of gaussian.h (3-5 % faster, last bits differ).
+  bool fast_exp = false;
+};
+
 struct EngineOptions {
   EngineKind kind = EngineKind::kAuto;
   int threads = 0;  ///< CPU threads; 0 = all hardware threads
   int device = 0;   ///< CUDA device ordinal
+  CudaTuning cuda;
 };
+
+/// True for the team values CudaTuning accepts.
+bool valid_cuda_team(int team);
 
 /// Parses "auto" | "cpu" | "cuda".
 bool parse_engine_kind(const std::string& s, EngineKind& out);

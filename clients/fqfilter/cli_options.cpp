@@ -33,6 +33,24 @@ void add_filter_options(CLI::App& app, Options& o, std::string& mode) {
       ->group(g);
 }
 
+void add_cluster_control_options(CLI::App& app, Options& o, std::string& geometry) {
+  ClusterParams& c = o.params.c;
+  const std::string g = "Clustering";
+  app.add_option("--target-clusters", c.target_clusters,
+                 "Choose theta per mesh to give about K clusters (0 = use --theta)")
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--cluster-geometry", geometry,
+                 "Quadrics the clustering uses: input (the paper), filtered (after a constrained filter) or auto (filtered with --target-clusters)")
+      ->check(CLI::IsMember({"auto", "input", "filtered"}))
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--min-cluster-size", c.min_cluster_size,
+                 "Split clusters into mesh-connected parts and merge parts under N vertices (0 = off)")
+      ->capture_default_str()
+      ->group(g);
+}
+
 void add_cluster_options(CLI::App& app, Options& o, std::string& method, bool& no_filter) {
   ClusterParams& c = o.params.c;
   const std::string g = "Clustering";
@@ -89,11 +107,13 @@ std::string check_params(const Options& o) { return validate(o.params).message()
 ParseOutcome parse_options(int argc, char** argv, Options& o) {
   CLI::App app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
                "fqfilter"};
-  std::string mode = method_name(o.params.f.method), method = method_name(o.params.c.method), engine = "auto";
+  std::string mode = method_name(o.params.f.method), method = method_name(o.params.c.method), engine = "auto",
+              geometry = "auto";
   bool no_filter = false;
   add_run_options(app, o, engine);
   add_filter_options(app, o, mode);
   add_cluster_options(app, o, method, no_filter);
+  add_cluster_control_options(app, o, geometry);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -105,6 +125,7 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
   // CLI::IsMember has accepted only known names.
   o.params.f.method = *parse_method<FilterMethod>(mode);
   o.params.c.method = *parse_method<ClusterMethod>(method);
+  parse_cluster_geometry(geometry, o.params.c.geometry);  // checked by IsMember above
   parse_engine_kind(engine, o.engine.kind);
   if (no_filter) {
     o.params.filter = false;
