@@ -64,7 +64,7 @@ int cmd_streams(const Args& a) {
 }
 
 int print_params(const fq::wire::ControlReply& r) {
-  for (const auto& [key, value] : fq::client::describe_fields(r.params()))
+  for (const auto& [key, value] : fq::client::describe_params(r))
     std::printf("%s = %s\n", key.c_str(), value.c_str());
   return 0;
 }
@@ -143,7 +143,7 @@ int run(int argc, char** argv) {
   params->add_option("stream", a.stream, "stream id")->required();
   CLI::App* set = app.add_subcommand("set", "change a stream's parameters from its next frame on");
   set->add_option("stream", a.stream, "stream id (created when new)")->required();
-  set->add_option("assignments", a.assignments, "key=value, e.g. sigma_s=3 mode=bf compute=filter")
+  set->add_option("assignments", a.assignments, "key=value, e.g. sigma_s=3 mode=bf compute=filter result_form=mesh")
       ->required();
   CLI::App* counters = app.add_subcommand("counters", "frame counters and stage latencies");
   counters->add_option("stream", a.stream, "one stream (default: all)");
