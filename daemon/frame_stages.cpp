@@ -30,8 +30,8 @@ Status guarded(const char* stage, Fn&& fn) {
 
 // The stream's settings with the frame's own overrides and compute mode applied.
 Status resolve_settings(FrameJob& f) {
-  if (Status s = wire::apply_overrides(f.header.params(), f.settings.params); !s.ok()) return s;
-  if (Status s = wire::apply_compute(f.header.compute(), f.settings.params); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(wire::apply_overrides(f.header.params(), f.settings.params));
+  FQ_RETURN_IF_ERROR(wire::apply_compute(f.header.compute(), f.settings.params));
   if (Status s = fq::validate(f.settings.params); !s.ok())
     return invalid_argument("invalid parameters: " + s.message());
   return {};
@@ -42,7 +42,7 @@ Status decode(FrameJob& f, const DaemonConfig& c) {
   for (const zmq::message_t& m : f.chunks) views.emplace_back(m.data<char>(), m.size());
   wire::CodecOptions opt;
   opt.threads = std::max(1, std::min<int>(c.decode_threads, static_cast<int>(views.size())));
-  if (Status s = wire::decode_frame(views, f.header.vertex_count(), opt, f.mesh, nullptr); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(wire::decode_frame(views, f.header.vertex_count(), opt, f.mesh, nullptr));
   f.chunks.clear();
   if (f.mesh.num_vertices() > c.caps.max_vertices)
     return invalid_input("frame has " + std::to_string(f.mesh.num_vertices()) +
@@ -58,10 +58,7 @@ void Pipeline::fail(FramePtr frame, Status why) {
   publish_queue.push(std::move(frame));
 }
 
-void Pipeline::recycle(FrameJob& f) {
-  meshes.release(std::move(f.mesh));
-  results.release(std::move(f.result));
-}
+void Pipeline::recycle(FrameJob& f) { results.release(std::move(f.result)); }
 
 void Pipeline::note_queued(const FrameJob& f) {
   std::lock_guard<std::mutex> lock(newest_mutex_);
@@ -87,7 +84,6 @@ void run_decode_worker(Pipeline& p) {
       spdlog::debug("stream '{}' frame {}: superseded before decode", f->stream_id, f->header.sequence());
       continue;
     }
-    f->mesh = p.meshes.acquire();
     const auto t0 = std::chrono::steady_clock::now();
     Status s = guarded("decode", [&] { return decode(*f, p.config); });
     if (s.ok()) s = resolve_settings(*f);

@@ -1,5 +1,6 @@
-// A small thread-safe free list of reusable buffers (meshes, engine results), so that a
-// steady stream of frames of similar size stops allocating after the first few frames.
+// A small thread-safe free list of reusable buffers (the engines' FrameResults, whose vectors
+// the engines reuse), so that a steady stream of frames of similar size stops allocating
+// after the first few frames. Only worth it for a T whose user keeps its capacity.
 #pragma once
 
 #include <cstddef>

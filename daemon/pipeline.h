@@ -30,14 +30,15 @@ struct Pipeline {
   WorkQueue<FramePtr> encode_queue;
   WorkQueue<FramePtr> publish_queue;
   std::map<std::string, uint64_t> arrivals;  ///< per-stream arrival counter, ingest thread only
-  ObjectPool<Mesh> meshes;                   ///< decoded frames, reused
-  ObjectPool<FrameResult> results;           ///< engine outputs, reused
+  /// Engine outputs, reused: the engines keep a result's buffers (grow-only). Decoded meshes
+  /// are not pooled: decode_frame starts from an empty mesh, so a pooled one kept nothing.
+  ObjectPool<FrameResult> results;
   LatestResults latest;                      ///< each watched stream's last result (HTTP viewer)
   LabelTracks label_tracks;                  ///< stable cluster ids per stream
 
   /// Marks `frame` failed (message logged) and sends it straight to the publisher.
   void fail(FramePtr frame, Status why);
-  /// Returns the frame's buffers to the pools once it is published or dropped.
+  /// Returns the frame's result buffers to the pool once it is published or dropped.
   void recycle(FrameJob& frame);
 
   /// Notes that `frame` is being queued for decode (ingest thread).

@@ -37,9 +37,6 @@ bool parse_compute(const std::string& s, Params& inout);
 /// The name parse_compute accepts for the params' compute mode.
 const char* compute_name(const Params& p);
 
-/// "quadric" | "euclidean" (filter methods: fq::parse_filter_method in kernels/params.h).
-bool parse_cluster_method(const std::string& s, ClusterMethod& out);
-const char* cluster_method_name(ClusterMethod m);
 /// "positions" | "mesh".
 bool parse_result_form(const std::string& s, ResultForm& out);
 const char* result_form_name(ResultForm f);

@@ -41,11 +41,11 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
   out.theta = 0.f;
   out.link_parent.clear();
   out.link_p.clear();
-  if (Status s = validate(params); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(validate(params));
   if (needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
   PassClock clock(out.timings, observer_);
-  if (Status s = check_mesh(mesh, threads_); !s.ok()) return s;
-  if (Status s = compute_normalization(mesh, f_.norm, threads_); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(check_mesh(mesh, threads_));
+  FQ_RETURN_IF_ERROR(compute_normalization(mesh, f_.norm, threads_));
   out.mean_edge = f_.norm.mean_edge;
   clock.lap("normalize");
   const FilterParams& fp = params.f;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/status.h"
+#include "common/status_or.h"
 #include "kernels/mesh_view.h"
 #include "kernels/params.h"
 
@@ -84,7 +85,7 @@ bool valid_cuda_team(int team);
 bool parse_engine_kind(const std::string& s, EngineKind& out);
 
 /// CUDA when asked for or (auto) when a device is present, the CPU engine otherwise.
-/// Null with a status when an explicitly requested engine is unavailable.
-std::unique_ptr<Engine> make_engine(const EngineOptions& options, Status* why = nullptr);
+/// kUnavailable (with the reason) when an explicitly requested engine is not present.
+StatusOr<std::unique_ptr<Engine>> make_engine(const EngineOptions& options);
 
 }  // namespace fq

@@ -2,7 +2,10 @@
 // mean edge length, as in the paper; neighbourhoods have radius 2 sigma.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "common/status.h"
 
@@ -93,5 +96,19 @@ const char* cluster_geometry_name(ClusterGeometry g);
 
 /// Clear message for the first bad value (sigma <= 0, NaN, theta outside (0, 1], ...).
 Status validate(const Params& p);
+
+/// The one place for the methods' names on command lines, in configs and in JSON:
+/// "qf+" | "qf" | "bf" (FilterMethod) and "quadric" | "euclidean" (ClusterMethod).
+const char* method_name(FilterMethod m);
+const char* method_name(ClusterMethod m);
+/// The method a name stands for; nullopt for any other string (names are case-sensitive).
+template <typename Method>
+std::optional<Method> parse_method(std::string_view name);
+/// Every name of FilterMethod or ClusterMethod, in enum order (help texts, option checks).
+template <typename Method>
+std::vector<std::string> method_names();
+/// "qf or bf" for messages; `quoted`: "\"qf\" or \"bf\""; `separator` " | " for help texts.
+std::string join_names(const std::vector<std::string>& names, std::string_view separator = " or ",
+                       bool quoted = false);
 
 }  // namespace fq

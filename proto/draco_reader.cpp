@@ -116,9 +116,9 @@ void name_dropped(const draco::Mesh& dm, const std::string& why, MeshAttributes*
 
 Status read_file_bytes(const std::string& path, std::vector<char>& bytes) {
   std::ifstream f(path, std::ios::binary);
-  if (!f) return invalid_argument("cannot open '" + path + "' for reading");
+  if (!f) return io_error("cannot open '" + path + "' for reading");
   bytes.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-  if (f.bad()) return invalid_argument("cannot read '" + path + "': read error");
+  if (f.bad()) return io_error("cannot read '" + path + "': read error");
   return {};
 }
 
@@ -129,7 +129,7 @@ bool is_ascii_stl(const std::string& path) {
 
 Status read_drc(const std::string& path, Mesh& out, MeshAttributes* attributes) {
   std::vector<char> bytes;
-  if (Status s = read_file_bytes(path, bytes); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(read_file_bytes(path, bytes));
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
   auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
@@ -145,7 +145,7 @@ Status read_drc(const std::string& path, Mesh& out, MeshAttributes* attributes) 
 
 Status read_obj_or_stl(const std::string& path, Mesh& out, MeshAttributes* attributes) {
   if (lower_extension(path) == ".stl") {
-    if (Status s = check_stl_size(path); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(check_stl_size(path));
   }
   auto decoded = draco::ReadMeshFromFile(path);
   if (!decoded.ok()) return invalid_input("cannot decode '" + path + "': " + draco_message(decoded.status()));

@@ -90,9 +90,8 @@ Status read_mesh(const std::string& path, Mesh& out, MeshAttributes* attributes)
   out = Mesh{};
   if (attributes) *attributes = MeshAttributes{};
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return invalid_argument("cannot read '" + path + "': no such file");
-  if (std::filesystem::is_directory(path, ec))
-    return invalid_argument("cannot read '" + path + "': is a folder");
+  if (!std::filesystem::exists(path, ec)) return io_error("cannot read '" + path + "': no such file");
+  if (std::filesystem::is_directory(path, ec)) return io_error("cannot read '" + path + "': is a folder");
   if (!is_readable_mesh_file(path))
     return invalid_argument("cannot read '" + path + "': unsupported extension '" + lower_extension(path) +
                             "' " + expected_read_extensions());
@@ -120,7 +119,7 @@ Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t*
   if (!is_writable_mesh_file(path))
     return invalid_argument("cannot write '" + path + "': unsupported output extension '" + ext + "' " +
                             expected_write_extensions());
-  if (Status s = check_for_writing(path, mesh, labels, num_clusters); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(check_for_writing(path, mesh, labels, num_clusters));
   const MeshAttributes* a = options.attributes;
   if (a) {
     if (Status s = check_attributes(path, mesh, *a); !s.ok()) return s;

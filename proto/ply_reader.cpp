@@ -155,14 +155,14 @@ void keep_attributes(const draco::PlyReader& reader, const std::vector<char>& by
 
 Status read_ply(const std::string& path, Mesh& out, MeshAttributes* attributes) {
   std::vector<char> bytes;
-  if (Status s = read_file_bytes(path, bytes); !s.ok()) return s;
-  if (Status s = check_binary_ply_extent(path, bytes); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(read_file_bytes(path, bytes));
+  FQ_RETURN_IF_ERROR(check_binary_ply_extent(path, bytes));
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
   draco::PlyReader reader;
   const draco::Status s = reader.Read(&buffer);
   if (!s.ok()) {
-    const std::string msg = s.error_msg_string();
+    const std::string& msg = s.error_msg_string();
     return invalid_input("cannot decode '" + path + "': " + (msg.empty() ? "not a valid PLY file" : msg));
   }
   Status st = read_vertices(path, reader.GetElementByName("vertex"), out);

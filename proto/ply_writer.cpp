@@ -165,12 +165,12 @@ Status write_ply(const std::string& path, const MeshView& mesh, const uint32_t* 
   body_element(body, mesh.num_vertices, vcols);
   body_element(body, mesh.num_triangles, fcols);
   std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  if (!f) return invalid_argument("cannot open '" + path + "' for writing: " + std::strerror(errno));
+  if (!f) return io_error("cannot open '" + path + "' for writing: " + std::strerror(errno));
   const std::string hs = h.str();
   f.write(hs.data(), std::streamsize(hs.size()));
   f.write(body.data(), std::streamsize(body.size()));
   f.close();
-  if (!f) return invalid_argument("cannot write '" + path + "': write failed (disk full?)");
+  if (!f) return io_error("cannot write '" + path + "': write failed (disk full?)");
   return {};
 }
 

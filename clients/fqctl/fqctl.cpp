@@ -15,6 +15,7 @@
 #include "clients/common/control_client.h"
 #include "clients/fqctl/counters_table.h"
 #include "clients/fqctl/param_assign.h"
+#include "common/tool_main.h"
 #include "common/version.h"
 #include "daemon/counters_json.h"
 
@@ -130,9 +131,7 @@ int cmd_watch(const Args& a) {
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"fqctl: inspect and steer a running fqd through its control socket"};
   app.set_version_flag("--version", fq::version_line("fqctl"));
   Args a;
@@ -165,3 +164,7 @@ int main(int argc, char** argv) {
   if (*watch) return cmd_watch(a);
   return cmd_streams(a);
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return fq::tool_main("fqctl", run, argc, argv); }

@@ -12,10 +12,8 @@ namespace {
 void add_filter_options(CLI::App& app, Options& o, std::string& mode) {
   FilterParams& f = o.params.f;
   const std::string g = "Filter";
-  app.add_option("--mode", mode,
-                 "Filter: qf+ (filtered quadrics, then the feature-preserving refinement), qf (the paper "
-                 "exactly) or bf (bilateral baseline)")
-      ->check(CLI::IsMember({"qf+", "qf", "bf"}))
+  app.add_option("--mode", mode, "Filter: qf+ (filtered quadrics, then the feature-preserving refinement), qf (the paper exactly) or bf (bilateral baseline)")
+      ->check(CLI::IsMember(method_names<FilterMethod>()))
       ->capture_default_str()
       ->group(g);
   app.add_option("--sigma-s", f.sigma_s, "Spatial extent of the diffusion, in mean edge lengths")
@@ -93,7 +91,7 @@ void add_cluster_options(CLI::App& app, Options& o, std::string& method, bool& n
   app.add_flag("--no-filter", no_filter, "Cluster only: keep the input positions (implies --cluster)")
       ->group(g);
   app.add_option("--cluster-method", method, "quadric (the paper) or euclidean (plain quick shift)")
-      ->check(CLI::IsMember({"quadric", "euclidean"}))
+      ->check(CLI::IsMember(method_names<ClusterMethod>()))
       ->capture_default_str()
       ->group(g);
   app.add_option("--sigma-d", c.sigma_d, "Spatial extent of score and proximity, in mean edge lengths")
@@ -140,23 +138,18 @@ void add_run_options(CLI::App& app, Options& o, std::string& engine, std::string
   app.add_flag("--json", o.json, "One JSON object per mesh on stdout (see docs/FQFILTER.md)");
 }
 
-/// Checks that need several options together; empty when consistent.
-std::string cross_check(const Options& o) {
-  if (Status s = validate(o.params); !s.ok()) return s.message();
-  return {};
-}
+/// fq::validate of the parsed parameters (CLI11 checks each option alone: not NaN, theta
+/// in (0, 1], nothing to compute); the message, empty when valid.
+std::string check_params(const Options& o) { return validate(o.params).message(); }
 
 }  // namespace
-
-const char* cluster_method_name(ClusterMethod m) {
-  return m == ClusterMethod::kQuadric ? "quadric" : "euclidean";
-}
 
 ParseOutcome parse_options(int argc, char** argv, Options& o) {
   CLI::App app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
                "fqfilter"};
   app.set_version_flag("--version", fq::version_line("fqfilter"));
-  std::string mode = filter_method_name(o.params.f.method), method = "quadric", engine = "auto", geometry = "auto";
+  std::string mode = method_name(o.params.f.method), method = method_name(o.params.c.method), engine = "auto",
+              geometry = "auto";
   bool no_filter = false;
   std::string noise_direction = "iso";
   add_run_options(app, o, engine, noise_direction);
@@ -172,8 +165,9 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
     std::cerr << "fqfilter: error: " << e.what() << " (see fqfilter --help)\n";
     return {false, 2};
   }
-  parse_filter_method(mode, o.params.f.method);
-  o.params.c.method = method == "quadric" ? ClusterMethod::kQuadric : ClusterMethod::kEuclidean;
+  // CLI::IsMember has accepted only known names.
+  o.params.f.method = *parse_method<FilterMethod>(mode);
+  o.params.c.method = *parse_method<ClusterMethod>(method);
   parse_cluster_geometry(geometry, o.params.c.geometry);  // checked by IsMember above
   parse_engine_kind(engine, o.engine.kind);
   o.noise_along_normal = noise_direction == "normal";
@@ -181,7 +175,7 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
     o.params.filter = false;
     o.params.cluster = true;
   }
-  if (const std::string why = cross_check(o); !why.empty()) {
+  if (const std::string why = check_params(o); !why.empty()) {
     std::cerr << "fqfilter: error: " << why << "\n";
     return {false, 2};
   }

@@ -25,7 +25,6 @@ struct Options {
   bool colour_clusters = false;  ///< cluster colours replace the input's vertex colours
   bool in_place = false;         ///< OUT may be IN itself (replaced once the result is written)
 
-  bool has_metrics() const { return noise_sigma > 0 || !reference.empty(); }
 };
 
 /// Outcome of parsing: run, or exit with `exit_code` (help printed, or an error line).
@@ -37,9 +36,5 @@ struct ParseOutcome {
 /// Parses argv into `out`. Prints help to stdout, or one "fqfilter: error: ..." line to
 /// stderr (exit code 2) for a bad option, a bad value or inconsistent options.
 ParseOutcome parse_options(int argc, char** argv, Options& out);
-
-/// "quadric" / "euclidean": the names used on the command line and in JSON (filter
-/// methods: fq::filter_method_name).
-const char* cluster_method_name(ClusterMethod m);
 
 }  // namespace fq::cli

@@ -29,7 +29,7 @@ MeshError measure(const MeshView& reference, const float* positions) {
 Status load_reference(const Options& o, const std::string& input, Mesh& clean, std::string& reference_name) {
   reference_name.clear();
   if (!o.reference.empty()) {
-    if (Status s = io::read_mesh(o.reference, clean); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(io::read_mesh(o.reference, clean));
     reference_name = o.reference;
   } else if (o.noise_sigma > 0) {
     reference_name = input + " (before noise)";
@@ -42,7 +42,7 @@ Status run_engine(const Options& o, Engine& engine, const MeshView& view, FrameR
   std::vector<std::vector<PassTiming>> runs;
   for (int i = 0; i < o.repeat; ++i) {
     progress.watch(engine, i + 1, o.repeat);
-    if (Status s = engine.process(view, o.params, result); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(engine.process(view, o.params, result));
     runs.push_back(result.timings);
   }
   summarize_timings(runs, report);

@@ -9,6 +9,7 @@
 #include <ostream>
 
 #include "clients/fqfilter/cli_options.h"
+#include "common/sample_stats.h"
 
 namespace fq::cli {
 
@@ -20,13 +21,6 @@ double as_typed(float v) {
   char buf[32];
   const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
   return std::strtod(std::string(buf, end).c_str(), nullptr);
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
 nlohmann::json refine_json(const RefineParams& r) {
@@ -43,14 +37,14 @@ nlohmann::json params_json(const Params& p) {
   const FilterParams& f = p.f;
   return {{"filter", p.filter},
           {"cluster", p.cluster},
-          {"mode", filter_method_name(f.method)},
+          {"mode", method_name(f.method)},
           {"sigma_s", as_typed(f.sigma_s)},
           {"sigma_r", as_typed(f.sigma_r)},
           {"sigma_b", as_typed(f.effective_sigma_b())},
           {"sigma_n", as_typed(f.effective_sigma_n())},
           {"constrained", f.constrained},
           {"tikhonov", as_typed(f.tikhonov)},
-          {"cluster_method", cluster_method_name(p.c.method)},
+          {"cluster_method", method_name(p.c.method)},
           {"sigma_d", as_typed(p.c.sigma_d)},
           {"sigma_q", as_typed(p.c.sigma_q)},
           {"theta", as_typed(p.c.theta)},
