@@ -101,10 +101,9 @@ void bind_engine_functions(pyb::module_& m) {
       "engine_name",
       [](const std::string& engine, int threads) {
         const EngineOptions o = engine_options(engine, threads);
-        Status why;
-        auto e = make_engine(o, &why);
-        throw_if_error(why);
-        return e->name();
+        StatusOr<std::unique_ptr<Engine>> e = make_engine(o);
+        throw_if_error(e.status());
+        return (*e)->name();
       },
       "engine"_a = "auto", "threads"_a = 0, "The engine `engine` selects here: 'cpu' or 'cuda:<device>'.");
 }

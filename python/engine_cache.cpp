@@ -30,9 +30,7 @@ Status run_cached_engine(const EngineOptions& options, const MeshView& mesh, con
   Slot& slot = slot_for(options);
   const std::lock_guard<std::mutex> lock(slot.busy);
   if (!slot.engine) {
-    Status why;
-    slot.engine = make_engine(options, &why);
-    if (!slot.engine) return why;
+    FQ_ASSIGN_OR_RETURN(slot.engine, make_engine(options));
   }
   if (engine_name) *engine_name = slot.engine->name();
   return slot.engine->process(mesh, params, out);
