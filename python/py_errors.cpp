@@ -17,9 +17,9 @@ void throw_if_error(const Status& s) {
 }
 
 void throw_if_file_error(const Status& s) {
-  // fq_meshio reports unopenable and unwritable files as invalid arguments and content it
-  // cannot decode as invalid input.
-  if (s.code() == StatusCode::kInvalidArgument) {
+  // fq_meshio reports files it cannot find, open, read or write as kIoError (and a few file
+  // problems as invalid arguments), content it cannot decode as invalid input.
+  if (s.code() == StatusCode::kIoError || s.code() == StatusCode::kInvalidArgument) {
     PyErr_SetString(PyExc_OSError, s.message().c_str());
     throw pybind11::error_already_set();
   }

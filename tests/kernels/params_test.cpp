@@ -125,18 +125,18 @@ TEST(KernelParams, EngineRejectsBadParamsAndKeepsWorking) {
 }
 
 TEST(KernelParams, MethodNamesRoundTrip) {
-  EXPECT_EQ(method_names<FilterMethod>(), (std::vector<std::string>{"qf", "bf"}));
+  EXPECT_EQ(method_names<FilterMethod>(), (std::vector<std::string>{"qf+", "qf", "bf"}));
   EXPECT_EQ(method_names<ClusterMethod>(), (std::vector<std::string>{"quadric", "euclidean"}));
-  for (FilterMethod m : {FilterMethod::kQuadric, FilterMethod::kBilateral})
+  for (FilterMethod m : {FilterMethod::kQuadricRefined, FilterMethod::kQuadric, FilterMethod::kBilateral})
     EXPECT_EQ(parse_method<FilterMethod>(method_name(m)), m);
   for (ClusterMethod m : {ClusterMethod::kQuadric, ClusterMethod::kEuclidean})
     EXPECT_EQ(parse_method<ClusterMethod>(method_name(m)), m);
   EXPECT_EQ(parse_method<FilterMethod>("QF"), std::nullopt);
   EXPECT_EQ(parse_method<FilterMethod>("quadric"), std::nullopt);  // a cluster method's name
   EXPECT_EQ(parse_method<ClusterMethod>(""), std::nullopt);
-  EXPECT_EQ(join_names(method_names<FilterMethod>()), "qf or bf");
+  EXPECT_EQ(join_names(method_names<FilterMethod>()), "qf+ or qf or bf");
   EXPECT_EQ(join_names(method_names<ClusterMethod>(), " | "), "quadric | euclidean");
-  EXPECT_EQ(join_names(method_names<FilterMethod>(), " or ", true), "\"qf\" or \"bf\"");
+  EXPECT_EQ(join_names(method_names<FilterMethod>(), " or ", true), "\"qf+\" or \"qf\" or \"bf\"");
 }
 
 }  // namespace

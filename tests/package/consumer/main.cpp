@@ -21,7 +21,12 @@ int main(int argc, char** argv) {
   fq::EngineOptions options;
   options.kind = fq::EngineKind::kCpu;
   options.threads = 1;
-  const std::unique_ptr<fq::Engine> engine = fq::make_engine(options);
+  fq::StatusOr<std::unique_ptr<fq::Engine>> made = fq::make_engine(options);
+  if (!made.ok()) {
+    std::fprintf(stderr, "fq_consumer: %s\n", made.status().message().c_str());
+    return 1;
+  }
+  const std::unique_ptr<fq::Engine> engine = std::move(*made);
   fq::FrameResult result;
   if (fq::Status s = engine->process(mesh.view(), fq::Params{}, result); !s.ok()) {
     std::fprintf(stderr, "fq_consumer: %s\n", s.message().c_str());
