@@ -133,6 +133,10 @@ Status read_sections(TomlReader& root, DaemonConfig& c) {
     r.read("max_vertices", c.caps.max_vertices, 3, 1ll << 31);
     r.read("max_frame_bytes", c.caps.max_frame_bytes, 64, 1ll << 40);
     r.read("max_streams", c.caps.max_streams, 1, 1 << 20);
+    r.read("max_stream_id_bytes", c.caps.max_stream_id_bytes, 1, 4096);
+    r.read("stream_idle_s", c.caps.stream_idle_s, 0.0, 1e9);
+    r.read("allowed_streams", c.caps.allowed_streams);
+    r.read("max_neighbour_work", c.caps.max_neighbour_work, 1e3, 1e18);
     if (Status s = r.finish(); !s.ok()) return s;
   }
   return {};

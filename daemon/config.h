@@ -30,8 +30,16 @@ struct EngineConfig {
 
 struct Caps {
   uint32_t max_vertices = 4'000'000;
-  uint64_t max_frame_bytes = 256ull << 20;  ///< sum of all parts of one ingest message
+  uint64_t max_frame_bytes = 256ull << 20;  ///< sum of all parts of one ingest message (also
+                                            ///< the socket's per-part limit: ZMQ_MAXMSGSIZE)
   uint32_t max_streams = 64;
+  uint32_t max_stream_id_bytes = 128;  ///< longer ids are refused (they are topics and log words)
+  double stream_idle_s = 300.0;        ///< a stream without frames this long is forgotten; 0 = never
+  /// Stream ids admitted: exact ids, or prefixes ending in '*'. Empty: every valid id.
+  std::vector<std::string> allowed_streams;
+  /// Expected neighbour visits of one frame (vertices x neighbours per vertex from the
+  /// sigmas) above which its parameters are refused before the engine runs.
+  double max_neighbour_work = 2e10;
 };
 
 struct DaemonConfig {

@@ -76,6 +76,11 @@ Status Daemon::bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::
   control = zmq::socket_t(input_context_, zmq::socket_type::rep);
   publish = zmq::socket_t(output_context_, zmq::socket_type::pub);
   ingest.set(zmq::sockopt::linger, 0);
+  // Refused at the socket: a peer sending a larger part is disconnected before the part is
+  // buffered (max_frame_bytes bounds the whole message, so it bounds every part too).
+  ingest.set(zmq::sockopt::maxmsgsize, static_cast<int64_t>(config_.caps.max_frame_bytes));
+  // Wakes the ingest thread once a second when nothing arrives, for idle-stream expiry.
+  ingest.set(zmq::sockopt::rcvtimeo, 1000);
   control.set(zmq::sockopt::linger, 0);
   publish.set(zmq::sockopt::linger, kPublishLingerMs);
   if (Status s = bind_one(ingest, config_.endpoints.ingest, "ingest", endpoints_.ingest); !s.ok()) return s;

@@ -13,6 +13,7 @@
 #include "daemon/frame_job.h"
 #include "daemon/latency_policy.h"
 #include "daemon/object_pool.h"
+#include "daemon/stream_admission.h"
 #include "daemon/stream_registry.h"
 #include "daemon/work_queue.h"
 
@@ -27,7 +28,10 @@ struct Pipeline {
   FrameSlots slots;
   WorkQueue<FramePtr> encode_queue;
   WorkQueue<FramePtr> publish_queue;
-  std::map<std::string, uint64_t> arrivals;  ///< per-stream arrival counter, ingest thread only
+  /// Arrival index of the next ingest message, across streams (monotonic, so also within
+  /// each stream; one counter instead of one per topic). Ingest thread only.
+  uint64_t next_arrival = 0;
+  LogLimiter refusal_log;  ///< ingest thread only
   ObjectPool<Mesh> meshes;                   ///< decoded frames, reused
   ObjectPool<FrameResult> results;           ///< engine outputs, reused
 
@@ -42,6 +46,8 @@ struct Pipeline {
   /// older one skips it (superseded), as the newer one would take its slot anyway. This
   /// keeps a backlog from building up in front of the decoders.
   bool newer_queued(const FrameJob& frame);
+  /// Drops what the pipeline keeps for a stream that expired (ingest thread).
+  void forget(const std::string& stream_id);
 
  private:
   std::mutex newest_mutex_;
