@@ -137,6 +137,7 @@ Status read_sections(TomlReader& root, DaemonConfig& c) {
     r.read("stream_idle_s", c.caps.stream_idle_s, 0.0, 1e9);
     r.read("allowed_streams", c.caps.allowed_streams);
     r.read("max_neighbour_work", c.caps.max_neighbour_work, 1e3, 1e18);
+    r.read("pool_idle_s", c.caps.pool_idle_s, 0.0, 1e9);
     if (Status s = r.finish(); !s.ok()) return s;
   }
   return {};

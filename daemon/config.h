@@ -40,6 +40,8 @@ struct Caps {
   /// Expected neighbour visits of one frame (vertices x neighbours per vertex from the
   /// sigmas) above which its parameters are refused before the engine runs.
   double max_neighbour_work = 2e10;
+  /// Kept frame buffers are freed after this long without frames (memory returns).
+  double pool_idle_s = 30.0;
 };
 
 struct DaemonConfig {

@@ -99,7 +99,7 @@ void run_decode_worker(Pipeline& p) {
       spdlog::debug("stream '{}' frame {}: superseded before decode", f->stream_id, f->header.sequence());
       continue;
     }
-    f->mesh = p.meshes.acquire();
+    f->mesh = p.meshes.acquire(wall_ns());
     const auto t0 = std::chrono::steady_clock::now();
     Status s = guarded("decode", [&] { return decode(*f, p.config); });
     if (s.ok()) s = resolve_settings(*f);
@@ -131,7 +131,7 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
     if (!f) continue;
     f->timings.push_back({"wait", ms_between(f->decoded_ns, wall_ns())});
     f->engine = engine.name();
-    f->result = p.results.acquire();
+    f->result = p.results.acquire(wall_ns());
     const auto t0 = std::chrono::steady_clock::now();
     const Status s =
         guarded("engine", [&] { return engine.process(f->mesh.view(), f->settings.params, f->result); });

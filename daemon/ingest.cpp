@@ -1,5 +1,6 @@
 #include "daemon/ingest.h"
 
+#include <malloc.h>
 #include <spdlog/spdlog.h>
 
 #include <zmq_addon.hpp>
@@ -42,6 +43,17 @@ void expire_idle_streams(Pipeline& p) {
   const int64_t now = wall_ns();
   if (now - last_sweep_ns < 1'000'000'000) return;
   last_sweep_ns = now;
+  const auto idle_ns = static_cast<int64_t>(p.config.caps.pool_idle_s * 1e9);
+  p.meshes.trim(now, idle_ns);
+  p.results.trim(now, idle_ns);
+  // Freed buffers go back to the allocator's arenas, which keep the pages: every few seconds
+  // while frames flow, hand free pages back to the system, so that memory taken by a huge
+  // frame returns once smaller frames follow (the call walks the arenas, ~1 ms).
+  static thread_local int64_t last_trim_ns = 0;
+  if (now - last_trim_ns >= 5'000'000'000) {
+    last_trim_ns = now;
+    malloc_trim(0);
+  }
   for (const std::string& id : p.registry.expire_idle(now, p.config.caps.stream_idle_s)) {
     p.forget(id);
     spdlog::info("stream '{}' expired after {} s without frames", id, p.config.caps.stream_idle_s);

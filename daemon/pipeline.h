@@ -19,8 +19,23 @@
 
 namespace fq::daemon {
 
+template <class V>
+size_t bytes_held(const V& v) {
+  return v.capacity() * sizeof(typename V::value_type);
+}
+template <class V>
+size_t bytes_used(const V& v) {
+  return v.size() * sizeof(typename V::value_type);
+}
+
 struct Pipeline {
-  Pipeline(const DaemonConfig& c, StreamRegistry& r) : config(c), registry(r) {}
+  Pipeline(const DaemonConfig& c, StreamRegistry& r)
+      : config(c),
+        registry(r),
+        meshes(8, [](const Mesh& m) { return bytes_held(m.positions) + bytes_held(m.triangles); },
+               [](const Mesh& m) { return bytes_used(m.positions) + bytes_used(m.triangles); }),
+        results(8, [](const FrameResult& x) { return bytes_held(x.positions) + bytes_held(x.labels); },
+                [](const FrameResult& x) { return bytes_used(x.positions) + bytes_used(x.labels); }) {}
 
   const DaemonConfig& config;
   StreamRegistry& registry;

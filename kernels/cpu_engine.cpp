@@ -36,6 +36,8 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
   out.num_clusters = 0;
   if (Status s = validate(params); !s.ok()) return s;
   PassClock clock(out.timings);
+  // A frame far smaller than the largest one so far gives that one's scratch back.
+  if (size_t(mesh.num_vertices) * 4 < f_.points.capacity() && f_.points.capacity() > (1u << 16)) f_ = CpuFrame{};
   if (Status s = check_mesh(mesh, threads_); !s.ok()) return s;
   if (Status s = compute_normalization(mesh, f_.norm, threads_); !s.ok()) return s;
   out.mean_edge = f_.norm.mean_edge;

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "daemon/object_pool.h"
 #include "daemon/stream_admission.h"
 #include "daemon/work_budget.h"
 
@@ -82,6 +83,41 @@ TEST(WorkBudget, HugeSigmaIsRefusedNamingItDefaultsPass) {
   EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
   EXPECT_NE(s.message().find("sigma_s"), std::string::npos) << s.message();
   EXPECT_NE(s.message().find("max_neighbour_work"), std::string::npos) << s.message();
+}
+
+}  // namespace
+}  // namespace fq::daemon
+
+namespace fq::daemon {
+namespace {
+
+ObjectPool<std::vector<float>> vector_pool() {
+  return ObjectPool<std::vector<float>>(
+      8, [](const std::vector<float>& v) { return v.capacity() * sizeof(float); },
+      [](const std::vector<float>& v) { return v.size() * sizeof(float); });
+}
+
+TEST(ObjectPool, KeepsBuffersOfSteadyFramesAndFreesOversizedOnes) {
+  auto pool = vector_pool();
+  std::vector<float> steady(1 << 20);
+  pool.release(std::move(steady));
+  EXPECT_EQ(pool.kept(), 1u);
+  std::vector<float> reused = pool.acquire();
+  EXPECT_GE(reused.capacity(), size_t(1) << 20) << "a kept buffer comes back with its capacity";
+  reused.resize(1000);  // a small frame in a huge frame's buffer
+  pool.release(std::move(reused));
+  EXPECT_EQ(pool.kept(), 0u) << "a buffer holding far more than it used is freed";
+}
+
+TEST(ObjectPool, TrimFreesEverythingAfterIdleTime) {
+  auto pool = vector_pool();
+  (void)pool.acquire(1'000);
+  pool.release(std::vector<float>(1000));
+  pool.release(std::vector<float>(1000));
+  pool.trim(2'000, 5'000);
+  EXPECT_EQ(pool.kept(), 2u) << "not idle long enough";
+  pool.trim(10'000, 5'000);
+  EXPECT_EQ(pool.kept(), 0u);
 }
 
 }  // namespace
