@@ -36,6 +36,10 @@ void read_cluster(TomlReader& r, ClusterParams& c) {
 }
 
 void read_output(TomlReader& r, OutputEncoding& o) {
+  std::string form = result_form_name(o.form);
+  r.read("result_form", form);
+  if (!parse_result_form(form, o.form))
+    r.fail("result_form", "must be \"positions\" or \"mesh\" (got \"" + form + "\")");
   r.read("position_bits", o.position_bits, 8, 30);
   r.read("encode_speed", o.encode_speed, 0, 10);
   r.read("decode_speed", o.decode_speed, 0, 10);

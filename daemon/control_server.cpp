@@ -7,20 +7,33 @@
 namespace fq::daemon {
 namespace {
 
-wire::ControlReply error_reply(const std::string& message) {
+wire::ControlReply ok_reply() {
   wire::ControlReply r;
+  r.set_version(wire::kWireVersion);
+  r.set_ok(true);
+  return r;
+}
+
+wire::ControlReply error_reply(const std::string& message) {
+  wire::ControlReply r = ok_reply();
   r.set_ok(false);
   r.set_error(message);
+  return r;
+}
+
+/// The reply to get_params and set_params: the stream's parameters, compute and result form.
+wire::ControlReply settings_reply(const StreamSettings& s) {
+  wire::ControlReply r = ok_reply();
+  wire::params_to_wire(s.params, *r.mutable_params());
+  r.set_compute(wire::compute_of(s.params));
+  r.set_result_form(to_wire(s.output.form));
   return r;
 }
 
 wire::ControlReply get_params(const wire::GetParams& q, StreamRegistry& registry) {
   StreamSettings s;
   if (!registry.find(q.stream_id(), s)) return error_reply("unknown stream '" + q.stream_id() + "'");
-  wire::ControlReply r;
-  r.set_ok(true);
-  wire::params_to_wire(s.params, *r.mutable_params());
-  return r;
+  return settings_reply(s);
 }
 
 wire::ControlReply set_params(const wire::SetParams& q, StreamRegistry& registry) {
@@ -31,19 +44,16 @@ wire::ControlReply set_params(const wire::SetParams& q, StreamRegistry& registry
   if (st.ok() && q.has_compute()) st = wire::apply_compute(q.compute(), s.params);
   if (st.ok()) st = validate(s);
   if (!st.ok()) return error_reply("invalid parameters: " + st.message());
+  if (q.has_result_form()) s.output.form = from_wire(q.result_form());
   registry.set_settings(q.stream_id(), s);
   spdlog::info("control: stream '{}' parameters changed", q.stream_id());
-  wire::ControlReply r;
-  r.set_ok(true);
-  wire::params_to_wire(s.params, *r.mutable_params());
-  return r;
+  return settings_reply(s);
 }
 
 wire::ControlReply get_counters(const wire::GetCounters& q, StreamRegistry& registry) {
   std::vector<StreamSnapshot> snaps;
   if (!registry.snapshot(q.stream_id(), snaps)) return error_reply("unknown stream '" + q.stream_id() + "'");
-  wire::ControlReply r;
-  r.set_ok(true);
+  wire::ControlReply r = ok_reply();
   for (const StreamSnapshot& s : snaps) {
     wire::StreamCounters* c = r.add_counters();
     c->set_stream_id(s.stream_id);
@@ -74,8 +84,7 @@ wire::ControlReply handle_control(const wire::ControlRequest& request, StreamReg
     case wire::ControlRequest::kSetParams:
       return set_params(request.set_params(), registry);
     case wire::ControlRequest::kListStreams: {
-      wire::ControlReply r;
-      r.set_ok(true);
+      wire::ControlReply r = ok_reply();
       for (const std::string& id : registry.list()) r.add_streams(id);
       return r;
     }

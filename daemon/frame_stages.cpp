@@ -151,8 +151,6 @@ void run_encode_worker(Pipeline& p) {
     const auto t0 = std::chrono::steady_clock::now();
     const MeshView view{f->result.positions.data(), f->mesh.num_vertices(), f->mesh.triangles.data(),
                         f->mesh.num_triangles()};
-    const uint32_t* labels =
-        f->settings.params.cluster && !f->result.labels.empty() ? f->result.labels.data() : nullptr;
     const uint32_t chunks =
         f->settings.output.chunks > 0 ? f->settings.output.chunks : f->header.chunk_count();
     wire::CodecOptions opt;
@@ -160,8 +158,12 @@ void run_encode_worker(Pipeline& p) {
     opt.encode_speed = f->settings.output.encode_speed;
     opt.decode_speed = f->settings.output.decode_speed;
     opt.threads = std::max(1, std::min<int>(p.config.encode_threads, static_cast<int>(chunks)));
-    const Status s = guarded(
-        "encode", [&] { return wire::encode_frame(view, labels, std::max(1u, chunks), opt, f->out_chunks); });
+    // Labels travel in the ResultHeader (publisher), never inside the chunks.
+    const Status s = guarded("encode", [&] {
+      if (f->settings.output.form == ResultForm::kMesh)
+        return wire::encode_frame(view, nullptr, std::max(1u, chunks), opt, f->out_chunks);
+      return wire::encode_positions(view.positions, view.num_vertices, std::max(1u, chunks), opt, f->out_chunks);
+    });
     f->timings.push_back({"encode", ms_since(t0)});
     if (!s.ok())
       p.fail(std::move(f), s);

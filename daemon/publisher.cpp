@@ -18,7 +18,6 @@ wire::ResultHeader make_result_header(const FrameJob& f, int64_t publish_ns) {
   h.set_receive_time_ns(f.receive_ns);
   h.set_publish_time_ns(publish_ns);
   h.set_latency_ms(ms_between(f.receive_ns, publish_ns));
-  h.set_late(h.latency_ms() > f.settings.budget_ms);
   for (const PassTiming& t : f.timings) {
     wire::StageTiming* st = h.add_timings();
     st->set_name(t.name);
@@ -36,10 +35,13 @@ wire::ResultHeader make_result_header(const FrameJob& f, int64_t publish_ns) {
     h.set_error(f.error.message());
     return h;
   }
-  h.set_status(h.late() ? wire::LATE : wire::OK);
+  h.set_status(h.latency_ms() > f.settings.budget_ms ? wire::LATE : wire::OK);
   h.set_cluster_count(f.result.num_clusters);
   h.set_chunk_count(static_cast<uint32_t>(f.out_chunks.size()));
   h.set_vertex_count(f.mesh.num_vertices());
+  h.set_form(to_wire(f.settings.output.form));
+  if (f.settings.params.cluster && !f.result.labels.empty())
+    h.mutable_labels()->Assign(f.result.labels.begin(), f.result.labels.end());
   return h;
 }
 
@@ -88,7 +90,7 @@ void Publisher::account(const FrameJob& f, const wire::ResultHeader& h) {
     return;
   }
   r.count(f.stream_id, Counter::kOut);
-  if (h.late()) r.count(f.stream_id, Counter::kLate);
+  if (h.status() == wire::LATE) r.count(f.stream_id, Counter::kLate);
   for (const PassTiming& t : f.timings) r.record(f.stream_id, t.name, t.ms);
   r.record(f.stream_id, "receive_to_publish", h.latency_ms());
   if (h.send_time_ns() > 0)

@@ -47,6 +47,20 @@ const char* cluster_method_name(ClusterMethod m) {
   return m == ClusterMethod::kQuadric ? "quadric" : "euclidean";
 }
 
+bool parse_result_form(const std::string& s, ResultForm& out) {
+  if (s == "positions")
+    out = ResultForm::kPositions;
+  else if (s == "mesh")
+    out = ResultForm::kMesh;
+  else
+    return false;
+  return true;
+}
+
+const char* result_form_name(ResultForm f) { return f == ResultForm::kMesh ? "mesh" : "positions"; }
+wire::ResultForm to_wire(ResultForm f) { return f == ResultForm::kMesh ? wire::MESH : wire::POSITIONS; }
+ResultForm from_wire(wire::ResultForm f) { return f == wire::MESH ? ResultForm::kMesh : ResultForm::kPositions; }
+
 Status validate(const StreamSettings& s) {
   // The clustering parameters are checked even when the stream only filters: a frame or a
   // control request may switch clustering on at any time.

@@ -7,12 +7,19 @@
 #include <string>
 
 #include "kernels/params.h"
+#include "proto/fq.pb.h"
 #include "common/status.h"
 
 namespace fq::daemon {
 
+/// What a result carries (ResultForm on the wire). kPositions: the filtered positions only,
+/// in frame vertex order, for consumers that have the input frame's faces; several times
+/// cheaper to encode than kMesh, which also carries the connectivity (see docs/PROTOCOL.md).
+enum class ResultForm { kPositions, kMesh };
+
 /// How results are encoded on the publish socket.
 struct OutputEncoding {
+  ResultForm form = ResultForm::kPositions;
   int position_bits = 16;  ///< Draco position quantization; high enough not to undo smoothing
   uint32_t chunks = 0;     ///< result chunk count; 0 = same as the input frame
   int encode_speed = 10;   ///< Draco encoder speed 0..10 (10: sequential, fastest; 0: smallest)
@@ -35,6 +42,11 @@ bool parse_filter_method(const std::string& s, FilterMethod& out);
 bool parse_cluster_method(const std::string& s, ClusterMethod& out);
 const char* filter_method_name(FilterMethod m);
 const char* cluster_method_name(ClusterMethod m);
+/// "positions" | "mesh".
+bool parse_result_form(const std::string& s, ResultForm& out);
+const char* result_form_name(ResultForm f);
+wire::ResultForm to_wire(ResultForm f);
+ResultForm from_wire(wire::ResultForm f);
 
 /// fq::validate (of the clustering parameters too, whatever the compute mode) plus the
 /// budget and the encoding ranges.

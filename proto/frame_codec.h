@@ -49,4 +49,21 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
 fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t vertex_count,
                         const CodecOptions& options, fq::Mesh& out, std::vector<uint32_t>* labels);
 
+/// Positions only (the POSITIONS result form): the frame's `num_vertices` positions cut into
+/// `chunks` contiguous ranges of vertex ids, chunk i holding vertices
+/// [i * n / chunks, (i + 1) * n / chunks), each a Draco point cloud with POSITION alone.
+/// Draco's sequential point cloud coder keeps the point order, so a decoder (any Draco
+/// decoder) gets the vertices in frame order by concatenating the chunks; the faces are the
+/// input frame's. Quantized like encode_frame, on one grid (the frame's bounding box).
+/// `chunks` is clamped to the vertex count. kInvalidArgument for bad options or chunk counts,
+/// kInvalidInput for no vertices or a non-finite coordinate.
+fq::Status encode_positions(const float* positions, uint32_t num_vertices, uint32_t chunks,
+                            const CodecOptions& options, std::vector<std::string>& out);
+
+/// Decodes point-cloud chunks and concatenates their points in chunk order into `out`
+/// (3 floats per vertex). kInvalidInput for malformed chunks, a triangle mesh, or a total
+/// point count other than `vertex_count` (0 = any).
+fq::Status decode_positions(const std::vector<std::string_view>& chunks, uint32_t vertex_count,
+                            const CodecOptions& options, std::vector<float>& out);
+
 }  // namespace fq::wire

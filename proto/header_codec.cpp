@@ -1,5 +1,4 @@
-// Strict protobuf parsing (unknown fields and enum values are errors) and the
-// ParamOverrides / StreamParams <-> fq::Params mapping.
+// Strict protobuf parsing: the version first, then unknown fields and enum values are errors.
 #include "proto/header_codec.h"
 
 #include <google/protobuf/descriptor.h>
@@ -53,30 +52,43 @@ std::string check_field(const Message& m, const FieldDescriptor* f, const std::s
   return {};
 }
 
-fq::Status check_version(uint32_t version, std::string_view what) {
-  if (version == kWireVersion) return {};
-  return invalid_input(std::string(what) + ": wire version " + std::to_string(version) +
-                       " not supported (this fqd speaks " + std::to_string(kWireVersion) + ")");
-}
-
-}  // namespace
-
-fq::Status parse_strict(std::string_view bytes, Message& out, std::string_view what) {
+fq::Status parse_bytes(std::string_view bytes, Message& out, std::string_view what) {
   out.Clear();
   if (!out.ParseFromArray(bytes.data(), static_cast<int>(bytes.size()))) {
     return invalid_input(std::string(what) + ": not a valid " + out.GetDescriptor()->full_name() + " (" +
                          std::to_string(bytes.size()) + " bytes)");
   }
-  std::string problem = find_unknown(out, "");
-  if (!problem.empty()) {
-    return invalid_input(std::string(what) + ": " + problem + " (sender speaks a newer protocol?)");
-  }
   return {};
 }
 
+fq::Status check_known(const Message& m, std::string_view what) {
+  std::string problem = find_unknown(m, "");
+  if (problem.empty()) return {};
+  return invalid_input(std::string(what) + ": " + problem + " (sender speaks a newer protocol?)");
+}
+
+/// Parses a message that carries `version`. The version is checked before the fields: a
+/// message of another version may have fields this one does not know, and the version
+/// mismatch is the message its sender needs.
+template <class M>
+fq::Status parse_versioned(std::string_view bytes, M& out, std::string_view what) {
+  if (auto s = parse_bytes(bytes, out, what); !s.ok()) return s;
+  if (out.version() != kWireVersion) {
+    return invalid_input(std::string(what) + ": wire version " + std::to_string(out.version()) +
+                         " not supported (this build speaks version " + std::to_string(kWireVersion) + ")");
+  }
+  return check_known(out, what);
+}
+
+}  // namespace
+
+fq::Status parse_strict(std::string_view bytes, Message& out, std::string_view what) {
+  if (auto s = parse_bytes(bytes, out, what); !s.ok()) return s;
+  return check_known(out, what);
+}
+
 fq::Status parse_frame_header(std::string_view bytes, FrameHeader& out) {
-  if (auto s = parse_strict(bytes, out, "frame header"); !s.ok()) return s;
-  if (auto s = check_version(out.version(), "frame header"); !s.ok()) return s;
+  if (auto s = parse_versioned(bytes, out, "frame header"); !s.ok()) return s;
   if (out.stream_id().empty()) return invalid_input("frame header: empty stream id");
   if (out.chunk_count() == 0 || out.chunk_count() > kMaxChunks) {
     return invalid_input("frame header: chunk_count " + std::to_string(out.chunk_count()) + " outside [1, " +
@@ -86,14 +98,17 @@ fq::Status parse_frame_header(std::string_view bytes, FrameHeader& out) {
 }
 
 fq::Status parse_result_header(std::string_view bytes, ResultHeader& out) {
-  if (auto s = parse_strict(bytes, out, "result header"); !s.ok()) return s;
-  if (auto s = check_version(out.version(), "result header"); !s.ok()) return s;
+  if (auto s = parse_versioned(bytes, out, "result header"); !s.ok()) return s;
   if (out.stream_id().empty()) return invalid_input("result header: empty stream id");
+  if (!out.labels().empty() && static_cast<uint32_t>(out.labels_size()) != out.vertex_count()) {
+    return invalid_input("result header: " + std::to_string(out.labels_size()) + " labels for " +
+                         std::to_string(out.vertex_count()) + " vertices");
+  }
   return {};
 }
 
 fq::Status parse_control_request(std::string_view bytes, ControlRequest& out) {
-  if (auto s = parse_strict(bytes, out, "control request"); !s.ok()) return s;
+  if (auto s = parse_versioned(bytes, out, "control request"); !s.ok()) return s;
   if (out.request_case() == ControlRequest::REQUEST_NOT_SET) {
     return invalid_input("control request: no request set");
   }
@@ -101,7 +116,7 @@ fq::Status parse_control_request(std::string_view bytes, ControlRequest& out) {
 }
 
 fq::Status parse_control_reply(std::string_view bytes, ControlReply& out) {
-  return parse_strict(bytes, out, "control reply");
+  return parse_versioned(bytes, out, "control reply");
 }
 
 }  // namespace fq::wire

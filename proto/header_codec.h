@@ -11,30 +11,33 @@
 
 namespace fq::wire {
 
-/// The protocol version this build speaks; every header carries it.
-inline constexpr uint32_t kWireVersion = 1;
+/// The protocol version this build speaks; every header and control message carries it.
+/// Version 2: one parameter message (StreamParams gone), ResultStatus alone says LATE,
+/// results in two forms (ResultForm) with labels in the header, versioned control messages.
+inline constexpr uint32_t kWireVersion = 2;
 
 /// Parses `bytes` into `out` and rejects anything this version does not fully understand:
 /// unparsable bytes, unknown fields (at any depth) and enum values outside their enum.
 /// Returns kInvalidInput with a message naming `what` (e.g. "frame header").
 fq::Status parse_strict(std::string_view bytes, google::protobuf::Message& out, std::string_view what);
 
-/// parse_strict plus the frame rules: version == kWireVersion, non-empty stream id,
+/// The messages below carry `version`, which is checked right after parsing (before unknown
+/// fields, so a message of another version is refused naming both versions), then as
+/// parse_strict. Frame headers also need a non-empty stream id and
 /// 1 <= chunk_count <= kMaxChunks. kInvalidInput otherwise.
 fq::Status parse_frame_header(std::string_view bytes, FrameHeader& out);
 
-/// parse_strict plus version == kWireVersion and a non-empty stream id.
+/// Also: a non-empty stream id, and labels either absent or one per vertex.
 fq::Status parse_result_header(std::string_view bytes, ResultHeader& out);
 
-/// parse_strict of a control request; kInvalidInput also when no request is set.
+/// Also kInvalidInput when no request is set.
 fq::Status parse_control_request(std::string_view bytes, ControlRequest& out);
 
-/// parse_strict of a control reply.
 fq::Status parse_control_reply(std::string_view bytes, ControlReply& out);
 
 /// Copies every set field of `o` into `inout` (MODE_DEFAULT / METHOD_DEFAULT keep the current
 /// method). Values are not range-checked here: call fq::validate on the result.
-/// kInvalidArgument only for enum values outside their enum.
+/// kInvalidArgument only for enum values outside their enum; `inout` is then untouched.
 fq::Status apply_overrides(const ParamOverrides& o, fq::Params& inout);
 
 /// Sets Params::filter / Params::cluster from `c`; COMPUTE_DEFAULT keeps them.
@@ -44,15 +47,8 @@ fq::Status apply_compute(Compute c, fq::Params& inout);
 /// What `p` computes, as the wire enum (FILTER when neither flag is set).
 Compute compute_of(const fq::Params& p);
 
-/// Every parameter of `p`, compute included.
-void params_to_wire(const fq::Params& p, StreamParams& out);
-
-/// Inverse of params_to_wire: every field of `w` replaces the one in `out` (MODE_DEFAULT,
-/// METHOD_DEFAULT and COMPUTE_DEFAULT keep the current value). Values are not range-checked
-/// here: call fq::validate. kInvalidArgument for enum values outside their enum.
-fq::Status params_from_wire(const StreamParams& w, fq::Params& out);
-
-/// The ParamOverrides that turn any Params into `p` (every field set).
-void params_to_overrides(const fq::Params& p, ParamOverrides& out);
+/// Every filter and clustering parameter of `p`, each field set: the overrides that turn any
+/// Params into `p` (apply_overrides is its inverse). The compute mode is compute_of(p).
+void params_to_wire(const fq::Params& p, ParamOverrides& out);
 
 }  // namespace fq::wire

@@ -1,4 +1,4 @@
-// ParamOverrides / StreamParams / Compute <-> fq::Params.
+// ParamOverrides / Compute <-> fq::Params.
 #include <string>
 
 #include "proto/header_codec.h"
@@ -91,40 +91,7 @@ Compute compute_of(const fq::Params& p) {
   return p.cluster ? CLUSTER : FILTER;
 }
 
-void params_to_wire(const fq::Params& p, StreamParams& out) {
-  out.set_sigma_s(p.f.sigma_s);
-  out.set_sigma_r(p.f.sigma_r);
-  out.set_sigma_b(p.f.sigma_b);
-  out.set_sigma_n(p.f.sigma_n);
-  out.set_constrained(p.f.constrained);
-  out.set_tikhonov(p.f.tikhonov);
-  out.set_mode(mode_of(p.f));
-  out.set_sigma_d(p.c.sigma_d);
-  out.set_sigma_q(p.c.sigma_q);
-  out.set_theta(p.c.theta);
-  out.set_cluster_method(method_of(p.c));
-  out.set_compute(compute_of(p));
-}
-
-fq::Status params_from_wire(const StreamParams& w, fq::Params& out) {
-  fq::Params p = out;
-  p.f.sigma_s = w.sigma_s();
-  p.f.sigma_r = w.sigma_r();
-  p.f.sigma_b = w.sigma_b();
-  p.f.sigma_n = w.sigma_n();
-  p.f.constrained = w.constrained();
-  p.f.tikhonov = w.tikhonov();
-  if (auto s = set_mode(w.mode(), p.f); !s.ok()) return s;
-  p.c.sigma_d = w.sigma_d();
-  p.c.sigma_q = w.sigma_q();
-  p.c.theta = w.theta();
-  if (auto s = set_method(w.cluster_method(), p.c); !s.ok()) return s;
-  if (auto s = apply_compute(w.compute(), p); !s.ok()) return s;
-  out = p;
-  return {};
-}
-
-void params_to_overrides(const fq::Params& p, ParamOverrides& out) {
+void params_to_wire(const fq::Params& p, ParamOverrides& out) {
   out.set_sigma_s(p.f.sigma_s);
   out.set_sigma_r(p.f.sigma_r);
   out.set_sigma_b(p.f.sigma_b);

@@ -10,7 +10,8 @@ add_library(fq_proto STATIC
   ${CMAKE_CURRENT_LIST_DIR}/frame_split.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frame_encode.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frame_decode.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/draco_budget.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/draco_budget.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/position_chunks.cpp)
 
 # Generated fq.pb.h / fq.pb.cc land in <build>/generated/proto (never in the source tree).
 set(FQ_PROTO_GEN_DIR "${PROJECT_BINARY_DIR}/generated/proto")

@@ -11,6 +11,7 @@ packages=(
   libspdlog-dev libfmt-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev
+  python3-zmq python3-protobuf   # clients/examples/consume.py and its test
 )
 
 missing=()

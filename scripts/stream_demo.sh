@@ -30,7 +30,7 @@ ingest=$(endpoint ingest) publish=$(endpoint publish)
 echo "fqd is up: ingest $ingest, publish $publish (log: $out/fqd.log)"
 
 "$fqsub" --endpoint "$publish" --stream demo --idle-timeout 5 --duration 30 --write-every 5 \
-  --out "$out/ply" --quiet 2>"$out/fqsub.log" &
+  --faces "$root/data/fandisk.ply" --out "$out/ply" --quiet 2>"$out/fqsub.log" &
 sub_pid=$!
 "$fqpub" "$root/data/fandisk.ply" --endpoint "$ingest" --stream demo --fps 3 --duration 3 \
   --noise 0.2 --seed 1 --quiet

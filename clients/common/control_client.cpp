@@ -7,7 +7,9 @@ namespace fq::client {
 Status control_call(zmq::socket_t& req, const wire::ControlRequest& request, wire::ControlReply& reply,
                     int timeout_ms) {
   req.set(zmq::sockopt::rcvtimeo, timeout_ms);
-  const std::string bytes = request.SerializeAsString();
+  wire::ControlRequest stamped = request;
+  stamped.set_version(wire::kWireVersion);
+  const std::string bytes = stamped.SerializeAsString();
   req.send(zmq::buffer(bytes), zmq::send_flags::none);
   zmq::message_t m;
   if (!req.recv(m))

@@ -28,13 +28,24 @@ bool receive_result(zmq::socket_t& sub, ReceivedResult& out, Status& why) {
   return true;
 }
 
-Status decode_result(ReceivedResult& r, int threads) {
+Status decode_result(ReceivedResult& r, int threads, const std::vector<uint32_t>* faces) {
   if (r.header.status() == wire::ERROR) return {};
   std::vector<std::string_view> views;
   for (const zmq::message_t& m : r.chunks) views.emplace_back(m.data<char>(), m.size());
   wire::CodecOptions opt;
   opt.threads = std::max(1, threads);
-  return wire::decode_frame(views, r.header.vertex_count(), opt, r.mesh, &r.labels);
+  r.labels.assign(r.header.labels().begin(), r.header.labels().end());
+  if (r.header.form() == wire::MESH) return wire::decode_frame(views, r.header.vertex_count(), opt, r.mesh, nullptr);
+  r.mesh = {};
+  if (Status s = wire::decode_positions(views, r.header.vertex_count(), opt, r.mesh.positions); !s.ok()) return s;
+  if (faces == nullptr) return {};
+  const uint32_t n = r.mesh.num_vertices();
+  for (uint32_t v : *faces)
+    if (v >= n)
+      return invalid_input("the given faces use vertex " + std::to_string(v) + ", the result has " +
+                           std::to_string(n) + " (faces of another mesh?)");
+  r.mesh.triangles = *faces;
+  return {};
 }
 
 Status check_result(const ReceivedResult& r) {

@@ -18,16 +18,19 @@ struct ReceivedResult {
   wire::ResultHeader header;
   std::vector<zmq::message_t> chunks;
   int64_t receive_ns = 0;  ///< when this process got it
-  Mesh mesh;               ///< after decode_result
-  std::vector<uint32_t> labels;
+  Mesh mesh;               ///< after decode_result (faces: see decode_result)
+  std::vector<uint32_t> labels;  ///< after decode_result: the header's labels
 };
 
 /// Blocks for one published message (honours the socket's receive timeout: false when it
 /// expires). A message that is not a valid result gets a non-ok status in `why`.
 bool receive_result(zmq::socket_t& sub, ReceivedResult& out, Status& why);
 
-/// Decodes the chunks of an OK/LATE result (threads: chunks decoded at once).
-Status decode_result(ReceivedResult& r, int threads = 1);
+/// Decodes the chunks of an OK/LATE result (threads: chunks decoded at once). A POSITIONS
+/// result carries no faces: they are `faces` (the input frame's triangles, 3 vertex ids
+/// each) when given, else r.mesh has none. kInvalidInput when `faces` names a vertex the
+/// result does not have.
+Status decode_result(ReceivedResult& r, int threads = 1, const std::vector<uint32_t>* faces = nullptr);
 
 /// The consumer's checks on a decoded result: vertex count as announced, finite
 /// positions, every label below cluster_count, labels present iff cluster_count > 0.

@@ -31,7 +31,7 @@ void StreamStats::add(const ReceivedResult& r, bool ok) {
     ++errors_;
     return;
   }
-  if (h.late()) ++late_;
+  if (h.status() == wire::LATE) ++late_;
   latency_.push_back(h.latency_ms());
   if (h.send_time_ns() > 0) send_to_receive_.push_back(send_to_receive_ms(r));
   for (const wire::StageTiming& t : h.timings()) stages_[t.name()].push_back(t.ms());

@@ -15,6 +15,7 @@
 #include "clients/fqstreambench/collector.h"
 #include "clients/common/control_client.h"
 #include "daemon/daemon.h"
+#include "proto/header_codec.h"
 #include "proto/mesh_io.h"
 #include "clients/common/override_options.h"
 #include "clients/fqstreambench/producer.h"
@@ -28,6 +29,7 @@ struct Args {
   int streams = 1, cpu_threads = 0, decode_threads = 0, encode_threads = 0;
   double warmup = 1.0, drain = 30.0, budget_ms = 0.0;
   int encode_speed = 10;
+  std::string result_form;  ///< in-process fqd: "positions" | "mesh" ("" = config/default)
   bool connect = false, json = false, markdown = false, decode = false;
   fq::bench::ProducerOptions producer;
   fq::client::OverrideArgs overrides;
@@ -60,8 +62,11 @@ fq::Status start_daemon(const Args& a, std::unique_ptr<fq::daemon::Daemon>& d, E
   }
   c.endpoints = {"tcp://127.0.0.1:*", "tcp://127.0.0.1:*", "tcp://127.0.0.1:*"};
   if (a.budget_ms > 0) c.defaults.budget_ms = a.budget_ms;
-  for (fq::daemon::StreamSettings* s : {&c.defaults})
+  for (fq::daemon::StreamSettings* s : {&c.defaults}) {
     s->output.encode_speed = s->output.decode_speed = a.encode_speed;
+    if (!a.result_form.empty() && !fq::daemon::parse_result_form(a.result_form, s->output.form))
+      return fq::invalid_argument("--result-form must be positions or mesh");
+  }
   d = std::make_unique<fq::daemon::Daemon>(c);
   if (fq::Status s = d->start(); !s.ok()) return s;
   ep = {d->endpoints().ingest, d->endpoints().publish, d->endpoints().control};
@@ -83,25 +88,20 @@ std::map<std::string, fq::wire::StreamCounters> counters(zmq::context_t& ctx, co
   return out;
 }
 
-// What fqd computed for a stream: "filter", "cluster" or "filter_and_cluster".
-std::string stream_compute(zmq::context_t& ctx, const std::string& control, const std::string& stream) {
+// The stream's settings as fqd reports them ("?" fields when it does not answer).
+void stream_settings(zmq::context_t& ctx, const std::string& control, const std::string& stream,
+                     fq::bench::RunInfo& run) {
   zmq::socket_t req(ctx, zmq::socket_type::req);
   req.set(zmq::sockopt::linger, 0);
   req.connect(control);
   fq::wire::ControlRequest q;
   q.mutable_get_params()->set_stream_id(stream);
   fq::wire::ControlReply r;
-  if (!fq::client::control_call(req, q, r).ok()) return "?";
-  switch (r.params().compute()) {
-    case fq::wire::FILTER:
-      return "filter";
-    case fq::wire::CLUSTER:
-      return "cluster";
-    case fq::wire::FILTER_AND_CLUSTER:
-      return "filter_and_cluster";
-    default:
-      return "?";
-  }
+  run.compute = run.result_form = "?";
+  if (!fq::client::control_call(req, q, r).ok()) return;
+  fq::Params p;
+  if (fq::wire::apply_compute(r.compute(), p).ok()) run.compute = fq::daemon::compute_name(p);
+  run.result_form = fq::daemon::result_form_name(fq::daemon::from_wire(r.result_form()));
 }
 
 // True once fqd accounted for every frame sent and each published result has arrived.
@@ -150,8 +150,8 @@ fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep,
   stop_collecting = true;
   collector.join();
   run.after = counters(ctx, ep.control);
-  run.compute = a.overrides.compute.empty() ? stream_compute(ctx, ep.control, a.stream_prefix + "0")
-                                            : a.overrides.compute;
+  stream_settings(ctx, ep.control, a.stream_prefix + "0", run);
+  if (!a.overrides.compute.empty()) run.compute = a.overrides.compute;
   run.per_stream = col.per_stream();
   run.overall = col.overall();
   return {};
@@ -177,6 +177,9 @@ void add_options(CLI::App& app, Args& a) {
                  "Draco encoder speed 0..10 of the producers and of fqd's results (in-process fqd)")
       ->capture_default_str()
       ->check(CLI::Range(0, 10));
+  app.add_option("--result-form", a.result_form,
+                 "positions | mesh: the results of the in-process fqd (default: its config's)")
+      ->check(CLI::IsMember({"positions", "mesh"}));
   app.add_option("--noise", a.producer.noise, "noise in mean edges (0 = the mesh as is)")
       ->capture_default_str();
   app.add_option("--variants", a.producer.variants, "distinct noisy frames per stream")

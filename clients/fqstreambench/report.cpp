@@ -61,6 +61,7 @@ nlohmann::json report_json(const RunInfo& r) {
           {"warmup", r.warmup},
           {"chunks", r.chunks},
           {"compute", r.compute},
+          {"result_form", r.result_form},
           {"frames_sent", total(r.sent)},
           {"frames_sent_measured", measured},
           {"achieved_fps_per_stream", achieved_fps(r)},
@@ -84,9 +85,9 @@ std::string report_text(const RunInfo& r) {
   std::snprintf(
       b, sizeof b,
       "fqstreambench: %s (%u V, %u F), %d stream(s) x %.1f fps for %.1f s (first %.1f s not measured), "
-      "%u chunk(s), engine %s, compute %s\n",
+      "%u chunk(s), engine %s, compute %s, %s results\n",
       r.mesh_name.c_str(), r.vertices, r.triangles, r.streams, r.fps, r.seconds, r.warmup, r.chunks,
-      r.engine.c_str(), r.compute.c_str());
+      r.engine.c_str(), r.compute.c_str(), r.result_form.c_str());
   s += b;
   std::snprintf(b, sizeof b,
                 "  sent %llu (measured %llu), results measured %llu, achieved %.2f fps/stream, drops %llu "

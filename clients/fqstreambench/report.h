@@ -21,6 +21,7 @@ struct RunInfo {
   double fps = 0, seconds = 0, warmup = 0;
   uint32_t chunks = 1;
   std::string compute;
+  std::string result_form;  ///< "positions" or "mesh" (fqd's setting for the streams)
   std::map<std::string, uint64_t> sent;                       ///< all frames sent, per stream
   std::map<std::string, uint64_t> sent_measured;              ///< frames sent after the warm-up
   std::map<std::string, wire::StreamCounters> before, after;  ///< fqd's counters

@@ -1,5 +1,6 @@
 // fqsub: subscribes to fqd's results, decodes and checks each, writes every Nth as a PLY
-// with cluster colours, shows a live status line and prints a summary.
+// with cluster colours, shows a live status line and prints a summary. Results in the
+// POSITIONS form take their faces from --faces (the mesh the producer sent).
 // Exit status: 0 when at least one result came and every result decoded, passed the checks
 // and was not an error result; 1 otherwise; 2 for bad options.
 #include <CLI/CLI.hpp>
@@ -20,7 +21,8 @@ std::atomic<bool> g_stop{false};
 void on_signal(int) { g_stop = true; }
 
 struct Args {
-  std::string endpoint = "tcp://127.0.0.1:5556", out_dir;
+  std::string endpoint = "tcp://127.0.0.1:5556", out_dir, faces_file;
+  std::vector<uint32_t> faces;  ///< triangles of --faces
   std::vector<std::string> streams;
   uint64_t count = 0, write_every = 0;
   double duration = 0.0, idle_timeout = 0.0;
@@ -33,6 +35,11 @@ std::string write_ply(const Args& a, const fq::client::ReceivedResult& r) {
   const std::string path = (std::filesystem::path(a.out_dir) /
                             (r.header.stream_id() + "_" + std::to_string(r.header.sequence()) + ".ply"))
                                .string();
+  if (r.mesh.num_triangles() == 0) {
+    std::fprintf(stderr, "\nfqsub: result carries positions only: pass --faces with the mesh the producer sent, "
+                         "or set the stream's output.result_form = \"mesh\"\n");
+    return "";
+  }
   const uint32_t* labels = r.labels.empty() ? nullptr : r.labels.data();
   if (fq::Status s = fq::io::write_mesh(path, r.mesh.view(), labels, r.header.cluster_count()); !s.ok()) {
     std::fprintf(stderr, "\nfqsub: %s\n", s.message().c_str());
@@ -43,7 +50,7 @@ std::string write_ply(const Args& a, const fq::client::ReceivedResult& r) {
 
 // Decodes and checks one result, logging what is wrong; true when it is good.
 bool inspect(const Args& a, fq::client::ReceivedResult& r, fq::Status why) {
-  if (why.ok()) why = fq::client::decode_result(r, a.decode_threads);
+  if (why.ok()) why = fq::client::decode_result(r, a.decode_threads, a.faces.empty() ? nullptr : &a.faces);
   if (why.ok()) why = fq::client::check_result(r);
   if (!why.ok())
     std::fprintf(stderr, "\nfqsub: bad result from stream '%s' frame %llu: %s\n", r.topic.c_str(),
@@ -115,6 +122,8 @@ int main(int argc, char** argv) {
                  "stop when no result came for this many seconds (0 = never)");
   app.add_option("--write-every", a.write_every, "write every Nth good result as PLY (0 = none)");
   app.add_option("-o,--out", a.out_dir, "folder for the PLY files");
+  app.add_option("--faces", a.faces_file,
+                 "mesh file whose faces POSITIONS-form results reuse (the mesh the producer sent)");
   app.add_option("--decode-threads", a.decode_threads, "threads decoding a result's chunks")
       ->capture_default_str();
   app.add_flag("--json", a.json, "print the summary as JSON on stdout");
@@ -123,6 +132,14 @@ int main(int argc, char** argv) {
   if (a.write_every > 0 && a.out_dir.empty()) {
     std::fprintf(stderr, "fqsub: --write-every needs --out DIR\n");
     return 2;
+  }
+  if (!a.faces_file.empty()) {
+    fq::Mesh m;
+    if (fq::Status s = fq::io::read_mesh(a.faces_file, m); !s.ok()) {
+      std::fprintf(stderr, "fqsub: --faces: %s\n", s.message().c_str());
+      return 2;
+    }
+    a.faces = std::move(m.triangles);
   }
   std::error_code ec;
   if (!a.out_dir.empty() && !std::filesystem::create_directories(a.out_dir, ec) && ec) {

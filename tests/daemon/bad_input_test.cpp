@@ -58,7 +58,7 @@ const std::vector<BadCase>& bad_cases() {
          return p;
        }},
       {"wrong version", "version",
-       [](const Mesh& m) { return with_header(good_parts(m), [](auto& h) { h.set_version(2); }); }},
+       [](const Mesh& m) { return with_header(good_parts(m), [](auto& h) { h.set_version(wire::kWireVersion + 1); }); }},
       {"unknown field", "unknown field",
        [](const Mesh& m) {
          auto p = good_parts(m);
@@ -161,7 +161,9 @@ TEST(DaemonBadInput, EveryBadFrameGetsAnErrorResultAndTheNextFrameIsServed) {
 }
 
 TEST(DaemonBadInput, APlainDracoMeshFromAnyProducerIsAValidFrame) {
-  DaemonHarness h;
+  daemon::DaemonConfig c = test_config();
+  c.defaults.output.form = daemon::ResultForm::kMesh;  // results that carry their own faces
+  DaemonHarness h(c);
   const Mesh mesh = noisy_sphere();
   h.send_parts(plain_frame(mesh, draco_plain_mesh(mesh)));
   const client::ReceivedResult r = h.receive_decoded("cam");

@@ -49,4 +49,18 @@ std::string read_all(FILE* out) {
   return s;
 }
 
+std::string child_fqd_config(const std::string& defaults) {
+  return R"(log_level = "warn"
+[endpoints]
+ingest = "tcp://127.0.0.1:*"
+publish = "tcp://127.0.0.1:*"
+control = "tcp://127.0.0.1:*"
+[engine]
+kind = "cpu"
+cpu_threads = 1
+[defaults]
+budget_ms = 60000
+)" + defaults;
+}
+
 }  // namespace fq::test

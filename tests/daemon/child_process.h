@@ -24,4 +24,9 @@ int wait_exit(pid_t pid, int seconds = 60);
 /// Everything the child still writes on stdout until it closes it.
 std::string read_all(FILE* out);
 
+/// An fqd config for child-process tests: CPU engine on one thread, every endpoint
+/// tcp://127.0.0.1:*, log level warn, a 60 s budget; `defaults` (TOML lines) is appended to
+/// the [defaults] table and may open its sub-tables.
+std::string child_fqd_config(const std::string& defaults = "");
+
 }  // namespace fq::test

@@ -14,19 +14,8 @@
 namespace fq::test {
 namespace {
 
-constexpr const char* kConfig = R"(
-log_level = "warn"
-[endpoints]
-ingest = "tcp://127.0.0.1:*"
-publish = "tcp://127.0.0.1:*"
-control = "tcp://127.0.0.1:*"
-[engine]
-kind = "cpu"
-cpu_threads = 1
-[defaults]
-compute = "filter_and_cluster"
-budget_ms = 60000
-)";
+const std::string kConfig = child_fqd_config(R"(compute = "filter_and_cluster"
+)");
 
 TEST(Clients, FqpubToFqdToFqsubGivesCheckedColouredPlys) {
   namespace fs = std::filesystem;
@@ -45,7 +34,8 @@ TEST(Clients, FqpubToFqdToFqsubGivesCheckedColouredPlys) {
 
   Child sub =
       spawn(FQSUB_PATH, {"--endpoint", ep.at("publish"), "--stream", "cam", "--count", "3", "--idle-timeout",
-                         "30", "--write-every", "1", "--out", (dir / "out").string(), "--json", "--quiet"});
+                         "30", "--write-every", "1", "--out", (dir / "out").string(), "--faces",
+                         (dir / "sphere.ply").string(), "--json", "--quiet"});
   // 20 frames over 2 s: the subscription is active long before the last ones.
   Child pub =
       spawn(FQPUB_PATH, {(dir / "sphere.ply").string(), "--endpoint", ep.at("ingest"), "--stream", "cam",

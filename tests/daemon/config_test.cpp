@@ -38,6 +38,7 @@ TEST(DaemonConfig, EmptyFileGivesBuiltInDefaults) {
   EXPECT_GE(c.encode_threads, 2);
   EXPECT_EQ(c.defaults.output.position_bits, 16);
   EXPECT_EQ(c.defaults.output.chunks, 0u);
+  EXPECT_EQ(c.defaults.output.form, ResultForm::kPositions);
   EXPECT_DOUBLE_EQ(c.defaults.budget_ms, 100.0);
 }
 
@@ -55,6 +56,7 @@ sigma_s = 1.5
 [streams.cam1.output]
 chunks = 4
 position_bits = 12
+result_form = "mesh"
 [streams.cam2]
 compute = "cluster"
 [streams.cam2.cluster]
@@ -69,6 +71,8 @@ theta = 0.5
   EXPECT_DOUBLE_EQ(a.budget_ms, 40.0);
   EXPECT_EQ(a.output.chunks, 4u);
   EXPECT_EQ(a.output.position_bits, 12);
+  EXPECT_EQ(a.output.form, ResultForm::kMesh);
+  EXPECT_EQ(c.settings_for("cam2").output.form, ResultForm::kPositions);
   EXPECT_FALSE(a.params.cluster);
   const StreamSettings& b = c.settings_for("cam2");
   EXPECT_FALSE(b.params.filter);
@@ -103,6 +107,8 @@ TEST(DaemonConfig, BadNamesAndParametersAreRejected) {
   EXPECT_NE(error_of("[engine]\nkind = \"gpu\"\n").find("engine.kind"), std::string::npos);
   EXPECT_NE(error_of("[defaults]\ncompute = \"both\"\n").find("compute"), std::string::npos);
   EXPECT_NE(error_of("[defaults.filter]\nmethod = \"median\"\n").find("method"), std::string::npos);
+  EXPECT_NE(error_of("[defaults.output]\nresult_form = \"faces\"\n").find("result_form must be \"positions\" or"),
+            std::string::npos);
   EXPECT_NE(error_of("[defaults.filter]\nsigma_s = 0\n").find("sigma_s must be > 0"), std::string::npos);
   const std::string m = error_of("[streams.cam.cluster]\ntheta = 1.5\n");
   EXPECT_NE(m.find("streams.cam"), std::string::npos) << m;

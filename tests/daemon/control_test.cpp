@@ -38,7 +38,29 @@ TEST(ControlHandler, SetParamsValidatesAndGetParamsReadsBack) {
   const wire::ControlReply g = handle_control(get, r);
   ASSERT_TRUE(g.ok());
   EXPECT_FLOAT_EQ(g.params().sigma_r(), 0.5f);
-  EXPECT_EQ(g.params().compute(), wire::CLUSTER);
+  EXPECT_EQ(g.compute(), wire::CLUSTER);
+  EXPECT_EQ(g.result_form(), wire::POSITIONS);
+  EXPECT_EQ(g.version(), wire::kWireVersion);
+  set.mutable_set_params()->set_result_form(wire::MESH);
+  EXPECT_EQ(handle_control(set, r).result_form(), wire::MESH);
+  ASSERT_TRUE(r.find("s", s));
+  EXPECT_EQ(s.output.form, ResultForm::kMesh);
+}
+
+TEST(ControlHandler, AnotherVersionIsRefusedNamingBothVersions) {
+  DaemonConfig c;
+  StreamRegistry r(c);
+  wire::ControlRequest q;
+  q.mutable_list_streams();
+  q.set_version(1);
+  wire::ControlReply reply;
+  ASSERT_TRUE(wire::parse_control_reply(handle_control_bytes(q.SerializeAsString(), r), reply).ok());
+  EXPECT_FALSE(reply.ok());
+  EXPECT_NE(reply.error().find("wire version 1 not supported (this build speaks version 2)"), std::string::npos)
+      << reply.error();
+  q.set_version(wire::kWireVersion);
+  ASSERT_TRUE(wire::parse_control_reply(handle_control_bytes(q.SerializeAsString(), r), reply).ok());
+  EXPECT_TRUE(reply.ok()) << reply.error();
 }
 
 }  // namespace

@@ -107,10 +107,10 @@ client::ReceivedResult DaemonHarness::receive(const std::string& stream) {
   }
 }
 
-client::ReceivedResult DaemonHarness::receive_decoded(const std::string& stream) {
+client::ReceivedResult DaemonHarness::receive_decoded(const std::string& stream, const Mesh* input) {
   client::ReceivedResult r = receive(stream);
   EXPECT_NE(r.header.status(), wire::ERROR) << r.header.error();
-  Status s = client::decode_result(r, 2);
+  Status s = client::decode_result(r, 2, input ? &input->triangles : nullptr);
   EXPECT_TRUE(s.ok()) << s.message();
   s = client::check_result(r);
   EXPECT_TRUE(s.ok()) << s.message();

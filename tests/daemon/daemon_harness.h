@@ -41,8 +41,9 @@ class DaemonHarness {
   /// The next result on `stream`; results of other streams that come first are kept for
   /// their own receive() (probe results are dropped). Fails the test after 60 s.
   client::ReceivedResult receive(const std::string& stream);
-  /// receive() plus decode and consumer checks (the test fails when they fail).
-  client::ReceivedResult receive_decoded(const std::string& stream);
+  /// receive() plus decode and consumer checks (the test fails when they fail). A
+  /// POSITIONS result gets the faces of `input` when given (none otherwise).
+  client::ReceivedResult receive_decoded(const std::string& stream, const Mesh* input = nullptr);
 
   /// One control round trip; the reply as received (ok may be false).
   wire::ControlReply control(const wire::ControlRequest& request);

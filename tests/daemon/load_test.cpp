@@ -96,7 +96,8 @@ TEST(DaemonLoad, SeveralEnginesStillPublishEachStreamInOrder) {
   }
   EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end())) << "results out of order";
   EXPECT_EQ(std::adjacent_find(seen.begin(), seen.end()), seen.end()) << "a result twice";
-  const wire::StreamCounters k = h.counters("mixed");
+  // A frame still in a decoder when the last result is out is counted superseded just after.
+  const wire::StreamCounters k = settled_counters(h, "mixed", kFrames);
   EXPECT_EQ(k.frames_out(), seen.size());
   EXPECT_EQ(accounted(k), kFrames);
 }

@@ -25,18 +25,7 @@ std::string write_config(const std::string& name, const std::string& text) {
   return path;
 }
 
-constexpr const char* kConfig = R"(
-log_level = "warn"
-[endpoints]
-ingest = "tcp://127.0.0.1:*"
-publish = "tcp://127.0.0.1:*"
-control = "tcp://127.0.0.1:*"
-[engine]
-kind = "cpu"
-cpu_threads = 1
-[defaults]
-budget_ms = 60000
-)";
+const std::string kConfig = child_fqd_config();
 
 class DaemonSignal : public testing::TestWithParam<int> {};
 

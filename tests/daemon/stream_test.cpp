@@ -59,8 +59,9 @@ TEST(DaemonStream, NFramesInGiveNResultsInOrderWithCorrectCounts) {
   constexpr uint64_t kFrames = 5;
   for (uint64_t i = 0; i < kFrames; ++i) {
     h.send(mesh, spec_for("cam"), 100 + i);
-    const client::ReceivedResult r = h.receive_decoded("cam");
+    const client::ReceivedResult r = h.receive_decoded("cam", &mesh);
     EXPECT_EQ(r.header.sequence(), 100 + i);
+    EXPECT_EQ(r.header.form(), wire::POSITIONS);  // the default
     EXPECT_EQ(r.header.status(), wire::OK);
     EXPECT_EQ(r.mesh.num_vertices(), mesh.num_vertices());
     EXPECT_EQ(r.mesh.num_triangles(), mesh.num_triangles());
@@ -69,7 +70,7 @@ TEST(DaemonStream, NFramesInGiveNResultsInOrderWithCorrectCounts) {
     EXPECT_EQ(r.labels.size(), mesh.num_vertices());
     EXPECT_EQ(r.header.engine(), "cpu");
     EXPECT_GT(r.header.latency_ms(), 0.0);
-    EXPECT_FALSE(r.header.late());
+
     bool has_decode = false, has_engine = false, has_encode = false, has_send = false;
     for (const wire::StageTiming& t : r.header.timings()) {
       has_decode |= t.name() == "decode";
@@ -136,7 +137,7 @@ TEST(DaemonStream, RuntimeParameterChangeTakesEffectOnTheNextFrame) {
   const wire::ControlReply gr = h.control(get);
   ASSERT_TRUE(gr.ok()) << gr.error();
   EXPECT_FLOAT_EQ(gr.params().sigma_s(), 4.0f);
-  EXPECT_EQ(gr.params().compute(), wire::FILTER);
+  EXPECT_EQ(gr.compute(), wire::FILTER);
 
   h.send(mesh, spec_for("cam"), 1);
   const client::ReceivedResult after = h.receive_decoded("cam");
@@ -168,7 +169,9 @@ TEST(DaemonStream, InvalidRuntimeParametersAreRejectedAndKeepTheOldOnes) {
 }
 
 TEST(DaemonStream, ChunkedAndUnchunkedFramesGiveTheSameResult) {
-  DaemonHarness h;
+  daemon::DaemonConfig c = test_config();
+  c.defaults.output.form = daemon::ResultForm::kMesh;  // results that carry their own faces
+  DaemonHarness h(c);
   const Mesh mesh = noisy_sphere(11);
   h.send(mesh, spec_for("one", 1), 0);
   h.send(mesh, spec_for("four", 4), 0);
@@ -183,6 +186,43 @@ TEST(DaemonStream, ChunkedAndUnchunkedFramesGiveTheSameResult) {
   // Chunking may reorder the triangles (and rotate their corners), not change them.
   EXPECT_EQ(canonical_triangles(one.mesh), canonical_triangles(four.mesh));
   EXPECT_EQ(one.header.cluster_count(), four.header.cluster_count());
+}
+
+TEST(DaemonStream, BothResultFormsCarryTheSamePositionsAndLabels) {
+  daemon::DaemonConfig c = test_config();
+  c.streams["p"] = c.defaults;
+  c.streams["m"] = c.defaults;
+  c.streams["m"].output.form = daemon::ResultForm::kMesh;
+  DaemonHarness h(c);
+  const Mesh mesh = noisy_sphere(5);
+  h.send(mesh, spec_for("p", 3), 0);
+  h.send(mesh, spec_for("m", 3), 0);
+  const client::ReceivedResult p = h.receive_decoded("p", &mesh);
+  const client::ReceivedResult m = h.receive_decoded("m");
+  EXPECT_EQ(p.header.form(), wire::POSITIONS);
+  EXPECT_EQ(m.header.form(), wire::MESH);
+  EXPECT_EQ(p.header.chunk_count(), 3u);
+  EXPECT_EQ(p.mesh.positions, m.mesh.positions);  // one quantization grid in both forms
+  EXPECT_EQ(p.mesh.triangles, mesh.triangles);
+  EXPECT_EQ(canonical_triangles(m.mesh), canonical_triangles(mesh));
+  ASSERT_EQ(p.header.labels_size(), static_cast<int>(mesh.num_vertices()));
+  EXPECT_EQ(p.labels, m.labels);
+  size_t positions_bytes = 0, mesh_bytes = 0;
+  for (const auto& chunk : p.chunks) positions_bytes += chunk.size();
+  for (const auto& chunk : m.chunks) mesh_bytes += chunk.size();
+  EXPECT_LT(positions_bytes, mesh_bytes) << "the positions form carries no connectivity";
+
+  // A consumer that needs the faces asks for the mesh form on the control socket.
+  wire::ControlRequest set;
+  set.mutable_set_params()->set_stream_id("p");
+  set.mutable_set_params()->set_result_form(wire::MESH);
+  const wire::ControlReply r = h.control(set);
+  ASSERT_TRUE(r.ok()) << r.error();
+  EXPECT_EQ(r.result_form(), wire::MESH);
+  h.send(mesh, spec_for("p", 3), 1);
+  const client::ReceivedResult after = h.receive_decoded("p");
+  EXPECT_EQ(after.header.form(), wire::MESH);
+  EXPECT_EQ(after.mesh.positions, p.mesh.positions);
 }
 
 TEST(DaemonStream, ControlListsStreamsAndCountsWithPercentiles) {

@@ -1,4 +1,4 @@
-// Strict parsing of the wire headers and the ParamOverrides / StreamParams mapping.
+// Strict parsing of the wire headers (version first) and the ParamOverrides mapping.
 #include "proto/header_codec.h"
 
 #include <google/protobuf/util/message_differencer.h>
@@ -60,9 +60,37 @@ TEST(HeaderCodec, ResultHeaderRoundTrip) {
   auto* t = in.add_timings();
   t->set_name("filter");
   t->set_ms(12.5);
+  in.set_form(MESH);
+  in.set_vertex_count(3);
+  for (uint32_t l : {0u, 7u, 300u}) in.add_labels(l);
   ResultHeader out;
   ASSERT_TRUE(parse_result_header(in.SerializeAsString(), out).ok());
   EXPECT_TRUE(MessageDifferencer::Equals(in, out));
+}
+
+TEST(HeaderCodec, ResultLabelsAreOnePerVertex) {
+  ResultHeader in;
+  in.set_version(kWireVersion);
+  in.set_stream_id("s");
+  in.set_vertex_count(4);
+  in.add_labels(1);
+  ResultHeader out;
+  const Status s = parse_result_header(in.SerializeAsString(), out);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(s.message().find("1 labels for 4 vertices"), std::string::npos) << s.message();
+}
+
+TEST(HeaderCodec, AVersionOneResultIsRefusedNamingBothVersions) {
+  // A result header as version 1 wrote it: version 1, status LATE and its `bool late = 13`,
+  // which version 2 no longer has. The version, not the unknown field, is what is reported.
+  const std::string v1 = raw_varint_field(1, 1) + std::string("\x12\x03" "cam", 5) + raw_varint_field(8, 1) +
+                         raw_varint_field(13, 1);
+  ResultHeader out;
+  const Status s = parse_result_header(v1, out);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(s.message().find("result header: wire version 1 not supported (this build speaks version 2)"),
+            std::string::npos)
+      << s.message();
 }
 
 TEST(HeaderCodec, UnknownTopLevelFieldRejected) {
@@ -99,13 +127,14 @@ TEST(HeaderCodec, UnknownEnumValueRejected) {
 }
 
 TEST(HeaderCodec, WrongVersionRejected) {
-  for (uint32_t v : {0u, 2u}) {
+  static_assert(kWireVersion == 2);
+  for (uint32_t v : {0u, 1u, 3u}) {
     FrameHeader h = full_header();
     h.set_version(v);
     FrameHeader out;
     const Status s = parse_frame_header(h.SerializeAsString(), out);
     EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
-    EXPECT_NE(s.message().find("wire version " + std::to_string(v) + " not supported (this fqd speaks 1)"),
+    EXPECT_NE(s.message().find("wire version " + std::to_string(v) + " not supported (this build speaks version 2)"),
               std::string::npos)
         << s.message();
   }
@@ -141,12 +170,15 @@ TEST(HeaderCodec, GarbageRejected) {
 
 TEST(HeaderCodec, ControlRequestNeedsARequest) {
   ControlRequest r;
+  r.set_version(kWireVersion);
   ControlRequest out;
   EXPECT_EQ(parse_control_request(r.SerializeAsString(), out).code(), StatusCode::kInvalidInput);
   r.mutable_set_params()->set_stream_id("a");
   r.mutable_set_params()->set_compute(CLUSTER);
   ASSERT_TRUE(parse_control_request(r.SerializeAsString(), out).ok());
   EXPECT_TRUE(out.set_params().has_compute());
+  r.clear_version();  // version 0: a request without a version is refused too
+  EXPECT_NE(parse_control_request(r.SerializeAsString(), out).message().find("wire version 0"), std::string::npos);
 }
 
 TEST(HeaderCodec, OverridesApplyOnlySetFields) {
@@ -212,18 +244,19 @@ TEST(HeaderCodec, ComputeMapping) {
   EXPECT_TRUE(p.filter && !p.cluster);
 }
 
-TEST(HeaderCodec, StreamParamsRoundTrip) {
+TEST(HeaderCodec, ParamsRoundTrip) {
   Params p;
   p.filter = false;
   p.cluster = true;
   p.f = {FilterMethod::kBilateral, 3.f, 0.5f, 1.25f, 0.75f, true, 0.f};
   p.c = {ClusterMethod::kEuclidean, 7.f, 2.f, 0.8f};
-  StreamParams w;
+  ParamOverrides w;
   params_to_wire(p, w);
-  StreamParams via_bytes;
-  ASSERT_TRUE(parse_strict(w.SerializeAsString(), via_bytes, "stream params").ok());
-  Params back;
-  ASSERT_TRUE(params_from_wire(via_bytes, back).ok());
+  ParamOverrides via_bytes;
+  ASSERT_TRUE(parse_strict(w.SerializeAsString(), via_bytes, "params").ok());
+  Params back;  // defaults everywhere: every field must come from the wire
+  ASSERT_TRUE(apply_overrides(via_bytes, back).ok());
+  ASSERT_TRUE(apply_compute(compute_of(p), back).ok());
   EXPECT_EQ(back.filter, p.filter);
   EXPECT_EQ(back.cluster, p.cluster);
   EXPECT_EQ(back.f.method, p.f.method);
@@ -237,14 +270,10 @@ TEST(HeaderCodec, StreamParamsRoundTrip) {
   EXPECT_EQ(back.c.sigma_d, p.c.sigma_d);
   EXPECT_EQ(back.c.sigma_q, p.c.sigma_q);
   EXPECT_EQ(back.c.theta, p.c.theta);
-
-  ParamOverrides o;
-  params_to_overrides(p, o);
-  Params again;
-  ASSERT_TRUE(apply_overrides(o, again).ok());
-  EXPECT_EQ(again.f.sigma_b, p.f.sigma_b);
-  EXPECT_EQ(again.f.method, p.f.method);
-  EXPECT_EQ(again.c.theta, p.c.theta);
+  EXPECT_EQ(w.ByteSizeLong(), via_bytes.ByteSizeLong());
+  const auto* d = ParamOverrides::descriptor();
+  for (int i = 0; i < d->field_count(); ++i)
+    EXPECT_TRUE(via_bytes.GetReflection()->HasField(via_bytes, d->field(i))) << d->field(i)->name();
 }
 
 }  // namespace

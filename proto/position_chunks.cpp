@@ -1,0 +1,131 @@
+// encode_positions / decode_positions: a frame's positions as Draco point clouds over
+// contiguous vertex ranges (the POSITIONS result form; see docs/PROTOCOL.md).
+#include <draco/compression/decode.h>
+#include <draco/compression/encode.h>
+#include <draco/point_cloud/point_cloud.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <exception>
+#include <string>
+
+#include "proto/frame_codec.h"
+#include "proto/frame_split.h"
+
+namespace fq::wire {
+namespace {
+
+/// Vertices [first, last) as a point cloud, POSITION only, points in vertex order.
+fq::Status encode_range(const float* positions, uint32_t first, uint32_t last, const CodecOptions& o,
+                        const detail::Box& box, std::string& out) {
+  draco::PointCloud pc;
+  const uint32_t n = last - first;
+  pc.set_num_points(n);
+  draco::GeometryAttribute ga;
+  ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 3 * sizeof(float), 0);
+  draco::PointAttribute* pos = pc.attribute(pc.AddAttribute(ga, true, n));
+  // Identity mapping and a tightly packed float32 buffer: one copy instead of n calls.
+  std::memcpy(pos->GetAddress(draco::AttributeValueIndex(0)), positions + 3 * size_t(first),
+              3 * sizeof(float) * n);
+  draco::Encoder enc;
+  enc.SetSpeedOptions(o.encode_speed, o.decode_speed);
+  // The k-d tree coder (chosen for quantized point clouds below speed 10) reorders points;
+  // the sequential coder keeps them in vertex order, which is what the consumer relies on.
+  enc.SetEncodingMethod(draco::POINT_CLOUD_SEQUENTIAL_ENCODING);
+  const float extent = box.max_extent();
+  enc.SetAttributeExplicitQuantization(draco::GeometryAttribute::POSITION, o.position_bits, 3, box.lo,
+                                       extent > 0.f ? extent : 1.f);
+  draco::EncoderBuffer buf;
+  const draco::Status s = enc.EncodePointCloudToBuffer(pc, &buf);
+  if (!s.ok()) return {fq::StatusCode::kInternal, "Draco encoding failed: " + s.error_msg_string()};
+  out.assign(buf.data(), buf.size());
+  return {};
+}
+
+fq::Status decode_range(std::string_view bytes, std::vector<float>& out) {
+  draco::DecoderBuffer buf;
+  buf.Init(bytes.data(), bytes.size());
+  auto type = draco::Decoder::GetEncodedGeometryType(&buf);
+  if (!type.ok()) return invalid_input("undecodable Draco data: " + type.status().error_msg_string());
+  if (type.value() != draco::POINT_CLOUD)
+    return invalid_input("a Draco triangle mesh, not a point cloud (a MESH-form result?)");
+  draco::Decoder dec;
+  auto pc = dec.DecodePointCloudFromBuffer(&buf);
+  if (!pc.ok()) return invalid_input("undecodable Draco data: " + pc.status().error_msg_string());
+  const draco::PointAttribute* pos = pc.value()->GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  if (pos == nullptr || pos->num_components() != 3) return invalid_input("no 3D position attribute");
+  const uint32_t n = pc.value()->num_points();
+  out.resize(3 * size_t(n));
+  for (uint32_t p = 0; p < n; ++p) {
+    if (!pos->ConvertValue<float>(pos->mapped_index(draco::PointIndex(p)), 3, &out[3 * size_t(p)]))
+      return invalid_input("unreadable position of point " + std::to_string(p));
+  }
+  return {};
+}
+
+}  // namespace
+
+fq::Status encode_positions(const float* positions, uint32_t num_vertices, uint32_t chunks,
+                            const CodecOptions& options, std::vector<std::string>& out) {
+  out.clear();
+  if (options.position_bits < 1 || options.position_bits > 30 || options.encode_speed < 0 ||
+      options.encode_speed > 10 || options.decode_speed < 0 || options.decode_speed > 10 || options.threads < 1)
+    return invalid_argument("bad codec options (position_bits 1..30, speeds 0..10, threads >= 1)");
+  if (chunks == 0 || chunks > kMaxChunks)
+    return invalid_argument("chunk count " + std::to_string(chunks) + " outside [1, " +
+                            std::to_string(kMaxChunks) + "]");
+  if (num_vertices == 0) return invalid_input("no vertices");
+  for (size_t i = 0; i < 3 * size_t(num_vertices); ++i) {
+    if (!std::isfinite(positions[i]))
+      return invalid_input("vertex " + std::to_string(i / 3) + " has a non-finite coordinate");
+  }
+  const detail::Box box = detail::bounding_box(fq::MeshView{positions, num_vertices, nullptr, 0});
+  const uint32_t parts = std::min(chunks, num_vertices);
+  std::vector<std::string> encoded(parts);
+  std::vector<fq::Status> status(parts);
+  detail::for_each_chunk(parts, options.threads, [&](size_t i, size_t) {
+    const auto first = static_cast<uint32_t>(uint64_t(num_vertices) * i / parts);
+    const auto last = static_cast<uint32_t>(uint64_t(num_vertices) * (i + 1) / parts);
+    try {
+      status[i] = encode_range(positions, first, last, options, box, encoded[i]);
+    } catch (const std::exception& e) {  // bad_alloc: a fault of this frame, not of the process
+      status[i] = {fq::StatusCode::kInternal, std::string("encoding failed: ") + e.what()};
+    }
+  });
+  for (size_t i = 0; i < parts; ++i) {
+    if (!status[i].ok()) return {status[i].code(), "chunk " + std::to_string(i) + ": " + status[i].message()};
+  }
+  out = std::move(encoded);
+  return {};
+}
+
+fq::Status decode_positions(const std::vector<std::string_view>& chunks, uint32_t vertex_count,
+                            const CodecOptions& options, std::vector<float>& out) {
+  out.clear();
+  if (chunks.empty()) return invalid_input("frame has no Draco chunks");
+  if (chunks.size() > kMaxChunks)
+    return invalid_input("frame has more than " + std::to_string(kMaxChunks) + " chunks");
+  std::vector<std::vector<float>> parts(chunks.size());
+  std::vector<fq::Status> status(chunks.size());
+  detail::for_each_chunk(chunks.size(), options.threads, [&](size_t i, size_t) {
+    try {
+      status[i] = decode_range(chunks[i], parts[i]);
+    } catch (const std::exception& e) {  // bad_alloc on a forged chunk: this frame fails
+      status[i] = invalid_input(std::string("decoding failed: ") + e.what());
+    }
+  });
+  size_t floats = 0;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    if (!status[i].ok()) return invalid_input("chunk " + std::to_string(i) + ": " + status[i].message());
+    floats += parts[i].size();
+  }
+  if (vertex_count != 0 && floats != 3 * size_t(vertex_count))
+    return invalid_input("chunks carry " + std::to_string(floats / 3) + " points, the frame has " +
+                         std::to_string(vertex_count) + " vertices");
+  out.reserve(floats);
+  for (const auto& p : parts) out.insert(out.end(), p.begin(), p.end());
+  return {};
+}
+
+}  // namespace fq::wire
