@@ -132,6 +132,12 @@ Status read_sections(TomlReader& root, DaemonConfig& c) {
     r.read("encode", c.encode_threads, 0, kMaxThreads);
     if (Status s = r.finish(); !s.ok()) return s;
   }
+  if (const toml::table* t = root.table("security")) {
+    TomlReader r(*t, root.source(), "security");
+    r.read("curve_key_file", c.security.curve_key_file);
+    r.read("client_keys_file", c.security.client_keys_file);
+    if (Status s = r.finish(); !s.ok()) return s;
+  }
   if (const toml::table* t = root.table("caps")) {
     TomlReader r(*t, root.source(), "caps");
     r.read("max_vertices", c.caps.max_vertices, 3, 1ll << 31);

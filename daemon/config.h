@@ -10,6 +10,7 @@
 
 #include "kernels/engine.h"
 #include "common/status.h"
+#include "daemon/curve_auth.h"
 #include "daemon/stream_settings.h"
 
 namespace fq::daemon {
@@ -50,6 +51,7 @@ struct DaemonConfig {
   int decode_threads = 0;  ///< decode pool; 0 = half the hardware threads, at least 2
   int encode_threads = 0;  ///< encode pool; 0 = half the hardware threads, at least 2
   Caps caps;
+  SecurityConfig security;
   StreamSettings defaults;
   std::map<std::string, StreamSettings> streams;  ///< per-stream overrides, resolved
   std::string log_level = "info";

@@ -83,6 +83,19 @@ Status Daemon::bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::
   ingest.set(zmq::sockopt::rcvtimeo, 1000);
   control.set(zmq::sockopt::linger, 0);
   publish.set(zmq::sockopt::linger, kPublishLingerMs);
+  if (config_.security.enabled()) {
+    CurveServerKeys keys;
+    if (Status s = load_curve_server_keys(config_.security, keys); !s.ok()) return s;
+    input_zap_ = std::make_unique<ZapHandler>(input_context_, keys.clients, registry_.refusals());
+    output_zap_ = std::make_unique<ZapHandler>(output_context_, keys.clients, registry_.refusals());
+    for (zmq::socket_t* s : {&ingest, &publish, &control}) make_curve_server(*s, keys.server);
+    spdlog::info("fqd: CURVE on every socket, {} client key(s) allowed", keys.clients.size());
+  } else {
+    for (const std::string& e : {config_.endpoints.ingest, config_.endpoints.publish, config_.endpoints.control})
+      if (!is_local_endpoint(e))
+        spdlog::warn("fqd: {} is reachable from other hosts without CURVE: anyone who can connect may send "
+                     "frames, read results and change parameters (set [security] curve_key_file)", e);
+  }
   if (Status s = bind_one(ingest, config_.endpoints.ingest, "ingest", endpoints_.ingest); !s.ok()) return s;
   if (Status s = bind_one(publish, config_.endpoints.publish, "publish", endpoints_.publish); !s.ok())
     return s;
@@ -125,6 +138,7 @@ void Daemon::stop() {
   if (ingest_thread_.joinable()) ingest_thread_.join();
   if (control_thread_.joinable()) control_thread_.join();
   input_context_.close();
+  if (input_zap_) input_zap_->join();
   // Drain stage by stage: each queue closes once everything before it has finished.
   pipeline_.decode_queue.close();
   join_all(decoders_);
@@ -135,6 +149,7 @@ void Daemon::stop() {
   pipeline_.publish_queue.close();
   if (publisher_thread_.joinable()) publisher_thread_.join();
   output_context_.close();
+  if (output_zap_) output_zap_->join();
   spdlog::info("fqd: stopped");
 }
 

@@ -39,6 +39,8 @@ const char* refusal_name(Refusal r) {
       return "not_allowed";
     case Refusal::kTooManyStreams:
       return "too_many_streams";
+    case Refusal::kUnauthenticated:
+      return "unauthenticated";
     case Refusal::kCount:
       break;
   }

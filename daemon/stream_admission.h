@@ -16,7 +16,7 @@ namespace fq::daemon {
 
 struct Caps;
 
-enum class Refusal { kBadStreamId, kMalformed, kNotAllowed, kTooManyStreams, kCount };
+enum class Refusal { kBadStreamId, kMalformed, kNotAllowed, kTooManyStreams, kUnauthenticated, kCount };
 
 /// Name of a refusal reason as it appears in counters and logs.
 const char* refusal_name(Refusal r);

@@ -56,8 +56,11 @@ bool skip_metadata_element(Reader& r, int depth) {
   uint64_t entries;
   if (!r.varint(entries) || entries > r.remaining()) return false;
   for (uint64_t i = 0; i < entries; ++i) {
-    uint8_t n;
-    if (!r.u8(n) || !r.skip(n) || !r.u8(n) || !r.skip(n)) return false;
+    // Key: one length byte. Value: a varint length (Draco's encoder; the same byte as the
+    // specification's UI8 for values under 128 bytes, and binary entries can be longer).
+    uint8_t key;
+    uint64_t value;
+    if (!r.u8(key) || !r.skip(key) || !r.varint(value) || value > r.remaining() || !r.skip(value)) return false;
   }
   uint64_t subs;
   if (!r.varint(subs) || subs > r.remaining()) return false;
