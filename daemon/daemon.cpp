@@ -36,7 +36,7 @@ Status make_engines(const EngineConfig& c, std::vector<std::unique_ptr<Engine>>&
   if (c.kind != EngineKind::kCpu) {
     for (int gpu : c.gpus) {
       Status why;
-      auto e = make_engine({EngineKind::kCuda, c.cpu_threads, gpu}, &why);
+      auto e = make_engine({EngineKind::kCuda, c.cpu_threads, gpu, {}}, &why);
       if (e)
         out.push_back(std::move(e));
       else if (c.kind == EngineKind::kCuda)
@@ -46,7 +46,7 @@ Status make_engines(const EngineConfig& c, std::vector<std::unique_ptr<Engine>>&
     }
   }
   if (out.empty() || c.cpu_alongside_gpus) {
-    for (int i = 0; i < c.cpu_engines; ++i) out.push_back(make_engine({EngineKind::kCpu, c.cpu_threads, 0}));
+    for (int i = 0; i < c.cpu_engines; ++i) out.push_back(make_engine({EngineKind::kCpu, c.cpu_threads, 0, {}}));
   }
   return {};
 }

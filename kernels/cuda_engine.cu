@@ -1,15 +1,15 @@
 // The CUDA engine: the CPU engine's passes (cpu_engine.cpp) as kernels on persistent
-// device buffers. The host validates and normalizes the frame (frame_prep.h) into pinned
-// staging, the device does every pass, the host maps the result back to input units.
-#include <algorithm>
+// device buffers. The host stages the raw frame into pinned memory while it is uploaded;
+// the device checks and normalizes it (frame_prep.h's math, frame_checks.cu), does every
+// pass and maps the result back to input units; the host copies it out of pinned memory.
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
-#include <cstring>
 #include <string>
 
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/device_frame.cuh"
+#include "kernels/cuda/frame_checks.cuh"
 #include "kernels/cuda/host_staging.h"
 #include "kernels/cuda/launch.cuh"
 #include "kernels/cuda/passes.cuh"
@@ -39,7 +39,7 @@ struct DeviceSelection {
 
 class CudaEngine final : public Engine {
  public:
-  explicit CudaEngine(int device) : device_(device), events_(kMaxMarks) {
+  CudaEngine(int device, const CudaTuning& tuning) : device_(device), tuning_(tuning), events_(kMaxMarks) {
     cudaDeviceProp prop{};
     FQ_CUDA_CHECK(cudaGetDeviceProperties(&prop, device));
     name_ = std::string("cuda:") + prop.name;
@@ -50,47 +50,46 @@ class CudaEngine final : public Engine {
 
  private:
   static constexpr int kMaxMarks = 16;
-  void run_frame(const MeshView& mesh, const Params& params, const Normalization& norm, FrameResult& out);
-  GridLayout stage_input(const MeshView& mesh, const Normalization& norm, float cell);
+  static constexpr int kDownloadChunks = 8;  ///< most chunks of one download
+  Status run_frame(const MeshView& mesh, const Params& params, FrameResult& out);
+  void upload(const MeshView& mesh);
+  Status normalize(const MeshView& mesh, float cell, Normalization& norm);
   void enqueue_passes(const Params& params);
   int team_size() const;
-  static bool gather_base_quadrics();
-  static bool fast_exp_enabled();
-  void finish_output(const MeshView& mesh, const Params& params, const Normalization& norm, FrameResult& out);
   Status fail(const std::string& what, FrameResult& out);
 
   DeviceSelection device_;
+  CudaTuning tuning_;
   cuda::Stream stream_;
   cuda::PassEvents events_;
+  cuda::SyncEvents downloads_{2 * kDownloadChunks};
   cuda::DeviceFrame f_;
   std::string name_;
   int sm_count_ = 1;
-  double normalize_ms_ = 0.0;
   bool usable_ = true;
   std::string fault_;
 };
 
+// Labels are left in place (and only resized) for clustering frames, so that a stream of
+// same-sized frames does not zero them every time; any failed frame leaves them empty.
 Status CudaEngine::process(const MeshView& mesh, const Params& params, FrameResult& out) {
   out.timings.clear();
-  out.labels.clear();
   out.num_clusters = 0;
-  if (Status s = validate(params); !s.ok()) return s;
-  const Clock::time_point t0 = Clock::now();
-  if (Status s = check_mesh(mesh); !s.ok()) return s;
-  Normalization norm;
-  if (Status s = compute_normalization(mesh, norm); !s.ok()) return s;
-  out.mean_edge = norm.mean_edge;
-  normalize_ms_ = ms_since(t0);
-  if (!usable_)
-    return {StatusCode::kInternal, "the CUDA engine is unusable after an earlier device fault: " + fault_};
-  try {
-    run_frame(mesh, params, norm, out);
-  } catch (const cuda::CudaError& e) {
-    return fail(e.what(), out);
-  } catch (const std::bad_alloc&) {
-    return fail("out of host memory (pinned staging)", out);
+  Status st = validate(params);
+  if (st.ok()) st = check_mesh_counts(mesh);
+  if (st.ok() && !usable_)
+    st = {StatusCode::kInternal, "the CUDA engine is unusable after an earlier device fault: " + fault_};
+  if (st.ok()) {
+    try {
+      st = run_frame(mesh, params, out);
+    } catch (const cuda::CudaError& e) {
+      st = fail(e.what(), out);
+    } catch (const std::bad_alloc&) {
+      st = fail("out of host memory (pinned staging)", out);
+    }
   }
-  return {};
+  if (!st.ok() || !params.cluster) out.labels.clear();
+  return st;
 }
 
 // A bad launch is cleared by reading it; a fault inside a kernel is sticky and leaves the
@@ -110,57 +109,55 @@ Status CudaEngine::fail(const std::string& what, FrameResult& out) {
   return {StatusCode::kInternal, msg};
 }
 
-GridLayout CudaEngine::stage_input(const MeshView& mesh, const Normalization& norm, float cell) {
-  const uint32_t n = mesh.num_vertices, m = mesh.num_triangles;
-  f_.n = n;
-  f_.m = m;
-  Vec3 lo, hi;
-  cuda::stage_points(mesh, norm, f_.h_points.reserve(n), lo, hi);
-  cuda::copy_indices(mesh.triangles, f_.h_tris.reserve(3 * size_t(m)), 3 * size_t(m));
-  return choose_grid_layout(lo, hi, cell, n);  // as build_grid on the CPU
+// The raw frame, coordinates then indices, through one pinned staging buffer.
+void CudaEngine::upload(const MeshView& mesh) {
+  const size_t coord_bytes = 3 * size_t(f_.n) * sizeof(float);
+  const size_t index_bytes = 3 * size_t(f_.m) * sizeof(uint32_t);
+  unsigned char* staging = f_.h_upload.reserve(coord_bytes + index_bytes);
+  const cudaStream_t s = stream_.get();
+  cuda::upload_staged(mesh.positions, f_.in_coords.reserve(3 * size_t(f_.n)), coord_bytes, staging, s);
+  cuda::upload_staged(mesh.triangles, f_.in_tris.reserve(3 * size_t(f_.m)), index_bytes, staging + coord_bytes, s);
+}
+
+// The device's checks read back (the one synchronization inside a frame: the grid layout
+// is chosen on the host, as build_grid does), judged by frame_prep.h's functions, so a bad
+// frame gets the CPU engine's message; then the points are normalized on the device.
+Status CudaEngine::normalize(const MeshView& mesh, float cell, Normalization& norm) {
+  const cudaStream_t s = stream_.get();
+  cuda::reduce_frame(f_, s);
+  events_.mark("checks", s);
+  stream_.sync();
+  const cuda::FrameSummary sum = cuda::read_summary(f_);
+  if (Status st = mesh_faults(mesh, sum.bad_coordinate, sum.bad_index); !st.ok()) return st;
+  if (Status st = normalization_from(sum.lo, sum.hi, sum.mean_edge, norm); !st.ok()) return st;
+  // The map is monotonic in each coordinate, so the normalized bounds are the bounds mapped.
+  const float lo_in[3] = {float(sum.lo[0]), float(sum.lo[1]), float(sum.lo[2])};
+  const float hi_in[3] = {float(sum.hi[0]), float(sum.hi[1]), float(sum.hi[2])};
+  f_.grid.layout = choose_grid_layout(norm.to_normalized(lo_in), norm.to_normalized(hi_in), cell, f_.n);
+  cuda::normalize_points(f_, norm, s);
+  events_.mark("to_normalized", s);
+  return {};
 }
 
 // Lanes per vertex in the neighbourhood passes, from vertices per SM. Measured on the H100
-// (docs/BENCHMARKS.md, sweep of FQ_CUDA_TEAM): small meshes need lanes to fill the GPU
+// (docs/BENCHMARKS.md, sweep of the team size): small meshes need lanes to fill the GPU
 // (bunny: 8 lanes 0.31 ms, 1 lane 0.72 ms); up to ~1.6M vertices 4 lanes still win by
 // making the row loop uniform (dragon 1.90 vs 2.34 ms); above that one thread per vertex
-// is best (igea_x16 7.49 ms vs 7.74 with 4). FQ_CUDA_TEAM overrides it: 0 selects the
-// one-thread-per-vertex kernels that call filter_math.h / cluster_math.h directly, and
-// 1, 2, 4, 8, 16 or 32 a fixed team.
+// is best (igea_x16 7.49 ms vs 7.74 with 4). CudaTuning::team overrides it.
 int CudaEngine::team_size() const {
-  if (const char* env = std::getenv("FQ_CUDA_TEAM"); env && *env && std::string(env) != "auto") {
-    const long v = std::strtol(env, nullptr, 10);
-    if (v == 0 || v == 1 || v == 2 || v == 4 || v == 8 || v == 16 || v == 32) return static_cast<int>(v);
-  }
+  if (tuning_.team != CudaTuning::kTeamBySize) return tuning_.team;
   const uint64_t per_sm = f_.n / uint64_t(sm_count_ > 0 ? sm_count_ : 1);
   return per_sm <= 512 ? 8 : (per_sm <= 12288 ? 4 : 1);
-}
-
-// Base quadrics by per-vertex gather (default) or by float4 atomics per triangle
-// (FQ_CUDA_BASE=atomic). Measured on the H100: see docs/BENCHMARKS.md.
-bool CudaEngine::gather_base_quadrics() {
-  const char* env = std::getenv("FQ_CUDA_BASE");
-  return !(env && std::string(env) == "atomic");
-}
-
-// Gaussian weights of the team kernels through __expf (FQ_CUDA_FAST_EXP=1) or the
-// accurate exp of gaussian.h (default).
-bool CudaEngine::fast_exp_enabled() {
-  const char* env = std::getenv("FQ_CUDA_FAST_EXP");
-  return env && std::string(env) == "1";
 }
 
 void CudaEngine::enqueue_passes(const Params& params) {
   const cudaStream_t s = stream_.get();
   const FilterParams& fp = params.f;
   const int team = team_size();
-  const bool fast_exp = fast_exp_enabled();
+  const bool fast_exp = tuning_.fast_exp;
   cuda::sort_into_grid(f_, f_.grid.layout, s);
   events_.mark("grid", s);
-  if (gather_base_quadrics())
-    cuda::base_quadrics_gather(f_, s);
-  else
-    cuda::base_quadrics(f_, s);
+  cuda::base_quadrics(f_, s);
   events_.mark("base_quadrics", s);
   if (params.cluster || fp.method == FilterMethod::kQuadric) {
     if (team)
@@ -195,60 +192,59 @@ void CudaEngine::enqueue_passes(const Params& params) {
     cuda::cluster_labels(f_, s);
     events_.mark("modes", s);
   }
-  if (params.filter) {
-    cuda::gather_moved(f_, s);
-    events_.mark("output", s);
-  }
 }
 
-void CudaEngine::run_frame(const MeshView& mesh, const Params& params, const Normalization& norm,
-                           FrameResult& out) {
-  const Clock::time_point t0 = Clock::now();
+Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameResult& out) {
   FQ_CUDA_CHECK(cudaSetDevice(device_.id));
-  f_.grid.layout = stage_input(mesh, norm, params.f.sigma_s);
-  const double prepare_ms = ms_since(t0);
   const cudaStream_t s = stream_.get();
-  const uint32_t n = f_.n, m = f_.m;
+  f_.n = mesh.num_vertices;
+  f_.m = mesh.num_triangles;
+  const uint32_t n = f_.n;
 
   events_.begin(s);
-  FQ_CUDA_CHECK(cudaMemcpyAsync(f_.in_points.reserve(n), f_.h_points.data(), n * sizeof(Point4),
-                                cudaMemcpyHostToDevice, s));
-  FQ_CUDA_CHECK(cudaMemcpyAsync(f_.in_tris.reserve(3 * size_t(m)), f_.h_tris.data(),
-                                3 * size_t(m) * sizeof(uint32_t), cudaMemcpyHostToDevice, s));
+  upload(mesh);
   events_.mark("upload", s);
+  Normalization norm;
+  if (Status st = normalize(mesh, params.f.sigma_s, norm); !st.ok()) return st;
+  out.mean_edge = norm.mean_edge;
   enqueue_passes(params);
   if (params.filter) {
-    FQ_CUDA_CHECK(cudaMemcpyAsync(f_.h_moved.reserve(n), f_.moved_in_order.data(), n * sizeof(Vec3),
-                                  cudaMemcpyDeviceToHost, s));
+    cuda::positions_to_input(f_, norm, s);
+    events_.mark("output", s);
+  }
+  // Results come down in chunks, each copied out of pinned memory while the next is in flight.
+  const int half = downloads_.size() / 2;
+  cuda::StagedDownload positions, labels;
+  if (params.filter) {
+    const size_t bytes = 3 * size_t(n) * sizeof(float);
+    out.positions.resize(3 * size_t(n));
+    positions = cuda::enqueue_download(f_.out_coords.data(), out.positions.data(), bytes,
+                                       f_.h_download.reserve(bytes), downloads_.data(), half, s);
   }
   if (params.cluster) {
-    FQ_CUDA_CHECK(cudaMemcpyAsync(f_.h_labels.reserve(n + 1), f_.labels.data(), (n + 1) * sizeof(uint32_t),
-                                  cudaMemcpyDeviceToHost, s));
+    const size_t bytes = size_t(n) * sizeof(uint32_t);
+    uint32_t* staging = f_.h_labels.reserve(n + 1);
+    out.labels.resize(n);
+    labels = cuda::enqueue_download(f_.labels.data(), out.labels.data(), bytes,
+                                    reinterpret_cast<unsigned char*>(staging), downloads_.data() + half, half, s);
+    FQ_CUDA_CHECK(cudaMemcpyAsync(staging + n, f_.labels.data() + n, sizeof(uint32_t), cudaMemcpyDeviceToHost, s));
   }
   events_.mark("download", s);
-  stream_.sync();
-
+  if (!params.filter) {  // the input positions, copied while the device works
+    out.positions.resize(3 * size_t(n));
+    cuda::parallel_copy(out.positions.data(), mesh.positions, 3 * size_t(n) * sizeof(float));
+  }
+  const cuda::StagedDownload& first = params.filter ? positions : labels;
+  if (first.done) FQ_CUDA_CHECK(cudaEventSynchronize(first.done[0]));
   const Clock::time_point t1 = Clock::now();
-  finish_output(mesh, params, norm, out);
-  out.timings.push_back({"normalize", normalize_ms_});  // host: checks, centre, mean edge
-  out.timings.push_back({"prepare", prepare_ms});       // host: normalized points into pinned staging
+  if (params.filter) cuda::complete_download(positions);
+  if (params.cluster) cuda::complete_download(labels);
+  stream_.sync();
+  if (params.cluster) out.num_clusters = f_.h_labels.data()[n];
   events_.collect([&](const char* name, double ms) { out.timings.push_back({name, ms}); });
+  // Host: results out of pinned memory from the first downloaded chunk on (overlaps the download).
   out.timings.push_back({"finish", ms_since(t1)});
-}
-
-void CudaEngine::finish_output(const MeshView& mesh, const Params& params, const Normalization& norm,
-                               FrameResult& out) {
-  const uint32_t n = f_.n;
-  out.positions.resize(3 * size_t(n));
-  if (params.filter) {
-    cuda::unstage_positions(f_.h_moved.data(), n, norm, out.positions.data());
-  } else {
-    std::copy(mesh.positions, mesh.positions + 3 * size_t(n), out.positions.begin());
-  }
-  if (params.cluster) {
-    out.labels.assign(f_.h_labels.data(), f_.h_labels.data() + n);
-    out.num_clusters = f_.h_labels.data()[n];
-  }
+  return {};
 }
 
 }  // namespace
@@ -280,12 +276,16 @@ uint64_t cuda_allocation_count() { return g_allocations.load(std::memory_order_r
 
 void cuda_fail_next_launch_for_testing() { cuda::fail_next_launch(); }
 
-std::unique_ptr<Engine> make_cuda_engine(int device, Status* why) {
+std::unique_ptr<Engine> make_cuda_engine(int device, Status* why, const CudaTuning& tuning) {
   auto unavailable = [&](std::string msg) -> std::unique_ptr<Engine> {
     (void)cudaGetLastError();
     if (why) *why = {StatusCode::kUnavailable, std::move(msg)};
     return nullptr;
   };
+  if (!valid_cuda_team(tuning.team)) {
+    if (why) *why = invalid_argument("CUDA team size " + std::to_string(tuning.team) + " is not one of 0, 1, 2, 4, 8, 16, 32");
+    return nullptr;
+  }
   int count = 0;
   if (const cudaError_t e = cudaGetDeviceCount(&count); e != cudaSuccess)
     return unavailable(std::string("no usable CUDA device: ") + cudaGetErrorName(e) + " (" +
@@ -295,7 +295,7 @@ std::unique_ptr<Engine> make_cuda_engine(int device, Status* why) {
     return unavailable("CUDA device " + std::to_string(device) + " does not exist (" + std::to_string(count) +
                        " present)");
   try {
-    auto engine = std::make_unique<CudaEngine>(device);
+    auto engine = std::make_unique<CudaEngine>(device, tuning);
     if (why) *why = {};
     return engine;
   } catch (const cuda::CudaError& e) {

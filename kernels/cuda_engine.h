@@ -9,9 +9,10 @@
 
 namespace fq {
 
-/// The CUDA engine on device `device` ("cuda:<device name>"), or null with a kUnavailable
-/// status and a reason (no device, no driver, bad ordinal, device refused a stream...).
-std::unique_ptr<Engine> make_cuda_engine(int device, Status* why);
+/// The CUDA engine on device `device` ("cuda:<device name>") with the kernel choices of
+/// `tuning`, or null with a kUnavailable status and a reason (no device, no driver, bad
+/// ordinal, device refused a stream, a team size CudaTuning does not accept...).
+std::unique_ptr<Engine> make_cuda_engine(int device, Status* why, const CudaTuning& tuning = {});
 
 /// Device allocations (cudaMalloc) made so far by every CUDA engine of this process. After
 /// the first frame of a given size, further frames of that size leave it unchanged.

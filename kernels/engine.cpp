@@ -23,6 +23,11 @@ int hardware_threads() {
   return n > 0 ? static_cast<int>(n) : 1;
 }
 
+bool valid_cuda_team(int team) {
+  return team == CudaTuning::kTeamBySize || team == 0 || team == 1 || team == 2 || team == 4 || team == 8 ||
+         team == 16 || team == 32;
+}
+
 bool parse_engine_kind(const std::string& s, EngineKind& out) {
   if (s == "auto") out = EngineKind::kAuto;
   else if (s == "cpu") out = EngineKind::kCpu;
@@ -36,7 +41,7 @@ std::unique_ptr<Engine> make_engine(const EngineOptions& options, Status* why) {
   if (options.kind == EngineKind::kCpu) return std::make_unique<CpuEngine>(options.threads);
 #if FQ_WITH_CUDA
   Status s;
-  if (auto e = make_cuda_engine(options.device, &s)) return e;
+  if (auto e = make_cuda_engine(options.device, &s, options.cuda)) return e;
   if (options.kind == EngineKind::kCuda) {
     if (why) *why = s;
     return nullptr;

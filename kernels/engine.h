@@ -41,11 +41,28 @@ class Engine {
 
 enum class EngineKind { kAuto, kCpu, kCuda };
 
+/// Kernel choices of the CUDA engine (docs/BENCHMARKS.md has the measurements behind the
+/// defaults). Fixed for an engine's lifetime.
+struct CudaTuning {
+  /// Lanes per vertex in the neighbourhood passes: kTeamBySize picks 8, 4 or 1 from the
+  /// vertices per SM; 0 runs the one-thread-per-vertex kernels that call the math headers
+  /// directly; 1, 2, 4, 8, 16 or 32 a fixed team.
+  static constexpr int kTeamBySize = -1;
+  int team = kTeamBySize;
+  /// Gaussian weights of the team kernels through the hardware __expf instead of the
+  /// accurate exp of gaussian.h (3-5 % faster, last bits differ).
+  bool fast_exp = false;
+};
+
 struct EngineOptions {
   EngineKind kind = EngineKind::kAuto;
   int threads = 0;  ///< CPU threads; 0 = all hardware threads
   int device = 0;   ///< CUDA device ordinal
+  CudaTuning cuda;
 };
+
+/// True for the team values CudaTuning accepts.
+bool valid_cuda_team(int team);
 
 /// Parses "auto" | "cpu" | "cuda".
 bool parse_engine_kind(const std::string& s, EngineKind& out);

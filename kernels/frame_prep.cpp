@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
@@ -47,19 +48,34 @@ uint64_t first_bad(uint64_t n, int threads, Bad bad) {
 
 }  // namespace
 
-Status check_mesh(const MeshView& mesh, int threads) {
-  if (mesh.num_vertices == 0) return invalid_input("mesh has no vertices");
-  if (mesh.num_triangles == 0) return invalid_input("mesh has no triangles (point clouds are not supported)");
-  const uint64_t nc = uint64_t(mesh.num_vertices) * 3;
-  if (const uint64_t i = first_bad(nc, threads, [&](uint64_t k) { return !std::isfinite(mesh.positions[k]); }); i < nc)
-    return invalid_input("vertex " + std::to_string(i / 3) + " has a non-finite coordinate");
-  const uint64_t ni = uint64_t(mesh.num_triangles) * 3;
-  if (const uint64_t i = first_bad(ni, threads, [&](uint64_t k) { return mesh.triangles[k] >= mesh.num_vertices; });
-      i < ni)
-    return invalid_input("triangle " + std::to_string(i / 3) + " references vertex " +
-                         std::to_string(mesh.triangles[i]) + " but the mesh has " +
+Status mesh_faults(const MeshView& mesh, uint64_t bad_coordinate, uint64_t bad_index) {
+  if (bad_coordinate != kNone)
+    return invalid_input("vertex " + std::to_string(bad_coordinate / 3) + " has a non-finite coordinate");
+  if (bad_index != kNone)
+    return invalid_input("triangle " + std::to_string(bad_index / 3) + " references vertex " +
+                         std::to_string(mesh.triangles[bad_index]) + " but the mesh has " +
                          std::to_string(mesh.num_vertices) + " vertices");
   return {};
+}
+
+Status check_mesh_counts(const MeshView& mesh) {
+  if (mesh.num_vertices == 0) return invalid_input("mesh has no vertices");
+  if (mesh.num_triangles == 0) return invalid_input("mesh has no triangles (point clouds are not supported)");
+  return {};
+}
+
+Status check_mesh(const MeshView& mesh, int threads) {
+  if (Status s = check_mesh_counts(mesh); !s.ok()) return s;
+  const uint64_t nc = uint64_t(mesh.num_vertices) * 3;
+  const uint64_t ni = uint64_t(mesh.num_triangles) * 3;
+  uint64_t bad_coordinate = first_bad(nc, threads, [&](uint64_t k) { return !std::isfinite(mesh.positions[k]); });
+  uint64_t bad_index = kNone;
+  if (bad_coordinate == nc) {
+    bad_coordinate = kNone;
+    bad_index = first_bad(ni, threads, [&](uint64_t k) { return mesh.triangles[k] >= mesh.num_vertices; });
+    if (bad_index == ni) bad_index = kNone;
+  }
+  return mesh_faults(mesh, bad_coordinate, bad_index);
 }
 
 double mean_edge_length(const MeshView& mesh, int threads) {
@@ -108,15 +124,24 @@ Status compute_normalization(const MeshView& mesh, Normalization& out, int threa
       all.hi[k] = std::max(all.hi[k], b.hi[k]);
     }
   }
-  for (int k = 0; k < 3; ++k) out.center[k] = 0.5 * (all.lo[k] + all.hi[k]);
-  out.mean_edge = mean_edge_length(mesh, threads);
+  return normalization_from(all.lo, all.hi, mean_edge_length(mesh, threads), out);
+}
+
+Status normalization_from(const double lo[3], const double hi[3], double mean_edge, Normalization& out) {
+  for (int k = 0; k < 3; ++k) out.center[k] = 0.5 * (lo[k] + hi[k]);
+  out.mean_edge = mean_edge;
   if (!(out.mean_edge > 0.0) || !std::isfinite(out.mean_edge))
     return invalid_input("mesh is degenerate: every edge has zero length");
   double extent = 0.0;
-  for (int k = 0; k < 3; ++k) extent = std::max(extent, all.hi[k] - all.lo[k]);
-  if (!(extent / out.mean_edge <= kMaxExtentInEdges))
-    return invalid_input("mesh spans " + std::to_string(extent / out.mean_edge) +
+  for (int k = 0; k < 3; ++k) extent = std::max(extent, hi[k] - lo[k]);
+  if (!(extent / out.mean_edge <= kMaxExtentInEdges)) {
+    // Four digits: the CUDA engine's mean edge can differ in its last bits (another
+    // summation order), and both engines must print the same message.
+    char span[32];
+    std::snprintf(span, sizeof span, "%.4g", extent / out.mean_edge);
+    return invalid_input(std::string("mesh spans ") + span +
                          " mean edge lengths (at most 1e6 supported): is there a far outlier vertex?");
+  }
   return {};
 }
 

@@ -9,8 +9,9 @@
 
 #include <cstdint>
 
-#include "kernels/mesh_view.h"
 #include "common/status.h"
+#include "kernels/hd.h"
+#include "kernels/mesh_view.h"
 #include "kernels/vec3.h"
 
 namespace fq {
@@ -19,11 +20,13 @@ struct Normalization {
   double center[3] = {0, 0, 0};
   double mean_edge = 1.0;  ///< input units per normalized unit
 
-  Vec3 to_normalized(const float* p) const {
+  // Host and device (the CUDA engine maps on the GPU; its file is built without FMA
+  // contraction, so both give the same floats).
+  FQ_HD Vec3 to_normalized(const float* p) const {
     const double s = 1.0 / mean_edge;
     return {float((p[0] - center[0]) * s), float((p[1] - center[1]) * s), float((p[2] - center[2]) * s)};
   }
-  void to_input(Vec3 q, float* out) const {
+  FQ_HD void to_input(Vec3 q, float* out) const {
     out[0] = float(center[0] + q.x * mean_edge);
     out[1] = float(center[1] + q.y * mean_edge);
     out[2] = float(center[2] + q.z * mean_edge);
@@ -32,6 +35,15 @@ struct Normalization {
 
 /// Non-empty, finite coordinates, every index in range, at least one triangle.
 Status check_mesh(const MeshView& mesh, int threads = 0);
+
+/// check_mesh's first part: at least one vertex and one triangle.
+Status check_mesh_counts(const MeshView& mesh);
+
+/// check_mesh's verdict from the first non-finite coordinate (index into positions) and the
+/// first out-of-range index (into triangles), each kNone when there is none, however they
+/// were found (the CUDA engine searches on the device).
+inline constexpr uint64_t kNone = ~uint64_t(0);
+Status mesh_faults(const MeshView& mesh, uint64_t bad_coordinate, uint64_t bad_index);
 
 /// Largest bounding-box extent, in mean edge lengths, that a frame may span. float32
 /// coordinates at 1e6 edges from the centre resolve about 0.06 edge; beyond that (or with a
@@ -42,6 +54,10 @@ inline constexpr double kMaxExtentInEdges = 1e6;
 /// interior edges of a closed mesh count once per side; a mesh whose edges all have zero
 /// length, or one spanning more than kMaxExtentInEdges, is rejected).
 Status compute_normalization(const MeshView& mesh, Normalization& out, int threads = 0);
+
+/// compute_normalization's result from the coordinate bounds and the mean edge length,
+/// however they were reduced.
+Status normalization_from(const double lo[3], const double hi[3], double mean_edge, Normalization& out);
 
 /// Mean edge length of a mesh in its own units (0 when it has no non-degenerate edge).
 double mean_edge_length(const MeshView& mesh, int threads = 0);

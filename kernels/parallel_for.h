@@ -2,26 +2,25 @@
 // results do not depend on the thread count or on scheduling.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
-#if defined(FQ_HAVE_OPENMP)
-#include <omp.h>
-#endif
+#include "common/thread_pool.h"
 
 namespace fq {
 
-/// `grain` items are handed out at a time: 256 suits per-vertex work; coarse items (whole
-/// chunks of a reduction) need 1, or a few hundred of them all land on one thread.
+/// f(i) for every i in [0, n) on the calling thread and at most threads - 1 threads of the
+/// shared host pool (common/thread_pool.h). `grain` items are handed out at a time: 256 suits
+/// per-vertex work; coarse items (whole chunks of a reduction) need 1, or a few hundred of
+/// them all land on one thread.
 template <class F>
 void parallel_for(uint32_t n, int threads, F&& f, int grain = 256) {
-#if defined(FQ_HAVE_OPENMP)
-#pragma omp parallel for schedule(dynamic, grain) num_threads(threads)
-  for (int64_t i = 0; i < int64_t(n); ++i) f(static_cast<uint32_t>(i));
-#else
-  (void)threads;
-  (void)grain;
-  for (uint32_t i = 0; i < n; ++i) f(i);
-#endif
+  ThreadPool::shared().run(
+      n, threads,
+      [&f](size_t begin, size_t end, size_t) {
+        for (size_t i = begin; i < end; ++i) f(static_cast<uint32_t>(i));
+      },
+      static_cast<size_t>(std::max(grain, 1)));
 }
 
 /// Hardware threads available to the process.

@@ -22,6 +22,10 @@ inline constexpr uint32_t kMaxAttributeValue = 1u << 24;
 
 /// Metadata name ("name" entry) of the GENERIC uint32 attribute holding the global vertex id.
 inline constexpr const char* kVertexIdAttribute = "fq_vid";
+/// Geometry metadata entry (binary) holding the global vertex ids of a chunk coded with Draco's
+/// sequential coder, which keeps point order: the ascending ids as runs (proto/vertex_id_runs.h).
+/// Such a chunk has no "fq_vid" attribute.
+inline constexpr const char* kVertexIdRunsEntry = "fq_vid_runs";
 /// Metadata name of the GENERIC uint32 attribute holding the per-vertex cluster label.
 inline constexpr const char* kLabelAttribute = "fq_label";
 

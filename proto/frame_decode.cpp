@@ -3,11 +3,15 @@
 #include <draco/mesh/mesh.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cstring>
 #include <exception>
+#include <memory>
 #include <string>
 
 #include "proto/frame_codec.h"
 #include "proto/frame_split.h"
+#include "proto/vertex_id_runs.h"
 
 namespace fq::wire {
 namespace {
@@ -15,7 +19,10 @@ namespace {
 /// One decoded chunk, per Draco point.
 struct Chunk {
   fq::Status status;
-  std::vector<float> positions;     ///< 3 per point
+  std::unique_ptr<draco::Mesh> mesh;  ///< kept: xyz may point into its position buffer
+  const float* xyz = nullptr;         ///< 3 per point, in mesh or in positions
+  uint32_t points = 0;
+  std::vector<float> positions;     ///< only when Draco's positions needed converting
   std::vector<uint32_t> ids;        ///< fq_vid per point; empty when the chunk has none
   std::vector<uint32_t> labels;     ///< fq_label per point; empty when the chunk has none
   std::vector<uint32_t> triangles;  ///< point indices
@@ -35,20 +42,50 @@ bool read_uint_attribute(const draco::Mesh& m, const char* name, bool& present, 
   return true;
 }
 
-fq::Status read_mesh(const draco::Mesh& m, Chunk& c) {
+/// Positions of every point into c.xyz: Draco's own buffer when it decoded them as packed float
+/// triples with an identity point mapping (what the codec's own chunks give), a conversion per
+/// point into c.positions otherwise.
+fq::Status read_positions(const draco::Mesh& m, Chunk& c) {
   const draco::PointAttribute* pos = m.GetNamedAttribute(draco::GeometryAttribute::POSITION);
   if (pos == nullptr || pos->num_components() != 3) return invalid_input("no 3D position attribute");
-  if (m.num_faces() == 0) return invalid_input("mesh has no faces");
+  c.points = m.num_points();
+  if (pos->is_mapping_identity() && pos->data_type() == draco::DT_FLOAT32 && pos->byte_stride() == 3 * 4 &&
+      pos->size() >= m.num_points() && m.num_points() > 0) {
+    c.xyz = reinterpret_cast<const float*>(pos->GetAddress(draco::AttributeValueIndex(0)));
+    return {};
+  }
   c.positions.resize(3 * size_t(m.num_points()));
   for (uint32_t p = 0; p < m.num_points(); ++p) {
     if (!pos->ConvertValue<float>(pos->mapped_index(draco::PointIndex(p)), 3, &c.positions[3 * size_t(p)])) {
       return invalid_input("unreadable position of point " + std::to_string(p));
     }
   }
+  c.xyz = c.positions.data();
+  return {};
+}
+
+/// Global vertex ids: the "fq_vid" attribute, or the runs of a sequentially coded chunk.
+fq::Status read_ids(const draco::Mesh& m, bool sequential, std::vector<uint32_t>& ids) {
   bool has = false;
-  if (!read_uint_attribute(m, kVertexIdAttribute, has, c.ids)) {
+  if (!read_uint_attribute(m, kVertexIdAttribute, has, ids)) {
     return invalid_input(std::string(kVertexIdAttribute) + " is not a single uint32 per point");
   }
+  std::vector<uint8_t> runs;
+  if (has || m.GetMetadata() == nullptr || !m.GetMetadata()->GetEntryBinary(kVertexIdRunsEntry, &runs)) return {};
+  // Runs name points in Draco's point order, which only the sequential coder keeps.
+  if (!sequential) return invalid_input(std::string(kVertexIdRunsEntry) + " in a chunk not sequentially coded");
+  if (!detail::decode_id_runs(runs.data(), runs.size(), m.num_points(), kMaxAttributeValue, ids)) {
+    return invalid_input(std::string(kVertexIdRunsEntry) + " is malformed or does not match the " +
+                         std::to_string(m.num_points()) + " points");
+  }
+  return {};
+}
+
+fq::Status read_mesh(const draco::Mesh& m, bool sequential, Chunk& c) {
+  if (m.num_faces() == 0) return invalid_input("mesh has no faces");
+  if (auto s = read_positions(m, c); !s.ok()) return s;
+  if (auto s = read_ids(m, sequential, c.ids); !s.ok()) return s;
+  bool has = false;
   if (!read_uint_attribute(m, kLabelAttribute, has, c.labels)) {
     return invalid_input(std::string(kLabelAttribute) + " is not a single uint32 per point");
   }
@@ -82,17 +119,20 @@ void decode_chunk(std::string_view bytes, Chunk& c) {
     c.status = invalid_input("undecodable Draco data: " + mesh.status().error_msg_string());
     return;
   }
-  c.status = read_mesh(*mesh.value(), c);
+  // Draco's header: "DRACO", version (2 bytes), encoder type, encoder method (0 = sequential).
+  const bool sequential = bytes.size() > 8 && bytes[8] == 0;
+  c.mesh = std::move(mesh).value();
+  c.status = read_mesh(*c.mesh, sequential, c);
 }
 
 /// A single chunk without fq_vid: a plain Draco mesh, taken in Draco's point order.
 fq::Status take_plain(Chunk& c, uint32_t vertex_count, fq::Mesh& out, std::vector<uint32_t>* labels) {
-  const auto n = static_cast<uint32_t>(c.positions.size() / 3);
+  const uint32_t n = c.points;
   if (vertex_count != 0 && vertex_count != n) {
     return invalid_input("frame header says " + std::to_string(vertex_count) +
                          " vertices, the Draco mesh has " + std::to_string(n));
   }
-  out.positions = std::move(c.positions);
+  out.positions.assign(c.xyz, c.xyz + 3 * size_t(n));
   out.triangles = std::move(c.triangles);
   if (labels) *labels = std::move(c.labels);
   return {};
@@ -105,7 +145,7 @@ fq::Status merged_count(const std::vector<Chunk>& cs, uint32_t vertex_count, uin
   uint32_t max_id = 0;
   for (const auto& c : cs) {
     points += c.ids.size();
-    for (uint32_t id : c.ids) max_id = std::max(max_id, id);
+    if (vertex_count == 0) max_id = std::max(max_id, *std::max_element(c.ids.begin(), c.ids.end()));
   }
   n = vertex_count != 0 ? vertex_count : max_id + 1;
   if (n > points) {
@@ -115,29 +155,45 @@ fq::Status merged_count(const std::vector<Chunk>& cs, uint32_t vertex_count, uin
   return {};
 }
 
-fq::Status merge(std::vector<Chunk>& cs, uint32_t n, fq::Mesh& out, std::vector<uint32_t>* labels) {
+/// Writes chunk c's points to their global slots and maps its triangles to global ids, at
+/// `triangles`. Returns the index of its first point with an id >= n, or c.ids.size().
+/// Chunks run concurrently: a vertex on a cut is in several chunks, which write the same
+/// position (one quantization grid), label and coverage, through relaxed atomic stores (plain
+/// stores on x86) so that the concurrent writes are well defined.
+size_t scatter_chunk(const Chunk& c, uint32_t n, bool with_labels, float* positions, uint32_t* labels,
+                     uint8_t* covered, uint32_t* triangles) {
+  for (size_t p = 0; p < c.ids.size(); ++p) {
+    const uint32_t g = c.ids[p];
+    if (g >= n) return p;
+    for (int k = 0; k < 3; ++k)
+      std::atomic_ref<float>(positions[3 * size_t(g) + k]).store(c.xyz[3 * p + k], std::memory_order_relaxed);
+    if (with_labels) std::atomic_ref<uint32_t>(labels[g]).store(c.labels[p], std::memory_order_relaxed);
+    std::atomic_ref<uint8_t>(covered[g]).store(1, std::memory_order_relaxed);
+  }
+  for (size_t k = 0; k < c.triangles.size(); ++k) triangles[k] = c.ids[c.triangles[k]];
+  return c.ids.size();
+}
+
+fq::Status merge(std::vector<Chunk>& cs, uint32_t n, int threads, fq::Mesh& out, std::vector<uint32_t>* labels) {
   const bool with_labels =
       labels && std::all_of(cs.begin(), cs.end(), [](const Chunk& c) { return !c.labels.empty(); });
   out.positions.assign(3 * size_t(n), 0.f);
-  out.triangles.clear();
   if (with_labels) labels->assign(n, 0);
   std::vector<uint8_t> covered(n, 0);
-  size_t corners = 0;
-  for (const Chunk& c : cs) corners += c.triangles.size();
-  out.triangles.reserve(corners);
-  for (size_t i = 0; i < cs.size(); ++i) {
-    const Chunk& c = cs[i];
-    for (size_t p = 0; p < c.ids.size(); ++p) {
-      const uint32_t g = c.ids[p];
-      if (g >= n) {
-        return invalid_input("chunk " + std::to_string(i) + ": vertex id " + std::to_string(g) +
-                             " out of range (frame has " + std::to_string(n) + " vertices)");
-      }
-      std::copy_n(&c.positions[3 * p], 3, &out.positions[3 * size_t(g)]);
-      if (with_labels) (*labels)[g] = c.labels[p];
-      covered[g] = 1;
+  // Triangles come out chunk after chunk, each chunk's at its own offset.
+  std::vector<size_t> first(cs.size() + 1, 0);
+  for (size_t i = 0; i < cs.size(); ++i) first[i + 1] = first[i] + cs[i].triangles.size();
+  out.triangles.resize(first.back());
+  std::vector<size_t> bad(cs.size());
+  detail::for_each_chunk(cs.size(), threads, [&](size_t i, size_t) {
+    bad[i] = scatter_chunk(cs[i], n, with_labels, out.positions.data(), with_labels ? labels->data() : nullptr,
+                           covered.data(), out.triangles.data() + first[i]);
+  });
+  for (size_t i = 0; i < cs.size(); ++i) {  // the first bad id in chunk order, whatever the threads did
+    if (bad[i] < cs[i].ids.size()) {
+      return invalid_input("chunk " + std::to_string(i) + ": vertex id " + std::to_string(cs[i].ids[bad[i]]) +
+                           " out of range (frame has " + std::to_string(n) + " vertices)");
     }
-    for (uint32_t local : c.triangles) out.triangles.push_back(c.ids[local]);
   }
   const auto hole = std::find(covered.begin(), covered.end(), uint8_t{0});
   if (hole != covered.end()) {
@@ -178,7 +234,7 @@ fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t ve
   }
   uint32_t n = 0;
   if (auto s = merged_count(cs, vertex_count, n); !s.ok()) return s;
-  if (auto s = merge(cs, n, out, labels); !s.ok()) {
+  if (auto s = merge(cs, n, options.threads, out, labels); !s.ok()) {
     out = {};
     if (labels) labels->clear();
     return s;

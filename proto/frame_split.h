@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include "kernels/mesh_view.h"
@@ -18,7 +20,7 @@ struct Box {
   float max_extent() const;
 };
 
-Box bounding_box(const fq::MeshView& mesh);
+Box bounding_box(const fq::MeshView& mesh, int threads = 1);
 
 /// Triangle ids of each of `chunks` parts: triangles ranked by the Morton code of their
 /// centroid (10 bits per axis on `box`; ties broken by triangle id, so the split is
@@ -27,11 +29,24 @@ Box bounding_box(const fq::MeshView& mesh);
 std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box, uint32_t chunks,
                                                    int threads = 1);
 
+/// The corners (3 vertex ids per triangle) of one part's triangles. Not zero-filled before
+/// the split writes them: that would be a serial pass over the whole frame.
+struct PartCorners {
+  std::unique_ptr<uint32_t[]> data;
+  size_t size = 0;
+  std::span<const uint32_t> span() const { return {data.get(), size}; }
+};
+
+/// The same split as split_triangles, as the corners of each part's triangles: what a chunk
+/// is built from.
+std::vector<PartCorners> split_corners(const fq::MeshView& mesh, const Box& box, uint32_t chunks, int threads = 1);
+
 /// Number of workers for_each_chunk uses: min(threads, count), at least 1.
 size_t chunk_workers(size_t count, int threads);
 
-/// Calls fn(i, w) for every i in [0, count) on chunk_workers(count, threads) std::threads
-/// (inline when 1); w < chunk_workers() names the worker, for per-worker scratch space.
+/// Calls fn(i, w) for every i in [0, count) on the calling thread and the shared host pool,
+/// at most chunk_workers(count, threads) at a time (inline when 1); w < chunk_workers() names
+/// the worker, for per-worker scratch space.
 /// fn must not throw and must write only the outputs of item i (and worker w's scratch).
 void for_each_chunk(size_t count, int threads, const std::function<void(size_t, size_t)>& fn);
 

@@ -8,6 +8,8 @@ add_library(fq_proto STATIC
   ${CMAKE_CURRENT_LIST_DIR}/header_codec.cpp
   ${CMAKE_CURRENT_LIST_DIR}/param_wire.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frame_split.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/frame_chunk.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/vertex_id_runs.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frame_encode.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frame_decode.cpp
   ${CMAKE_CURRENT_LIST_DIR}/draco_budget.cpp

@@ -2,6 +2,7 @@
 // the median and spread (p10/p90) of device time over repeated frames for the paper's
 // rows of Tables 2 and 3, with the paper's figure, the speed-up, host<->device transfers
 // (pinned) and the CPU engine's time on the same row. Prints a markdown table.
+// With --codec MESH it times the frame codec against plain Draco instead (codec_bench.h).
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -12,6 +13,7 @@
 
 #include "clients/fqbench/bench_rows.h"
 #include "clients/fqbench/bench_stats.h"
+#include "clients/fqbench/codec_bench.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/engine.h"
 #include "proto/mesh_io.h"
@@ -30,6 +32,7 @@ struct Options {
   int warmup = 3;
   int cpu_repeat = 3;
   int cpu_threads = 0;
+  CudaTuning cuda;
   bool neighbour_stats = false;
   bool stats_only = false;
 };
@@ -97,11 +100,16 @@ bool bench_row(const Options& o, Engine& engine, CpuEngine* cpu, const Mesh& mes
   return true;
 }
 
-void print_summary(const std::vector<RowResult>& results, const std::string& engine, int cpu_threads) {
+void print_summary(const std::vector<RowResult>& results, const std::string& engine, const CudaTuning& cuda,
+                   int cpu_threads) {
+  std::string tuning;
+  if (engine.rfind("cuda:", 0) == 0)
+    tuning = " (team " + (cuda.team == CudaTuning::kTeamBySize ? std::string("by size") : std::to_string(cuda.team)) +
+             (cuda.fast_exp ? ", __expf weights)" : ")");
   std::printf(
-      "\nEngine: %s; device time = sum of the passes' CUDA-event times (transfers and host work "
+      "\nEngine: %s%s; device time = sum of the passes' CUDA-event times (transfers and host work "
       "excluded); ms, median (p10–p90).\n\n",
-      engine.c_str());
+      engine.c_str(), tuning.c_str());
   std::printf(
       "| row | mesh | V | F | params | paper row | paper ms | ours: device ms | speed-up | upload ms | "
       "download ms | frame wall ms | CPU engine ms (%d thr) | clusters ours / CPU |\n",
@@ -131,7 +139,8 @@ void print_passes(const std::vector<RowResult>& results) {
       if (name == "frame") continue;
       std::printf(" %s %s;", name.c_str(), fmt(r.gpu.spread(name)).c_str());
     }
-    std::printf("\n");
+    const double device = r.gpu.spread("device").median;
+    std::printf(" frame wall %s = %.2f× device\n", fmt(r.wall).c_str(), device > 0 ? r.wall.median / device : 0.0);
   }
 }
 
@@ -157,12 +166,41 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(0, 1000));
   app.add_option("--cpu-threads", o.cpu_threads, "CPU engine threads (0 = all)")->capture_default_str();
+  app.add_option("--cuda-team", o.cuda.team,
+                 "CUDA lanes per vertex in the neighbourhood passes: -1 by mesh size (default), 0 one "
+                 "thread per vertex through the math headers, or 1, 2, 4, 8, 16, 32")
+      ->capture_default_str()
+      ->check(CLI::IsMember({-1, 0, 1, 2, 4, 8, 16, 32}));
+  app.add_flag("--cuda-fast-exp", o.cuda.fast_exp, "CUDA Gaussian weights through __expf (last bits differ)");
   app.add_flag("--neighbour-stats", o.neighbour_stats,
                "also print mean neighbours per vertex at each pass's radius (CPU; for FLOP floors)");
   app.add_flag("--stats-only", o.stats_only, "print only the neighbour statistics (no engine runs)");
   bool list = false;
   app.add_flag("--list", list, "list the rows and exit");
+  CodecBenchOptions codec;
+  auto* codec_opt = app.add_option("--codec", codec.mesh,
+                                   "codec mode: time the frame codec on MESH (a file, or a name in the mesh "
+                                   "folder) against plain Draco on the same chunks, instead of the engine rows");
+  app.add_option("--chunks", codec.chunks, "codec mode: chunks per frame")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 256u));
+  app.add_option("--threads", codec.threads, "codec mode: codec threads")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  app.add_option("--speed", codec.speed, "codec mode: Draco encoding = decoding speed")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 10));
+  app.add_option("--bits", codec.position_bits, "codec mode: position quantization bits")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 30));
+  app.add_flag("--json", codec.json, "codec mode: print one JSON object instead of a table");
   CLI11_PARSE(app, argc, argv);
+
+  if (*codec_opt) {
+    codec.mesh_dir = o.mesh_dir;
+    codec.repeat = o.repeat;
+    return run_codec_bench(codec);
+  }
 
   if (list) {
     for (const BenchRow& r : paper_rows())
@@ -179,7 +217,7 @@ int main(int argc, char** argv) {
   EngineKind kind{};
   parse_engine_kind(o.engine, kind);
   Status why;
-  std::unique_ptr<Engine> engine = make_engine({kind, o.cpu_threads, 0}, &why);
+  std::unique_ptr<Engine> engine = make_engine({kind, o.cpu_threads, 0, o.cuda}, &why);
   if (!engine) {
     std::fprintf(stderr, "fqbench: engine %s unavailable: %s\n", o.engine.c_str(), why.message().c_str());
     return 3;
@@ -210,7 +248,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (!o.stats_only) {
-    print_summary(results, engine->name(), cpu ? cpu->threads() : 0);
+    print_summary(results, engine->name(), o.cuda, cpu ? cpu->threads() : 0);
     print_passes(results);
   }
   if (o.neighbour_stats || o.stats_only) {

@@ -1,10 +1,13 @@
-// Base quadrics by gathering instead of float atomics: a vertex -> triangle table built by
-// counting sort (integer atomics + CUB scan), then one thread per vertex sums its
-// triangles in increasing triangle order -- the CPU engine's order (cpu_stages.cpp
-// base_quadrics), so the result is deterministic. Chosen over the float4-atomic version
-// when it measures faster (see docs/BENCHMARKS.md).
+// Base quadrics by gathering: a vertex -> triangle table built by counting sort (integer
+// atomics + CUB scan), each vertex's triangles put back in increasing order by a CUB
+// segmented sort, then one thread per vertex sums its triangles in that order -- the CPU
+// engine's (cpu_stages.cpp base_quadrics), so the result is deterministic. (Float4 atomics
+// per triangle were slower and L2-bound: docs/BENCHMARKS.md.) The segmented sort handles
+// any valence: a fan of 1e5 triangles on one vertex is sorted by a whole block, where a
+// per-thread insertion sort took O(valence^2).
 #include <algorithm>
 #include <cub/device/device_scan.cuh>
+#include <cub/device/device_segmented_sort.cuh>
 
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/launch.cuh"
@@ -33,19 +36,12 @@ __global__ void scatter_corners(uint64_t corners, const uint32_t* tris, const ui
   if (c < corners) faces[start[tris[c]] + slot[c]] = static_cast<uint32_t>(c / 3);
 }
 
-// Per vertex: its triangles put in increasing order (atomics gave any order), then
-// summed exactly as the CPU does.
-__global__ void gather_base(uint32_t n, const uint32_t* start, uint32_t* faces, const TriangleGeom* geom,
+// Per vertex: its triangles, in increasing order, summed exactly as the CPU does.
+__global__ void gather_base(uint32_t n, const uint32_t* start, const uint32_t* faces, const TriangleGeom* geom,
                             Point4* points, Quadric* base, PackedQuadric* base_p, Vec3* vnormal) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
   if (v >= n) return;
   const uint32_t b = start[v], e = start[v + 1];
-  for (uint32_t k = b + 1; k < e; ++k) {
-    const uint32_t t = faces[k];
-    uint32_t h = k;
-    for (; h > b && faces[h - 1] > t; --h) faces[h] = faces[h - 1];
-    faces[h] = t;
-  }
   const Vec3 x = xyz(points[v]);
   VertexAccum acc = zero_vertex_accum();
   for (uint32_t k = b; k < e; ++k) add_triangle(acc, geom[faces[k]], x);
@@ -57,14 +53,20 @@ __global__ void gather_base(uint32_t n, const uint32_t* start, uint32_t* faces, 
 
 }  // namespace
 
-void base_quadrics_gather(DeviceFrame& f, cudaStream_t s) {
+void base_quadrics(DeviceFrame& f, cudaStream_t s) {
   const uint32_t n = f.n, m = f.m;
   const uint64_t corners = 3 * uint64_t(m);
   uint32_t* count = f.vf_count.reserve(n + 1);
   uint32_t* start = f.vf_start.reserve(n + 1);
-  size_t bytes = 0;
-  FQ_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, bytes, count, start, int(n + 1), s));
-  unsigned char* temp = f.temp.reserve(bytes);
+  // The arrival slots are dead once the corners are scattered: their buffer is the sort's
+  // second half, and the sorted faces end up in whichever `faces` names.
+  cub::DoubleBuffer<uint32_t> faces(f.vf_faces.reserve(corners), f.vf_slot.reserve(corners));
+  size_t scan_bytes = 0, sort_bytes = 0;
+  FQ_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, scan_bytes, count, start, int(n + 1), s));
+  FQ_CUDA_CHECK(cub::DeviceSegmentedSort::SortKeys(nullptr, sort_bytes, faces, int(corners), int(n), start,
+                                                   start + 1, s));
+  const size_t temp_bytes = std::max(scan_bytes, sort_bytes);
+  unsigned char* temp = f.temp.reserve(temp_bytes);
 
   triangle_geometry<<<blocks_for(m), block_size(), 0, s>>>(m, f.tris.data(), f.points.data(),
                                                            f.tri_geom.reserve(m));
@@ -73,11 +75,14 @@ void base_quadrics_gather(DeviceFrame& f, cudaStream_t s) {
   count_corners<<<blocks_for(corners), block_size(), 0, s>>>(corners, f.tris.data(), count,
                                                              f.vf_slot.reserve(corners));
   FQ_CUDA_CHECK_LAUNCH("count_corners");
+  size_t bytes = temp_bytes;
   FQ_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(temp, bytes, count, start, int(n + 1), s));
   scatter_corners<<<blocks_for(corners), block_size(), 0, s>>>(corners, f.tris.data(), start,
-                                                               f.vf_slot.data(), f.vf_faces.reserve(corners));
+                                                               f.vf_slot.data(), f.vf_faces.data());
   FQ_CUDA_CHECK_LAUNCH("scatter_corners");
-  gather_base<<<blocks_for(n), block_size(), 0, s>>>(n, start, f.vf_faces.data(), f.tri_geom.data(),
+  bytes = temp_bytes;
+  FQ_CUDA_CHECK(cub::DeviceSegmentedSort::SortKeys(temp, bytes, faces, int(corners), int(n), start, start + 1, s));
+  gather_base<<<blocks_for(n), block_size(), 0, s>>>(n, start, faces.Current(), f.tri_geom.data(),
                                                      f.points.data(), f.base.reserve(n), f.base_p.reserve(n),
                                                      f.vnormal.reserve(n));
   FQ_CUDA_CHECK_LAUNCH("gather_base");

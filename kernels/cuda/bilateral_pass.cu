@@ -2,31 +2,17 @@
 // centroids, mollified face normals, then one thread per vertex. Same math headers as the
 // CPU engine (bilateral_math.h).
 #include <climits>
-#include <cstring>
 
 #include "kernels/bilateral_math.h"
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/gaussian.h"
 #include "kernels/cuda/launch.cuh"
+#include "kernels/cuda/ordered_float.cuh"
 #include "kernels/cuda/passes.cuh"
 
 namespace fq::cuda {
 
 namespace {
-
-// Floats mapped to ints with the same order, so that atomicMin/Max give float bounds.
-__device__ int ordered_int(float f) {
-  const int i = __float_as_int(f);
-  return i >= 0 ? i : i ^ 0x7fffffff;
-}
-
-float from_ordered_int(int i) {
-  const int bits = i >= 0 ? i : i ^ 0x7fffffff;
-  float f;
-  static_assert(sizeof(f) == sizeof(bits));
-  std::memcpy(&f, &bits, sizeof(f));
-  return f;
-}
 
 __global__ void reset_bounds(int* b) {
   if (threadIdx.x < 3)

@@ -14,29 +14,38 @@
 
 namespace fq::cuda {
 
+/// Reductions of the raw frame (frame_checks.cu), read back in one piece.
+struct FrameStats {
+  int lo[3], hi[3];                              ///< coordinate bounds, as ordered ints
+  unsigned long long bad_coordinate, bad_index;  ///< first faults, or kNone
+  double edge_sum;                               ///< over the three edges of every triangle
+};
+
 struct DeviceFrame {
   uint32_t n = 0;  ///< vertices
   uint32_t m = 0;  ///< triangles
 
-  // Pinned staging: normalized points and triangles up, positions and labels down.
-  PinnedBuffer<Point4> h_points;
-  PinnedBuffer<uint32_t> h_tris;
-  PinnedBuffer<Vec3> h_moved;
-  PinnedBuffer<uint32_t> h_labels;  ///< n labels, then the cluster count
+  // Pinned staging: the raw frame up, positions and labels down.
+  PinnedBuffer<unsigned char> h_upload;  ///< coordinates, then indices, as the caller gave them
+  PinnedBuffer<FrameStats> h_stats;
+  PinnedBuffer<unsigned char> h_download;  ///< positions: 3 floats per vertex, input order and units
+  PinnedBuffer<uint32_t> h_labels;         ///< n labels, then the cluster count
   PinnedBuffer<int> h_bounds;
 
-  DeviceBuffer<Point4> in_points;  ///< input order, normalized, w = 0
+  DeviceBuffer<float> in_coords;   ///< 3 per vertex, input units and order
   DeviceBuffer<uint32_t> in_tris;  ///< input vertex indices
+  DeviceBuffer<FrameStats> stats;
+  DeviceBuffer<double> edge_partials;
+  DeviceBuffer<Point4> in_points;  ///< input order, normalized, w = 0
   DeviceGrid grid;
   DeviceBuffer<Point4> points;  ///< sorted; w = barycentric area after base_quadrics
   DeviceBuffer<uint32_t> tris;  ///< sorted vertex indices
   DeviceBuffer<TriangleGeom> tri_geom;
-  DeviceBuffer<float4> accum;  ///< 4 per vertex: quadric sums, area, normal (atomic variant)
-  DeviceBuffer<uint32_t> vf_count, vf_start, vf_slot, vf_faces;  ///< vertex -> triangles (gather variant)
+  DeviceBuffer<uint32_t> vf_count, vf_start, vf_slot, vf_faces;  ///< vertex -> triangles
   DeviceBuffer<Quadric> base, nbhd, bl;
   DeviceBuffer<PackedQuadric> base_p, nbhd_p, bl_p;  ///< the same, for the team kernels' loads
   DeviceBuffer<Vec3> vnormal, moved;
-  DeviceBuffer<Vec3> moved_in_order;
+  DeviceBuffer<float> out_coords;  ///< moved, 3 per vertex, input order and units
 
   // Bilateral baseline: triangles in centroid-grid order.
   DeviceBuffer<Point4> tri_in;  ///< centroid, w = area; triangle order

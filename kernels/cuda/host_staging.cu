@@ -1,50 +1,141 @@
-#include <algorithm>
-#include <cstring>
-#include <limits>
-
 #include "kernels/cuda/host_staging.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include "kernels/cuda/cuda_check.cuh"
 #include "kernels/parallel_for.h"
 
 namespace fq::cuda {
 
-void stage_points(const MeshView& mesh, const Normalization& norm, Point4* points, Vec3& lo, Vec3& hi) {
-  const int64_t n = mesh.num_vertices;
-  constexpr float kInf = std::numeric_limits<float>::infinity();
-  float lx = kInf, ly = kInf, lz = kInf, hx = -kInf, hy = -kInf, hz = -kInf;
-#if defined(FQ_HAVE_OPENMP)
-#pragma omp parallel for schedule(static) reduction(min                                   \
-                                                    : lx, ly, lz) reduction(max           \
-                                                                            : hx, hy, hz) \
-    num_threads(hardware_threads())
-#endif
-  for (int64_t i = 0; i < n; ++i) {
-    const Vec3 p = norm.to_normalized(mesh.positions + 3 * i);
-    points[i] = {p.x, p.y, p.z, 0.f};
-    lx = std::min(lx, p.x);
-    ly = std::min(ly, p.y);
-    lz = std::min(lz, p.z);
-    hx = std::max(hx, p.x);
-    hy = std::max(hy, p.y);
-    hz = std::max(hz, p.z);
+namespace {
+
+// A transfer chunk is large enough that each cudaMemcpyAsync runs near the link's rate and
+// small enough that the first one starts early; a piece is one thread's share of a chunk.
+constexpr size_t kChunk = size_t(4) << 20;
+constexpr size_t kPiece = size_t(256) << 10;
+
+size_t pieces_of(size_t bytes) { return (bytes + kPiece - 1) / kPiece; }
+
+// dst = src with streaming (non-temporal) stores where the CPU has them. glibc's memcpy
+// switches to such stores only for copies of several MB, and a thread's piece here is
+// 256 KB: with ordinary stores every destination line is first read for ownership, a
+// third more memory traffic on the path that bounds a large frame's upload. Neither side
+// reads the destination soon (the copy engine does, or the caller, later).
+void stream_copy(unsigned char* dst, const unsigned char* src, size_t len) {
+#if defined(__SSE2__)
+  const size_t head = std::min(len, (16 - (reinterpret_cast<uintptr_t>(dst) & 15)) & 15);
+  std::memcpy(dst, src, head);
+  dst += head;
+  src += head;
+  len -= head;
+  const size_t body = len / 64 * 64;
+  for (size_t k = 0; k < body; k += 64) {
+    const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + k));
+    const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + k + 16));
+    const __m128i c = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + k + 32));
+    const __m128i d = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + k + 48));
+    _mm_stream_si128(reinterpret_cast<__m128i*>(dst + k), a);
+    _mm_stream_si128(reinterpret_cast<__m128i*>(dst + k + 16), b);
+    _mm_stream_si128(reinterpret_cast<__m128i*>(dst + k + 32), c);
+    _mm_stream_si128(reinterpret_cast<__m128i*>(dst + k + 48), d);
   }
-  lo = {lx, ly, lz};
-  hi = {hx, hy, hz};
+  std::memcpy(dst + body, src + body, len - body);
+  _mm_sfence();  // the stores are visible before the chunk is handed on
+#else
+  std::memcpy(dst, src, len);
+#endif
 }
 
-void copy_indices(const uint32_t* src, uint32_t* dst, size_t count) {
-  constexpr size_t kChunk = size_t(1) << 18;
-  const int64_t chunks = static_cast<int64_t>((count + kChunk - 1) / kChunk);
+void copy_piece(unsigned char* dst, const unsigned char* src, size_t bytes, size_t p) {
+  const size_t begin = p * kPiece;
+  stream_copy(dst + begin, src + begin, std::min(kPiece, bytes - begin));
+}
+
+}  // namespace
+
+void upload_staged(const void* src, void* dst, size_t bytes, unsigned char* staging, cudaStream_t s) {
+  const auto* in = static_cast<const unsigned char*>(src);
+  auto* out = static_cast<unsigned char*>(dst);
+  const int64_t chunks = static_cast<int64_t>((bytes + kChunk - 1) / kChunk);
+  // Exceptions cannot leave a parallel region: the first failed enqueue is kept and thrown after.
+  cudaError_t failed = cudaSuccess;
+#if defined(FQ_HAVE_OPENMP)
+#pragma omp parallel num_threads(hardware_threads())
+#endif
+  for (int64_t c = 0; c < chunks; ++c) {
+    const size_t begin = size_t(c) * kChunk, len = std::min(kChunk, bytes - begin);
+    const int64_t pieces = static_cast<int64_t>(pieces_of(len));
+#if defined(FQ_HAVE_OPENMP)
+#pragma omp for schedule(static)
+#endif
+    for (int64_t p = 0; p < pieces; ++p) copy_piece(staging + begin, in + begin, len, size_t(p));
+    // The loop's barrier has passed: chunk c is staged. The calling thread (which holds the
+    // engine's device) enqueues it while the others go on to chunk c + 1.
+#if defined(FQ_HAVE_OPENMP)
+#pragma omp master
+#endif
+    {
+      const cudaError_t e = cudaMemcpyAsync(out + begin, staging + begin, len, cudaMemcpyHostToDevice, s);
+      if (e != cudaSuccess && failed == cudaSuccess) failed = e;
+    }
+  }
+  check(failed, "cudaMemcpyAsync (staged upload)", __FILE__, __LINE__);
+}
+
+StagedDownload enqueue_download(const void* src, void* dst, size_t bytes, unsigned char* staging,
+                                const cudaEvent_t* done, int events, cudaStream_t s) {
+  const size_t per_event = (bytes + size_t(events) - 1) / size_t(events);
+  const size_t chunk = std::max(kChunk, (per_event + kPiece - 1) / kPiece * kPiece);
+  const auto* in = static_cast<const unsigned char*>(src);
+  for (size_t begin = 0, k = 0; begin < bytes; begin += chunk, ++k) {
+    FQ_CUDA_CHECK(cudaMemcpyAsync(staging + begin, in + begin, std::min(chunk, bytes - begin),
+                                  cudaMemcpyDeviceToHost, s));
+    FQ_CUDA_CHECK(cudaEventRecord(done[k], s));
+  }
+  return {staging, static_cast<unsigned char*>(dst), bytes, chunk, done};
+}
+
+void complete_download(const StagedDownload& d) {
+  const int64_t chunks = static_cast<int64_t>((d.bytes + d.chunk - 1) / d.chunk);
+  cudaError_t failed = cudaSuccess;
+#if defined(FQ_HAVE_OPENMP)
+#pragma omp parallel num_threads(hardware_threads())
+#endif
+  for (int64_t c = 0; c < chunks; ++c) {
+#if defined(FQ_HAVE_OPENMP)
+#pragma omp master
+#endif
+    {
+      if (failed == cudaSuccess) failed = cudaEventSynchronize(d.done[c]);
+    }
+#if defined(FQ_HAVE_OPENMP)
+#pragma omp barrier
+#endif
+    if (failed != cudaSuccess) break;  // every thread sees the same value after the barrier
+    const size_t begin = size_t(c) * d.chunk, len = std::min(d.chunk, d.bytes - begin);
+    const int64_t pieces = static_cast<int64_t>(pieces_of(len));
+#if defined(FQ_HAVE_OPENMP)
+#pragma omp for schedule(static)
+#endif
+    for (int64_t p = 0; p < pieces; ++p) copy_piece(d.dst + begin, d.staging + begin, len, size_t(p));
+  }
+  check(failed, "cudaEventSynchronize (staged download)", __FILE__, __LINE__);
+}
+
+void parallel_copy(void* dst, const void* src, size_t bytes) {
+  const auto* in = static_cast<const unsigned char*>(src);
+  auto* out = static_cast<unsigned char*>(dst);
+  const int64_t pieces = static_cast<int64_t>(pieces_of(bytes));
 #if defined(FQ_HAVE_OPENMP)
 #pragma omp parallel for schedule(static) num_threads(hardware_threads())
 #endif
-  for (int64_t c = 0; c < chunks; ++c) {
-    const size_t begin = size_t(c) * kChunk, len = std::min(kChunk, count - begin);
-    std::memcpy(dst + begin, src + begin, len * sizeof(uint32_t));
-  }
-}
-
-void unstage_positions(const Vec3* moved, uint32_t n, const Normalization& norm, float* out) {
-  parallel_for(n, hardware_threads(), [&](uint32_t i) { norm.to_input(moved[i], out + 3 * size_t(i)); });
+  for (int64_t p = 0; p < pieces; ++p) copy_piece(out, in, bytes, size_t(p));
 }
 
 }  // namespace fq::cuda

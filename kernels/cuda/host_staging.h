@@ -1,24 +1,38 @@
-// Host side of a CUDA frame, on all host threads: normalization into pinned staging (with
-// the bounds the grid layout needs) and the way back to input units. The per-vertex maps
-// are frame_prep.h's, so the device sees exactly the CPU engine's normalized points.
+// Host side of a CUDA frame's transfers, on all host threads: the caller's arrays go up
+// through pinned staging in chunks, so that copying chunk k into pinned memory overlaps
+// the copy engine's transfer of chunk k-1; results come back out of pinned memory by a
+// parallel copy.
 #pragma once
 
-#include <cstddef>
-#include <cstdint>
+#include <cuda_runtime.h>
 
-#include "kernels/frame_prep.h"
-#include "kernels/mesh_view.h"
-#include "kernels/vec3.h"
+#include <cstddef>
 
 namespace fq::cuda {
 
-/// points[i] = normalized vertex i (w = 0); lo/hi = their bounds.
-void stage_points(const MeshView& mesh, const Normalization& norm, Point4* points, Vec3& lo, Vec3& hi);
+/// dst (device) = src (pageable host), `bytes` long, through `staging` (pinned, at least
+/// `bytes`). Enqueues the transfers on `s` and returns once every chunk is staged; the
+/// caller's memory may then change, the staging not until `s` has passed the copies.
+void upload_staged(const void* src, void* dst, size_t bytes, unsigned char* staging, cudaStream_t s);
 
-/// dst[0..count) = src[0..count), in parallel chunks.
-void copy_indices(const uint32_t* src, uint32_t* dst, size_t count);
+/// A download in chunks through pinned staging, each chunk followed by its own event.
+struct StagedDownload {
+  const unsigned char* staging = nullptr;
+  unsigned char* dst = nullptr;
+  size_t bytes = 0, chunk = 0;
+  const cudaEvent_t* done = nullptr;
+};
 
-/// out[3i..3i+2] = moved[i] in input units.
-void unstage_positions(const Vec3* moved, uint32_t n, const Normalization& norm, float* out);
+/// Enqueues staging (pinned, at least `bytes`) = src (device) on `s` in at most `events`
+/// chunks, recording done[k] after chunk k.
+StagedDownload enqueue_download(const void* src, void* dst, size_t bytes, unsigned char* staging,
+                                const cudaEvent_t* done, int events, cudaStream_t s);
+
+/// Waits for the chunks in turn and copies each out of pinned memory on all host threads
+/// while the next one is still in flight.
+void complete_download(const StagedDownload& d);
+
+/// dst = src, `bytes` long, on all host threads.
+void parallel_copy(void* dst, const void* src, size_t bytes);
 
 }  // namespace fq::cuda

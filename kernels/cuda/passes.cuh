@@ -12,17 +12,14 @@ namespace fq::cuda {
 
 /// Grid of the uploaded points, sorted points, triangles renumbered to sorted indices.
 void sort_into_grid(DeviceFrame& f, const GridLayout& layout, cudaStream_t s);
-/// Triangle geometry; per-vertex base quadric, area (points.w) and normal, by float4 atomics.
+/// Triangle geometry; per-vertex base quadric, area (points.w) and normal, summed over a
+/// vertex -> triangle table in the CPU's order.
 void base_quadrics(DeviceFrame& f, cudaStream_t s);
-/// The same by a vertex -> triangle table and a per-vertex sum in the CPU's order.
-void base_quadrics_gather(DeviceFrame& f, cudaStream_t s);
 void neighbourhood_quadrics(DeviceFrame& f, float sigma_b, cudaStream_t s);
 void diffuse_quadrics(DeviceFrame& f, const FilterParams& p, cudaStream_t s);
 void update_positions(DeviceFrame& f, const FilterParams& p, cudaStream_t s);
 /// Jones et al. 2003 into f.moved (synchronizes `s` once, for the centroid bounds).
 void bilateral_filter(DeviceFrame& f, const FilterParams& p, cudaStream_t s);
-/// f.moved back to input order (f.moved_in_order).
-void gather_moved(DeviceFrame& f, cudaStream_t s);
 
 void cluster_scores(DeviceFrame& f, const ClusterParams& p, cudaStream_t s);
 void cluster_links(DeviceFrame& f, const ClusterParams& p, cudaStream_t s);

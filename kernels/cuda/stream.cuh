@@ -28,6 +28,26 @@ class Stream {
   cudaStream_t s_ = nullptr;
 };
 
+/// Events without timing, for the host to wait on parts of a frame (chunks of a download).
+class SyncEvents {
+ public:
+  explicit SyncEvents(int count) : events_(count) {
+    for (cudaEvent_t& e : events_) FQ_CUDA_CHECK(cudaEventCreateWithFlags(&e, cudaEventDisableTiming));
+  }
+  SyncEvents(const SyncEvents&) = delete;
+  SyncEvents& operator=(const SyncEvents&) = delete;
+  ~SyncEvents() {
+    for (cudaEvent_t e : events_) {
+      if (const cudaError_t r = cudaEventDestroy(e); r != cudaSuccess) log_free_failure("cudaEventDestroy", r);
+    }
+  }
+  const cudaEvent_t* data() const { return events_.data(); }
+  int size() const { return static_cast<int>(events_.size()); }
+
+ private:
+  std::vector<cudaEvent_t> events_;
+};
+
 /// A fixed pool of events recorded between passes; after the frame's synchronization the
 /// elapsed time between consecutive marks is each pass's device time.
 class PassEvents {

@@ -28,7 +28,7 @@ namespace {
 
 // Gaussian weight: gaussian.h's accurate exp, or with `fast` the hardware approximation
 // __expf (relative error ~1e-6 here, far inside the parity tolerance). Measured in
-// docs/BENCHMARKS.md; FQ_CUDA_FAST_EXP selects it.
+// docs/BENCHMARKS.md; CudaTuning::fast_exp selects it.
 struct Weight {
   Gaussian g;
   bool fast;

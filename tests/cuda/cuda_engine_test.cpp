@@ -26,11 +26,11 @@ TEST(CudaAvailability, EngineIsNamedOrUnavailableWithAReason) {
     EXPECT_EQ(why.code(), StatusCode::kUnavailable);
     EXPECT_FALSE(why.message().empty());
     // auto falls back to the CPU engine; an explicit request reports the reason.
-    auto e = make_engine({EngineKind::kAuto, 1, 0});
+    auto e = make_engine({EngineKind::kAuto, 1, 0, {}});
     ASSERT_TRUE(e);
     EXPECT_EQ(e->name(), "cpu");
     Status s;
-    EXPECT_FALSE(make_engine({EngineKind::kCuda, 1, 0}, &s));
+    EXPECT_FALSE(make_engine({EngineKind::kCuda, 1, 0, {}}, &s));
     EXPECT_EQ(s.code(), StatusCode::kUnavailable);
   }
 }
@@ -74,25 +74,25 @@ using CudaEngineTest = CudaTest;
 
 TEST_F(CudaEngineTest, QuadricFilterMatchesCpu) {
   for (const Mesh& m : {noisy_sphere(), noisy_cube()}) {
-    expect_parity_for_each(*cpu_, *gpu_, m.view(), qf(3.f, 1.f), "FQ_CUDA_TEAM", kKernelPaths);
+    expect_parity_for_each(*cpu_, m.view(), qf(3.f, 1.f), kKernelPaths);
   }
 }
 
 // Gaussian weights through __expf in the team kernels, for several team sizes.
 TEST_F(CudaEngineTest, FastExpWeightsMatchCpu) {
-  ScopedEnv fast("FQ_CUDA_FAST_EXP", "1");
   for (const Params& params : {qf(3.f, 1.f), clustering(5.f, 0.8f, 0.9f)}) {
     for (const Mesh& m : {noisy_sphere(), noisy_cube(), make_triangle_soup(noisy_cube())}) {
-      expect_parity_for_each(*cpu_, *gpu_, m.view(), params, "FQ_CUDA_TEAM", {"1", "4", "32"});
+      expect_parity_for_each(*cpu_, m.view(), params, {{1, true}, {4, true}, {32, true}});
     }
   }
 }
 
-// Base quadrics by per-vertex gather (default) and by float4 atomics per triangle.
-TEST_F(CudaEngineTest, BothBaseQuadricVariantsMatchCpu) {
-  const Params params = clustering(4.f, 1.f, 0.8f);
-  for (const Mesh& m : {noisy_sphere(), noisy_cube()}) {
-    expect_parity_for_each(*cpu_, *gpu_, m.view(), params, "FQ_CUDA_BASE", {"gather", "atomic"});
+TEST(CudaTuningOptions, TeamSizesOutsideTheKernelsAreRefused) {
+  for (int team : {-2, 3, 5, 64}) {
+    Status why;
+    EXPECT_FALSE(make_cuda_engine(0, &why, {team, false})) << team;
+    EXPECT_EQ(why.code(), StatusCode::kInvalidArgument) << team;
+    EXPECT_NE(why.message().find(std::to_string(team)), std::string::npos) << why.message();
   }
 }
 
@@ -122,7 +122,7 @@ TEST_F(CudaEngineTest, BilateralBaselineMatchesCpu) {
 TEST_F(CudaEngineTest, ClusteringMatchesCpu) {
   for (const Params& params : {clustering(5.f, 0.8f, 0.9f), clustering(4.f, 1.f, 0.5f)}) {
     for (const Mesh& m : {noisy_sphere(), noisy_cube()}) {
-      expect_parity_for_each(*cpu_, *gpu_, m.view(), params, "FQ_CUDA_TEAM", kKernelPaths,
+      expect_parity_for_each(*cpu_, m.view(), params, kKernelPaths,
                              [](const Parity& p) { EXPECT_GT(p.gpu.num_clusters, 1u); });
     }
   }
@@ -150,7 +150,7 @@ TEST_F(CudaEngineTest, TriangleSoupWithTiesMatchesCpu) {
   add_gaussian_noise(sphere, 0.2, 5);
   const Mesh soup = make_triangle_soup(sphere);
   const Params params = clustering(4.f, 1.f, 0.8f);
-  expect_parity_for_each(*cpu_, *gpu_, soup.view(), params, "FQ_CUDA_TEAM", kKernelPaths);
+  expect_parity_for_each(*cpu_, soup.view(), params, kKernelPaths);
 }
 
 // Unusual meshes (as tests/kernels/degenerate_input_test.cpp feeds the CPU engine): the
@@ -171,7 +171,7 @@ TEST_F(CudaEngineTest, UnusualMeshesMatchCpu) {
                          with_zero_area};
   Params params = clustering(3.f, 1.f, 0.9f);
   for (const Mesh& m : meshes) {
-    expect_parity_for_each(*cpu_, *gpu_, m.view(), params, "FQ_CUDA_TEAM", kKernelPaths,
+    expect_parity_for_each(*cpu_, m.view(), params, kKernelPaths,
                            [](const Parity& p) { EXPECT_TRUE(all_finite(p.gpu.positions)); });
   }
   params.f.method = FilterMethod::kBilateral;
@@ -218,17 +218,69 @@ TEST_F(CudaEngineTest, LaunchFailureIsReportedAndEngineRecovers) {
   expect_parity(p, params);
 }
 
-TEST_F(CudaEngineTest, BadInputAndParametersAreRejectedBeforeTheDevice) {
+// The device checks the frame; a bad one gets the CPU engine's status and message, and the
+// engine goes on with the next frame.
+TEST_F(CudaEngineTest, BadInputAndParametersAreRejectedWithTheCpuMessages) {
+  FrameResult r, rc;
   Mesh m = noisy_cube();
-  FrameResult r;
-  Params bad = qf(-1.f, 1.f);
-  EXPECT_EQ(gpu_->process(m.view(), bad, r).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(gpu_->process(m.view(), qf(-1.f, 1.f), r).code(), StatusCode::kInvalidArgument);
+  auto expect_same_rejection = [&](const Mesh& bad) {
+    const Status g = gpu_->process(bad.view(), qf(2.f, 1.f), r);
+    const Status c = cpu_->process(bad.view(), qf(2.f, 1.f), rc);
+    EXPECT_EQ(g.code(), StatusCode::kInvalidInput) << g.message();
+    EXPECT_EQ(g.code(), c.code());
+    EXPECT_EQ(g.message(), c.message());
+  };
+  // Two non-finite coordinates: the first one is named.
+  m.positions[3 * 1000 + 2] = std::numeric_limits<float>::infinity();
   m.positions[7] = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_EQ(gpu_->process(m.view(), qf(2.f, 1.f), r).code(), StatusCode::kInvalidInput);
-  m.positions[7] = 0.5f;
-  m.triangles[4] = m.num_vertices();
-  EXPECT_EQ(gpu_->process(m.view(), qf(2.f, 1.f), r).code(), StatusCode::kInvalidInput);
-  EXPECT_TRUE(gpu_->process(noisy_cube().view(), qf(2.f, 1.f), r).ok());
+  expect_same_rejection(m);
+  m = noisy_cube();
+  // Out-of-range indices in several triangles, the first of them in a later corner.
+  m.triangles[3 * 2000] = m.num_vertices() + 5;
+  m.triangles[3 * 50 + 2] = m.num_vertices();
+  m.triangles[3 * 50 + 1] = m.num_vertices() + 1;
+  expect_same_rejection(m);
+  // Both faults: the coordinate is reported first, as check_mesh does.
+  m.positions[100] = std::numeric_limits<float>::quiet_NaN();
+  expect_same_rejection(m);
+  Mesh point = make_single_triangle();
+  for (float& c : point.positions) c = 1.5f;  // every edge of zero length
+  expect_same_rejection(point);
+  Mesh outlier = noisy_cube();
+  append_isolated_vertex(outlier, {1e12f, 0.f, 0.f});  // far beyond 1e6 mean edges
+  expect_same_rejection(outlier);
+  Mesh empty;
+  EXPECT_EQ(gpu_->process(empty.view(), qf(2.f, 1.f), r).code(), StatusCode::kInvalidInput);
+  Parity p;
+  run_both(*cpu_, *gpu_, noisy_cube().view(), qf(2.f, 1.f), p);
+  expect_parity(p, qf(2.f, 1.f));
+}
+
+// A vertex shared by 1e5 triangles (listed out of order, some twice) beside an ordinary
+// surface: the per-vertex triangle lists are sorted on the device in bounded time, in the
+// CPU's order, and the frame matches the CPU engine.
+TEST_F(CudaEngineTest, LargeFanMatchesCpu) {
+  Mesh m = noisy_sphere();
+  const uint32_t hub = m.num_vertices();
+  constexpr int kRing = 64;
+  const float hub_pos[3] = {0.f, 0.f, 14.f};
+  m.positions.insert(m.positions.end(), hub_pos, hub_pos + 3);
+  for (int k = 0; k < kRing; ++k) {
+    const float a = 6.2831853f * float(k) / kRing;
+    const float ring[3] = {std::cos(a), std::sin(a), 14.f + 0.1f * std::sin(3.f * a)};
+    m.positions.insert(m.positions.end(), ring, ring + 3);
+  }
+  constexpr uint32_t kFan = 100000;
+  for (uint32_t t = 0; t < kFan; ++t) {
+    const uint32_t k = (t * 37u) % kRing;  // every ring pair, in scrambled order, many times
+    const uint32_t tri[3] = {hub, hub + 1 + k, hub + 1 + (k + 1) % kRing};
+    m.triangles.insert(m.triangles.end(), tri, tri + 3);
+  }
+  for (const Params& params : {qf(3.f, 1.f), clustering(4.f, 1.f, 0.8f)}) {
+    expect_parity_for_each(*cpu_, m.view(), params, {CudaTuning{}},
+                           [](const Parity& p) { EXPECT_TRUE(all_finite(p.gpu.positions)); });
+  }
 }
 
 TEST_F(CudaEngineTest, ReportsDeviceTimePerPassAndTransfers) {
@@ -239,8 +291,8 @@ TEST_F(CudaEngineTest, ReportsDeviceTimePerPassAndTransfers) {
     names.push_back(t.name);
     EXPECT_GE(t.ms, 0.0) << t.name;
   }
-  for (const char* want : {"upload", "grid", "base_quadrics", "neighbourhood_quadrics", "diffusion", "update",
-                           "score", "link", "modes", "download"}) {
+  for (const char* want : {"upload", "checks", "to_normalized", "grid", "base_quadrics", "neighbourhood_quadrics", "diffusion", "update",
+                           "score", "link", "modes", "output", "download", "finish"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
   }
 }

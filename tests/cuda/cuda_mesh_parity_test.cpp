@@ -2,6 +2,7 @@
 // paper's parameter rows (Tables 2 and 3). Skips without a device or without the mesh.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <string>
 
 #include "proto/mesh_io.h"
@@ -42,16 +43,14 @@ TEST_P(CudaMeshParity, MatchesCpuEngine) {
   run_both(*cpu_, *gpu_, mesh.view(), params, p);
   std::printf("  %s (%u vertices), default kernels:\n", row.file, mesh.num_vertices());
   expect_parity(p, params);
-  {
-    ScopedEnv fast("FQ_CUDA_FAST_EXP", "1");
-    rerun_gpu(*gpu_, mesh.view(), params, p);
-    std::printf("  default kernels, __expf weights:\n");
+  const CudaTuning fast_exp{CudaTuning::kTeamBySize, true}, one_thread{0, false};
+  for (const CudaTuning& tuning : {fast_exp, one_thread}) {
+    const std::unique_ptr<Engine> gpu = cuda_engine_with(tuning);
+    ASSERT_TRUE(gpu);
+    rerun_gpu(*gpu, mesh.view(), params, p);
+    std::printf("  %s:\n", describe(tuning).c_str());
     expect_parity(p, params);
   }
-  ScopedEnv env("FQ_CUDA_TEAM", "0");
-  rerun_gpu(*gpu_, mesh.view(), params, p);
-  std::printf("  one thread per vertex:\n");
-  expect_parity(p, params);
 }
 
 // Table 2 (filter) and Table 3 (clustering) rows on the meshes of similar size.

@@ -3,7 +3,7 @@
 # compute-sanitizer (memcheck + racecheck) on a bunny-sized run, optional block-size sweep
 # and ncu profile, then fqbench. Run from the repository root on the GPU host, after
 # staging (see docs/BENCHMARKS.md):
-#   [FQ_SWEEP="FQ_CUDA_TEAM=0 FQ_CUDA_TEAM=4 ..." FQ_SWEEP_ROWS=f-bunny,...] [FQ_NCU_ROW=f-dragon-grog] \
+#   [FQ_SWEEP="--cuda-team=0 --cuda-team=4 ..." FQ_SWEEP_ROWS=f-bunny,...] [FQ_NCU_ROW=f-dragon-grog] \
 #   [FQ_SANITIZE=0] [FQ_TESTS=0] [FQ_BENCH=other fqbench] tests/cuda/gpu_session.sh STAGE_DIR [fqbench args...]
 # Logs go to $OUT (or ./gpu-out); the last lines printed are fqbench's tables.
 set -uo pipefail
@@ -29,12 +29,12 @@ if [[ ${FQ_SANITIZE:-1} == 1 ]]; then
     [[ $rc == 0 ]] || status=1
   done
 fi
-# Each word of FQ_SWEEP is one setting to time the rows under: environment assignments
-# joined by commas (FQ_CUDA_TEAM=4,FQ_CUDA_FAST_EXP=1).
+# Each word of FQ_SWEEP is one setting to time the rows under: fqbench's tuning flags
+# joined by commas (--cuda-team=4,--cuda-fast-exp).
 rows=${FQ_SWEEP_ROWS:-f-bunny,f-armadillo16,f-igea16,c-dragon-075}
 for a in ${FQ_SWEEP:-}; do
   echo "## $a" >>"$out/sweep.md"
-  env ${a//,/ } "$bench" --rows "$rows" --cpu-repeat 0 2>/dev/null >"$out/sweep-one.md"
+  "$bench" ${a//,/ } --rows "$rows" --cpu-repeat 0 2>/dev/null >"$out/sweep-one.md"
   cat "$out/sweep-one.md" >>"$out/sweep.md"
   echo "$a:$(grep -E '^\| [fc]-' "$out/sweep-one.md" | awk -F'|' '{printf " %s%s;", $2, $9}')"
 done

@@ -42,34 +42,26 @@ void run_both(Engine& cpu, Engine& gpu, const MeshView& mesh, const Params& para
 /// Runs only the GPU engine and compares with the CPU result already in `out.cpu`.
 void rerun_gpu(Engine& gpu, const MeshView& mesh, const Params& params, Parity& out);
 
-/// The CUDA engine's kernel paths (environment variable FQ_CUDA_TEAM): "0" one thread per
-/// vertex calling the math headers directly, "auto" the default team per vertex, and
-/// fixed teams of 1 and 32 lanes.
-inline constexpr std::initializer_list<const char*> kKernelPaths = {"auto", "0", "1", "32"};
+/// The CUDA engine's kernel paths: the default team per vertex, one thread per vertex
+/// calling the math headers directly (team 0), and fixed teams of 1 and 32 lanes.
+inline constexpr std::initializer_list<CudaTuning> kKernelPaths = {
+    {CudaTuning::kTeamBySize, false}, {0, false}, {1, false}, {32, false}};
 
-/// Sets an environment variable for its lifetime (restores the previous value).
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const char* value);
-  ~ScopedEnv();
-  ScopedEnv(const ScopedEnv&) = delete;
-  ScopedEnv& operator=(const ScopedEnv&) = delete;
+/// "team 4, fast exp" and the like, for traces.
+std::string describe(const CudaTuning& tuning);
 
- private:
-  std::string name_, old_;
-  bool had_ = false;
-};
+/// A CUDA engine on device 0 with `tuning` (fails the test when none can be made).
+std::unique_ptr<Engine> cuda_engine_with(const CudaTuning& tuning);
 
-/// The stated tolerances: positions within 1e-4 of the bbox diagonal at the 99th
-/// percentile and 1e-2 at most; labels agreeing on >= 99% of vertices; cluster counts
-/// within 2% (at least 1).
+/// The stated tolerances: mean edge equal up to 1e-12 (relative); positions within 1e-4
+/// of the bbox diagonal at the 99th percentile and 1e-2 at most; labels agreeing on >= 99%
+/// of vertices; cluster counts within 2% (at least 1).
 void expect_parity(const Parity& p, const Params& params);
 
-/// Runs the CPU engine once and the GPU engine once per value of the environment variable
-/// `var` (kernel paths or variants), expecting parity each time; `extra` (optional) adds
-/// checks of its own on each GPU result.
-void expect_parity_for_each(Engine& cpu, Engine& gpu, const MeshView& mesh, const Params& params,
-                            const char* var, std::initializer_list<const char*> values,
+/// Runs the CPU engine once and a CUDA engine of each tuning once, expecting parity each
+/// time; `extra` (optional) adds checks of its own on each GPU result.
+void expect_parity_for_each(Engine& cpu, const MeshView& mesh, const Params& params,
+                            std::initializer_list<CudaTuning> tunings,
                             const std::function<void(const Parity&)>& extra = {});
 
 /// Holds a CUDA engine on device 0; skips the test when none can be made.

@@ -199,5 +199,23 @@ TEST(KernelDegenerateInput, ExtentBeyondFloatRangeIsRefusedOrFinite) {
   }
 }
 
+// One vertex far from the rest (1e7 units from a grid of unit edges) is refused by name;
+// the span is printed to 4 significant digits, so that an engine whose mean edge differs in
+// its last bits (the CUDA engine sums in another order) prints the same message.
+TEST(KernelDegenerateInput, FarOutlierIsRefusedWithItsSpan) {
+  Mesh m = test::make_plane_grid(10, 10, 1.0f);
+  test::append_isolated_vertex(m, {1e7f, 0.f, 0.f});
+  CpuEngine engine(2);
+  FrameResult out;
+  const Status s = engine.process(m.view(), filter_and_cluster(), out);
+  ASSERT_EQ(s.code(), StatusCode::kInvalidInput) << s.message();
+  EXPECT_EQ(s.message().rfind("mesh spans ", 0), 0u) << s.message();
+  const std::string span = s.message().substr(11, s.message().find(' ', 11) - 11);
+  EXPECT_NE(span.find("e+06"), std::string::npos) << span;
+  EXPECT_LE(span.size(), std::string("8.888e+06").size()) << span;
+  EXPECT_NE(s.message().find("far outlier vertex"), std::string::npos) << s.message();
+  expect_invalid_input(m.view(), "mean edge lengths (at most 1e6 supported)");
+}
+
 }  // namespace
 }  // namespace fq

@@ -35,15 +35,25 @@ Status decode(const std::vector<std::string>& chunks, uint32_t vertex_count, Mes
 /// `m` as a plain Draco mesh (no fq attributes, float positions kept exactly), as any
 /// producer using draco::Encoder would send it. With `cloud`, a point cloud instead. With
 /// `vid`, also an "fq_vid" attribute of type `vid_type` holding vid[v] for vertex v.
-std::string plain_draco(const Mesh& m, bool cloud = false, const std::vector<uint32_t>* vid = nullptr,
-                        draco::DataType vid_type = draco::DT_UINT32) {
-  draco::Mesh dm;
+/// Points (float positions, kept exactly) and faces of `m`, one point per vertex, into `dm`.
+void fill_draco_mesh(const Mesh& m, draco::Mesh& dm) {
   dm.set_num_points(m.num_vertices());
   draco::GeometryAttribute ga;
   ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 12, 0);
   auto* pa = dm.attribute(dm.AddAttribute(ga, true, m.num_vertices()));
   for (uint32_t v = 0; v < m.num_vertices(); ++v)
     pa->SetAttributeValue(draco::AttributeValueIndex(v), &m.positions[3 * v]);
+  for (uint32_t t = 0; t < m.num_triangles(); ++t) {
+    dm.AddFace({draco::PointIndex(m.triangles[3 * t]), draco::PointIndex(m.triangles[3 * t + 1]),
+                draco::PointIndex(m.triangles[3 * t + 2])});
+  }
+}
+
+std::string plain_draco(const Mesh& m, bool cloud = false, const std::vector<uint32_t>* vid = nullptr,
+                        draco::DataType vid_type = draco::DT_UINT32) {
+  draco::Mesh dm;
+  fill_draco_mesh(m, dm);
+  draco::GeometryAttribute ga;
   if (vid) {
     ga.Init(draco::GeometryAttribute::GENERIC, nullptr, 1, vid_type, false, draco::DataTypeLength(vid_type),
             0);
@@ -57,10 +67,6 @@ std::string plain_draco(const Mesh& m, bool cloud = false, const std::vector<uin
     auto md = std::make_unique<draco::AttributeMetadata>();
     md->AddEntryString("name", kVertexIdAttribute);
     dm.AddAttributeMetadata(id, std::move(md));
-  }
-  for (uint32_t t = 0; t < m.num_triangles(); ++t) {
-    dm.AddFace({draco::PointIndex(m.triangles[3 * t]), draco::PointIndex(m.triangles[3 * t + 1]),
-                draco::PointIndex(m.triangles[3 * t + 2])});
   }
   draco::Encoder enc;
   draco::EncoderBuffer buf;
@@ -100,6 +106,40 @@ TEST(FrameCodecErrors, PlainMeshCannotJoinAMultiChunkFrame) {
   const Status s = decode(chunks, m.num_vertices(), out);
   EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
   EXPECT_NE(s.message().find("fq_vid"), std::string::npos) << s.message();
+}
+
+/// A two-chunk frame of `m` whose second chunk is `m` again, carrying `runs` as its id runs and
+/// coded with Draco's sequential coder or edgebreaker.
+std::vector<std::string> frame_with_forged_runs(const Mesh& m, const std::vector<uint8_t>& runs, bool sequential) {
+  std::vector<std::string> chunks = encode(m, 2);
+  draco::Mesh dm;
+  fill_draco_mesh(m, dm);
+  auto md = std::make_unique<draco::GeometryMetadata>();
+  md->AddEntryBinary(kVertexIdRunsEntry, runs);
+  dm.AddMetadata(std::move(md));
+  draco::Encoder enc;
+  enc.SetEncodingMethod(sequential ? draco::MESH_SEQUENTIAL_ENCODING : draco::MESH_EDGEBREAKER_ENCODING);
+  draco::EncoderBuffer buf;
+  EXPECT_TRUE(enc.EncodeMeshToBuffer(dm, &buf).ok());
+  chunks[1].assign(buf.data(), buf.size());
+  return chunks;
+}
+
+TEST(FrameCodecErrors, IdRunsNeedTheSequentialCoderAndOneIdPerPoint) {
+  const Mesh m = test_proto::make_bumpy_grid(6, 6);
+  const auto n = static_cast<uint8_t>(m.num_vertices());  // 36: one varint byte
+  Mesh out;
+  // Runs (gap 0, n points) name every vertex in order: valid when point order is kept.
+  EXPECT_TRUE(decode(frame_with_forged_runs(m, {0, n}, true), m.num_vertices(), out).ok());
+  Status s = decode(frame_with_forged_runs(m, {0, n}, false), m.num_vertices(), out);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+  EXPECT_NE(s.message().find("not sequentially coded"), std::string::npos) << s.message();
+  for (const std::vector<uint8_t>& bad : {std::vector<uint8_t>{0, uint8_t(n - 1)}, std::vector<uint8_t>{0, 0},
+                                          std::vector<uint8_t>{0, 0x80}, std::vector<uint8_t>{0xff, 0xff, 0xff, 0xff, 0x7f, 1}}) {
+    s = decode(frame_with_forged_runs(m, bad, true), m.num_vertices(), out);
+    EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+    EXPECT_NE(s.message().find(kVertexIdRunsEntry), std::string::npos) << s.message();
+  }
 }
 
 TEST(FrameCodecErrors, PointCloudRejected) {

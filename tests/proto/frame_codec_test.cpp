@@ -1,6 +1,8 @@
 // Chunked Draco frames: split, encode, decode and merge give back the input mesh.
 #include "proto/frame_codec.h"
 
+#include <draco/compression/decode.h>
+#include <draco/mesh/mesh.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,11 +21,13 @@ std::vector<std::string_view> views(const std::vector<std::string>& chunks) {
   return {chunks.begin(), chunks.end()};
 }
 
-/// Encodes `m` in `chunks` chunks and decodes it back (on `threads` threads both ways).
+/// Encodes `m` in `chunks` chunks and decodes it back (on `threads` threads both ways, at
+/// Draco speed `speed`: 10 is the sequential coder with ids as runs, lower speeds edgebreaker).
 Mesh round_trip(const Mesh& m, uint32_t chunks, int threads = 2, const uint32_t* labels = nullptr,
-                std::vector<uint32_t>* labels_out = nullptr) {
+                std::vector<uint32_t>* labels_out = nullptr, int speed = 5) {
   CodecOptions o;
   o.threads = threads;
+  o.encode_speed = o.decode_speed = speed;
   std::vector<std::string> encoded;
   const Status es = encode_frame(m.view(), labels, chunks, o, encoded);
   EXPECT_TRUE(es.ok()) << es.message();
@@ -53,12 +57,12 @@ void expect_same_mesh(const Mesh& in, const Mesh& out) {
   EXPECT_LE(worst, tolerance);
 }
 
-void check_chunk_counts(const Mesh& m) {
-  const Mesh whole = round_trip(m, 1);
+void check_chunk_counts(const Mesh& m, int speed = 5) {
+  const Mesh whole = round_trip(m, 1, 2, nullptr, nullptr, speed);
   expect_same_mesh(m, whole);
   for (uint32_t chunks : {2u, 4u, 7u}) {
-    SCOPED_TRACE("chunks " + std::to_string(chunks));
-    const Mesh split = round_trip(m, chunks);
+    SCOPED_TRACE("chunks " + std::to_string(chunks) + ", speed " + std::to_string(speed));
+    const Mesh split = round_trip(m, chunks, 2, nullptr, nullptr, speed);
     expect_same_mesh(m, split);
     EXPECT_EQ(split.positions, whole.positions);  // one quantization grid: bit for bit
   }
@@ -70,6 +74,34 @@ TEST(FrameCodec, RealMeshAnyChunkCount) {
   const auto m = test_proto::load_shared_mesh("bunny.ply");
   if (!m) GTEST_SKIP() << "bunny.ply not found (set FQ_MESH_DIR)";
   check_chunk_counts(*m);
+  check_chunk_counts(*m, 10);
+}
+
+TEST(FrameCodec, SequentialChunksCarryIdRunsEdgebreakerChunksAnAttribute) {
+  const Mesh m = test_proto::make_bumpy_grid(30, 20);
+  for (int speed : {5, 10}) {
+    CodecOptions o;
+    o.encode_speed = o.decode_speed = speed;
+    std::vector<std::string> encoded;
+    ASSERT_TRUE(encode_frame(m.view(), nullptr, 3, o, encoded).ok());
+    for (const std::string& chunk : encoded) {
+      draco::DecoderBuffer buf;
+      buf.Init(chunk.data(), chunk.size());
+      draco::Decoder dec;
+      auto dm = dec.DecodeMeshFromBuffer(&buf);
+      ASSERT_TRUE(dm.ok());
+      const bool attribute = dm.value()->GetAttributeIdByMetadataEntry("name", kVertexIdAttribute) >= 0;
+      std::vector<uint8_t> runs;
+      const bool has_runs = dm.value()->GetMetadata() != nullptr &&
+                            dm.value()->GetMetadata()->GetEntryBinary(kVertexIdRunsEntry, &runs);
+      EXPECT_EQ(attribute, speed != 10) << "speed " << speed;
+      EXPECT_EQ(has_runs, speed == 10) << "speed " << speed;
+      // A 30 x 20 grid's chunk is a few rows: its ids are a few runs, far below 1 byte per point.
+      if (has_runs) {
+        EXPECT_LT(runs.size(), dm.value()->num_points() / 4);
+      }
+    }
+  }
 }
 
 TEST(FrameCodec, ThreadCountDoesNotChangeTheResult) {
@@ -192,8 +224,8 @@ TEST(FrameCodec, DragonKeepsItsCoincidentVertices) {
   // another vertex, and 105K faces have zero area. A deduplicating codec would merge them.
   const auto m = test_proto::load_shared_mesh("dragon.ply");
   if (!m) GTEST_SKIP() << "dragon.ply not found (set FQ_MESH_DIR)";
-  const Mesh back = round_trip(*m, 4, 2);
-  expect_same_mesh(*m, back);
+  expect_same_mesh(*m, round_trip(*m, 4, 2));
+  expect_same_mesh(*m, round_trip(*m, 4, 2, nullptr, nullptr, 10));  // sequential coder, id runs
 }
 
 TEST(FrameCodec, EdgebreakerKeepsRepeatedAndCollinearFaces) {

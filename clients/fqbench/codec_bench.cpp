@@ -1,0 +1,198 @@
+// The floor is what any chunked Draco codec must pay: Draco's own encode and decode of the
+// frame's chunks, one task per chunk on the same threads. It leaves out what fq adds around
+// Draco: input checks, the split, building the chunk meshes, the fq_vid attribute, reading the
+// decoded meshes back and merging them. The floor's chunk meshes are built once, untimed.
+#include "clients/fqbench/codec_bench.h"
+
+#include <draco/compression/decode.h>
+#include <draco/mesh/mesh.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string_view>
+#include <vector>
+
+#include "clients/fqbench/bench_stats.h"
+#include "proto/frame_chunk.h"
+#include "proto/frame_codec.h"
+#include "proto/frame_split.h"
+#include "proto/mesh_io.h"
+
+namespace fq::bench {
+namespace {
+
+namespace wd = fq::wire::detail;
+
+/// CPU time of the whole process (all threads), in ms: the work done, less sensitive than wall
+/// time to other jobs on a shared machine.
+double cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
+}
+
+/// Wall and CPU ms of one step, appended to `wall` and `cpu`.
+void time_step(const std::function<bool()>& step, bool& ok, std::vector<double>& wall, std::vector<double>& cpu) {
+  const double c0 = cpu_ms();
+  const auto t0 = std::chrono::steady_clock::now();
+  ok = step() && ok;
+  wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  cpu.push_back(cpu_ms() - c0);
+}
+
+size_t total_bytes(const std::vector<std::string>& parts) {
+  size_t n = 0;
+  for (const auto& p : parts) n += p.size();
+  return n;
+}
+
+/// The frame's chunks as position-only Draco meshes: the same split and points as encode_frame.
+struct FloorChunks {
+  wd::Box box;
+  std::vector<std::unique_ptr<draco::Mesh>> meshes;
+  std::vector<uint8_t> sequential;  ///< per chunk: coded with Draco's sequential coder
+};
+
+FloorChunks floor_chunks(const MeshView& mesh, uint32_t chunks, const wire::CodecOptions& opt) {
+  FloorChunks f;
+  f.box = wd::bounding_box(mesh, opt.threads);
+  const auto parts = wd::split_corners(mesh, f.box, std::min(chunks, mesh.num_triangles), opt.threads);
+  wd::ChunkScratch scratch;
+  for (const auto& part : parts) {
+    f.meshes.push_back(std::make_unique<draco::Mesh>());
+    f.sequential.push_back(wd::build_chunk(mesh, nullptr, false, opt, part.span(), scratch, *f.meshes.back()));
+  }
+  return f;
+}
+
+bool floor_encode(const FloorChunks& f, const wire::CodecOptions& opt, std::vector<std::string>& out) {
+  out.assign(f.meshes.size(), {});
+  std::vector<uint8_t> ok(f.meshes.size(), 0);
+  wd::for_each_chunk(f.meshes.size(), opt.threads, [&](size_t i, size_t) {
+    ok[i] = wd::encode_chunk(*f.meshes[i], f.sequential[i] != 0, opt, f.box, out[i]).ok();
+  });
+  return std::all_of(ok.begin(), ok.end(), [](uint8_t b) { return b != 0; });
+}
+
+bool floor_decode(const std::vector<std::string>& encoded, int threads) {
+  std::vector<uint8_t> ok(encoded.size(), 0);
+  wd::for_each_chunk(encoded.size(), threads, [&](size_t i, size_t) {
+    draco::DecoderBuffer buf;
+    buf.Init(encoded[i].data(), encoded[i].size());
+    draco::Decoder dec;
+    ok[i] = dec.DecodeMeshFromBuffer(&buf).ok();
+  });
+  return std::all_of(ok.begin(), ok.end(), [](uint8_t b) { return b != 0; });
+}
+
+struct Samples {
+  std::vector<double> encode, decode, floor_encode, floor_decode;  // wall ms
+  std::vector<double> encode_cpu, decode_cpu, floor_encode_cpu, floor_decode_cpu;
+  size_t bytes = 0, floor_bytes = 0, chunks = 0;
+};
+
+/// One round: ours (encode, then decode of what we encoded), then the floor on the same chunks.
+bool one_round(const Mesh& mesh, const FloorChunks& f, uint32_t chunks, const wire::CodecOptions& opt, Samples& s) {
+  bool ok = true;
+  std::vector<std::string> ours, floor;
+  time_step([&] { return wire::encode_frame(mesh.view(), nullptr, chunks, opt, ours).ok(); }, ok, s.encode,
+            s.encode_cpu);
+  const std::vector<std::string_view> views(ours.begin(), ours.end());
+  Mesh back;
+  time_step([&] { return wire::decode_frame(views, mesh.num_vertices(), opt, back, nullptr).ok(); }, ok, s.decode,
+            s.decode_cpu);
+  ok = ok && back.num_vertices() == mesh.num_vertices() && back.num_triangles() == mesh.num_triangles();
+  time_step([&] { return floor_encode(f, opt, floor); }, ok, s.floor_encode, s.floor_encode_cpu);
+  time_step([&] { return floor_decode(floor, opt.threads); }, ok, s.floor_decode, s.floor_decode_cpu);
+  s.bytes = total_bytes(ours);
+  s.floor_bytes = total_bytes(floor);
+  s.chunks = ours.size();
+  return ok;
+}
+
+std::string resolve_path(const CodecBenchOptions& o) {
+  if (std::filesystem::exists(o.mesh)) return o.mesh;
+  return o.mesh_dir + "/" + o.mesh;
+}
+
+double median(const std::vector<double>& v) { return spread_of(v).median; }
+
+void print(const CodecBenchOptions& o, const Mesh& m, const Samples& s) {
+  const double enc = median(s.encode), dec = median(s.decode);
+  const double fenc = median(s.floor_encode), fdec = median(s.floor_decode);
+  const double cenc = median(s.encode_cpu), cdec = median(s.decode_cpu);
+  const double cfenc = median(s.floor_encode_cpu), cfdec = median(s.floor_decode_cpu);
+  if (o.json) {
+    const nlohmann::json j = {
+        {"mesh", o.mesh},
+        {"vertices", m.num_vertices()},
+        {"triangles", m.num_triangles()},
+        {"chunks", s.chunks},
+        {"threads", o.threads},
+        {"speed", o.speed},
+        {"position_bits", o.position_bits},
+        {"repeat", o.repeat},
+        {"encode_ms", enc},
+        {"decode_ms", dec},
+        {"floor_encode_ms", fenc},
+        {"floor_decode_ms", fdec},
+        {"encode_ratio", enc / fenc},
+        {"decode_ratio", dec / fdec},
+        {"encode_cpu_ms", cenc},
+        {"decode_cpu_ms", cdec},
+        {"floor_encode_cpu_ms", cfenc},
+        {"floor_decode_cpu_ms", cfdec},
+        {"encode_cpu_ratio", cenc / cfenc},
+        {"decode_cpu_ratio", cdec / cfdec},
+        {"bytes", s.bytes},
+        {"floor_bytes", s.floor_bytes}};
+    std::printf("%s\n", j.dump().c_str());
+    return;
+  }
+  std::printf("\n%s (%u V, %u F): %zu chunks, %d threads, Draco speed %d, %d-bit positions; median of %d\n\n",
+              o.mesh.c_str(), m.num_vertices(), m.num_triangles(), s.chunks, o.threads, o.speed, o.position_bits,
+              o.repeat);
+  std::printf("| | fq | floor (plain Draco, positions only) | fq / floor |\n|---|---:|---:|---:|\n");
+  std::printf("| encode wall ms | %.2f | %.2f | %.2f |\n", enc, fenc, enc / fenc);
+  std::printf("| decode wall ms | %.2f | %.2f | %.2f |\n", dec, fdec, dec / fdec);
+  std::printf("| encode CPU ms | %.2f | %.2f | %.2f |\n", cenc, cfenc, cenc / cfenc);
+  std::printf("| decode CPU ms | %.2f | %.2f | %.2f |\n", cdec, cfdec, cdec / cfdec);
+  std::printf("| bytes | %zu | %zu | %.2f |\n", s.bytes, s.floor_bytes, double(s.bytes) / double(s.floor_bytes));
+}
+
+}  // namespace
+
+int run_codec_bench(const CodecBenchOptions& o) {
+  Mesh mesh;
+  const std::string path = resolve_path(o);
+  if (const Status st = io::read_mesh(path, mesh); !st.ok()) {
+    std::fprintf(stderr, "fqbench: %s: %s\n", path.c_str(), st.message().c_str());
+    return 1;
+  }
+  wire::CodecOptions opt;
+  opt.threads = o.threads;
+  opt.encode_speed = opt.decode_speed = o.speed;
+  opt.position_bits = o.position_bits;
+  const FloorChunks f = floor_chunks(mesh.view(), o.chunks, opt);
+  Samples warm, s;
+  if (!one_round(mesh, f, o.chunks, opt, warm)) {
+    std::fprintf(stderr, "fqbench: the codec failed on %s\n", path.c_str());
+    return 1;
+  }
+  for (int r = 0; r < o.repeat; ++r) {
+    if (!one_round(mesh, f, o.chunks, opt, s)) {
+      std::fprintf(stderr, "fqbench: the codec failed on %s\n", path.c_str());
+      return 1;
+    }
+  }
+  print(o, mesh, s);
+  return 0;
+}
+
+}  // namespace fq::bench

@@ -1,0 +1,49 @@
+// Internals of the frame codec: one chunk of a frame as a draco::Mesh, and its encoding.
+// Shared by encode_frame and by fqbench's codec floor (the same chunks, positions only).
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "common/status.h"
+#include "kernels/mesh_view.h"
+#include "proto/frame_codec.h"
+#include "proto/frame_split.h"
+
+namespace draco {
+class Mesh;
+}
+
+namespace fq::wire::detail {
+
+/// Per-worker scratch space of build_chunk, reused from chunk to chunk and frame to frame.
+struct ChunkScratch {
+  std::vector<uint64_t> seen;     ///< one bit per frame vertex; all zero between chunks
+  /// global -> local point index of the current chunk; only its vertices' entries are ever read,
+  /// so it is never initialized (a memset of the whole frame per worker and frame saved).
+  std::unique_ptr<uint32_t[]> local;
+  size_t local_size = 0;
+  /// When set, build_chunk ORs the chunk's vertices into this frame-wide bitmap (shared by the
+  /// workers), so that "every vertex is used" needs no pass of its own.
+  std::atomic<uint64_t>* used = nullptr;
+};
+
+/// The triangles `corners` (3 vertex ids of `mesh` each; see split_corners) as a draco::Mesh:
+/// points = the chunk's vertices in ascending global id, POSITION, then (when `with_ids`) the global ids, and "fq_label" (when `labels`).
+/// Built directly (not with a mesh builder) so that no deduplication can merge two vertices.
+/// `scratch` is the calling worker's. Returns whether the chunk must be coded with Draco's sequential coder: at speed
+/// 10, or when a face repeats a vertex (edgebreaker would drop it). A sequential chunk carries
+/// its ids as kVertexIdRunsEntry (the coder keeps point order), any other as "fq_vid".
+bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids, const CodecOptions& o,
+                 std::span<const uint32_t> corners, ChunkScratch& scratch, draco::Mesh& m);
+
+/// Encodes one chunk with the codec's settings: speeds, the frame's shared quantization grid
+/// on `box`, and the coder build_chunk chose (`sequential`).
+fq::Status encode_chunk(const draco::Mesh& m, bool sequential, const CodecOptions& o, const Box& box,
+                        std::string& out);
+
+}  // namespace fq::wire::detail

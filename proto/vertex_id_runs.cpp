@@ -1,0 +1,64 @@
+#include "proto/vertex_id_runs.h"
+
+namespace fq::wire::detail {
+namespace {
+
+/// Writes v as a LEB128 varint at `at`; returns the end.
+inline uint8_t* put_varint(uint32_t v, uint8_t* at) {
+  while (v >= 0x80) {
+    *at++ = static_cast<uint8_t>(v | 0x80);
+    v >>= 7;
+  }
+  *at++ = static_cast<uint8_t>(v);
+  return at;
+}
+
+/// Reads one varint of at most 32 bits at data[pos]; false at the end or on an overlong one.
+bool get_varint(const uint8_t* data, size_t size, size_t& pos, uint32_t& v) {
+  v = 0;
+  for (int shift = 0; shift < 35; shift += 7) {
+    if (pos >= size) return false;
+    const uint8_t b = data[pos++];
+    if (shift == 28 && (b & 0xf0) != 0) return false;
+    v |= uint32_t(b & 0x7f) << shift;
+    if ((b & 0x80) == 0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void encode_id_runs(const std::vector<uint32_t>& ids, std::vector<uint8_t>& out) {
+  size_t runs = ids.empty() ? 0 : 1;
+  for (size_t i = 1; i < ids.size(); ++i) runs += ids[i] != ids[i - 1] + 1;
+  out.resize(runs * 10);  // two varints of at most 5 bytes per run
+  uint8_t* at = out.data();
+  uint32_t end = 0;  // one past the previous run
+  for (size_t i = 0; i < ids.size();) {
+    size_t j = i + 1;
+    while (j < ids.size() && ids[j] == ids[j - 1] + 1) ++j;
+    at = put_varint(ids[i] - end, at);
+    at = put_varint(static_cast<uint32_t>(j - i), at);
+    end = ids[j - 1] + 1;
+    i = j;
+  }
+  out.resize(static_cast<size_t>(at - out.data()));
+}
+
+bool decode_id_runs(const uint8_t* data, size_t size, size_t count, uint32_t limit, std::vector<uint32_t>& ids) {
+  ids.resize(count);
+  size_t filled = 0;
+  uint64_t end = 0;
+  for (size_t pos = 0; pos < size;) {
+    uint32_t gap = 0, run = 0;
+    if (!get_varint(data, size, pos, gap) || !get_varint(data, size, pos, run) || run == 0) return false;
+    const uint64_t first = end + gap;
+    end = first + run;
+    if (end > limit || filled + run > count) return false;
+    for (uint32_t k = 0; k < run; ++k) ids[filled + k] = static_cast<uint32_t>(first + k);
+    filled += run;
+  }
+  return filled == count;
+}
+
+}  // namespace fq::wire::detail

@@ -1,0 +1,25 @@
+// The global vertex ids of a chunk's points, carried as runs instead of a Draco attribute.
+//
+// Chunk points are stored in ascending global id, and Draco's sequential coder keeps point
+// order, so a sequentially coded chunk needs only the sorted id list, not a per-point
+// attribute. Ids of a spatially coherent chunk come in long runs of consecutive values; the
+// list is (gap, run length) pairs, each a LEB128 varint: gap = first id of the run minus the
+// end of the previous run (0 at the start), run length >= 1. Encoding and decoding are one
+// linear pass, where Draco's integer attribute coder (prediction + entropy coding) cost about
+// as much as the positions themselves.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace fq::wire::detail {
+
+/// `ids` (strictly ascending) as runs, replacing `out`.
+void encode_id_runs(const std::vector<uint32_t>& ids, std::vector<uint8_t>& out);
+
+/// The ids of `size` bytes of runs into `ids`: false when the bytes are malformed, when the
+/// ids are not exactly `count`, or when an id reaches `limit`. Never allocates beyond `count`.
+bool decode_id_runs(const uint8_t* data, size_t size, size_t count, uint32_t limit, std::vector<uint32_t>& ids);
+
+}  // namespace fq::wire::detail
