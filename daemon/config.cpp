@@ -204,6 +204,7 @@ Status parse_config(std::string_view text, const std::string& source, DaemonConf
     root.fail("log_level", "must be one of trace, debug, info, warn, error, critical, off");
   if (Status s = read_sections(root, c); !s.ok()) return s;
   if (Status s = read_streams(root, c); !s.ok()) return s;
+  if (Status s = read_service_sections(root, c.http, c.stats, c.sub_ingest); !s.ok()) return s;
   if (Status s = root.finish(); !s.ok()) return s;
   out = std::move(c);
   return {};

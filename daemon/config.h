@@ -11,6 +11,7 @@
 #include "kernels/engine.h"
 #include "common/status.h"
 #include "daemon/curve_auth.h"
+#include "daemon/service_config.h"
 #include "daemon/stream_settings.h"
 
 namespace fq::daemon {
@@ -55,6 +56,9 @@ struct DaemonConfig {
   StreamSettings defaults;
   std::map<std::string, StreamSettings> streams;  ///< per-stream overrides, resolved
   std::string log_level = "info";
+  HttpConfig http;        ///< [http]: metrics, health, streams and the live viewer
+  StatsLogConfig stats;   ///< [stats]: the periodic one-line log per stream
+  SubIngestConfig sub_ingest;  ///< [ingest]: SUB-connect to producers too (scale-out)
 
   /// Replaces thread counts of 0 by their automatic value.
   void resolve_auto_threads();

@@ -5,6 +5,7 @@
 #include "daemon/control_server.h"
 #include "daemon/ingest.h"
 #include "daemon/publisher.h"
+#include "daemon/sub_ingest.h"
 
 namespace fq::daemon {
 namespace {
@@ -107,6 +108,15 @@ Status Daemon::start() {
   if (Status s = make_engines(config_.engine, engines_); !s.ok()) return s;
   zmq::socket_t ingest, publish, control;
   if (Status s = bind_sockets(ingest, publish, control); !s.ok()) return s;
+  zmq::socket_t sub;  // stays empty without [ingest] connect
+  if (!config_.sub_ingest.connect.empty()) {
+    if (Status s = make_sub_socket(input_context_, config_.sub_ingest, sub); !s.ok()) return s;
+  }
+  if (!config_.http.listen.empty()) {
+    http_ = std::make_unique<HttpServer>(config_, registry_, pipeline_.latest, engine_names(), healthy_);
+    if (Status s = http_->start(); !s.ok()) return s;
+    endpoints_.http = http_->url();
+  }
   // Sockets were made on this thread and are handed over whole to their owner threads.
   publisher_thread_ =
       std::thread([this, s = std::move(publish)]() mutable { Publisher(std::move(s), pipeline_).run(); });
@@ -118,21 +128,56 @@ Status Daemon::start() {
     decoders_.emplace_back([this] { run_decode_worker(pipeline_); });
   control_thread_ =
       std::thread([this, s = std::move(control)]() mutable { run_control(std::move(s), registry_); });
-  ingest_thread_ =
-      std::thread([this, s = std::move(ingest)]() mutable { run_ingest(std::move(s), pipeline_); });
+  if (sub) {
+    ingest_thread_ = std::thread([this, pull = std::move(ingest), sub = std::move(sub)]() mutable {
+      const auto& ids = config_.sub_ingest.streams;
+      run_sub_ingest(std::move(pull), std::move(sub), pipeline_, std::set<std::string>(ids.begin(), ids.end()));
+    });
+  } else {
+    ingest_thread_ =
+        std::thread([this, s = std::move(ingest)]() mutable { run_ingest(std::move(s), pipeline_); });
+  }
   running_ = true;
+  healthy_ = true;
+  if (config_.stats.interval_s > 0) stats_log_ = std::make_unique<StatsLog>(registry_, config_.stats.interval_s);
   std::string names;
   for (const std::string& n : engine_names()) names += (names.empty() ? "" : ", ") + n;
   spdlog::info("fqd: engines [{}], {} decode / {} encode threads", names, config_.decode_threads,
                config_.encode_threads);
   spdlog::info("fqd: ingest {} (PULL), publish {} (PUB), control {} (REP)", endpoints_.ingest,
                endpoints_.publish, endpoints_.control);
+  if (http_) spdlog::info("fqd: http {} (/metrics /healthz /streams, viewer at /)", endpoints_.http);
+  for (const std::string& ep : config_.sub_ingest.connect)
+    spdlog::info("fqd: ingest also from {} (SUB), streams [{}]", ep,
+                 config_.sub_ingest.streams.empty() ? std::string("all") : fmt::format("{}", fmt::join(config_.sub_ingest.streams, ", ")));
   return {};
+}
+
+std::vector<std::string> Daemon::reload_streams(const DaemonConfig& fresh) {
+  registry_.reload(fresh.defaults, fresh.streams);
+  std::vector<std::string> restart;
+  const DaemonConfig& c = config_;
+  const Endpoints& e = fresh.endpoints;
+  if (e.ingest != c.endpoints.ingest || e.publish != c.endpoints.publish || e.control != c.endpoints.control)
+    restart.push_back("endpoints");
+  if (fresh.http.listen != c.http.listen || fresh.http.web_root != c.http.web_root) restart.push_back("http");
+  if (fresh.engine.kind != c.engine.kind || fresh.engine.gpus != c.engine.gpus ||
+      fresh.engine.cpu_engines != c.engine.cpu_engines || fresh.engine.cpu_threads != c.engine.cpu_threads ||
+      fresh.engine.cpu_alongside_gpus != c.engine.cpu_alongside_gpus)
+    restart.push_back("engine");
+  if (fresh.caps.max_vertices != c.caps.max_vertices || fresh.caps.max_frame_bytes != c.caps.max_frame_bytes ||
+      fresh.caps.max_streams != c.caps.max_streams)
+    restart.push_back("caps");
+  if (fresh.stats.interval_s != c.stats.interval_s) restart.push_back("stats");
+  return restart;
 }
 
 void Daemon::stop() {
   if (!running_) return;
   running_ = false;
+  healthy_ = false;
+  if (http_) http_->stop();
+  if (stats_log_) stats_log_->stop();
   // Blocking receives on the input sockets return ETERM; their threads close them.
   input_context_.shutdown();
   if (ingest_thread_.joinable()) ingest_thread_.join();

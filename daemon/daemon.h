@@ -2,6 +2,7 @@
 // main.cpp runs one; tests and fqstreambench run one in-process on ephemeral ports.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <thread>
@@ -10,7 +11,9 @@
 
 #include "daemon/config.h"
 #include "kernels/engine.h"
+#include "daemon/http_server.h"
 #include "daemon/pipeline.h"
+#include "daemon/stats_log.h"
 #include "daemon/stream_registry.h"
 
 namespace fq::daemon {
@@ -18,6 +21,7 @@ namespace fq::daemon {
 /// The addresses actually bound (a "*" port in the config is resolved here).
 struct BoundEndpoints {
   std::string ingest, publish, control;
+  std::string http;  ///< "http://host:port", empty without an HTTP listener
 };
 
 /// One engine per listed GPU (CUDA), plus or else `cpu_engines` CPU engines, as the config says.
@@ -39,6 +43,9 @@ class Daemon {
 
   const BoundEndpoints& endpoints() const { return endpoints_; }
   const DaemonConfig& config() const { return config_; }
+  /// Applies a reloaded configuration's per-stream settings ([defaults], [streams.*]) to the
+  /// running daemon; other sections need a restart (the returned list names those that differ).
+  std::vector<std::string> reload_streams(const DaemonConfig& fresh);
   StreamRegistry& registry() { return registry_; }
   /// Names of the engines in use ("cpu", "cuda:<device>").
   std::vector<std::string> engine_names() const;
@@ -59,6 +66,9 @@ class Daemon {
   std::thread ingest_thread_, control_thread_, publisher_thread_;
   std::vector<std::thread> decoders_, workers_, encoders_;
   bool running_ = false;
+  std::atomic<bool> healthy_{false};    ///< every thread started (GET /healthz)
+  std::unique_ptr<HttpServer> http_;    ///< null when http.listen is empty
+  std::unique_ptr<StatsLog> stats_log_; ///< null when stats.interval_s is 0
 };
 
 }  // namespace fq::daemon

@@ -38,6 +38,8 @@ Status check_header(const wire::FrameHeader& h, const std::string& topic, size_t
 
 // Streams without frames for caps.stream_idle_s give their slot back (at most one sweep
 // a second; the ingest socket's receive timeout wakes the thread when nothing arrives).
+}  // namespace
+
 void expire_idle_streams(Pipeline& p) {
   static thread_local int64_t last_sweep_ns = 0;
   const int64_t now = wall_ns();
@@ -59,6 +61,8 @@ void expire_idle_streams(Pipeline& p) {
     spdlog::info("stream '{}' expired after {} s without frames", id, p.config.caps.stream_idle_s);
   }
 }
+
+namespace {
 
 // A message refused before any stream state exists for it: counted by reason, logged at a
 // bounded rate, and answered with an error result under the (escaped) topic so that the
@@ -122,18 +126,21 @@ void run_ingest(zmq::socket_t socket, Pipeline& p) {
       spdlog::error("ingest: {}", e.what());
       continue;
     }
-    FramePtr f = admit_message(parts, p);
-    if (f->refused) {
-      p.publish_queue.push(std::move(f));
-    } else if (!f->error.ok()) {
-      const Status why = f->error;
-      p.fail(std::move(f), why);
-    } else {
-      p.note_queued(*f);
-      p.decode_queue.push(std::move(f));
-    }
+    queue_admitted(admit_message(parts, p), p);
   }
   socket.close();
+}
+
+void queue_admitted(FramePtr f, Pipeline& p) {
+  if (f->refused) {
+    p.publish_queue.push(std::move(f));  // logged (rate-limited) and counted at refusal
+  } else if (!f->error.ok()) {
+    const Status why = f->error;
+    p.fail(std::move(f), why);
+  } else {
+    p.note_queued(*f);
+    p.decode_queue.push(std::move(f));
+  }
 }
 
 }  // namespace fq::daemon

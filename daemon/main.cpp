@@ -1,29 +1,59 @@
-// fqd: the streaming daemon. Usage: fqd --config configs/fqd.toml
+// fqd: the streaming daemon. Usage: fqd [--config configs/fqd.toml]
+// Configuration: --config, else $FQ_CONFIG, else /etc/fq/fqd.toml, else built-in defaults.
+// SIGINT/SIGTERM stop it (frames in flight are finished); SIGHUP reloads per-stream settings.
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "daemon/config.h"
+#include "daemon/config_lookup.h"
 #include "daemon/daemon.h"
 #include "daemon/signals.h"
 
 namespace {
 
 std::string endpoints_json(const fq::daemon::BoundEndpoints& e) {
-  return nlohmann::json{{"ingest", e.ingest}, {"publish", e.publish}, {"control", e.control}}.dump();
+  nlohmann::json j{{"ingest", e.ingest}, {"publish", e.publish}, {"control", e.control}};
+  if (!e.http.empty()) j["http"] = e.http;
+  return j.dump();
+}
+
+// `config` is left as it is (default-constructed by the caller) for the built-in defaults.
+fq::Status load(const fq::daemon::ConfigSource& source, fq::daemon::DaemonConfig& config) {
+  return source.path.empty() ? fq::Status{} : fq::daemon::load_config(source.path, config);
+}
+
+// SIGHUP: per-stream settings from the file again; a bad file changes nothing.
+void reload(const fq::daemon::ConfigSource& source, fq::daemon::Daemon& daemon) {
+  if (source.path.empty()) {
+    spdlog::info("fqd: SIGHUP ignored: running on built-in defaults, no configuration file to reload");
+    return;
+  }
+  fq::daemon::DaemonConfig fresh;
+  if (fq::Status s = load(source, fresh); !s.ok()) {
+    spdlog::error("fqd: SIGHUP: {} not reloaded, settings unchanged: {}", source.path, s.message());
+    return;
+  }
+  const std::vector<std::string> restart = daemon.reload_streams(fresh);
+  spdlog::info("fqd: SIGHUP: stream settings reloaded from {} ([defaults], [streams.*])", source.path);
+  for (const std::string& section : restart)
+    spdlog::warn("fqd: SIGHUP: [{}] changed in {}; it takes effect at the next start", section, source.path);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"fqd: filters and clusters streamed mesh frames within a latency budget"};
-  std::string config_path = "configs/fqd.toml", log_level, endpoints_file;
+  std::string config_path, log_level, endpoints_file;
   bool print_endpoints = false, check_only = false;
-  app.add_option("-c,--config", config_path, "TOML configuration file")->capture_default_str();
+  app.add_option("-c,--config", config_path,
+                 "TOML configuration file (default: $FQ_CONFIG, else /etc/fq/fqd.toml, else built-in defaults)");
   app.add_option("--log-level", log_level,
                  "override log_level: trace, debug, info, warn, error, critical, off");
   app.add_flag("--print-endpoints", print_endpoints,
@@ -34,8 +64,9 @@ int main(int argc, char** argv) {
   // Logs go to stderr: stdout carries only the --print-endpoints line.
   spdlog::set_default_logger(spdlog::stderr_color_mt("fqd"));
 
+  const fq::daemon::ConfigSource source = fq::daemon::find_config(config_path, std::getenv("FQ_CONFIG"));
   fq::daemon::DaemonConfig config;
-  if (fq::Status s = fq::daemon::load_config(config_path, config); !s.ok()) {
+  if (fq::Status s = load(source, config); !s.ok()) {
     std::fprintf(stderr, "fqd: invalid configuration: %s\n", s.message().c_str());
     return 2;
   }
@@ -48,10 +79,11 @@ int main(int argc, char** argv) {
     config.log_level = log_level;
   }
   if (check_only) {
-    std::printf("%s: configuration is valid\n", config_path.c_str());
+    std::printf("%s: configuration is valid\n", source.path.empty() ? source.from.c_str() : source.path.c_str());
     return 0;
   }
   spdlog::set_level(spdlog::level::from_str(config.log_level));
+  spdlog::info("fqd: configuration from {}{}", source.from, source.path.empty() || source.path == source.from ? "" : " (" + source.path + ")");
 
   fq::daemon::block_stop_signals();  // before any thread exists, so all of them inherit it
   fq::daemon::Daemon daemon(config);
@@ -65,7 +97,8 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
   }
   if (!endpoints_file.empty()) std::ofstream(endpoints_file) << line << "\n";
-  const int sig = fq::daemon::wait_for_stop_signal();
+  int sig = 0;
+  while ((sig = fq::daemon::wait_for_stop_signal()) == SIGHUP) reload(source, daemon);
   spdlog::info("fqd: signal {} received, finishing frames in flight", sig);
   daemon.stop();
   return 0;

@@ -12,6 +12,7 @@
 #include "daemon/config.h"
 #include "daemon/frame_job.h"
 #include "daemon/latency_policy.h"
+#include "daemon/latest_results.h"
 #include "daemon/object_pool.h"
 #include "daemon/stream_admission.h"
 #include "daemon/stream_registry.h"
@@ -49,6 +50,7 @@ struct Pipeline {
   LogLimiter refusal_log;  ///< ingest thread only
   ObjectPool<Mesh> meshes;                   ///< decoded frames, reused
   ObjectPool<FrameResult> results;           ///< engine outputs, reused
+  LatestResults latest;                      ///< each watched stream's last result (HTTP viewer)
 
   /// Marks `frame` failed (message logged) and sends it straight to the publisher.
   void fail(FramePtr frame, Status why);

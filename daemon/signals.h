@@ -5,10 +5,11 @@
 
 namespace fq::daemon {
 
-/// Blocks SIGINT and SIGTERM in the calling thread and every thread it starts later.
+/// Blocks SIGINT, SIGTERM and SIGHUP in the calling thread and every thread it starts later.
 void block_stop_signals();
 
-/// Waits for SIGINT or SIGTERM (blocked by block_stop_signals) and returns its number.
+/// Waits for SIGINT, SIGTERM or SIGHUP (blocked by block_stop_signals) and returns its
+/// number; the caller reloads on SIGHUP and waits again.
 int wait_for_stop_signal();
 
 }  // namespace fq::daemon

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "daemon/latency_histogram.h"
+
 namespace fq::daemon {
 
 struct Percentiles {
@@ -32,11 +34,17 @@ class SampleWindow {
 /// Windows by stage name ("decode", "engine", "engine.<pass>", "encode", "receive_to_publish"...).
 class StageMetrics {
  public:
-  void add(const std::string& stage, double ms) { stages_[stage].add(ms); }
+  void add(const std::string& stage, double ms) {
+    stages_[stage].add(ms);
+    histograms_[stage].add(ms);
+  }
   std::map<std::string, Percentiles> summary() const;
+  /// Every sample ever recorded, by stage (for /metrics).
+  const std::map<std::string, LatencyHistogram>& histograms() const { return histograms_; }
 
  private:
   std::map<std::string, SampleWindow> stages_;
+  std::map<std::string, LatencyHistogram> histograms_;
 };
 
 }  // namespace fq::daemon

@@ -4,7 +4,8 @@
 
 namespace fq::daemon {
 
-StreamRegistry::StreamRegistry(const DaemonConfig& config) : config_(config) {
+StreamRegistry::StreamRegistry(const DaemonConfig& config)
+    : config_(config), defaults_(config.defaults), configured_(config.streams) {
   // Configured streams are listed (and controllable) before their first frame.
   for (const auto& [id, s] : config.streams) {
     streams_[id].settings = s;
@@ -22,8 +23,21 @@ StreamRegistry::Entry* StreamRegistry::entry(const std::string& stream_id) {
   if (it != streams_.end()) return &it->second;
   if (streams_.size() >= config_.caps.max_streams) return nullptr;
   Entry& e = streams_[stream_id];
-  e.settings = config_.settings_for(stream_id);
+  e.settings = configured(stream_id);
   return &e;
+}
+
+const StreamSettings& StreamRegistry::configured(const std::string& stream_id) const {
+  auto it = configured_.find(stream_id);
+  return it != configured_.end() ? it->second : defaults_;
+}
+
+void StreamRegistry::reload(const StreamSettings& defaults, const std::map<std::string, StreamSettings>& streams) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  defaults_ = defaults;
+  configured_ = streams;
+  for (const auto& [id, s] : configured_) streams_[id].pinned = true;
+  for (auto& [id, e] : streams_) e.settings = configured(id);
 }
 
 bool StreamRegistry::settings(const std::string& stream_id, StreamSettings& out, int64_t now_ns) {
@@ -108,7 +122,7 @@ std::vector<std::string> StreamRegistry::list() const {
 }
 
 StreamSnapshot StreamRegistry::snapshot_of(const std::string& id, const Entry& e) const {
-  return {id, e.counters, e.metrics.summary()};
+  return {id, e.counters, e.metrics.summary(), e.metrics.histograms()};
 }
 
 bool StreamRegistry::snapshot(const std::string& stream_id, std::vector<StreamSnapshot>& out) const {

@@ -32,6 +32,7 @@ struct StreamSnapshot {
   std::string stream_id;
   StreamCounters counters;
   std::map<std::string, Percentiles> stages;
+  std::map<std::string, LatencyHistogram> histograms;  ///< since start, by stage (for /metrics)
 };
 
 class StreamRegistry {
@@ -51,6 +52,10 @@ class StreamRegistry {
   std::vector<std::string> expire_idle(int64_t now_ns, double idle_s);
   /// The settings of a registered stream; false when unknown.
   bool find(const std::string& stream_id, StreamSettings& out) const;
+  /// Replaces the configured settings (a reloaded config's [defaults] and [streams.*]): every
+  /// registered stream gets its entry's or the new defaults (run-time changes are replaced),
+  /// newly configured streams are registered, and new streams start from them. Counters stay.
+  void reload(const StreamSettings& defaults, const std::map<std::string, StreamSettings>& streams);
 
   void count(const std::string& stream_id, Counter c, uint64_t n = 1);
   void record(const std::string& stream_id, const std::string& stage, double ms);
@@ -75,7 +80,11 @@ class StreamRegistry {
   Entry* existing(const std::string& stream_id);  // null when unknown
   StreamSnapshot snapshot_of(const std::string& id, const Entry& e) const;
 
+  const StreamSettings& configured(const std::string& stream_id) const;
+
   const DaemonConfig& config_;
+  StreamSettings defaults_;                           ///< [defaults], replaced by reload()
+  std::map<std::string, StreamSettings> configured_;  ///< [streams.*], replaced by reload()
   mutable std::mutex mutex_;
   std::map<std::string, Entry> streams_;
   RefusalCounters refusals_;

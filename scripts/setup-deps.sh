@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages fq builds against, skipping those already present.
 # Safe to run repeatedly; needs root (or sudo) only when something is missing.
+# Then installs the live viewer's npm packages (scripts/web-deps.sh).
+# FQ_SETUP_BROWSER=0 leaves out Chromium and yamllint (only tests use them; the Docker image
+# sets it, Ubuntu's chromium package being a snap stub).
 set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
 
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -12,7 +16,12 @@ packages=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev
   python3-zmq python3-protobuf   # clients/examples/consume.py and its test
+  libcpp-httplib-dev
+  python3-prometheus-client
 )
+if [[ ${FQ_SETUP_BROWSER:-1} != 0 ]]; then
+  packages+=(chromium yamllint)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -20,7 +29,7 @@ for p in "${packages[@]}"; do
 done
 if ((${#missing[@]} == 0)); then
   echo "setup-deps: all ${#packages[@]} packages present"
-  exit 0
+  exec bash "$here/web-deps.sh"
 fi
 
 echo "setup-deps: installing ${missing[*]}"
@@ -32,3 +41,4 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 $sudo apt-get update -qq
 $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+exec bash "$here/web-deps.sh"

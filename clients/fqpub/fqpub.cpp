@@ -19,7 +19,7 @@ std::atomic<bool> g_stop{false};
 void on_signal(int) { g_stop = true; }
 
 struct Args {
-  std::string input, endpoint = "tcp://127.0.0.1:5555";
+  std::string input, endpoint = "tcp://127.0.0.1:5555", bind_pub;
   fq::client::CurveClientOptions curve;
   double fps = 10.0, noise = 0.0, duration = 0.0;
   uint64_t seed = 1, count = 0;
@@ -83,6 +83,9 @@ Totals publish(const Args& a, const fq::client::MeshSource& source, zmq::socket_
 void add_options(CLI::App& app, Args& a) {
   app.add_option("input", a.input, "mesh file (.ply .obj .stl .drc) or folder of them")->required();
   app.add_option("-e,--endpoint", a.endpoint, "fqd ingest endpoint (PUSH connects)")->capture_default_str();
+  app.add_option("--bind-pub", a.bind_pub,
+                 "bind a PUB socket here instead (fqd SUB-connects: [ingest] connect); frames sent "
+                 "while no fqd is subscribed are dropped");
   app.add_option("-s,--stream", a.spec.stream_id, "stream id (the topic of the results)")
       ->capture_default_str();
   app.add_option("--fps", a.fps, "frames per second")
@@ -128,16 +131,21 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   zmq::context_t ctx(1);
-  zmq::socket_t push(ctx, zmq::socket_type::push);
+  const bool pub = !a.bind_pub.empty();
+  zmq::socket_t push(ctx, pub ? zmq::socket_type::pub : zmq::socket_type::push);
   push.set(zmq::sockopt::linger, 5000);  // deliver queued frames before exiting
   if (fq::Status s = fq::client::apply_curve_client(push, a.curve); !s.ok()) {
     std::fprintf(stderr, "fqpub: %s\n", s.message().c_str());
     return 2;
   }
   try {
-    push.connect(a.endpoint);
+    if (pub)
+      push.bind(a.bind_pub);
+    else
+      push.connect(a.endpoint);
   } catch (const zmq::error_t& e) {
-    std::fprintf(stderr, "fqpub: cannot connect to %s: %s\n", a.endpoint.c_str(), e.what());
+    const std::string& ep = pub ? a.bind_pub : a.endpoint;
+    std::fprintf(stderr, "fqpub: cannot %s %s: %s\n", pub ? "bind" : "connect to", ep.c_str(), e.what());
     return 2;
   }
   const Totals t = publish(a, source, push);

@@ -61,6 +61,8 @@ fq::Status start_daemon(const Args& a, std::unique_ptr<fq::daemon::Daemon>& d, E
     c.encode_threads = a.encode_threads;
   }
   c.endpoints = {"tcp://127.0.0.1:*", "tcp://127.0.0.1:*", "tcp://127.0.0.1:*"};
+  c.http.listen.clear();  // no HTTP listener or stats lines while measuring
+  c.stats.interval_s = 0;
   if (a.budget_ms > 0) c.defaults.budget_ms = a.budget_ms;
   for (fq::daemon::StreamSettings* s : {&c.defaults}) {
     s->output.encode_speed = s->output.decode_speed = a.encode_speed;
@@ -195,7 +197,7 @@ void add_options(CLI::App& app, Args& a) {
   app.add_option("--encode-threads", a.encode_threads,
                  "fqd encode pool (0 = half the hardware threads, at least 2)")
       ->capture_default_str();
-  app.add_option("--config", a.config, "in-process fqd from this config file (its endpoints are replaced)");
+  app.add_option("--config", a.config, "in-process fqd from this config file (its endpoints are replaced; no HTTP, no stats lines)");
   app.add_flag("--connect", a.connect, "benchmark a running fqd at --ingest, --publish, --control");
   app.add_option("--ingest", a.ingest, "running fqd's ingest endpoint");
   app.add_option("--publish", a.publish, "running fqd's publish endpoint");

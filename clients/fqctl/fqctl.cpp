@@ -1,0 +1,165 @@
+// fqctl: operates a running fqd over its control socket.
+//   fqctl [--control EP] streams | params STREAM | set STREAM key=value… |
+//         counters [STREAM] [--json] | watch [STREAM]
+// Exit status: 0 done; 1 fqd did not answer in time or refused the request (one line on
+// stderr says which); 2 bad command line.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <thread>
+
+#include "clients/common/control_client.h"
+#include "clients/fqctl/counters_table.h"
+#include "clients/fqctl/param_assign.h"
+#include "daemon/counters_json.h"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop = true; }
+
+struct Args {
+  std::string control = "tcp://127.0.0.1:5557", stream;
+  std::vector<std::string> assignments;
+  int timeout_ms = 2000, count = 0;
+  double interval = 1.0;
+  bool json = false;
+};
+
+// One request on a fresh REQ socket (a REQ socket is unusable after a timeout). A missing
+// fqd shows as a timeout: ZeroMQ connects lazily, so there is no refused connection to see.
+fq::Status call(const Args& a, const fq::wire::ControlRequest& q, fq::wire::ControlReply& reply) {
+  zmq::context_t ctx(1);
+  zmq::socket_t req(ctx, zmq::socket_type::req);
+  req.set(zmq::sockopt::linger, 0);
+  try {
+    req.connect(a.control);
+  } catch (const zmq::error_t& e) {
+    return fq::invalid_argument("bad control endpoint " + a.control + ": " + e.what());
+  }
+  fq::Status s = fq::client::control_call(req, q, reply, a.timeout_ms);
+  if (s.code() == fq::StatusCode::kUnavailable)
+    return {s.code(), "no reply from fqd at " + a.control + " within " + std::to_string(a.timeout_ms) +
+                          " ms (is fqd running, and is that its control endpoint?)"};
+  return s;
+}
+
+int fail(const fq::Status& s) {
+  std::fprintf(stderr, "fqctl: %s\n", s.message().c_str());
+  return 1;
+}
+
+int cmd_streams(const Args& a) {
+  fq::wire::ControlRequest q;
+  q.mutable_list_streams();
+  fq::wire::ControlReply r;
+  if (fq::Status s = call(a, q, r); !s.ok()) return fail(s);
+  for (const std::string& id : r.streams()) std::printf("%s\n", id.c_str());
+  return 0;
+}
+
+int print_params(const fq::wire::ControlReply& r) {
+  for (const auto& [key, value] : fq::client::describe_fields(r.params()))
+    std::printf("%s = %s\n", key.c_str(), value.c_str());
+  return 0;
+}
+
+int cmd_params(const Args& a) {
+  fq::wire::ControlRequest q;
+  q.mutable_get_params()->set_stream_id(a.stream);
+  fq::wire::ControlReply r;
+  if (fq::Status s = call(a, q, r); !s.ok()) return fail(s);
+  return print_params(r);
+}
+
+int cmd_set(const Args& a) {
+  fq::wire::ControlRequest q;
+  fq::wire::SetParams* set = q.mutable_set_params();
+  set->set_stream_id(a.stream);
+  for (const std::string& kv : a.assignments) {
+    if (fq::Status s = fq::client::assign_param(kv, *set); !s.ok()) {
+      std::fprintf(stderr, "fqctl: %s\n", s.message().c_str());
+      return 2;
+    }
+  }
+  fq::wire::ControlReply r;
+  if (fq::Status s = call(a, q, r); !s.ok()) return fail(s);
+  return print_params(r);
+}
+
+fq::Status get_counters(const Args& a, fq::wire::ControlReply& r) {
+  fq::wire::ControlRequest q;
+  q.mutable_get_counters()->set_stream_id(a.stream);
+  return call(a, q, r);
+}
+
+int cmd_counters(const Args& a) {
+  fq::wire::ControlReply r;
+  if (fq::Status s = get_counters(a, r); !s.ok()) return fail(s);
+  if (a.json) {
+    std::printf("%s\n", fq::daemon::counters_json(r).dump(2).c_str());
+    return 0;
+  }
+  fq::client::OutCounts none;
+  std::printf("%s", fq::client::counters_table(r, 0.0, none).c_str());
+  return 0;
+}
+
+int cmd_watch(const Args& a) {
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  const bool tty = isatty(STDOUT_FILENO);
+  fq::client::OutCounts previous;
+  auto last = std::chrono::steady_clock::now();
+  for (int n = 0; !g_stop && (a.count == 0 || n < a.count); ++n) {
+    if (n > 0) std::this_thread::sleep_for(std::chrono::duration<double>(a.interval));
+    fq::wire::ControlReply r;
+    if (fq::Status s = get_counters(a, r); !s.ok()) return fail(s);
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = n == 0 ? 0.0 : std::chrono::duration<double>(now - last).count();
+    last = now;
+    // On a terminal the table is redrawn in place; piped, refreshes follow each other.
+    std::printf("%s%s\n", tty ? "\033[H\033[2J" : "", fq::client::counters_table(r, seconds, previous).c_str());
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"fqctl: inspect and steer a running fqd through its control socket"};
+  Args a;
+  app.add_option("-c,--control", a.control, "fqd's control endpoint")->capture_default_str();
+  app.add_option("--timeout-ms", a.timeout_ms, "how long to wait for fqd's reply")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 600000));
+  app.require_subcommand(1);
+  app.add_subcommand("streams", "list the streams fqd knows (configured or seen)");
+  CLI::App* params = app.add_subcommand("params", "print a stream's current parameters");
+  params->add_option("stream", a.stream, "stream id")->required();
+  CLI::App* set = app.add_subcommand("set", "change a stream's parameters from its next frame on");
+  set->add_option("stream", a.stream, "stream id (created when new)")->required();
+  set->add_option("assignments", a.assignments, "key=value, e.g. sigma_s=3 mode=bf compute=filter")
+      ->required();
+  CLI::App* counters = app.add_subcommand("counters", "frame counters and stage latencies");
+  counters->add_option("stream", a.stream, "one stream (default: all)");
+  counters->add_flag("--json", a.json, "JSON with the words of fqd's /metrics (\"frames_in\": N)");
+  CLI::App* watch = app.add_subcommand("watch", "live table: fps, p50/p99 per stage, drops, late, errors");
+  watch->add_option("stream", a.stream, "one stream (default: all)");
+  watch->add_option("-i,--interval", a.interval, "seconds between refreshes")
+      ->capture_default_str()
+      ->check(CLI::Range(0.05, 3600.0));
+  watch->add_option("-n,--count", a.count, "stop after this many refreshes (0 = until Ctrl-C)");
+  CLI11_PARSE(app, argc, argv);
+
+  if (*set) return cmd_set(a);
+  if (*params) return cmd_params(a);
+  if (*counters) return cmd_counters(a);
+  if (*watch) return cmd_watch(a);
+  return cmd_streams(a);
+}

@@ -1,0 +1,170 @@
+#include "daemon/http_server.h"
+
+#include <httplib.h>
+#include <spdlog/spdlog.h>
+
+#include <filesystem>
+
+#include "daemon/control_server.h"
+#include "daemon/counters_json.h"
+#include "daemon/prometheus_text.h"
+
+namespace fq::daemon {
+namespace {
+
+// A viewer's long poll waits at most this long for a newer result, then gets 204.
+constexpr int kMaxWaitMs = 5000;
+
+// The files the viewer needs: its page, and three.js with the Draco decoder from npm.
+bool viewer_installed(const std::filesystem::path& root) {
+  return std::filesystem::is_regular_file(root / "index.html") &&
+         std::filesystem::is_regular_file(root / "node_modules/three/build/three.module.js") &&
+         std::filesystem::is_regular_file(root / "node_modules/three/examples/jsm/libs/draco/draco_decoder.js");
+}
+
+std::string chunk_sizes(const LatestResult& r) {
+  std::string s;
+  for (const std::string& c : r.chunks) s += (s.empty() ? "" : ",") + std::to_string(c.size());
+  return s;
+}
+
+void send_latest(const LatestResult& r, httplib::Response& res) {
+  const wire::ResultHeader& h = r.header;
+  res.set_header("Cache-Control", "no-store");
+  res.set_header("X-Fq-Index", std::to_string(r.index));
+  res.set_header("X-Fq-Sequence", std::to_string(h.sequence()));
+  res.set_header("X-Fq-Chunk-Sizes", chunk_sizes(r));
+  res.set_header("X-Fq-Vertex-Count", std::to_string(h.vertex_count()));
+  res.set_header("X-Fq-Cluster-Count", std::to_string(h.cluster_count()));
+  res.set_header("X-Fq-Latency-Ms", std::to_string(h.latency_ms()));
+  res.set_header("X-Fq-Late", h.status() == wire::LATE ? "1" : "0");
+  res.set_header("X-Fq-Engine", h.engine());
+  std::string body;
+  size_t total = 0;
+  for (const std::string& c : r.chunks) total += c.size();
+  body.reserve(total);
+  for (const std::string& c : r.chunks) body += c;
+  res.set_content(std::move(body), "application/octet-stream");
+}
+
+}  // namespace
+
+HttpServer::HttpServer(const DaemonConfig& config, StreamRegistry& registry, LatestResults& latest,
+                       std::vector<std::string> engines, const std::atomic<bool>& healthy)
+    : config_(config),
+      registry_(registry),
+      latest_(latest),
+      engines_(std::move(engines)),
+      healthy_(healthy),
+      server_(std::make_unique<httplib::Server>()) {
+  for (const std::string& e : engines_)
+    if (e.rfind("cuda", 0) == 0) gpus_ = config.engine.gpus;
+}
+
+HttpServer::~HttpServer() { stop(); }
+
+std::string HttpServer::metrics() const {
+  MetricsInput in;
+  registry_.snapshot("", in.streams);
+  in.engines = engines_;
+  in.gpus = gpu_memory(gpus_);
+  return prometheus_text(in);
+}
+
+void HttpServer::add_api_routes() {
+  httplib::Server& s = *server_;
+  s.Get("/metrics", [this](const httplib::Request&, httplib::Response& res) {
+    res.set_content(metrics(), "text/plain; version=0.0.4; charset=utf-8");
+  });
+  s.Get("/healthz", [this](const httplib::Request&, httplib::Response& res) {
+    const bool up = healthy_.load() && !engines_.empty();
+    res.status = up ? 200 : 503;
+    res.set_content(up ? "ok\n" : "not ready\n", "text/plain");
+  });
+  s.Get("/streams", [this](const httplib::Request&, httplib::Response& res) {
+    wire::ControlRequest q;
+    q.mutable_get_counters();
+    nlohmann::json j = counters_json(handle_control(q, registry_));
+    j["engines"] = engines_;
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(j.dump(), "application/json");
+  });
+  // ?after=N returns the first result with index > N, waiting up to wait_ms (long poll).
+  s.Get(R"(/streams/([^/]+)/latest)", [this](const httplib::Request& req, httplib::Response& res) {
+    const std::string stream = req.matches[1];
+    StreamSettings unused;
+    if (!registry_.find(stream, unused)) {
+      res.status = 404;
+      res.set_content("unknown stream '" + stream + "'\n", "text/plain");
+      return;
+    }
+    uint64_t after = 0;
+    int wait_ms = 0;
+    try {
+      if (req.has_param("after")) after = std::stoull(req.get_param_value("after"));
+      if (req.has_param("wait_ms")) wait_ms = std::clamp(std::stoi(req.get_param_value("wait_ms")), 0, kMaxWaitMs);
+    } catch (const std::exception&) {
+      res.status = 400;
+      res.set_content("after and wait_ms must be whole numbers\n", "text/plain");
+      return;
+    }
+    auto r = latest_.wait_newer(stream, after, std::chrono::milliseconds(wait_ms));
+    if (!r) {
+      res.status = 204;  // nothing newer yet: the viewer asks again
+      return;
+    }
+    send_latest(*r, res);
+  });
+}
+
+void HttpServer::add_viewer_routes() {
+  const std::filesystem::path root(config_.http.web_root);
+  if (viewer_installed(root)) {
+    server_->set_mount_point("/", root.string());
+    // Module scripts need a JavaScript type, and WebAssembly streams only as application/wasm.
+    // application/x-javascript (a JavaScript type to browsers) rather than text/javascript:
+    // httplib compresses text/* on every request, and brotli at its default quality took
+    // 4 s for three.core.js (1.4 MB) on the 2-core development machine.
+    server_->set_file_extension_and_mimetype_mapping("js", "application/x-javascript");
+    server_->set_file_extension_and_mimetype_mapping("wasm", "application/wasm");
+    return;
+  }
+  spdlog::info("http: no viewer in {} (run scripts/web-deps.sh); / explains how to install it", root.string());
+  const std::string message =
+      "fqd is running, but its live viewer is not installed in " + root.string() +
+      ".\nInstall it with `bash scripts/web-deps.sh` (npm ci in web/), or point [http] web_root at a "
+      "folder that has it.\nThe API works without it: /metrics /healthz /streams /streams/ID/latest\n";
+  server_->Get("/", [message](const httplib::Request&, httplib::Response& res) {
+    res.status = 404;
+    res.set_content(message, "text/plain");
+  });
+}
+
+Status HttpServer::start() {
+  std::string host;
+  int port = 0;
+  if (!split_host_port(config_.http.listen, host, port))
+    return invalid_argument("http.listen \"" + config_.http.listen + "\" is not host:port");
+  add_api_routes();
+  add_viewer_routes();
+  const bool bound = port == 0 ? (port = server_->bind_to_any_port(host)) > 0 : server_->bind_to_port(host, port);
+  if (!bound) return invalid_argument("cannot listen on http " + config_.http.listen);
+  url_ = "http://" + (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" + std::to_string(port);
+  thread_ = std::thread([this] {
+    server_->listen_after_bind();
+    listen_returned_ = true;
+  });
+  // httplib's stop() only reaches a server that is already listening: wait until it is.
+  while (!server_->is_running() && !listen_returned_)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  return {};
+}
+
+void HttpServer::stop() {
+  if (!thread_.joinable()) return;
+  latest_.close();  // long polls return, so the thread pool can drain
+  server_->stop();
+  thread_.join();
+}
+
+}  // namespace fq::daemon

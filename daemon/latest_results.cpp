@@ -1,0 +1,39 @@
+#include "daemon/latest_results.h"
+
+namespace fq::daemon {
+
+void LatestResults::offer(const wire::ResultHeader& header, const std::vector<std::string>& chunks) {
+  if (header.status() == wire::ERROR) return;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = streams_.find(header.stream_id());
+    if (it == streams_.end() || std::chrono::steady_clock::now() > it->second.watched_until) return;
+  }
+  // The copy is made outside the lock: viewers waiting on other streams are not held up.
+  auto r = std::make_shared<LatestResult>();
+  r->header = header;
+  r->chunks = chunks;
+  std::lock_guard<std::mutex> lock(mutex_);
+  Entry& e = streams_[header.stream_id()];
+  r->index = ++e.index;
+  e.latest = std::move(r);
+  changed_.notify_all();
+}
+
+std::shared_ptr<const LatestResult> LatestResults::wait_newer(const std::string& stream, uint64_t after,
+                                                              std::chrono::milliseconds timeout) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  Entry& e = streams_[stream];
+  e.watched_until = std::chrono::steady_clock::now() + std::chrono::seconds(kWatchSeconds);
+  changed_.wait_for(lock, timeout, [&] { return closed_ || (e.latest && e.latest->index > after); });
+  if (closed_ || !e.latest || e.latest->index <= after) return nullptr;
+  return e.latest;
+}
+
+void LatestResults::close() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  closed_ = true;
+  changed_.notify_all();
+}
+
+}  // namespace fq::daemon

@@ -1,0 +1,26 @@
+// fqd's state in the Prometheus text exposition format (version 0.0.4), for GET /metrics.
+// Names follow Prometheus conventions (counters end in _total, latencies in seconds) and
+// carry the words of the control socket and `fqctl counters --json`: frames_in is
+// fq_frames_in_total{stream="…"}, stage latencies are fq_stage_latency_seconds{stream, stage}.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "daemon/gpu_memory.h"
+#include "daemon/stream_registry.h"
+
+namespace fq::daemon {
+
+struct MetricsInput {
+  std::vector<StreamSnapshot> streams;
+  std::vector<std::string> engines;  ///< engine names ("cpu", "cuda:<device name>")
+  std::vector<GpuMemory> gpus;
+};
+
+std::string prometheus_text(const MetricsInput& in);
+
+/// A label value with \, " and newline escaped as the format requires.
+std::string escape_label_value(const std::string& value);
+
+}  // namespace fq::daemon

@@ -1,0 +1,26 @@
+// Ingest by subscription, for scale-out: besides its PULL socket, fqd SUB-connects to the PUB
+// endpoints of producers ([ingest] connect) and takes only the stream ids assigned to it
+// ([ingest] streams), so that several fqd processes can share the streams of the same
+// producers (topic sharding) and each stream is served by exactly one of them.
+#pragma once
+
+#include <set>
+#include <string>
+#include <vector>
+#include <zmq.hpp>
+
+#include "daemon/pipeline.h"
+
+namespace fq::daemon {
+
+/// Makes the SUB socket: connected to every endpoint, subscribed to every assigned stream
+/// (all streams when `streams` is empty). kInvalidArgument for an endpoint ZeroMQ refuses.
+Status make_sub_socket(zmq::context_t& ctx, const SubIngestConfig& config, zmq::socket_t& out);
+
+/// The ingest thread in this mode: receives from the PULL socket and the SUB socket (one
+/// thread, so that admission stays single-threaded) until their context is shut down, then
+/// closes both. A SUB message whose topic is not an assigned stream id is ignored without a
+/// count: ZeroMQ topics match by prefix ("cam1" also delivers "cam10"), and another fqd owns it.
+void run_sub_ingest(zmq::socket_t pull, zmq::socket_t sub, Pipeline& p, const std::set<std::string>& streams);
+
+}  // namespace fq::daemon

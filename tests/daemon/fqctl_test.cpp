@@ -1,0 +1,98 @@
+// fqctl against a real fqd (child process, ephemeral 127.0.0.1 ports) fed by fqpub:
+// streams, params, set (valid, invalid, unknown key), counters as a table and JSON, watch,
+// and a clear error with exit status 1, not a hang, when no fqd answers.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+#include <zmq.hpp>
+
+#include "tests/daemon/fqd_process.h"
+
+namespace fq::test {
+namespace {
+
+ToolRun fqctl(const std::string& control, std::vector<std::string> args) {
+  args.insert(args.begin(), {"--control", control});
+  return run_tool(FQCTL_PATH, args);
+}
+
+// Counters once every frame fqpub sent has been accounted for (fqd idle for that stream).
+nlohmann::json settled_counters(const std::string& control, const std::string& stream, uint64_t sent) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  nlohmann::json c;
+  while (std::chrono::steady_clock::now() < deadline) {
+    const ToolRun r = fqctl(control, {"counters", stream, "--json"});
+    if (r.status != 0) return {};
+    c = nlohmann::json::parse(r.output).at("streams").at(0);
+    const uint64_t done = c.at("frames_out").get<uint64_t>() + c.at("errors").get<uint64_t>() +
+                          c.at("superseded").get<uint64_t>() + c.at("dropped_stale").get<uint64_t>();
+    if (c.at("frames_in") == sent && done == sent) return c;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));  // polling fqd, not ordering
+  }
+  ADD_FAILURE() << "frames not settled: " << c.dump();
+  return c;
+}
+
+TEST(Fqctl, InspectsAndSteersARunningFqd) {
+  FqdProcess fqd({"--config", write_temp_file("fqctl_test.toml", ops_config())});
+  const std::string control = fqd.endpoint("control");
+  ASSERT_FALSE(control.empty()) << "fqd did not start";
+  ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam0", 8).status, 0);
+
+  const ToolRun streams = fqctl(control, {"streams"});
+  EXPECT_EQ(streams.status, 0) << streams.output;
+  EXPECT_EQ(streams.output, "cam0\n");
+
+  const ToolRun set = fqctl(control, {"set", "cam0", "sigma_s=3.5", "mode=BF", "compute=filter"});
+  EXPECT_EQ(set.status, 0) << set.output;
+  const ToolRun params = fqctl(control, {"params", "cam0"});
+  EXPECT_EQ(params.status, 0) << params.output;
+  EXPECT_NE(params.output.find("sigma_s = 3.5\n"), std::string::npos) << params.output;
+  EXPECT_NE(params.output.find("mode = bf\n"), std::string::npos) << params.output;
+  EXPECT_NE(params.output.find("compute = filter\n"), std::string::npos) << params.output;
+
+  // fqd refuses an invalid value (nothing changes); fqctl refuses an unknown key itself.
+  const ToolRun invalid = fqctl(control, {"set", "cam0", "sigma_s=-1"});
+  EXPECT_EQ(invalid.status, 1);
+  EXPECT_NE(invalid.output.find("sigma_s"), std::string::npos) << invalid.output;
+  EXPECT_NE(fqctl(control, {"params", "cam0"}).output.find("sigma_s = 3.5\n"), std::string::npos);
+  const ToolRun unknown = fqctl(control, {"set", "cam0", "sigma_z=1"});
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_NE(unknown.output.find("unknown parameter 'sigma_z'"), std::string::npos) << unknown.output;
+  EXPECT_EQ(fqctl(control, {"params", "nosuch"}).status, 1);
+
+  const nlohmann::json c = settled_counters(control, "cam0", 8);
+  EXPECT_EQ(c.at("stream"), "cam0");
+  EXPECT_GT(c.at("frames_out").get<uint64_t>(), 0u);
+  EXPECT_EQ(c.at("errors"), 0);
+  EXPECT_EQ(c.at("stages").at("receive_to_publish").at("count"), c.at("frames_out"));
+
+  const ToolRun table = fqctl(control, {"counters"});
+  EXPECT_EQ(table.status, 0);
+  EXPECT_NE(table.output.find("cam0"), std::string::npos) << table.output;
+  const ToolRun watch = fqctl(control, {"watch", "--count", "2", "--interval", "0.1"});
+  EXPECT_EQ(watch.status, 0) << watch.output;
+  size_t headers = 0;
+  for (size_t at = 0; (at = watch.output.find("superseded", at)) != std::string::npos; ++at) ++headers;
+  EXPECT_EQ(headers, 2u) << watch.output;
+  EXPECT_EQ(fqd.stop(), 0);
+}
+
+TEST(Fqctl, SaysSoAndFailsWhenNoFqdAnswers) {
+  // A port that was free a moment ago: nothing answers there.
+  zmq::context_t ctx(1);
+  zmq::socket_t probe(ctx, zmq::socket_type::rep);
+  probe.bind("tcp://127.0.0.1:*");
+  const std::string endpoint = probe.get(zmq::sockopt::last_endpoint);
+  probe.close();
+  for (const char* command : {"streams", "counters", "watch"}) {
+    const ToolRun r = run_tool(FQCTL_PATH, {"--control", endpoint, "--timeout-ms", "300", command}, 60);
+    EXPECT_EQ(r.status, 1) << command << ": " << r.output;
+    EXPECT_NE(r.output.find("no reply from fqd at " + endpoint), std::string::npos) << r.output;
+  }
+  EXPECT_EQ(run_tool(FQCTL_PATH, {"--control", "nonsense", "streams"}).status, 1);
+}
+
+}  // namespace
+}  // namespace fq::test

@@ -1,0 +1,126 @@
+// fqd's HTTP listener against fqd as a child process fed by fqpub: /metrics parsed by
+// prometheus_client's text parser agrees with `fqctl counters --json`, /healthz, /streams,
+// /streams/ID/latest (real Draco chunks), and the viewer's install hint when web_root is empty.
+#include <gtest/gtest.h>
+#include <httplib.h>
+
+#include <chrono>
+#include <thread>
+
+#include "tests/daemon/fqd_process.h"
+
+namespace fq::test {
+namespace {
+
+const std::string kHttp = "[http]\nlisten = \"127.0.0.1:0\"\nweb_root = \"/nonexistent-fq-web\"\n";
+
+httplib::Client client(const FqdProcess& fqd) {
+  httplib::Client c(fqd.endpoint("http"));
+  c.set_read_timeout(30, 0);
+  return c;
+}
+
+nlohmann::json fqctl_counters(const FqdProcess& fqd) {
+  const ToolRun r = run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "counters", "--json"});
+  EXPECT_EQ(r.status, 0) << r.output;
+  return nlohmann::json::parse(r.output, nullptr, false);
+}
+
+// Waits until every one of `sent` frames of `stream` is accounted for.
+nlohmann::json settled(const FqdProcess& fqd, uint64_t sent, const std::string& stream = "cam0") {
+  nlohmann::json c;
+  for (int i = 0; i < 600; ++i) {
+    const nlohmann::json all = fqctl_counters(fqd);  // kept: the loop refers into it
+    for (const nlohmann::json& s : all.at("streams"))
+      if (s.at("stream") == stream) c = s;
+    if (!c.is_null() && c.at("frames_out").get<uint64_t>() + c.at("errors").get<uint64_t>() +
+                                c.at("superseded").get<uint64_t>() + c.at("dropped_stale").get<uint64_t>() ==
+                            sent)
+      break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));  // polling fqd, not ordering
+  }
+  return c;
+}
+
+TEST(Http, MetricsParseAndAgreeWithFqctl) {
+  FqdProcess fqd({"--config", write_temp_file("http_metrics.toml", ops_config(kHttp))});
+  ASSERT_FALSE(fqd.endpoint("http").empty()) << "fqd did not report an http endpoint";
+  ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam0", 10).status, 0);
+  // A stream id with the characters the text format escapes in label values.
+  const std::string odd = "cam \"1\"\\x";
+  ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), odd, 2).status, 0);
+  const nlohmann::json ctl = settled(fqd, 10);
+  const nlohmann::json ctl_odd = settled(fqd, 2, odd);
+  EXPECT_GT(ctl.at("frames_out").get<int>(), 0);
+  ASSERT_EQ(ctl_odd.at("stream"), odd);
+
+  const ToolRun parsed = run_tool("/usr/bin/python3", {METRICS_CHECK_PY, fqd.endpoint("http") + "/metrics"});
+  ASSERT_EQ(parsed.status, 0) << parsed.output;
+  const nlohmann::json m = nlohmann::json::parse(parsed.output);
+  EXPECT_EQ(m.at("families").at("fq_stage_latency_seconds"), "histogram");
+  EXPECT_EQ(m.at("families").at("fq_frames_in"), "counter");
+  EXPECT_EQ(m.at("families").at("fq_engine_info"), "gauge");
+  const nlohmann::json& prom = m.at("streams").at("cam0");
+  for (const char* k : {"frames_in", "frames_out", "superseded", "dropped_stale", "late", "errors"}) {
+    EXPECT_EQ(prom.at(k), ctl.at(k)) << k;
+    EXPECT_EQ(m.at("streams").at(odd).at(k), ctl_odd.at(k)) << k;
+  }
+  ASSERT_FALSE(ctl.at("stages").empty());
+  for (const auto& [stage, p] : ctl.at("stages").items()) EXPECT_EQ(prom.at("stages").at(stage), p.at("count")) << stage;
+
+  // /streams is the same JSON as fqctl's, plus the engines.
+  httplib::Client c = client(fqd);
+  auto streams = c.Get("/streams");
+  ASSERT_TRUE(streams);
+  EXPECT_EQ(streams->status, 200);
+  const nlohmann::json sj = nlohmann::json::parse(streams->body);
+  EXPECT_EQ(sj.at("streams"), fqctl_counters(fqd).at("streams"));
+  EXPECT_EQ(sj.at("engines"), nlohmann::json::array({"cpu"}));
+  EXPECT_EQ(fqd.stop(), 0);
+}
+
+TEST(Http, HealthLatestResultAndViewerHint) {
+  FqdProcess fqd({"--config", write_temp_file("http_health.toml", ops_config(kHttp))});
+  ASSERT_FALSE(fqd.endpoint("http").empty());
+  httplib::Client c = client(fqd);
+  auto health = c.Get("/healthz");
+  ASSERT_TRUE(health);
+  EXPECT_EQ(health->status, 200);
+  EXPECT_EQ(health->body, "ok\n");
+  auto index = c.Get("/");
+  ASSERT_TRUE(index);
+  EXPECT_EQ(index->status, 404);
+  EXPECT_NE(index->body.find("scripts/web-deps.sh"), std::string::npos) << index->body;
+  EXPECT_EQ(c.Get("/streams/nosuch/latest")->status, 404);
+
+  // The first ask marks the stream watched; results published after it are kept.
+  ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam0", 1).status, 0);
+  settled(fqd, 1);
+  EXPECT_EQ(c.Get("/streams/cam0/latest?wait_ms=0")->status, 204);
+  std::thread pub([&] { publish_fandisk(fqd.endpoint("ingest"), "cam0", 20, 10); });
+  auto latest = c.Get("/streams/cam0/latest?after=0&wait_ms=5000");
+  for (int i = 0; i < 10 && latest && latest->status == 204; ++i)
+    latest = c.Get("/streams/cam0/latest?after=0&wait_ms=5000");
+  pub.join();
+  ASSERT_TRUE(latest);
+  ASSERT_EQ(latest->status, 200);
+  size_t total = 0;
+  std::string sizes = latest->get_header_value("X-Fq-Chunk-Sizes");
+  for (size_t at = 0; at < sizes.size();) {
+    const size_t comma = sizes.find(',', at);
+    total += std::stoul(sizes.substr(at, comma - at));
+    at = comma == std::string::npos ? sizes.size() : comma + 1;
+  }
+  EXPECT_EQ(total, latest->body.size());
+  EXPECT_EQ(latest->body.substr(0, 5), "DRACO");  // every chunk is a Draco mesh
+  EXPECT_EQ(latest->get_header_value("X-Fq-Vertex-Count"), "6475");  // data/fandisk.ply
+  EXPECT_GT(std::stoi(latest->get_header_value("X-Fq-Cluster-Count")), 0);
+  const uint64_t index_seen = std::stoull(latest->get_header_value("X-Fq-Index"));
+  auto newer = c.Get("/streams/cam0/latest?after=" + std::to_string(index_seen) + "&wait_ms=0");
+  ASSERT_TRUE(newer);
+  EXPECT_TRUE(newer->status == 204 || std::stoull(newer->get_header_value("X-Fq-Index")) > index_seen);
+  EXPECT_EQ(fqd.stop(), 0);
+}
+
+}  // namespace
+}  // namespace fq::test

@@ -1,0 +1,156 @@
+// fqd's service conventions: the config lookup order (--config, $FQ_CONFIG, /etc/fq/fqd.toml,
+// built-in defaults) from any working directory, SIGHUP reloading per-stream settings (a bad
+// file changes nothing and never stops fqd), and the periodic [stats] log line.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "daemon/config.h"
+#include "daemon/config_lookup.h"
+#include "tests/daemon/fqd_process.h"
+
+namespace fq::test {
+namespace {
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+// Polls `check` every 100 ms for up to 60 s (the daemon acts on signals asynchronously).
+template <class F>
+bool eventually(F check) {
+  for (int i = 0; i < 600; ++i) {
+    if (check()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return false;
+}
+
+TEST(ConfigLookup, FlagThenEnvironmentThenSystemFileThenDefaults) {
+  const std::string system = write_temp_file("lookup_system.toml", "");
+  const std::string missing = testing::TempDir() + "/no_such_fqd.toml";
+  EXPECT_EQ(daemon::find_config("a.toml", "b.toml", system).path, "a.toml");
+  EXPECT_EQ(daemon::find_config("", "b.toml", system).path, "b.toml");
+  EXPECT_EQ(daemon::find_config("", "b.toml", system).from, "$FQ_CONFIG");
+  EXPECT_EQ(daemon::find_config("", "", system).path, system);
+  EXPECT_EQ(daemon::find_config("", nullptr, system).path, system);
+  const daemon::ConfigSource none = daemon::find_config("", nullptr, missing);
+  EXPECT_EQ(none.path, "");
+  EXPECT_EQ(none.from, "built-in defaults");
+}
+
+TEST(ConfigLookup, NoFileNeededFromAnyDirectory) {
+  const std::string expected = std::filesystem::exists(daemon::kSystemConfigPath)
+                                   ? std::string(daemon::kSystemConfigPath)
+                                   : "built-in defaults";
+  const ToolRun r = run_tool("/bin/sh", {"-c", "cd / && unset FQ_CONFIG && exec " + shell_words(FQD_PATH, {"--check-config"})});
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output, expected + ": configuration is valid\n");
+  const ToolRun bad = run_tool("/bin/sh", {"-c", "cd / && FQ_CONFIG=/no/such/fqd.toml exec " +
+                                                     shell_words(FQD_PATH, {"--check-config"})});
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("/no/such/fqd.toml"), std::string::npos) << bad.output;
+}
+
+TEST(ConfigLookup, FqConfigServesFromAnotherDirectory) {
+  const std::string config = write_temp_file("lookup_env.toml", ops_config());
+  FqdProcess fqd({}, "cd / && export FQ_CONFIG='" + config + "' &&");
+  ASSERT_FALSE(fqd.endpoint("ingest").empty()) << "fqd did not start from / with $FQ_CONFIG";
+  ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam0", 2).status, 0);
+  EXPECT_TRUE(eventually([&] {
+    const ToolRun r = run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "counters", "cam0", "--json"});
+    return r.status == 0 && nlohmann::json::parse(r.output).at("streams").at(0).at("frames_out") == 2;
+  }));
+  EXPECT_EQ(fqd.stop(), 0);
+}
+
+std::string sigma_s(const FqdProcess& fqd, const std::string& stream) {
+  const ToolRun r = run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "params", stream});
+  const size_t at = r.output.find("sigma_s = ");
+  return r.status != 0 || at == std::string::npos ? "?" : r.output.substr(at + 10, r.output.find('\n', at) - at - 10);
+}
+
+TEST(Service, SighupReloadsStreamSettingsAndSurvivesABadFile) {
+  const std::string log = testing::TempDir() + "/fqd_sighup.log";
+  const std::string config =
+      write_temp_file("sighup.toml", ops_config("[streams.cam0.filter]\nsigma_s = 2.5\n"));
+  FqdProcess fqd({"--config", config, "--log-level", "info"}, "", "2>'" + log + "'");
+  ASSERT_FALSE(fqd.endpoint("control").empty());
+  EXPECT_EQ(sigma_s(fqd, "cam0"), "2.5");
+
+  write_temp_file("sighup.toml", ops_config("[streams.cam0.filter]\nsigma_s = 4\n[streams.cam9]\nbudget_ms = 50\n"));
+  ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
+  EXPECT_TRUE(eventually([&] { return sigma_s(fqd, "cam0") == "4"; })) << read_file(log);
+  EXPECT_EQ(sigma_s(fqd, "cam9"), "2");  // newly configured stream, defaults' sigma_s
+
+  write_temp_file("sighup.toml", "this is [not toml");
+  ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
+  EXPECT_TRUE(eventually([&] { return read_file(log).find("not reloaded, settings unchanged") != std::string::npos; }))
+      << read_file(log);
+  EXPECT_TRUE(fqd.alive());
+  EXPECT_EQ(sigma_s(fqd, "cam0"), "4");
+  EXPECT_EQ(fqd.stop(), 0);
+}
+
+TEST(Service, SighupAfterTheFileWasRemovedKeepsRunning) {
+  const std::string log = testing::TempDir() + "/fqd_sighup_gone.log";
+  const std::string config = write_temp_file("sighup_gone.toml", ops_config());
+  FqdProcess fqd({"--config", config, "--log-level", "info"}, "", "2>'" + log + "'");
+  ASSERT_FALSE(fqd.endpoint("control").empty());
+  std::filesystem::remove(config);
+  ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
+  EXPECT_TRUE(eventually([&] { return read_file(log).find("not reloaded") != std::string::npos; })) << read_file(log);
+  EXPECT_TRUE(fqd.alive());
+  EXPECT_EQ(fqd.stop(), 0);
+}
+
+TEST(Service, StatsLogLinePerActiveStream) {
+  const std::string log = testing::TempDir() + "/fqd_stats.log";
+  const std::string config = write_temp_file("stats.toml", ops_config("[stats]\ninterval_s = 0.2\n"));
+  FqdProcess fqd({"--config", config, "--log-level", "info"}, "", "2>'" + log + "'");
+  ASSERT_FALSE(fqd.endpoint("ingest").empty());
+  ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam0", 6).status, 0);
+  EXPECT_TRUE(eventually([&] { return read_file(log).find("[stats] stream=cam0 fps=") != std::string::npos; }))
+      << read_file(log);
+  const std::string text = read_file(log);
+  const size_t at = text.find("[stats] stream=cam0");
+  const std::string line = text.substr(at, text.find('\n', at) - at);
+  for (const char* field : {" p99=", "ms late=", " superseded=", " stale=", " errors="})
+    EXPECT_NE(line.find(field), std::string::npos) << line;
+  EXPECT_EQ(fqd.stop(), 0);
+}
+
+}  // namespace
+}  // namespace fq::test
+
+namespace fq::test {
+namespace {
+
+std::string config_error(const std::string& text) {
+  daemon::DaemonConfig c;
+  const Status s = daemon::parse_config(text, "t.toml", c);
+  EXPECT_FALSE(s.ok()) << "accepted: " << text;
+  return s.message();
+}
+
+TEST(ServiceConfig, HttpAndStatsKeysAreChecked) {
+  daemon::DaemonConfig c;
+  EXPECT_TRUE(c.http.listen.empty());  // no HTTP listener unless configured
+  EXPECT_EQ(c.stats.interval_s, 60.0);
+  ASSERT_TRUE(daemon::parse_config("[http]\nlisten = \"[::1]:0\"\n[stats]\ninterval_s = 0\n", "t.toml", c).ok());
+  EXPECT_EQ(c.http.listen, "[::1]:0");
+  EXPECT_EQ(c.stats.interval_s, 0.0);
+  EXPECT_NE(config_error("[http]\nlisten = \"8080\"\n").find("http.listen"), std::string::npos);
+  EXPECT_NE(config_error("[http]\nlisten = \"127.0.0.1:70000\"\n").find("http.listen"), std::string::npos);
+  EXPECT_NE(config_error("[http]\nweb_root = \"\"\n").find("http.web_root"), std::string::npos);
+  EXPECT_NE(config_error("[http]\nlisen = \"127.0.0.1:1\"\n").find("lisen"), std::string::npos);
+  EXPECT_NE(config_error("[stats]\ninterval_s = -1\n").find("stats.interval_s"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fq::test
