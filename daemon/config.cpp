@@ -33,6 +33,14 @@ void read_cluster(TomlReader& r, ClusterParams& c) {
   r.read("sigma_d", c.sigma_d);
   r.read("sigma_q", c.sigma_q);
   r.read("theta", c.theta);
+  r.read("target_clusters", c.target_clusters, 0, 10'000'000);
+  r.read("min_cluster_size", c.min_cluster_size, 0, 10'000'000);
+  std::string geometry = cluster_geometry_name(c.geometry);
+  r.read("geometry", geometry);
+  if (!parse_cluster_geometry(geometry, c.geometry))
+    r.fail("geometry", "must be \"auto\", \"input\" or \"filtered\" (got \"" + geometry + "\")");
+  r.read("track_ids", c.track_ids);
+  r.read("sticky_rings", c.sticky_rings, 0, 64);
 }
 
 void read_output(TomlReader& r, OutputEncoding& o) {

@@ -41,6 +41,7 @@ struct FrameJob {
   StreamSettings settings;              ///< the stream's settings with the frame's overrides applied
   Mesh mesh;                            ///< decoded input
   FrameResult result;                   ///< engine output
+  uint32_t distinct_clusters = 0;       ///< clusters found (result.num_clusters bounds tracked ids)
   std::string engine;                   ///< engine that processed it
   std::vector<PassTiming> timings;      ///< decode, wait, engine.<pass>..., encode
   std::vector<std::string> out_chunks;  ///< encoded result

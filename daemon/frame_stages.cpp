@@ -10,6 +10,7 @@
 #include "proto/header_codec.h"
 #include "daemon/pipeline.h"
 #include "daemon/work_budget.h"
+#include "kernels/parallel_for.h"
 
 namespace fq::daemon {
 namespace {
@@ -138,6 +139,11 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
     const double total = ms_since(t0);
     for (const PassTiming& t : f->result.timings) f->timings.push_back({"engine." + t.name, t.ms});
     f->timings.push_back({"engine", total});
+    if (s.ok()) {
+      const auto t1 = std::chrono::steady_clock::now();
+      p.label_tracks.apply(*f, hardware_threads());
+      if (f->settings.params.cluster) f->timings.push_back({"track_ids", ms_since(t1)});
+    }
     if (!s.ok())
       p.fail(std::move(f), s);
     else

@@ -11,6 +11,7 @@
 
 #include "daemon/config.h"
 #include "daemon/frame_job.h"
+#include "daemon/label_tracks.h"
 #include "daemon/latency_policy.h"
 #include "daemon/latest_results.h"
 #include "daemon/object_pool.h"
@@ -51,6 +52,7 @@ struct Pipeline {
   ObjectPool<Mesh> meshes;                   ///< decoded frames, reused
   ObjectPool<FrameResult> results;           ///< engine outputs, reused
   LatestResults latest;                      ///< each watched stream's last result (HTTP viewer)
+  LabelTracks label_tracks;                  ///< stable cluster ids per stream
 
   /// Marks `frame` failed (message logged) and sends it straight to the publisher.
   void fail(FramePtr frame, Status why);

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <exception>
 
+#include "kernels/cluster_control.h"
 #include "kernels/cpu_stages.h"
 #include "kernels/parallel_for.h"
 
@@ -34,7 +35,11 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
   out.timings.clear();
   out.labels.clear();
   out.num_clusters = 0;
+  out.theta = 0.f;
+  out.link_parent.clear();
+  out.link_p.clear();
   if (Status s = validate(params); !s.ok()) return s;
+  if (needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
   PassClock clock(out.timings);
   // A frame far smaller than the largest one so far gives that one's scratch back.
   if (size_t(mesh.num_vertices) * 4 < f_.points.capacity() && f_.points.capacity() > (1u << 16)) f_ = CpuFrame{};
@@ -69,7 +74,12 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
     cpu::cluster_links(f_, params.c, threads_);
     clock.lap("link");
     out.num_clusters = cpu::cluster_labels(f_, out.labels, threads_);
+    out.theta = params.c.theta;
     clock.lap("modes");
+    if (params.c.keep_links) {
+      cpu::export_links(f_, params.c, out.link_parent, out.link_p, threads_);
+      clock.lap("export_links");
+    }
   }
   const uint32_t n = mesh.num_vertices;
   out.positions.resize(3 * size_t(n));

@@ -7,6 +7,7 @@
 #include "kernels/cluster_math.h"
 #include "kernels/filter_math.h"
 #include "kernels/gaussian.h"
+#include "kernels/link_export.h"
 #include "kernels/parallel_for.h"
 
 namespace fq::cpu {
@@ -155,6 +156,18 @@ uint32_t cluster_labels(CpuFrame& f, std::vector<uint32_t>& labels, int threads)
   labels.resize(n);
   parallel_for(n, threads, [&](uint32_t i) { labels[i] = label_of[find_root(f.next.data(), f.rank[i])]; });
   return static_cast<uint32_t>(roots.size());
+}
+
+void export_links(const CpuFrame& f, const ClusterParams& p, std::vector<uint32_t>& parent, std::vector<float>& prox,
+                  int threads) {
+  const uint32_t n = static_cast<uint32_t>(f.next.size());
+  const Gaussian gd = Gaussian::with_sigma(p.sigma_d), gq = Gaussian::with_sigma(p.sigma_q);
+  parent.resize(n);
+  prox.resize(n);
+  parallel_for(n, threads, [&](uint32_t i) {
+    export_link(f.points.data(), f.bl.data(), f.next.data(), f.grid.order.data(), f.rank[i], gd, gq,
+                p.method == ClusterMethod::kEuclidean, parent[i], prox[i]);
+  });
 }
 
 }  // namespace fq::cpu

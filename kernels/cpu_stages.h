@@ -20,5 +20,8 @@ void cluster_scores(CpuFrame& f, const ClusterParams& p, int threads);
 void cluster_links(CpuFrame& f, const ClusterParams& p, int threads);
 /// Roots, compacted to labels 0..K-1 in input order of the root vertices; returns K.
 uint32_t cluster_labels(CpuFrame& f, std::vector<uint32_t>& labels, int threads);
+/// The links before the theta cut, in input order (FrameResult::link_parent / link_p).
+void export_links(const CpuFrame& f, const ClusterParams& p, std::vector<uint32_t>& parent, std::vector<float>& prox,
+                  int threads);
 
 }  // namespace fq::cpu

@@ -11,10 +11,12 @@
 #include "kernels/cuda/device_frame.cuh"
 #include "kernels/cuda/frame_checks.cuh"
 #include "kernels/cuda/host_staging.h"
+#include "kernels/cuda/link_export_pass.cuh"
 #include "kernels/cuda/launch.cuh"
 #include "kernels/cuda/passes.cuh"
 #include "kernels/cuda/stream.cuh"
 #include "kernels/cuda/team_passes.cuh"
+#include "kernels/cluster_control.h"
 #include "kernels/cuda_engine.h"
 #include "kernels/frame_prep.h"
 #include "kernels/grid_build.h"
@@ -75,7 +77,11 @@ class CudaEngine final : public Engine {
 Status CudaEngine::process(const MeshView& mesh, const Params& params, FrameResult& out) {
   out.timings.clear();
   out.num_clusters = 0;
+  out.theta = 0.f;
+  out.link_parent.clear();
+  out.link_p.clear();
   Status st = validate(params);
+  if (st.ok() && needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
   if (st.ok()) st = check_mesh_counts(mesh);
   if (st.ok() && !usable_)
     st = {StatusCode::kInternal, "the CUDA engine is unusable after an earlier device fault: " + fault_};
@@ -191,6 +197,10 @@ void CudaEngine::enqueue_passes(const Params& params) {
     events_.mark("link", s);
     cuda::cluster_labels(f_, s);
     events_.mark("modes", s);
+    if (params.c.keep_links) {
+      cuda::export_links(f_, params.c, s);  // downloads too
+      events_.mark("export_links", s);
+    }
   }
 }
 
@@ -240,7 +250,14 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
   if (params.filter) cuda::complete_download(positions);
   if (params.cluster) cuda::complete_download(labels);
   stream_.sync();
-  if (params.cluster) out.num_clusters = f_.h_labels.data()[n];
+  if (params.cluster) {
+    out.num_clusters = f_.h_labels.data()[n];
+    out.theta = params.c.theta;
+  }
+  if (params.cluster && params.c.keep_links) {  // downloaded by export_links on the stream
+    out.link_parent.assign(f_.h_link_parent.data(), f_.h_link_parent.data() + n);
+    out.link_p.assign(f_.h_link_p.data(), f_.h_link_p.data() + n);
+  }
   events_.collect([&](const char* name, double ms) { out.timings.push_back({name, ms}); });
   // Host: results out of pinned memory from the first downloaded chunk on (overlaps the download).
   out.timings.push_back({"finish", ms_since(t1)});

@@ -23,6 +23,12 @@ struct FrameResult {
   std::vector<float> positions;   ///< 3 per vertex, input order; the input when !filter
   std::vector<uint32_t> labels;   ///< one per vertex in 0..num_clusters-1; empty when !cluster
   uint32_t num_clusters = 0;
+  float theta = 0.f;              ///< theta that gave the labels (found per frame with a target)
+  /// With ClusterParams::keep_links, per vertex (input order): the vertex it links to
+  /// before the theta cut (itself for a root at any theta) and that link's proximity p;
+  /// the labels at theta are those of the links with p >= 1 - theta.
+  std::vector<uint32_t> link_parent;
+  std::vector<float> link_p;
   double mean_edge = 0.0;         ///< the unit of every sigma, in input units
   std::vector<PassTiming> timings;
 

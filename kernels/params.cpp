@@ -42,6 +42,22 @@ Status check_sigma(const char* name, float v, bool zero_means_default) {
 
 }  // namespace
 
+bool parse_cluster_geometry(const std::string& s, ClusterGeometry& out) {
+  if (s == "auto")
+    out = ClusterGeometry::kAuto;
+  else if (s == "input")
+    out = ClusterGeometry::kInput;
+  else if (s == "filtered")
+    out = ClusterGeometry::kFiltered;
+  else
+    return false;
+  return true;
+}
+
+const char* cluster_geometry_name(ClusterGeometry g) {
+  return g == ClusterGeometry::kInput ? "input" : g == ClusterGeometry::kFiltered ? "filtered" : "auto";
+}
+
 Status validate(const Params& p) {
   if (!p.filter && !p.cluster) return invalid_argument("nothing to compute: enable filter and/or cluster");
   const FilterParams& f = p.f;
@@ -55,6 +71,8 @@ Status validate(const Params& p) {
     for (Status s : {check_sigma("sigma_d", p.c.sigma_d, false), check_sigma("sigma_q", p.c.sigma_q, false)}) {
       if (!s.ok()) return s;
     }
+    if (p.c.sticky_rings > 64)
+      return invalid_argument("sticky_rings must be at most 64 (got " + std::to_string(p.c.sticky_rings) + ")");
     if (!(p.c.theta > 0.f && p.c.theta <= 1.f))
       return invalid_argument("theta must be in (0, 1] (got " + show(p.c.theta) + ")");
   }

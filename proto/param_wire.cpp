@@ -36,6 +36,35 @@ fq::Status set_method(ClusterMethodWire m, fq::ClusterParams& c) {
   }
 }
 
+fq::Status set_geometry(ClusterGeometryWire g, fq::ClusterParams& c) {
+  switch (g) {
+    case GEOMETRY_DEFAULT:
+      return {};
+    case GEOMETRY_AUTO:
+      c.geometry = fq::ClusterGeometry::kAuto;
+      return {};
+    case GEOMETRY_INPUT:
+      c.geometry = fq::ClusterGeometry::kInput;
+      return {};
+    case GEOMETRY_FILTERED:
+      c.geometry = fq::ClusterGeometry::kFiltered;
+      return {};
+    default:
+      return invalid_argument("cluster geometry " + std::to_string(g) + " is not a ClusterGeometryWire");
+  }
+}
+
+ClusterGeometryWire geometry_of(const fq::ClusterParams& c) {
+  switch (c.geometry) {
+    case fq::ClusterGeometry::kInput:
+      return GEOMETRY_INPUT;
+    case fq::ClusterGeometry::kFiltered:
+      return GEOMETRY_FILTERED;
+    default:
+      return GEOMETRY_AUTO;
+  }
+}
+
 FilterMode mode_of(const fq::FilterParams& f) { return f.method == fq::FilterMethod::kBilateral ? BF : QF; }
 
 ClusterMethodWire method_of(const fq::ClusterParams& c) {
@@ -61,6 +90,13 @@ fq::Status apply_overrides(const ParamOverrides& o, fq::Params& inout) {
   if (o.has_cluster_method()) {
     if (auto s = set_method(o.cluster_method(), p.c); !s.ok()) return s;
   }
+  if (o.has_target_clusters()) p.c.target_clusters = o.target_clusters();
+  if (o.has_cluster_geometry()) {
+    if (auto s = set_geometry(o.cluster_geometry(), p.c); !s.ok()) return s;
+  }
+  if (o.has_min_cluster_size()) p.c.min_cluster_size = o.min_cluster_size();
+  if (o.has_track_ids()) p.c.track_ids = o.track_ids();
+  if (o.has_sticky_rings()) p.c.sticky_rings = o.sticky_rings();
   inout = p;
   return {};
 }
@@ -103,6 +139,11 @@ void params_to_wire(const fq::Params& p, ParamOverrides& out) {
   out.set_sigma_q(p.c.sigma_q);
   out.set_theta(p.c.theta);
   out.set_cluster_method(method_of(p.c));
+  out.set_target_clusters(p.c.target_clusters);
+  out.set_cluster_geometry(geometry_of(p.c));
+  out.set_min_cluster_size(p.c.min_cluster_size);
+  out.set_track_ids(p.c.track_ids);
+  out.set_sticky_rings(p.c.sticky_rings);
 }
 
 }  // namespace fq::wire

@@ -3,8 +3,9 @@
 
     python3 scripts/quality.py [--fqfilter build/clients/fqfilter/fqfilter] [--meshes ../shared/meshes]
 
-Prints markdown on stdout: the denoising table (noise 0.2 mean edge, seed 1) and the clustering
-table at the paper's Table 3 parameters. Every number comes from the run it prints.
+Prints markdown on stdout: the denoising table (noise 0.2 mean edge, seed 1), the clustering
+table at the paper's Table 3 parameters and the feature-following clustering table (sharp-edge
+recall, eval/sharp_edge_recall.h). Every number comes from the run it prints.
 """
 import argparse
 import json
@@ -27,6 +28,17 @@ CLUSTER = [
     ("igea.ply", 2.0, 1.0, 6.0, 1.0, 0.87, 156, 419),
 ]
 NOISE, SEED = 0.2, 1
+# Feature-following clusters on fandisk: (label, noise, extra fqfilter arguments).
+FEATURE_PARAMS = ["--sigma-s", "1", "--sigma-r", "0.5", "--sigma-d", "2", "--sigma-q", "0.3", "--theta", "0.9"]
+FEATURE = [
+    ("clean, paper (θ 0.9)", 0.0, ["--no-filter", *FEATURE_PARAMS]),
+    ("noisy, paper (θ 0.9)", NOISE, ["--no-filter", *FEATURE_PARAMS]),
+    ("noisy, fqfilter defaults (σ 2, 1, 5, 1, θ 0.9)", NOISE, ["--cluster"]),
+    ("noisy, defaults, target 60, input geometry (paper)", NOISE, ["--cluster", "--target-clusters", "60", "--cluster-geometry", "input"]),
+    ("noisy, defaults, target 60 (filtered geometry: auto)", NOISE, ["--cluster", "--target-clusters", "60"]),
+    ("noisy, defaults, target 60, min cluster size 20", NOISE, ["--cluster", "--target-clusters", "60", "--min-cluster-size", "20"]),
+    ("noisy, defaults, target 25 (filtered geometry: auto)", NOISE, ["--cluster", "--target-clusters", "25"]),
+]
 
 
 def run(fqfilter, args):
@@ -68,15 +80,32 @@ def denoise_table(fqfilter, meshes):
         sys.stdout.flush()
 
 
+def recall(result):
+    r = result["metrics"]["sharp_edge_recall"]
+    return "–" if r is None or r["recall"] is None else f"{r['recall']:.3f}"
+
+
 def cluster_table(fqfilter, meshes):
-    print("| mesh | σ_s | σ_r | σ_d | σ_q | θ | clusters (ours) | clusters (paper) | CPU ms (ours) | GPU ms (paper, GTX 980 Ti) |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| mesh | σ_s | σ_r | σ_d | σ_q | θ | clusters (ours) | clusters (paper) | sharp-edge recall | CPU ms (ours) | GPU ms (paper, GTX 980 Ti) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for name, ss, sr, sd, sq, th, paper_k, paper_ms in CLUSTER:
-        r = run(fqfilter, [os.path.join(meshes, name), "--no-filter", "--cluster", "--repeat", "3",
+        path = os.path.join(meshes, name)
+        r = run(fqfilter, [path, "--reference", path, "--no-filter", "--cluster", "--repeat", "3",
                            "--sigma-s", str(ss), "--sigma-r", str(sr), "--sigma-d", str(sd),
                            "--sigma-q", str(sq), "--theta", str(th)])
         print(f"| {name} | {ss:g} | {sr:g} | {sd:g} | {sq:g} | {th:g} | {r['clusters']} | {paper_k} "
-              f"| {total_ms(r):.0f} | {paper_ms} |")
+              f"| {recall(r)} | {total_ms(r):.0f} | {paper_ms} |")
+        sys.stdout.flush()
+
+
+def feature_table(fqfilter, meshes):
+    print("| fandisk.ply | clusters | θ used | sharp-edge recall | CPU ms |")
+    print("|---|---|---|---|---|")
+    path = os.path.join(meshes, "fandisk.ply")
+    for label, noise, args in FEATURE:
+        extra = ["--noise", str(noise), "--seed", str(SEED)] if noise > 0 else ["--reference", path]
+        r = run(fqfilter, [path, *extra, *args])
+        print(f"| {label} | {r['clusters']} | {r['theta_used']:.3g} | {recall(r)} | {total_ms(r):.0f} |")
         sys.stdout.flush()
 
 
@@ -103,6 +132,8 @@ def main():
     denoise_table(a.fqfilter, a.meshes)
     print("\n### Clustering at the paper's Table 3 parameters (clean meshes, filter off)\n")
     cluster_table(a.fqfilter, a.meshes)
+    print("\n### Clusters that follow the creases (fandisk; sharp edges: dihedral > 30°)\n")
+    feature_table(a.fqfilter, a.meshes)
     print("\n### A clean mesh filtered (no noise), against itself\n")
     clean_table(a.fqfilter, a.meshes)
 

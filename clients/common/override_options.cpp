@@ -15,6 +15,13 @@ void add_override_options(CLI::App& app, OverrideArgs& a) {
   app.add_option("--sigma-q", a.sigma_q, "clustering range extent")->group(g);
   app.add_option("--theta", a.theta, "clustering threshold in (0, 1]")->group(g);
   app.add_option("--cluster-method", a.cluster_method, "quadric | euclidean")->group(g);
+  app.add_option("--target-clusters", a.target_clusters, "cluster count to aim for, theta found per frame (0 = theta)")
+      ->group(g);
+  app.add_option("--cluster-geometry", a.cluster_geometry, "auto | input | filtered")->group(g);
+  app.add_option("--min-cluster-size", a.min_cluster_size, "connected clusters, small parts merged (0 = off)")
+      ->group(g);
+  app.add_option("--track-ids", a.track_ids, "stable cluster ids across frames (true/false)")->group(g);
+  app.add_option("--sticky-rings", a.sticky_rings, "rings a cluster border may move back (0 = ids only)")->group(g);
   app.add_option("--compute", a.compute, "filter | cluster | filter_and_cluster")->group(g);
 }
 
@@ -29,6 +36,18 @@ Status to_wire(const OverrideArgs& a, wire::ParamOverrides& o, wire::Compute& co
   if (a.sigma_d) o.set_sigma_d(*a.sigma_d);
   if (a.sigma_q) o.set_sigma_q(*a.sigma_q);
   if (a.theta) o.set_theta(*a.theta);
+  if (a.target_clusters) o.set_target_clusters(*a.target_clusters);
+  if (a.min_cluster_size) o.set_min_cluster_size(*a.min_cluster_size);
+  if (a.track_ids) o.set_track_ids(*a.track_ids);
+  if (a.sticky_rings) o.set_sticky_rings(*a.sticky_rings);
+  if (a.cluster_geometry == "auto")
+    o.set_cluster_geometry(wire::GEOMETRY_AUTO);
+  else if (a.cluster_geometry == "input")
+    o.set_cluster_geometry(wire::GEOMETRY_INPUT);
+  else if (a.cluster_geometry == "filtered")
+    o.set_cluster_geometry(wire::GEOMETRY_FILTERED);
+  else if (!a.cluster_geometry.empty())
+    return invalid_argument("--cluster-geometry must be auto, input or filtered (got " + a.cluster_geometry + ")");
   if (a.mode == "qf")
     o.set_mode(wire::QF);
   else if (a.mode == "bf")

@@ -13,8 +13,9 @@ namespace fq::client {
 
 struct OverrideArgs {
   std::optional<float> sigma_s, sigma_r, sigma_b, sigma_n, tikhonov, sigma_d, sigma_q, theta;
-  std::optional<bool> constrained;
-  std::string mode, cluster_method, compute;
+  std::optional<bool> constrained, track_ids;
+  std::optional<uint32_t> target_clusters, min_cluster_size, sticky_rings;
+  std::string mode, cluster_method, compute, cluster_geometry;
 };
 
 /// Registers the options on `app` (in an "Parameter overrides" group).

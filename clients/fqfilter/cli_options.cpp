@@ -33,6 +33,24 @@ void add_filter_options(CLI::App& app, Options& o, std::string& mode) {
       ->group(g);
 }
 
+void add_cluster_control_options(CLI::App& app, Options& o, std::string& geometry) {
+  ClusterParams& c = o.params.c;
+  const std::string g = "Clustering";
+  app.add_option("--target-clusters", c.target_clusters,
+                 "Choose theta per mesh to give about K clusters (0 = use --theta)")
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--cluster-geometry", geometry,
+                 "Quadrics the clustering uses: input (the paper), filtered (after a constrained filter) or auto (filtered with --target-clusters)")
+      ->check(CLI::IsMember({"auto", "input", "filtered"}))
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--min-cluster-size", c.min_cluster_size,
+                 "Split clusters into mesh-connected parts and merge parts under N vertices (0 = off)")
+      ->capture_default_str()
+      ->group(g);
+}
+
 void add_cluster_options(CLI::App& app, Options& o, std::string& method, bool& no_filter) {
   ClusterParams& c = o.params.c;
   const std::string g = "Clustering";
@@ -93,14 +111,16 @@ const char* cluster_method_name(ClusterMethod m) {
   return m == ClusterMethod::kQuadric ? "quadric" : "euclidean";
 }
 
+
 ParseOutcome parse_options(int argc, char** argv, Options& o) {
   CLI::App app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
                "fqfilter"};
-  std::string mode = "qf", method = "quadric", engine = "auto";
+  std::string mode = "qf", method = "quadric", engine = "auto", geometry = "auto";
   bool no_filter = false;
   add_run_options(app, o, engine);
   add_filter_options(app, o, mode);
   add_cluster_options(app, o, method, no_filter);
+  add_cluster_control_options(app, o, geometry);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -111,6 +131,7 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
   }
   o.params.f.method = mode == "qf" ? FilterMethod::kQuadric : FilterMethod::kBilateral;
   o.params.c.method = method == "quadric" ? ClusterMethod::kQuadric : ClusterMethod::kEuclidean;
+  parse_cluster_geometry(geometry, o.params.c.geometry);  // checked by IsMember above
   parse_engine_kind(engine, o.engine.kind);
   if (no_filter) {
     o.params.filter = false;

@@ -6,6 +6,7 @@
 #include "proto/mesh_io.h"
 #include "eval/error_metrics.h"
 #include "eval/noise.h"
+#include "eval/sharp_edge_recall.h"
 #include "eval/surface_distance.h"
 
 namespace fq::cli {
@@ -40,7 +41,10 @@ Status run_engine(const Options& o, Engine& engine, const MeshView& view, FrameR
   }
   summarize_timings(runs, report);
   report.mean_edge = result.mean_edge;
-  if (o.params.cluster) report.clusters = result.num_clusters;
+  if (o.params.cluster) {
+    report.clusters = result.num_clusters;
+    report.theta_used = result.theta;
+  }
   return {};
 }
 
@@ -85,6 +89,7 @@ Status run_file_job(const std::string& input, const std::string& output, const O
   if (!r.reference.empty()) {
     r.input_error = measure(clean.view(), mesh.positions.data());
     if (o.params.filter) r.output_error = measure(clean.view(), result.positions.data());
+    if (o.params.cluster) r.sharp_edges = sharp_edge_recall(clean.view(), result.labels.data());
   }
   if (!output.empty()) {
     MeshView out = mesh.view();

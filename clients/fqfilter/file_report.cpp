@@ -43,7 +43,10 @@ nlohmann::json params_json(const Params& p) {
           {"cluster_method", cluster_method_name(p.c.method)},
           {"sigma_d", as_typed(p.c.sigma_d)},
           {"sigma_q", as_typed(p.c.sigma_q)},
-          {"theta", as_typed(p.c.theta)}};
+          {"theta", as_typed(p.c.theta)},
+          {"target_clusters", p.c.target_clusters},
+          {"cluster_geometry", cluster_geometry_name(p.c.geometry)},
+          {"min_cluster_size", p.c.min_cluster_size}};
 }
 
 nlohmann::json error_json(const std::optional<MeshError>& e) {
@@ -54,6 +57,15 @@ nlohmann::json error_json(const std::optional<MeshError>& e) {
           {"mfne_rad", e->mfne.mean_radians},
           {"mfne_deg", e->mfne.mean_radians * 180.0 / std::numbers::pi},
           {"faces_skipped", e->mfne.faces_skipped}};
+}
+
+nlohmann::json recall_json(const std::optional<SharpEdgeRecall>& r) {
+  if (!r) return nullptr;
+  return {{"recall", r->recall},
+          {"sharp_edges", r->sharp_edges},
+          {"separated_edges", r->separated_edges},
+          {"sharp_length", r->sharp_length},
+          {"min_angle_deg", kSharpEdgeDegrees}};
 }
 
 void print_error_row(std::ostream& os, const char* what, const std::optional<MeshError>& e) {
@@ -106,13 +118,15 @@ nlohmann::json to_json(const FileReport& r) {
                                         : nlohmann::json(nullptr)},
             {"repeat", r.repeat},
             {"timings_ms", {{"passes", passes}, {"total", r.total_ms}}},
-            {"clusters", r.clusters ? nlohmann::json(*r.clusters) : nlohmann::json(nullptr)}});
+            {"clusters", r.clusters ? nlohmann::json(*r.clusters) : nlohmann::json(nullptr)},
+            {"theta_used", r.theta_used ? nlohmann::json(as_typed(*r.theta_used)) : nlohmann::json(nullptr)}});
   if (r.reference.empty()) {
     j["metrics"] = nullptr;
   } else {
     j["metrics"] = {{"reference", r.reference},
                     {"input", error_json(r.input_error)},
-                    {"output", error_json(r.output_error)}};
+                    {"output", error_json(r.output_error)},
+                    {"sharp_edge_recall", recall_json(r.sharp_edges)}};
   }
   return j;
 }
@@ -133,7 +147,14 @@ void print_human(const FileReport& r, std::ostream& os) {
      << r.total_ms;
   if (r.repeat > 1) os << "  (median of " << r.repeat << " runs)";
   os << "\n";
-  if (r.clusters) os << "  clusters: " << *r.clusters << "\n";
+  if (r.clusters) {
+    os << "  clusters: " << *r.clusters;
+    if (r.theta_used && r.params.c.target_clusters > 0) os << " (theta " << std::setprecision(4) << *r.theta_used << ")";
+    os << "\n";
+  }
+  if (r.sharp_edges)
+    os << "  sharp-edge recall: " << std::setprecision(3) << r.sharp_edges->recall << " of "
+       << r.sharp_edges->sharp_edges << " edges over " << std::setprecision(0) << kSharpEdgeDegrees << " deg\n";
   if (!r.reference.empty()) {
     os << "  error vs " << r.reference << "\n  " << std::left << std::setw(14) << "" << std::right
        << std::setw(12) << "RMSE/diag" << std::setw(12) << "surf RMS" << std::setw(12) << "surf max"

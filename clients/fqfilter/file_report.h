@@ -11,6 +11,7 @@
 #include "kernels/engine.h"
 #include "eval/error_metrics.h"
 #include "kernels/params.h"
+#include "eval/sharp_edge_recall.h"
 #include "eval/surface_distance.h"
 
 namespace fq::cli {
@@ -37,6 +38,8 @@ struct FileReport {
   std::vector<PassTiming> passes;  ///< median ms of each pass over the repeats
   double total_ms = 0.0;           ///< median of the per-run totals
   std::optional<uint32_t> clusters;
+  std::optional<float> theta_used;        ///< the theta that gave the labels (found with a target)
+  std::optional<SharpEdgeRecall> sharp_edges;  ///< labels vs the reference's creases
   std::string reference;                  ///< what the metrics compare to; empty: no metrics
   std::optional<MeshError> input_error;   ///< engine input (noisy) vs reference
   std::optional<MeshError> output_error;  ///< result vs reference (when filtering)

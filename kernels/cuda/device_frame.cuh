@@ -60,6 +60,10 @@ struct DeviceFrame {
   DeviceBuffer<uint32_t> root_flag, root_scan;  ///< n + 1, input order
   DeviceBuffer<uint32_t> labels;                ///< n labels, then the cluster count
   DeviceBuffer<unsigned char> temp;             ///< CUB scratch
+  DeviceBuffer<uint32_t> link_parent;           ///< link forest before the cut, input order
+  DeviceBuffer<float> link_p;
+  PinnedBuffer<uint32_t> h_link_parent;
+  PinnedBuffer<float> h_link_p;
 };
 
 }  // namespace fq::cuda

@@ -62,6 +62,11 @@ compute = "cluster"
 [streams.cam2.cluster]
 method = "euclidean"
 theta = 0.5
+target_clusters = 40
+geometry = "input"
+min_cluster_size = 8
+track_ids = false
+sticky_rings = 3
 )",
                          c);
   ASSERT_TRUE(s.ok()) << s.message();
@@ -78,6 +83,13 @@ theta = 0.5
   EXPECT_FALSE(b.params.filter);
   EXPECT_TRUE(b.params.cluster);
   EXPECT_EQ(b.params.c.method, ClusterMethod::kEuclidean);
+  EXPECT_EQ(b.params.c.target_clusters, 40u);
+  EXPECT_EQ(b.params.c.geometry, ClusterGeometry::kInput);
+  EXPECT_EQ(b.params.c.min_cluster_size, 8u);
+  EXPECT_FALSE(b.params.c.track_ids);
+  EXPECT_EQ(b.params.c.sticky_rings, 3u);
+  EXPECT_TRUE(a.params.c.track_ids) << "ids are tracked unless a stream says otherwise";
+  EXPECT_EQ(a.params.c.geometry, ClusterGeometry::kAuto);
   EXPECT_FLOAT_EQ(c.settings_for("unlisted").params.f.sigma_s, 3.0f);
 }
 
@@ -107,6 +119,9 @@ TEST(DaemonConfig, BadNamesAndParametersAreRejected) {
   EXPECT_NE(error_of("[engine]\nkind = \"gpu\"\n").find("engine.kind"), std::string::npos);
   EXPECT_NE(error_of("[defaults]\ncompute = \"both\"\n").find("compute"), std::string::npos);
   EXPECT_NE(error_of("[defaults.filter]\nmethod = \"median\"\n").find("method"), std::string::npos);
+  EXPECT_NE(error_of("[defaults.cluster]\ngeometry = \"mesh\"\n").find("geometry"), std::string::npos);
+  EXPECT_NE(error_of("[defaults.cluster]\nsticky_rings = 100\n").find("sticky_rings"), std::string::npos);
+  EXPECT_NE(error_of("[defaults.cluster]\ntarget_clusters = -1\n").find("target_clusters"), std::string::npos);
   EXPECT_NE(error_of("[defaults.output]\nresult_form = \"faces\"\n").find("result_form must be \"positions\" or"),
             std::string::npos);
   EXPECT_NE(error_of("[defaults.filter]\nsigma_s = 0\n").find("sigma_s must be > 0"), std::string::npos);

@@ -72,7 +72,9 @@ TEST(FqfilterCli, BadValuesAreRejected) {
                                                        {"--theta", "1.5", "--cluster"},
                                                        {"--mode", "xx"},
                                                        {"--repeat", "0"},
-                                                       {"--threads", "abc"}};
+                                                       {"--threads", "abc"},
+                                                       {"--cluster-geometry", "mesh", "--cluster"},
+                                                       {"--target-clusters", "-3", "--cluster"}};
   for (const auto& opt : cases) {
     std::vector<std::string> args = {kFandisk};
     args.insert(args.end(), opt.begin(), opt.end());
@@ -112,6 +114,25 @@ TEST(FqfilterCli, JsonOnFandisk) {
   // quadric filter slides vertices along the surface by design).
   EXPECT_LT(m.at("output").at("surface_rms_over_diagonal").get<double>(),
             m.at("input").at("surface_rms_over_diagonal").get<double>());
+  expect_finite_numbers(j);
+}
+
+TEST(FqfilterCli, TargetClustersReportsThetaAndSharpEdgeRecall) {
+  fq::test::ScratchDir dir;
+  const RunResult r = run_fqfilter({kFandisk, "--engine", "cpu", "--threads", "2", "--no-filter", "--target-clusters",
+                                    "30", "--reference", kFandisk, "--json"},
+                                   dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j.at("clusters").get<double>(), 30.0, 3.0);
+  EXPECT_EQ(j.at("params").at("target_clusters").get<uint32_t>(), 30u);
+  const double theta = j.at("theta_used").get<double>();
+  EXPECT_GT(theta, 0.0);
+  EXPECT_LE(theta, 1.0);
+  const nlohmann::json& recall = j.at("metrics").at("sharp_edge_recall");
+  EXPECT_GT(recall.at("sharp_edges").get<uint32_t>(), 0u);  // fandisk has creases
+  EXPECT_GE(recall.at("recall").get<double>(), 0.0);
+  EXPECT_LE(recall.at("recall").get<double>(), 1.0);
   expect_finite_numbers(j);
 }
 

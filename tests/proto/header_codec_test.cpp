@@ -229,6 +229,11 @@ TEST(HeaderCodec, BadEnumOverrideLeavesParamsUntouched) {
   EXPECT_EQ(apply_overrides(o, p).code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(p.f.sigma_s, Params{}.f.sigma_s);
   EXPECT_EQ(apply_compute(static_cast<Compute>(5), p).code(), StatusCode::kInvalidArgument);
+  ParamOverrides g;
+  g.set_target_clusters(12);
+  g.set_cluster_geometry(static_cast<ClusterGeometryWire>(9));
+  EXPECT_EQ(apply_overrides(g, p).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(p.c.target_clusters, 0u);
 }
 
 TEST(HeaderCodec, ComputeMapping) {
@@ -250,6 +255,11 @@ TEST(HeaderCodec, ParamsRoundTrip) {
   p.cluster = true;
   p.f = {FilterMethod::kBilateral, 3.f, 0.5f, 1.25f, 0.75f, true, 0.f};
   p.c = {ClusterMethod::kEuclidean, 7.f, 2.f, 0.8f};
+  p.c.target_clusters = 42;
+  p.c.geometry = ClusterGeometry::kFiltered;
+  p.c.min_cluster_size = 9;
+  p.c.track_ids = false;
+  p.c.sticky_rings = 5;
   ParamOverrides w;
   params_to_wire(p, w);
   ParamOverrides via_bytes;
@@ -270,6 +280,11 @@ TEST(HeaderCodec, ParamsRoundTrip) {
   EXPECT_EQ(back.c.sigma_d, p.c.sigma_d);
   EXPECT_EQ(back.c.sigma_q, p.c.sigma_q);
   EXPECT_EQ(back.c.theta, p.c.theta);
+  EXPECT_EQ(back.c.target_clusters, p.c.target_clusters);
+  EXPECT_EQ(back.c.geometry, p.c.geometry);
+  EXPECT_EQ(back.c.min_cluster_size, p.c.min_cluster_size);
+  EXPECT_EQ(back.c.track_ids, p.c.track_ids);
+  EXPECT_EQ(back.c.sticky_rings, p.c.sticky_rings);
   EXPECT_EQ(w.ByteSizeLong(), via_bytes.ByteSizeLong());
   const auto* d = ParamOverrides::descriptor();
   for (int i = 0; i < d->field_count(); ++i)

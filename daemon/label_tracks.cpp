@@ -1,0 +1,34 @@
+#include "daemon/label_tracks.h"
+
+namespace fq::daemon {
+
+LabelTracks::Track& LabelTracks::track_of(const std::string& stream_id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_ptr<Track>& t = tracks_[stream_id];
+  if (!t) t = std::make_unique<Track>();
+  return *t;
+}
+
+void LabelTracks::apply(FrameJob& f, int threads) {
+  FrameResult& r = f.result;
+  f.distinct_clusters = r.num_clusters;
+  Track& t = track_of(f.stream_id);
+  std::lock_guard<std::mutex> lock(t.mutex);
+  const ClusterParams& c = f.settings.params.c;
+  if (!f.settings.params.cluster || !c.track_ids || r.labels.empty()) {
+    t.tracker.reset();
+    return;
+  }
+  // Frames of one stream may finish out of order on several engines: each is matched with
+  // the frame tracked just before it, which is at worst a frame or two older.
+  TrackingOptions o;
+  o.cell = static_cast<float>(r.mean_edge);
+  o.max_distance = 8.f * o.cell;
+  o.threads = threads;
+  o.triangles = f.mesh.triangles.data();
+  o.num_triangles = f.mesh.num_triangles();
+  o.sticky_rings = static_cast<int>(c.sticky_rings);
+  r.num_clusters = t.tracker.track(r.positions.data(), f.mesh.num_vertices(), r.labels, r.num_clusters, o);
+}
+
+}  // namespace fq::daemon

@@ -1,0 +1,111 @@
+#include "kernels/label_tracking.h"
+
+#include <algorithm>
+#include <tuple>
+
+namespace fq {
+
+namespace {
+
+constexpr uint32_t kNone = NearestVertexIndex::kNone;
+
+struct Overlap {
+  uint32_t count, cluster, prev_id;
+};
+
+/// Every (cluster, previous id) pair with its vertex count: counting sort by cluster, then
+/// a sort of each cluster's votes.
+std::vector<Overlap> overlaps(const std::vector<uint32_t>& labels, uint32_t k, const std::vector<uint32_t>& votes) {
+  std::vector<uint32_t> start(k + 1, 0);
+  for (uint32_t l : labels) ++start[l + 1];
+  for (uint32_t c = 0; c < k; ++c) start[c + 1] += start[c];
+  std::vector<uint32_t> by_cluster(labels.size()), cursor(start.begin(), start.end() - 1);
+  for (size_t v = 0; v < labels.size(); ++v) by_cluster[cursor[labels[v]]++] = votes[v];
+  std::vector<Overlap> out;
+  for (uint32_t c = 0; c < k; ++c) {
+    auto b = by_cluster.begin() + start[c], e = by_cluster.begin() + start[c + 1];
+    std::sort(b, e);
+    for (auto it = b; it != e;) {
+      auto run_end = std::upper_bound(it, e, *it);
+      if (*it != kNone) out.push_back({uint32_t(run_end - it), c, *it});
+      it = run_end;
+    }
+  }
+  return out;
+}
+
+/// Vertices whose previous id is the label of a neighbour across a border take that id.
+void stick_to_previous_side(const TrackingOptions& o, const std::vector<uint32_t>& votes,
+                            std::vector<uint32_t>& labels) {
+  std::vector<uint32_t> to(labels.size(), kNone);
+  auto offer = [&](uint32_t a, uint32_t b) {
+    if (votes[a] != kNone && votes[a] != labels[a] && labels[b] == votes[a]) to[a] = votes[a];
+  };
+  for (uint32_t t = 0; t < o.num_triangles; ++t) {
+    const uint32_t* v = o.triangles + 3 * size_t(t);
+    for (int k = 0; k < 3; ++k) {
+      offer(v[k], v[(k + 1) % 3]);
+      offer(v[(k + 1) % 3], v[k]);
+    }
+  }
+  for (size_t v = 0; v < labels.size(); ++v) {
+    if (to[v] != kNone) labels[v] = to[v];
+  }
+}
+
+}  // namespace
+
+std::vector<uint32_t> match_cluster_ids(const std::vector<uint32_t>& labels, uint32_t k,
+                                        const std::vector<uint32_t>& votes, const std::vector<bool>& prev_used) {
+  std::vector<Overlap> pairs = overlaps(labels, k, votes);
+  // Largest overlaps first; ties by cluster then id, so the result is reproducible.
+  std::sort(pairs.begin(), pairs.end(), [](const Overlap& a, const Overlap& b) {
+    return std::tie(b.count, a.cluster, a.prev_id) < std::tie(a.count, b.cluster, b.prev_id);
+  });
+  std::vector<uint32_t> id(k, kNone);
+  std::vector<bool> taken(prev_used.size(), false);
+  for (const Overlap& o : pairs) {
+    if (id[o.cluster] != kNone || o.prev_id >= taken.size() || taken[o.prev_id]) continue;
+    id[o.cluster] = o.prev_id;
+    taken[o.prev_id] = true;
+  }
+  // New regions: the lowest ids neither the previous frame nor this one uses.
+  uint32_t next = 0;
+  for (uint32_t c = 0; c < k; ++c) {
+    if (id[c] != kNone) continue;
+    while (next < prev_used.size() && (prev_used[next] || taken[next])) ++next;
+    id[c] = next++;
+  }
+  return id;
+}
+
+uint32_t LabelTracker::track(const float* positions, uint32_t n, std::vector<uint32_t>& labels,
+                             uint32_t num_clusters, const TrackingOptions& o) {
+  uint32_t bound = num_clusters;
+  if (has_previous()) {
+    std::vector<uint32_t> nearest, votes(n);
+    prev_.nearest_all(positions, n, o.max_distance, nearest, o.threads);
+    for (uint32_t v = 0; v < n; ++v) votes[v] = nearest[v] == kNone ? kNone : prev_ids_[nearest[v]];
+    std::vector<bool> prev_used(prev_bound_, false);
+    for (uint32_t id : prev_ids_) prev_used[id] = true;
+    const std::vector<uint32_t> id = match_cluster_ids(labels, num_clusters, votes, prev_used);
+    for (uint32_t& l : labels) l = id[l];
+    if (o.triangles) {
+      for (int ring = 0; ring < o.sticky_rings; ++ring) stick_to_previous_side(o, votes, labels);
+    }
+    bound = 0;
+    for (uint32_t l : labels) bound = std::max(bound, l + 1);
+  }
+  prev_.build(positions, n, o.cell);
+  prev_ids_ = labels;
+  prev_bound_ = bound;
+  return bound;
+}
+
+void LabelTracker::reset() {
+  prev_ = NearestVertexIndex{};
+  prev_ids_.clear();
+  prev_bound_ = 0;
+}
+
+}  // namespace fq

@@ -1,0 +1,53 @@
+// Stable cluster ids across the frames of a stream. Quick shift numbers clusters by the
+// input index of their root, which means nothing from one capture frame to the next (the
+// vertices themselves differ). The tracker keeps the previous frame's vertices and ids;
+// each new vertex votes for the id of the nearest previous vertex, each new cluster is
+// matched to the previous ids it overlaps most (greedy, largest overlaps first), and
+// clusters that overlap nothing left get ids the previous frame did not use. With the mesh's
+// triangles, boundaries are also sticky: a vertex on the border between its cluster and the
+// one that holds its previous id goes back to that one. Both sides of a border are equally
+// right for such a vertex (on a crease, or where two clusters of a flat region meet), and
+// without this rule noise flips them from frame to frame.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "kernels/nearest_vertex.h"
+
+namespace fq {
+
+struct TrackingOptions {
+  float cell = 1.f;          ///< grid cell of the matcher, in input units (the mean edge)
+  float max_distance = 8.f;  ///< a new vertex farther than this from every previous one votes for nothing
+  int threads = 1;
+  const uint32_t* triangles = nullptr;  ///< the frame's triangles: sticky boundaries; null: ids only
+  uint32_t num_triangles = 0;
+  int sticky_rings = 2;  ///< how deep (in edge rings) a border may move back to where it was
+};
+
+/// Ids for this frame's clusters from overlap votes. `labels`: this frame's clusters
+/// (0..k-1); `votes`: per vertex the previous id it overlaps (kNone: none); `prev_used`:
+/// the previous frame's ids (true where used). Returns the new id of each cluster.
+std::vector<uint32_t> match_cluster_ids(const std::vector<uint32_t>& labels, uint32_t k,
+                                        const std::vector<uint32_t>& votes, const std::vector<bool>& prev_used);
+
+class LabelTracker {
+ public:
+  /// Replaces `labels` (one per vertex, each < num_clusters) by ids consistent with the
+  /// previous call's frame, remembers this frame, and returns the id bound (every id is
+  /// below it; ids of clusters that vanished stay unused, so it may exceed num_clusters).
+  /// The first frame keeps its labels.
+  uint32_t track(const float* positions, uint32_t n, std::vector<uint32_t>& labels, uint32_t num_clusters,
+                 const TrackingOptions& options);
+  /// Forgets the previous frame (the next one starts afresh).
+  void reset();
+  bool has_previous() const { return prev_.size() > 0; }
+
+ private:
+  NearestVertexIndex prev_;
+  std::vector<uint32_t> prev_ids_;
+  uint32_t prev_bound_ = 0;
+};
+
+}  // namespace fq

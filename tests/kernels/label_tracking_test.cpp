@@ -1,0 +1,171 @@
+// Stable cluster ids across frames (kernels/label_tracking.h) and the nearest-vertex
+// matcher under it (kernels/nearest_vertex.h).
+#include "kernels/label_tracking.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+#include <set>
+
+#include "eval/capture_sequence.h"
+#include "eval/label_persistence.h"
+#include "kernels/cpu_engine.h"
+#include "kernels/nearest_vertex.h"
+#include "tests/support/test_meshes.h"
+
+namespace fq {
+namespace {
+
+TEST(KernelNearestVertex, MatchesBruteForce) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-5.f, 5.f);
+  std::vector<float> pts(3 * 500), queries(3 * 200);
+  for (float& x : pts) x = u(rng);
+  for (float& x : queries) x = 1.5f * u(rng);  // some far outside the points' box
+  NearestVertexIndex index;
+  index.build(pts.data(), 500, 0.7f);
+  std::vector<uint32_t> got;
+  index.nearest_all(queries.data(), 200, 1e9f, got, 2);
+  for (uint32_t q = 0; q < 200; ++q) {
+    float best = 1e30f;
+    for (uint32_t i = 0; i < 500; ++i) {
+      float d2 = 0;
+      for (int k = 0; k < 3; ++k) d2 += (pts[3 * i + k] - queries[3 * q + k]) * (pts[3 * i + k] - queries[3 * q + k]);
+      best = std::min(best, d2);
+    }
+    ASSERT_NE(got[q], NearestVertexIndex::kNone);
+    float d2 = 0;
+    for (int k = 0; k < 3; ++k) d2 += (pts[3 * got[q] + k] - queries[3 * q + k]) * (pts[3 * got[q] + k] - queries[3 * q + k]);
+    EXPECT_FLOAT_EQ(d2, best) << "query " << q;
+  }
+  EXPECT_EQ(index.nearest({100.f, 0.f, 0.f}, 1.f), NearestVertexIndex::kNone) << "beyond max_radius";
+}
+
+// The same surface as a new capture: vertices shuffled, jittered, clusters renumbered.
+struct Frame {
+  std::vector<float> positions;
+  std::vector<uint32_t> labels;
+};
+
+Frame recaptured(const Frame& f, uint32_t k, uint32_t seed, std::vector<uint32_t>& source_of) {
+  const uint32_t n = uint32_t(f.labels.size());
+  std::mt19937 rng(seed);
+  source_of.resize(n);
+  std::iota(source_of.begin(), source_of.end(), 0u);
+  std::shuffle(source_of.begin(), source_of.end(), rng);
+  std::vector<uint32_t> rename(k);
+  std::iota(rename.begin(), rename.end(), 0u);
+  std::shuffle(rename.begin(), rename.end(), rng);
+  std::normal_distribution<float> jitter(0.f, 1e-3f);
+  Frame out;
+  for (uint32_t v = 0; v < n; ++v) {
+    for (int c = 0; c < 3; ++c) out.positions.push_back(f.positions[3 * source_of[v] + c] + jitter(rng));
+    out.labels.push_back(rename[f.labels[source_of[v]]]);
+  }
+  return out;
+}
+
+TEST(KernelLabelTracking, PermutedJitteredCopyGetsTheSameIds) {
+  const Mesh sphere = test::make_icosphere(3);
+  Frame a{sphere.positions, {}};
+  const uint32_t k = 7;
+  for (uint32_t v = 0; v < sphere.num_vertices(); ++v) a.labels.push_back(uint32_t((sphere.positions[3 * v] + 1.f) * 3.49f));
+  LabelTracker tracker;
+  TrackingOptions o;
+  o.cell = 0.1f;
+  std::vector<uint32_t> first = a.labels;
+  EXPECT_EQ(tracker.track(a.positions.data(), sphere.num_vertices(), first, k, o), k);
+  EXPECT_EQ(first, a.labels) << "the first frame keeps its labels";
+  std::vector<uint32_t> source_of;
+  Frame b = recaptured(a, k, 11, source_of);
+  EXPECT_EQ(tracker.track(b.positions.data(), sphere.num_vertices(), b.labels, k, o), k);
+  for (uint32_t v = 0; v < b.labels.size(); ++v) ASSERT_EQ(b.labels[v], a.labels[source_of[v]]) << "vertex " << v;
+}
+
+// 21 x 21 grid: previous frame = left half id 0, right half id 1.
+TEST(KernelLabelTracking, SplitClusterKeepsItsIdOnTheLargerPart) {
+  const Mesh grid = test::make_plane_grid(20, 20);
+  auto x_of = [](uint32_t v) { return int(v % 21); };
+  std::vector<uint32_t> prev(grid.num_vertices());
+  for (uint32_t v = 0; v < prev.size(); ++v) prev[v] = x_of(v) <= 10 ? 0u : 1u;
+  LabelTracker tracker;
+  TrackingOptions o;
+  tracker.track(grid.positions.data(), grid.num_vertices(), prev, 2, o);
+  // New frame, numbered afresh: the left half splits into x <= 3 (small) and 4..10 (large).
+  std::vector<uint32_t> cur(grid.num_vertices());
+  for (uint32_t v = 0; v < cur.size(); ++v) cur[v] = x_of(v) <= 3 ? 2u : (x_of(v) <= 10 ? 1u : 0u);
+  const uint32_t bound = tracker.track(grid.positions.data(), grid.num_vertices(), cur, 3, o);
+  std::set<uint32_t> small;
+  for (uint32_t v = 0; v < cur.size(); ++v) {
+    if (x_of(v) > 10) ASSERT_EQ(cur[v], 1u);
+    else if (x_of(v) >= 4) ASSERT_EQ(cur[v], 0u) << "the larger part keeps the id";
+    else small.insert(cur[v]);
+  }
+  ASSERT_EQ(small.size(), 1u);
+  EXPECT_GT(*small.begin(), 1u) << "the smaller part gets an id the previous frame did not use";
+  EXPECT_EQ(bound, *small.begin() + 1);
+}
+
+TEST(KernelLabelTracking, NewRegionAndMergedClusters) {
+  // Previous ids 0..3 by votes; cluster 0 overlaps ids 2 (5 votes) and 3 (3 votes): merged,
+  // it keeps 2; cluster 1 overlaps nothing (a new region) and must not reuse 0, 1 or 3.
+  const std::vector<uint32_t> labels = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 2, 2};
+  const uint32_t none = NearestVertexIndex::kNone;
+  const std::vector<uint32_t> votes = {2, 2, 2, 2, 2, 3, 3, 3, none, none, 0, 0};
+  const std::vector<bool> prev_used = {true, true, true, true};
+  const std::vector<uint32_t> id = match_cluster_ids(labels, 3, votes, prev_used);
+  EXPECT_EQ(id[0], 2u);
+  EXPECT_EQ(id[2], 0u);
+  EXPECT_EQ(id[1], 4u);
+}
+
+// End to end through the engine: shuffled, re-noised captures of a cube clustered
+// independently; tracked ids persist far better than the engine's own numbering, and sticky
+// borders better than ids alone.
+double mean_persistence(bool sticky, bool tracked) {
+  const Mesh clean = test::make_cube(10);
+  Params p;
+  p.filter = false;
+  p.cluster = true;
+  p.c.sigma_d = 3.f;
+  p.c.target_clusters = 6;
+  CpuEngine engine(2);
+  LabelTracker tracker;
+  TrackingOptions o;
+  o.cell = 0.2f;
+  o.sticky_rings = sticky ? 2 : 0;
+  Mesh prev;
+  std::vector<uint32_t> prev_ids;
+  double sum = 0;
+  const int frames = 4;
+  for (int t = 0; t < frames; ++t) {
+    const Mesh m = capture_frame(clean, 0.0, 0.05, 60 + t);
+    FrameResult r;
+    EXPECT_TRUE(engine.process(m.view(), p, r).ok());
+    std::vector<uint32_t> ids = r.labels;
+    o.triangles = m.triangles.data();
+    o.num_triangles = m.num_triangles();
+    if (tracked) tracker.track(m.positions.data(), m.num_vertices(), ids, r.num_clusters, o);
+    if (t > 0)
+      sum += label_persistence(prev.positions.data(), prev_ids.data(), prev.num_vertices(), m.positions.data(),
+                               ids.data(), m.num_vertices(), o.cell);
+    prev = m;
+    prev_ids = ids;
+  }
+  return sum / (frames - 1);
+}
+
+TEST(KernelLabelTracking, EngineLabelsPersistAcrossCaptures) {
+  const double raw = mean_persistence(false, false);
+  const double ids_only = mean_persistence(false, true);
+  const double sticky = mean_persistence(true, true);
+  EXPECT_GT(ids_only, raw);
+  EXPECT_GE(sticky, ids_only);
+  EXPECT_GE(sticky, 0.9);
+  RecordProperty("persistence", std::to_string(raw) + " " + std::to_string(ids_only) + " " + std::to_string(sticky));
+}
+
+}  // namespace
+}  // namespace fq
