@@ -6,9 +6,10 @@ target_include_directories(fq_options INTERFACE
   "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>"
   "$<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/generated>")
 target_compile_features(fq_options INTERFACE cxx_std_20)
+# Warnings are ours: the installed package does not impose them on its users.
 target_compile_options(fq_options INTERFACE
-  $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wpedantic>
-  $<$<AND:$<COMPILE_LANGUAGE:CXX>,$<BOOL:${FQ_WARNINGS_AS_ERRORS}>>:-Werror>)
+  $<BUILD_INTERFACE:$<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wpedantic>>
+  $<BUILD_INTERFACE:$<$<AND:$<COMPILE_LANGUAGE:CXX>,$<BOOL:${FQ_WARNINGS_AS_ERRORS}>>:-Werror>>)
 if(NOT CMAKE_BUILD_TYPE AND NOT CMAKE_CONFIGURATION_TYPES)
   set(CMAKE_BUILD_TYPE Release CACHE STRING "Build type" FORCE)
 endif()

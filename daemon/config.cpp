@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -12,11 +13,20 @@ namespace {
 
 constexpr int64_t kMaxThreads = 256;
 
+// "method" by its name (kernels/params.h), FilterMethod or ClusterMethod.
+template <typename Method>
+void read_method(TomlReader& r, Method& m) {
+  std::string name = method_name(m);
+  r.read("method", name);
+  if (const std::optional<Method> parsed = parse_method<Method>(name))
+    m = *parsed;
+  else
+    r.fail("method",
+           "must be " + join_names(method_names<Method>(), " or ", true) + " (got \"" + name + "\")");
+}
+
 void read_filter(TomlReader& r, FilterParams& f) {
-  std::string method = filter_method_name(f.method);
-  r.read("method", method);
-  if (!parse_filter_method(method, f.method))
-    r.fail("method", "must be \"qf\" or \"bf\" (got \"" + method + "\")");
+  read_method(r, f.method);
   r.read("sigma_s", f.sigma_s);
   r.read("sigma_r", f.sigma_r);
   r.read("sigma_b", f.sigma_b);
@@ -26,10 +36,7 @@ void read_filter(TomlReader& r, FilterParams& f) {
 }
 
 void read_cluster(TomlReader& r, ClusterParams& c) {
-  std::string method = cluster_method_name(c.method);
-  r.read("method", method);
-  if (!parse_cluster_method(method, c.method))
-    r.fail("method", "must be \"quadric\" or \"euclidean\" (got \"" + method + "\")");
+  read_method(r, c.method);
   r.read("sigma_d", c.sigma_d);
   r.read("sigma_q", c.sigma_q);
   r.read("theta", c.theta);
@@ -84,9 +91,9 @@ Status read_stream(const toml::table& t, const std::string& source, const std::s
     if (!st) continue;
     TomlReader sr(*st, source, r.name(sub.key));
     sub.fn(sr, s);
-    if (Status e = sr.finish(); !e.ok()) return e;
+    FQ_RETURN_IF_ERROR(sr.finish());
   }
-  if (Status st = r.finish(); !st.ok()) return st;
+  FQ_RETURN_IF_ERROR(r.finish());
   if (Status v = validate(s); !v.ok()) return invalid_argument(source + ": [" + path + "] " + v.message());
   return {};
 }
@@ -98,7 +105,7 @@ Status read_endpoints(TomlReader& root, Endpoints& e) {
   r.read("ingest", e.ingest);
   r.read("publish", e.publish);
   r.read("control", e.control);
-  if (Status s = r.finish(); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(r.finish());
   for (const std::string* ep : {&e.ingest, &e.publish, &e.control}) {
     if (ep->find("://") == std::string::npos)
       return invalid_argument(root.source() + ": endpoint \"" + *ep +
@@ -124,7 +131,7 @@ Status read_engine(TomlReader& root, EngineConfig& e) {
   r.read("cpu_alongside_gpus", e.cpu_alongside_gpus);
   r.read("cpu_threads", e.cpu_threads, 0, kMaxThreads);
   r.read("cpu_engines", e.cpu_engines, 1, 64);
-  if (Status s = r.finish(); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(r.finish());
   if (e.kind == EngineKind::kCuda && e.gpus.empty())
     return invalid_argument(root.source() +
                             ": engine.kind = \"cuda\" needs at least one entry in engine.gpus");
@@ -132,13 +139,13 @@ Status read_engine(TomlReader& root, EngineConfig& e) {
 }
 
 Status read_sections(TomlReader& root, DaemonConfig& c) {
-  if (Status s = read_endpoints(root, c.endpoints); !s.ok()) return s;
-  if (Status s = read_engine(root, c.engine); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(read_endpoints(root, c.endpoints));
+  FQ_RETURN_IF_ERROR(read_engine(root, c.engine));
   if (const toml::table* t = root.table("threads")) {
     TomlReader r(*t, root.source(), "threads");
     r.read("decode", c.decode_threads, 0, kMaxThreads);
     r.read("encode", c.encode_threads, 0, kMaxThreads);
-    if (Status s = r.finish(); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(r.finish());
   }
   if (const toml::table* t = root.table("security")) {
     TomlReader r(*t, root.source(), "security");
@@ -156,14 +163,14 @@ Status read_sections(TomlReader& root, DaemonConfig& c) {
     r.read("allowed_streams", c.caps.allowed_streams);
     r.read("max_neighbour_work", c.caps.max_neighbour_work, 1e3, 1e18);
     r.read("pool_idle_s", c.caps.pool_idle_s, 0.0, 1e9);
-    if (Status s = r.finish(); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(r.finish());
   }
   return {};
 }
 
 Status read_streams(TomlReader& root, DaemonConfig& c) {
   if (const toml::table* t = root.table("defaults")) {
-    if (Status s = read_stream(*t, root.source(), "defaults", c.defaults); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(read_stream(*t, root.source(), "defaults", c.defaults));
   }
   const toml::table* streams = root.table("streams");
   if (!streams) return {};
@@ -172,7 +179,7 @@ Status read_streams(TomlReader& root, DaemonConfig& c) {
     const toml::table* st = v.as_table();
     if (!st) return invalid_argument(root.source() + ": streams." + id + " must be a table");
     StreamSettings s = c.defaults;
-    if (Status e = read_stream(*st, root.source(), "streams." + id, s); !e.ok()) return e;
+    FQ_RETURN_IF_ERROR(read_stream(*st, root.source(), "streams." + id, s));
     c.streams[id] = s;
   }
   return {};
@@ -210,10 +217,10 @@ Status parse_config(std::string_view text, const std::string& source, DaemonConf
   root.read("log_level", c.log_level);
   if (!valid_log_level(c.log_level))
     root.fail("log_level", "must be one of trace, debug, info, warn, error, critical, off");
-  if (Status s = read_sections(root, c); !s.ok()) return s;
-  if (Status s = read_streams(root, c); !s.ok()) return s;
-  if (Status s = read_service_sections(root, c.http, c.stats, c.sub_ingest); !s.ok()) return s;
-  if (Status s = root.finish(); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(read_sections(root, c));
+  FQ_RETURN_IF_ERROR(read_streams(root, c));
+  FQ_RETURN_IF_ERROR(read_service_sections(root, c.http, c.stats, c.sub_ingest));
+  FQ_RETURN_IF_ERROR(root.finish());
   out = std::move(c);
   return {};
 }

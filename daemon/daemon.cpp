@@ -36,18 +36,19 @@ Status make_engines(const EngineConfig& c, std::vector<std::unique_ptr<Engine>>&
   out.clear();
   if (c.kind != EngineKind::kCpu) {
     for (int gpu : c.gpus) {
-      Status why;
-      auto e = make_engine({EngineKind::kCuda, c.cpu_threads, gpu, {}}, &why);
-      if (e)
-        out.push_back(std::move(e));
+      StatusOr<std::unique_ptr<Engine>> e = make_engine({EngineKind::kCuda, c.cpu_threads, gpu, {}});
+      if (e.ok())
+        out.push_back(std::move(e).value());
       else if (c.kind == EngineKind::kCuda)
-        return {StatusCode::kUnavailable, "GPU " + std::to_string(gpu) + ": " + why.message()};
+        return {StatusCode::kUnavailable, "GPU " + std::to_string(gpu) + ": " + e.status().message()};
       else
-        spdlog::info("engine auto: no CUDA engine on GPU {} ({})", gpu, why.message());
+        spdlog::info("engine auto: no CUDA engine on GPU {} ({})", gpu, e.status().message());
     }
   }
   if (out.empty() || c.cpu_alongside_gpus) {
-    for (int i = 0; i < c.cpu_engines; ++i) out.push_back(make_engine({EngineKind::kCpu, c.cpu_threads, 0, {}}));
+    // The CPU engine is always there: make_engine cannot fail for it.
+    for (int i = 0; i < c.cpu_engines; ++i)
+      out.push_back(make_engine({EngineKind::kCpu, c.cpu_threads, 0, {}}).value());
   }
   return {};
 }
@@ -86,7 +87,7 @@ Status Daemon::bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::
   publish.set(zmq::sockopt::linger, kPublishLingerMs);
   if (config_.security.enabled()) {
     CurveServerKeys keys;
-    if (Status s = load_curve_server_keys(config_.security, keys); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(load_curve_server_keys(config_.security, keys));
     input_zap_ = std::make_unique<ZapHandler>(input_context_, keys.clients, registry_.refusals());
     output_zap_ = std::make_unique<ZapHandler>(output_context_, keys.clients, registry_.refusals());
     for (zmq::socket_t* s : {&ingest, &publish, &control}) make_curve_server(*s, keys.server);
@@ -97,24 +98,21 @@ Status Daemon::bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::
         spdlog::warn("fqd: {} is reachable from other hosts without CURVE: anyone who can connect may send "
                      "frames, read results and change parameters (set [security] curve_key_file)", e);
   }
-  if (Status s = bind_one(ingest, config_.endpoints.ingest, "ingest", endpoints_.ingest); !s.ok()) return s;
-  if (Status s = bind_one(publish, config_.endpoints.publish, "publish", endpoints_.publish); !s.ok())
-    return s;
+  FQ_RETURN_IF_ERROR(bind_one(ingest, config_.endpoints.ingest, "ingest", endpoints_.ingest));
+  FQ_RETURN_IF_ERROR(bind_one(publish, config_.endpoints.publish, "publish", endpoints_.publish));
   return bind_one(control, config_.endpoints.control, "control", endpoints_.control);
 }
 
 Status Daemon::start() {
   if (running_) return {};
-  if (Status s = make_engines(config_.engine, engines_); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(make_engines(config_.engine, engines_));
   zmq::socket_t ingest, publish, control;
-  if (Status s = bind_sockets(ingest, publish, control); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(bind_sockets(ingest, publish, control));
   zmq::socket_t sub;  // stays empty without [ingest] connect
-  if (!config_.sub_ingest.connect.empty()) {
-    if (Status s = make_sub_socket(input_context_, config_.sub_ingest, sub); !s.ok()) return s;
-  }
+  if (!config_.sub_ingest.connect.empty()) FQ_RETURN_IF_ERROR(make_sub_socket(input_context_, config_.sub_ingest, sub));
   if (!config_.http.listen.empty()) {
     http_ = std::make_unique<HttpServer>(config_, registry_, pipeline_.latest, engine_names(), healthy_);
-    if (Status s = http_->start(); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(http_->start());
     endpoints_.http = http_->url();
   }
   // Sockets were made on this thread and are handed over whole to their owner threads.

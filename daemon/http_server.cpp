@@ -3,6 +3,7 @@
 #include <httplib.h>
 #include <spdlog/spdlog.h>
 
+#include <bit>
 #include <filesystem>
 
 #include "daemon/control_server.h"
@@ -28,11 +29,28 @@ std::string chunk_sizes(const LatestResult& r) {
   return s;
 }
 
-void send_latest(const LatestResult& r, httplib::Response& res) {
+// Browsers read the arrays in their own byte order, little-endian on every platform they run on.
+static_assert(std::endian::native == std::endian::little, "the viewer's arrays are sent as little-endian words");
+
+void append_words(std::string& body, const uint32_t* words, size_t count) {
+  body.append(reinterpret_cast<const char*>(words), count * sizeof(uint32_t));
+}
+
+// The body is [faces][labels][chunks]: the two little-endian uint32 arrays first, so that
+// the browser views them in place (a Uint32Array needs a 4-byte aligned offset), then the
+// Draco chunks as published. The faces are left out when the viewer already has them
+// (`faces=ID` equal to X-Fq-Faces-Id): a stream's faces rarely change.
+void send_latest(const LatestResult& r, uint64_t viewer_faces_id, httplib::Response& res) {
   const wire::ResultHeader& h = r.header;
+  const bool send_faces = r.faces && r.faces_id != viewer_faces_id;
+  const size_t face_words = send_faces ? r.faces->size() : 0;
   res.set_header("Cache-Control", "no-store");
   res.set_header("X-Fq-Index", std::to_string(r.index));
   res.set_header("X-Fq-Sequence", std::to_string(h.sequence()));
+  res.set_header("X-Fq-Form", h.form() == wire::MESH ? "mesh" : "positions");
+  res.set_header("X-Fq-Faces-Id", std::to_string(r.faces_id));
+  res.set_header("X-Fq-Faces-Bytes", std::to_string(face_words * sizeof(uint32_t)));
+  res.set_header("X-Fq-Labels-Bytes", std::to_string(h.labels_size() * sizeof(uint32_t)));
   res.set_header("X-Fq-Chunk-Sizes", chunk_sizes(r));
   res.set_header("X-Fq-Vertex-Count", std::to_string(h.vertex_count()));
   res.set_header("X-Fq-Cluster-Count", std::to_string(h.cluster_count()));
@@ -40,9 +58,11 @@ void send_latest(const LatestResult& r, httplib::Response& res) {
   res.set_header("X-Fq-Late", h.status() == wire::LATE ? "1" : "0");
   res.set_header("X-Fq-Engine", h.engine());
   std::string body;
-  size_t total = 0;
+  size_t total = (face_words + h.labels_size()) * sizeof(uint32_t);
   for (const std::string& c : r.chunks) total += c.size();
   body.reserve(total);
+  if (send_faces) append_words(body, r.faces->data(), face_words);
+  append_words(body, h.labels().data(), h.labels_size());
   for (const std::string& c : r.chunks) body += c;
   res.set_content(std::move(body), "application/octet-stream");
 }
@@ -89,7 +109,8 @@ void HttpServer::add_api_routes() {
     res.set_header("Cache-Control", "no-store");
     res.set_content(j.dump(), "application/json");
   });
-  // ?after=N returns the first result with index > N, waiting up to wait_ms (long poll).
+  // ?after=N returns the first result with index > N, waiting up to wait_ms (long poll);
+  // faces=ID: the viewer holds the faces of that X-Fq-Faces-Id (they are not sent again).
   s.Get(R"(/streams/([^/]+)/latest)", [this](const httplib::Request& req, httplib::Response& res) {
     const std::string stream = req.matches[1];
     StreamSettings unused;
@@ -98,14 +119,15 @@ void HttpServer::add_api_routes() {
       res.set_content("unknown stream '" + stream + "'\n", "text/plain");
       return;
     }
-    uint64_t after = 0;
+    uint64_t after = 0, faces_id = 0;
     int wait_ms = 0;
     try {
       if (req.has_param("after")) after = std::stoull(req.get_param_value("after"));
+      if (req.has_param("faces")) faces_id = std::stoull(req.get_param_value("faces"));
       if (req.has_param("wait_ms")) wait_ms = std::clamp(std::stoi(req.get_param_value("wait_ms")), 0, kMaxWaitMs);
     } catch (const std::exception&) {
       res.status = 400;
-      res.set_content("after and wait_ms must be whole numbers\n", "text/plain");
+      res.set_content("after, faces and wait_ms must be whole numbers\n", "text/plain");
       return;
     }
     auto r = latest_.wait_newer(stream, after, std::chrono::milliseconds(wait_ms));
@@ -113,7 +135,7 @@ void HttpServer::add_api_routes() {
       res.status = 204;  // nothing newer yet: the viewer asks again
       return;
     }
-    send_latest(*r, res);
+    send_latest(*r, faces_id, res);
   });
 }
 

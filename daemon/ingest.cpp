@@ -46,7 +46,6 @@ void expire_idle_streams(Pipeline& p) {
   if (now - last_sweep_ns < 1'000'000'000) return;
   last_sweep_ns = now;
   const auto idle_ns = static_cast<int64_t>(p.config.caps.pool_idle_s * 1e9);
-  p.meshes.trim(now, idle_ns);
   p.results.trim(now, idle_ns);
   // Freed buffers go back to the allocator's arenas, which keep the pages: every few seconds
   // while frames flow, hand free pages back to the system, so that memory taken by a huge

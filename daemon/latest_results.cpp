@@ -2,19 +2,35 @@
 
 namespace fq::daemon {
 
-void LatestResults::offer(const wire::ResultHeader& header, const std::vector<std::string>& chunks) {
+void LatestResults::offer(const wire::ResultHeader& header, const std::vector<std::string>& chunks,
+                          const std::vector<uint32_t>& triangles) {
   if (header.status() == wire::ERROR) return;
+  std::shared_ptr<const std::vector<uint32_t>> faces;
+  uint64_t faces_id = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = streams_.find(header.stream_id());
     if (it == streams_.end() || std::chrono::steady_clock::now() > it->second.watched_until) return;
+    faces = it->second.faces;
+    faces_id = it->second.faces_id;
   }
-  // The copy is made outside the lock: viewers waiting on other streams are not held up.
+  // The copies (and the faces comparison) are made outside the lock: viewers waiting on
+  // other streams are not held up.
   auto r = std::make_shared<LatestResult>();
   r->header = header;
   r->chunks = chunks;
+  const bool positions = header.form() == wire::POSITIONS;
+  if (positions && !(faces && *faces == triangles)) {
+    faces = std::make_shared<const std::vector<uint32_t>>(triangles);
+    faces_id = 0;  // new faces: a new id, given below
+  }
   std::lock_guard<std::mutex> lock(mutex_);
   Entry& e = streams_[header.stream_id()];
+  if (positions) {
+    if (faces_id == 0) faces_id = ++faces_ids_;
+    e.faces = r->faces = faces;
+    e.faces_id = r->faces_id = faces_id;
+  }
   r->index = ++e.index;
   e.latest = std::move(r);
   changed_.notify_all();

@@ -1,7 +1,10 @@
 // The latest published result of each stream, kept for the live viewer (GET
-// /streams/ID/latest). Copying a result costs a memcpy of its Draco chunks (about 3 MB for
-// igea), so a stream's results are kept only while someone has asked for them in the last
-// kWatchSeconds; otherwise offer() returns at once.
+// /streams/ID/latest): what a browser needs to draw it. A POSITIONS result's chunks carry no
+// faces, so the input frame's triangles are kept beside them; a stream's faces repeat frame
+// after frame, so they are kept once and shared (with an id the viewer can cache them by)
+// until they change. Copying a result costs a memcpy of its chunks (about 0.5 MB for igea in
+// the POSITIONS form, 3 MB as a MESH), so a stream's results are kept only while someone has
+// asked for them in the last kWatchSeconds; otherwise offer() returns at once.
 #pragma once
 
 #include <chrono>
@@ -19,8 +22,11 @@ namespace fq::daemon {
 
 struct LatestResult {
   uint64_t index = 0;  ///< 1 for the first result kept for the stream, then counting up
-  wire::ResultHeader header;
-  std::vector<std::string> chunks;  ///< as published: Draco meshes with fq_vid and fq_label
+  wire::ResultHeader header;         ///< as published: form, labels, counts
+  std::vector<std::string> chunks;  ///< as published: Draco point clouds (POSITIONS) or meshes (MESH)
+  /// POSITIONS: the input frame's triangles (3 vertex ids each); null for MESH.
+  std::shared_ptr<const std::vector<uint32_t>> faces;
+  uint64_t faces_id = 0;  ///< changes exactly when `faces` change (0 for MESH)
 };
 
 class LatestResults {
@@ -28,7 +34,9 @@ class LatestResults {
   static constexpr int kWatchSeconds = 10;
 
   /// Keeps a copy of an OK or LATE result when its stream is being watched (publisher thread).
-  void offer(const wire::ResultHeader& header, const std::vector<std::string>& chunks);
+  /// `triangles` are the input frame's (kept for POSITIONS results only).
+  void offer(const wire::ResultHeader& header, const std::vector<std::string>& chunks,
+             const std::vector<uint32_t>& triangles);
   /// Marks the stream watched and waits up to `timeout` for a result with index > `after`;
   /// null when none came (or close() was called).
   std::shared_ptr<const LatestResult> wait_newer(const std::string& stream, uint64_t after,
@@ -41,10 +49,13 @@ class LatestResults {
     std::shared_ptr<const LatestResult> latest;
     uint64_t index = 0;
     std::chrono::steady_clock::time_point watched_until;
+    std::shared_ptr<const std::vector<uint32_t>> faces;  ///< the last POSITIONS result's
+    uint64_t faces_id = 0;
   };
   std::mutex mutex_;
   std::condition_variable changed_;
   std::map<std::string, Entry> streams_;
+  uint64_t faces_ids_ = 0;  ///< unique over all streams, so a switched viewer never mixes them
   bool closed_ = false;
 };
 

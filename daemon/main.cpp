@@ -11,6 +11,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "common/version.h"
 #include "daemon/config.h"
 #include "daemon/config_lookup.h"
 #include "daemon/daemon.h"
@@ -50,6 +51,7 @@ void reload(const fq::daemon::ConfigSource& source, fq::daemon::Daemon& daemon) 
 
 int main(int argc, char** argv) {
   CLI::App app{"fqd: filters and clusters streamed mesh frames within a latency budget"};
+  app.set_version_flag("--version", fq::version_line("fqd"));
   std::string config_path, log_level, endpoints_file;
   bool print_endpoints = false, check_only = false;
   app.add_option("-c,--config", config_path,

@@ -1,8 +1,8 @@
-// A small thread-safe free list of reusable buffers (engine results, meshes), so that a
-// steady stream of frames of similar size stops allocating after the first few frames,
-// and memory that returns when the stream changes: an object whose capacity is far above
-// what its last frame used is freed instead of kept (a small frame after a huge one), and
-// trim() frees everything kept once the pool has been idle.
+// A small thread-safe free list of reusable buffers (the engines' FrameResults, whose vectors
+// the engines reuse), so that a steady stream of frames of similar size stops allocating
+// after the first few frames, and memory that returns when the stream changes: an object
+// whose capacity is far above what its last frame used is freed instead of kept (a small
+// frame after a huge one), and trim() frees everything kept once the pool has been idle.
 #pragma once
 
 #include <cstddef>

@@ -34,8 +34,6 @@ struct Pipeline {
   Pipeline(const DaemonConfig& c, StreamRegistry& r)
       : config(c),
         registry(r),
-        meshes(8, [](const Mesh& m) { return bytes_held(m.positions) + bytes_held(m.triangles); },
-               [](const Mesh& m) { return bytes_used(m.positions) + bytes_used(m.triangles); }),
         results(8, [](const FrameResult& x) { return bytes_held(x.positions) + bytes_held(x.labels); },
                 [](const FrameResult& x) { return bytes_used(x.positions) + bytes_used(x.labels); }) {}
 
@@ -49,14 +47,15 @@ struct Pipeline {
   /// each stream; one counter instead of one per topic). Ingest thread only.
   uint64_t next_arrival = 0;
   LogLimiter refusal_log;  ///< ingest thread only
-  ObjectPool<Mesh> meshes;                   ///< decoded frames, reused
-  ObjectPool<FrameResult> results;           ///< engine outputs, reused
+  /// Engine outputs, reused: the engines keep a result's buffers. Decoded meshes are not
+  /// pooled: decode_frame starts from an empty mesh, so a pooled one kept nothing.
+  ObjectPool<FrameResult> results;
   LatestResults latest;                      ///< each watched stream's last result (HTTP viewer)
   LabelTracks label_tracks;                  ///< stable cluster ids per stream
 
   /// Marks `frame` failed (message logged) and sends it straight to the publisher.
   void fail(FramePtr frame, Status why);
-  /// Returns the frame's buffers to the pools once it is published or dropped.
+  /// Returns the frame's result buffers to the pool once it is published or dropped.
   void recycle(FrameJob& frame);
 
   /// Notes that `frame` is being queued for decode (ingest thread).

@@ -77,7 +77,7 @@ void Publisher::publish(FrameJob& f) {
   for (const std::string& c : f.out_chunks) parts.push_back(zmq::buffer(c));
   // Counted before sending, so that a consumer who got the result sees it in the counters.
   account(f, h);
-  p_.latest.offer(h, f.out_chunks);
+  p_.latest.offer(h, f.out_chunks, f.mesh.triangles);
   try {
     zmq::send_multipart(socket_, parts);
   } catch (const zmq::error_t& e) {

@@ -1,18 +1,6 @@
 #include "daemon/stage_metrics.h"
 
-#include <algorithm>
-#include <cmath>
-
 namespace fq::daemon {
-
-double percentile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  // Nearest rank: the smallest value with at least q of the samples at or below it.
-  const size_t rank = static_cast<size_t>(std::ceil(q * static_cast<double>(values.size())));
-  const size_t k = std::min(values.size() - 1, rank > 0 ? rank - 1 : 0);
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
-  return values[k];
-}
 
 void SampleWindow::add(double ms) {
   if (ring_.size() < kWindow)

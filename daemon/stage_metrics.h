@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/sample_stats.h"
 #include "daemon/latency_histogram.h"
 
 namespace fq::daemon {
@@ -14,9 +15,6 @@ struct Percentiles {
   double p50_ms = 0, p95_ms = 0, p99_ms = 0;
   uint64_t count = 0;  ///< samples ever recorded (the percentiles cover the last kWindow)
 };
-
-/// Nearest-rank percentile (q in [0, 1]) of unsorted values; 0 for none.
-double percentile(std::vector<double> values, double q);
 
 /// The last kWindow samples of one quantity.
 class SampleWindow {

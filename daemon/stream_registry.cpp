@@ -1,6 +1,8 @@
 #include "daemon/stream_registry.h"
 
 #include <algorithm>
+#include <cstddef>
+#include <iterator>
 
 namespace fq::daemon {
 
@@ -86,27 +88,12 @@ void StreamRegistry::count(const std::string& stream_id, Counter c, uint64_t n) 
   std::lock_guard<std::mutex> lock(mutex_);
   Entry* e = existing(stream_id);
   if (!e) return;
-  StreamCounters& k = e->counters;
-  switch (c) {
-    case Counter::kIn:
-      k.frames_in += n;
-      break;
-    case Counter::kOut:
-      k.frames_out += n;
-      break;
-    case Counter::kSuperseded:
-      k.superseded += n;
-      break;
-    case Counter::kDroppedStale:
-      k.dropped_stale += n;
-      break;
-    case Counter::kLate:
-      k.late += n;
-      break;
-    case Counter::kErrors:
-      k.errors += n;
-      break;
-  }
+  // The field of each Counter, in the enum's order.
+  static constexpr uint64_t StreamCounters::*kFields[] = {
+      &StreamCounters::frames_in,     &StreamCounters::frames_out, &StreamCounters::superseded,
+      &StreamCounters::dropped_stale, &StreamCounters::late,       &StreamCounters::errors};
+  static_assert(std::size(kFields) == static_cast<size_t>(Counter::kErrors) + 1, "one field per Counter");
+  e->counters.*kFields[static_cast<size_t>(c)] += n;
 }
 
 void StreamRegistry::record(const std::string& stream_id, const std::string& stage, double ms) {

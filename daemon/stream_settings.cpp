@@ -22,31 +22,6 @@ const char* compute_name(const Params& p) {
   return "filter";
 }
 
-bool parse_filter_method(const std::string& s, FilterMethod& out) {
-  if (s == "qf")
-    out = FilterMethod::kQuadric;
-  else if (s == "bf")
-    out = FilterMethod::kBilateral;
-  else
-    return false;
-  return true;
-}
-
-bool parse_cluster_method(const std::string& s, ClusterMethod& out) {
-  if (s == "quadric")
-    out = ClusterMethod::kQuadric;
-  else if (s == "euclidean")
-    out = ClusterMethod::kEuclidean;
-  else
-    return false;
-  return true;
-}
-
-const char* filter_method_name(FilterMethod m) { return m == FilterMethod::kQuadric ? "qf" : "bf"; }
-const char* cluster_method_name(ClusterMethod m) {
-  return m == ClusterMethod::kQuadric ? "quadric" : "euclidean";
-}
-
 bool parse_result_form(const std::string& s, ResultForm& out) {
   if (s == "positions")
     out = ResultForm::kPositions;
@@ -66,7 +41,7 @@ Status validate(const StreamSettings& s) {
   // control request may switch clustering on at any time.
   Params all = s.params;
   all.filter = all.cluster = true;
-  if (Status st = fq::validate(all); !st.ok()) return st;
+  FQ_RETURN_IF_ERROR(fq::validate(all));
   if (!(s.budget_ms > 0.0 && std::isfinite(s.budget_ms)))
     return invalid_argument("budget_ms must be > 0 (got " + std::to_string(s.budget_ms) + ")");
   if (s.output.position_bits < 8 || s.output.position_bits > 30)

@@ -37,11 +37,6 @@ bool parse_compute(const std::string& s, Params& inout);
 /// The name parse_compute accepts for the params' compute mode.
 const char* compute_name(const Params& p);
 
-/// "qf" | "bf" and "quadric" | "euclidean".
-bool parse_filter_method(const std::string& s, FilterMethod& out);
-bool parse_cluster_method(const std::string& s, ClusterMethod& out);
-const char* filter_method_name(FilterMethod m);
-const char* cluster_method_name(ClusterMethod m);
 /// "positions" | "mesh".
 bool parse_result_form(const std::string& s, ResultForm& out);
 const char* result_form_name(ResultForm f);

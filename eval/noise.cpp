@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include "kernels/frame_prep.h"
 
@@ -40,12 +41,48 @@ class NormalSource {
   bool has_spare_ = false;
 };
 
+/// Noise standard deviation in mesh units; 0 when there is nothing meaningful to add.
+double noise_std(const Mesh& mesh, double sigma_mean_edges) {
+  if (!(sigma_mean_edges > 0.0) || !std::isfinite(sigma_mean_edges)) return 0.0;
+  const double std_dev = sigma_mean_edges * mean_edge_length(mesh.view());
+  return std_dev > 0.0 && std::isfinite(std_dev) ? std_dev : 0.0;
+}
+
 }  // namespace
 
+void add_normal_noise(Mesh& mesh, double sigma_mean_edges, uint64_t seed) {
+  const double std_dev = noise_std(mesh, sigma_mean_edges);
+  if (std_dev == 0.0) return;
+  const uint32_t n = mesh.num_vertices();
+  std::vector<double> normals(3 * size_t(n), 0.0);
+  const float* p = mesh.positions.data();
+  for (size_t t = 0; t < mesh.triangles.size(); t += 3) {
+    const uint32_t* tri = &mesh.triangles[t];
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; ++k) {
+      e1[k] = double(p[3 * size_t(tri[1]) + k]) - p[3 * size_t(tri[0]) + k];
+      e2[k] = double(p[3 * size_t(tri[2]) + k]) - p[3 * size_t(tri[0]) + k];
+    }
+    const double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    for (int corner = 0; corner < 3; ++corner)
+      for (int k = 0; k < 3; ++k) normals[3 * size_t(tri[corner]) + k] += c[k];  // area-weighted
+  }
+  NormalSource normal(seed);
+  for (uint32_t v = 0; v < n; ++v) {
+    const double* nv = &normals[3 * size_t(v)];
+    const double len = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
+    const double d = std_dev * normal.next();
+    if (!(len > 0.0)) continue;
+    for (int k = 0; k < 3; ++k) {
+      float& c = mesh.positions[3 * size_t(v) + k];
+      c = float(double(c) + d * nv[k] / len);
+    }
+  }
+}
+
 void add_gaussian_noise(Mesh& mesh, double sigma_mean_edges, uint64_t seed) {
-  if (!(sigma_mean_edges > 0.0) || !std::isfinite(sigma_mean_edges)) return;
-  const double std_dev = sigma_mean_edges * mean_edge_length(mesh.view());
-  if (!(std_dev > 0.0) || !std::isfinite(std_dev)) return;
+  const double std_dev = noise_std(mesh, sigma_mean_edges);
+  if (std_dev == 0.0) return;
   NormalSource normal(seed);
   for (float& c : mesh.positions) c = float(double(c) + std_dev * normal.next());
 }

@@ -19,4 +19,11 @@ namespace fq {
 /// the mesh unchanged (there is no meaningful amplitude to add).
 void add_gaussian_noise(Mesh& mesh, double sigma_mean_edges, uint64_t seed);
 
+/// Noise along the surface normal only: each vertex moves by one draw of the same standard
+/// deviation along its unit area-weighted normal (of the mesh before noise), so the noise
+/// roughens the surface without sliding vertices along it. Same draws and checks as
+/// add_gaussian_noise (one draw per vertex, vertex order); vertices without a normal
+/// (isolated, or only degenerate faces) stay put.
+void add_normal_noise(Mesh& mesh, double sigma_mean_edges, uint64_t seed);
+
 }  // namespace fq

@@ -14,16 +14,19 @@ namespace {
 // Appends the wall time of each pass to the frame's timings.
 class PassClock {
  public:
-  explicit PassClock(std::vector<PassTiming>& out) : out_(out), t0_(Clock::now()) {}
+  PassClock(std::vector<PassTiming>& out, const PassObserver& observer)
+      : out_(out), observer_(observer), t0_(Clock::now()) {}
   void lap(const char* name) {
     const auto t = Clock::now();
     out_.push_back({name, std::chrono::duration<double, std::milli>(t - t0_).count()});
+    if (observer_) observer_(out_.back());
     t0_ = t;
   }
 
  private:
   using Clock = std::chrono::steady_clock;
   std::vector<PassTiming>& out_;
+  const PassObserver& observer_;
   Clock::time_point t0_;
 };
 
@@ -38,17 +41,17 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
   out.theta = 0.f;
   out.link_parent.clear();
   out.link_p.clear();
-  if (Status s = validate(params); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(validate(params));
   if (needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
-  PassClock clock(out.timings);
+  PassClock clock(out.timings, observer_);
   // A frame far smaller than the largest one so far gives that one's scratch back.
   if (size_t(mesh.num_vertices) * 4 < f_.points.capacity() && f_.points.capacity() > (1u << 16)) f_ = CpuFrame{};
-  if (Status s = check_mesh(mesh, threads_); !s.ok()) return s;
-  if (Status s = compute_normalization(mesh, f_.norm, threads_); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(check_mesh(mesh, threads_));
+  FQ_RETURN_IF_ERROR(compute_normalization(mesh, f_.norm, threads_));
   out.mean_edge = f_.norm.mean_edge;
   clock.lap("normalize");
   const FilterParams& fp = params.f;
-  const bool need_quadrics = params.cluster || fp.method == FilterMethod::kQuadric;
+  const bool need_quadrics = params.cluster || fp.uses_quadrics();
 
   cpu::sort_into_grid(mesh, fp.sigma_s, f_);
   clock.lap("grid");
@@ -61,12 +64,16 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
     clock.lap("diffusion");
   }
   if (params.filter) {
-    if (fp.method == FilterMethod::kQuadric) {
+    if (fp.uses_quadrics()) {
       cpu::update_positions(f_, fp, threads_);
     } else {
       cpu::bilateral_filter(f_, fp, threads_);
     }
-    clock.lap(fp.method == FilterMethod::kQuadric ? "update" : "bilateral_filter");
+    clock.lap(fp.uses_quadrics() ? "update" : "bilateral_filter");
+    if (fp.method == FilterMethod::kQuadricRefined) {
+      cpu::refine_positions(f_, fp.refine, threads_);
+      clock.lap("refine");
+    }
   }
   if (params.cluster) {
     cpu::cluster_scores(f_, params.c, threads_);

@@ -26,6 +26,11 @@ struct CpuFrame {
   std::vector<uint32_t> vf_faces;
   std::vector<Quadric> base, nbhd, bl;
   std::vector<Vec3> vnormal, moved;
+  // Refinement ("qf+"): double buffers of positions and face normals.
+  std::vector<Vec3> refine_x;
+  std::vector<uint8_t> refine_closed;  ///< closed_fan per vertex
+  std::vector<TriangleGeom> refine_geom;
+  std::vector<Vec3> refine_n[2];
   // Bilateral baseline: triangles in centroid-grid order.
   CpuGrid tri_grid;
   std::vector<Point4> tri_points;    ///< centroid, w = area

@@ -9,6 +9,7 @@
 #include "kernels/gaussian.h"
 #include "kernels/link_export.h"
 #include "kernels/parallel_for.h"
+#include "kernels/refine_math.h"
 
 namespace fq::cpu {
 
@@ -95,6 +96,42 @@ void update_positions(CpuFrame& f, const FilterParams& p, int threads) {
     const Vec3 n = p.constrained ? smoothed_normal(g, f.vnormal.data(), i, gn, 2.f * sn) : Vec3{0, 0, 0};
     f.moved[i] = updated_position(xyz(f.points[i]), f.bl[i], p.constrained, n, p.tikhonov);
   });
+}
+
+void refine_positions(CpuFrame& f, const RefineParams& r, int threads) {
+  const uint32_t n = static_cast<uint32_t>(f.moved.size());
+  const uint32_t m = static_cast<uint32_t>(f.tris.size() / 3);
+  const FanView fan{f.tris.data(), f.vf_offsets.data(), f.vf_faces.data()};
+  f.refine_x.resize(n);
+  f.refine_closed.resize(n);
+  parallel_for(n, threads, [&](uint32_t v) { f.refine_closed[v] = closed_fan(fan, v) ? 1 : 0; });
+  // Every pass reads one buffer and writes the other; f.moved holds the result.
+  auto vertex_pass = [&](auto&& position) {
+    parallel_for(n, threads, [&](uint32_t v) { f.refine_x[v] = position(f.moved.data(), v); });
+    f.moved.swap(f.refine_x);
+  };
+  for (int it = 0; it < r.relax_iterations; ++it) {
+    vertex_pass([&](const Vec3* x, uint32_t v) { return relaxed_position(fan, x, v, f.refine_closed[v] != 0, r.relax_step, r.feature_ratio);
+    });
+  }
+  f.refine_geom.resize(m);
+  f.refine_n[0].resize(m);
+  f.refine_n[1].resize(m);
+  parallel_for(m, threads, [&](uint32_t t) {
+    const uint32_t* tri = &f.tris[3 * size_t(t)];
+    f.refine_geom[t] = triangle_geom(f.moved[tri[0]], f.moved[tri[1]], f.moved[tri[2]]);
+    f.refine_n[0][t] = f.refine_geom[t].normal;
+  });
+  const Gaussian gs = Gaussian::with_sigma(r.normal_sigma_s), gr = Gaussian::with_sigma(r.normal_sigma_r);
+  for (int it = 0; it < r.normal_iterations; ++it) {
+    const Vec3* in = f.refine_n[it & 1].data();
+    Vec3* out = f.refine_n[(it + 1) & 1].data();
+    parallel_for(m, threads, [&](uint32_t t) { out[t] = filtered_face_normal(fan, f.refine_geom.data(), in, t, gs, gr); });
+  }
+  const Vec3* normals = f.refine_n[r.normal_iterations & 1].data();
+  for (int it = 0; it < r.vertex_iterations; ++it) {
+    vertex_pass([&](const Vec3* x, uint32_t v) { return normal_driven_position(fan, x, normals, v); });
+  }
 }
 
 void bilateral_filter(CpuFrame& f, const FilterParams& p, int threads) {

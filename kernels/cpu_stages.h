@@ -14,6 +14,8 @@ void base_quadrics(CpuFrame& f, int threads);
 void neighbourhood_quadrics(CpuFrame& f, float sigma_b, int threads);
 void diffuse_quadrics(CpuFrame& f, const FilterParams& p, int threads);
 void update_positions(CpuFrame& f, const FilterParams& p, int threads);
+/// The "qf+" refinement of f.moved in place (kernels/refine_math.h).
+void refine_positions(CpuFrame& f, const RefineParams& r, int threads);
 /// Jones et al. 2003 (positions into f.moved).
 void bilateral_filter(CpuFrame& f, const FilterParams& p, int threads);
 void cluster_scores(CpuFrame& f, const ClusterParams& p, int threads);

@@ -14,6 +14,7 @@
 #include "kernels/cuda/link_export_pass.cuh"
 #include "kernels/cuda/launch.cuh"
 #include "kernels/cuda/passes.cuh"
+#include "kernels/cuda/refine_passes.cuh"
 #include "kernels/cuda/stream.cuh"
 #include "kernels/cuda/team_passes.cuh"
 #include "kernels/cluster_control.h"
@@ -66,6 +67,7 @@ class CudaEngine final : public Engine {
   cuda::PassEvents events_;
   cuda::SyncEvents downloads_{2 * kDownloadChunks};
   cuda::DeviceFrame f_;
+  cuda::RefineBuffers refine_;
   std::string name_;
   int sm_count_ = 1;
   bool usable_ = true;
@@ -163,9 +165,10 @@ void CudaEngine::enqueue_passes(const Params& params) {
   const bool fast_exp = tuning_.fast_exp;
   cuda::sort_into_grid(f_, f_.grid.layout, s);
   events_.mark("grid", s);
-  cuda::base_quadrics(f_, s);
+  const bool refine = params.filter && fp.method == FilterMethod::kQuadricRefined;
+  cuda::base_quadrics(f_, s);  // also the vertex -> triangle table the refinement reads
   events_.mark("base_quadrics", s);
-  if (params.cluster || fp.method == FilterMethod::kQuadric) {
+  if (params.cluster || fp.uses_quadrics()) {
     if (team)
       cuda::team_neighbourhood_quadrics(f_, fp.effective_sigma_b(), team, fast_exp, s);
     else
@@ -178,11 +181,15 @@ void CudaEngine::enqueue_passes(const Params& params) {
     events_.mark("diffusion", s);
   }
   if (params.filter) {
-    if (fp.method == FilterMethod::kQuadric)
+    if (fp.uses_quadrics())
       cuda::update_positions(f_, fp, s);
     else
       cuda::bilateral_filter(f_, fp, s);
-    events_.mark(fp.method == FilterMethod::kQuadric ? "update" : "bilateral_filter", s);
+    events_.mark(fp.uses_quadrics() ? "update" : "bilateral_filter", s);
+  }
+  if (refine) {
+    cuda::refine_positions(f_, refine_, fp.refine, s);
+    events_.mark("refine", s);
   }
   if (params.cluster) {
     if (team)

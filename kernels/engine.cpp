@@ -36,21 +36,16 @@ bool parse_engine_kind(const std::string& s, EngineKind& out) {
   return true;
 }
 
-std::unique_ptr<Engine> make_engine(const EngineOptions& options, Status* why) {
-  if (why) *why = {};
+StatusOr<std::unique_ptr<Engine>> make_engine(const EngineOptions& options) {
   if (options.kind == EngineKind::kCpu) return std::make_unique<CpuEngine>(options.threads);
 #if FQ_WITH_CUDA
   Status s;
   if (auto e = make_cuda_engine(options.device, &s, options.cuda)) return e;
-  if (options.kind == EngineKind::kCuda) {
-    if (why) *why = s;
-    return nullptr;
-  }
+  if (options.kind == EngineKind::kCuda) return s;
 #else
-  if (options.kind == EngineKind::kCuda) {
-    if (why) *why = {StatusCode::kUnavailable, "this build of fq has no CUDA support (configure with FQ_CUDA=ON)"};
-    return nullptr;
-  }
+  if (options.kind == EngineKind::kCuda)
+    return Status{StatusCode::kUnavailable,
+                  "this build of fq has no CUDA support (configure with FQ_CUDA=ON)"};
 #endif
   return std::make_unique<CpuEngine>(options.threads);
 }

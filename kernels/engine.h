@@ -3,13 +3,15 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "common/status.h"
+#include "common/status_or.h"
 #include "kernels/mesh_view.h"
 #include "kernels/params.h"
-#include "common/status.h"
 
 namespace fq {
 
@@ -35,14 +37,23 @@ struct FrameResult {
   double total_ms() const;
 };
 
+/// Told about each pass as it ends (progress displays).
+using PassObserver = std::function<void(const PassTiming&)>;
+
 class Engine {
  public:
   virtual ~Engine() = default;
+  /// The CPU engine calls `observer` after each pass, on the thread running process(); the
+  /// CUDA engine times its passes on the device and does not call it. Empty: none.
+  void set_pass_observer(PassObserver observer) { observer_ = std::move(observer); }
   /// "cpu" or "cuda:<device name>".
   virtual std::string name() const = 0;
   /// Processes one frame. Bad parameters or a bad mesh give a non-ok status and leave the
   /// engine usable for the next frame.
   virtual Status process(const MeshView& mesh, const Params& params, FrameResult& out) = 0;
+
+ protected:
+  PassObserver observer_;
 };
 
 enum class EngineKind { kAuto, kCpu, kCuda };
@@ -74,7 +85,7 @@ bool valid_cuda_team(int team);
 bool parse_engine_kind(const std::string& s, EngineKind& out);
 
 /// CUDA when asked for or (auto) when a device is present, the CPU engine otherwise.
-/// Null with a status when an explicitly requested engine is unavailable.
-std::unique_ptr<Engine> make_engine(const EngineOptions& options, Status* why = nullptr);
+/// kUnavailable (with the reason) when an explicitly requested engine is not present.
+StatusOr<std::unique_ptr<Engine>> make_engine(const EngineOptions& options);
 
 }  // namespace fq

@@ -3,21 +3,26 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace fq {
 
-const char* status_code_name(StatusCode code) {
-  switch (code) {
-    case StatusCode::kOk: return "ok";
-    case StatusCode::kInvalidArgument: return "invalid argument";
-    case StatusCode::kInvalidInput: return "invalid input";
-    case StatusCode::kUnavailable: return "unavailable";
-    case StatusCode::kInternal: return "internal error";
-  }
-  return "unknown";
-}
-
 namespace {
+
+constexpr std::pair<FilterMethod, const char*> kFilterMethodNames[] = {
+    {FilterMethod::kQuadricRefined, "qf+"}, {FilterMethod::kQuadric, "qf"}, {FilterMethod::kBilateral, "bf"}};
+constexpr std::pair<ClusterMethod, const char*> kClusterMethodNames[] = {
+    {ClusterMethod::kQuadric, "quadric"}, {ClusterMethod::kEuclidean, "euclidean"}};
+
+constexpr const auto& names_of(FilterMethod) { return kFilterMethodNames; }
+constexpr const auto& names_of(ClusterMethod) { return kClusterMethodNames; }
+
+template <typename Method>
+const char* name_in_table(Method m) {
+  for (const auto& [method, name] : names_of(Method{}))
+    if (method == m) return name;
+  return "?";
+}
 
 // "-1" or "0.25" rather than std::to_string's "-1.000000".
 std::string show(float v) {
@@ -29,6 +34,8 @@ std::string show(float v) {
 // Upper bound on any sigma: beyond it the neighbourhood is the whole mesh anyway and
 // the grid visitor would only waste time.
 constexpr float kMaxSigma = 1e4f;
+// Each refinement pass is one sweep over the mesh; beyond this a frame only burns time.
+constexpr int kMaxRefineIterations = 100;
 
 Status check_sigma(const char* name, float v, bool zero_means_default) {
   if (std::isnan(v)) return invalid_argument(std::string(name) + " is NaN");
@@ -40,7 +47,37 @@ Status check_sigma(const char* name, float v, bool zero_means_default) {
   return {};
 }
 
+Status check_iterations(const char* name, int v) {
+  if (v < 0 || v > kMaxRefineIterations)
+    return invalid_argument(std::string(name) + " must be in [0, " + std::to_string(kMaxRefineIterations) +
+                            "] (got " + std::to_string(v) + ")");
+  return {};
+}
+
 }  // namespace
+
+const char* filter_method_name(FilterMethod m) { return method_name(m); }
+
+bool parse_filter_method(const std::string& s, FilterMethod& out) {
+  const std::optional<FilterMethod> m = parse_method<FilterMethod>(s);
+  if (m) out = *m;
+  return m.has_value();
+}
+
+Status validate(const RefineParams& r) {
+  for (Status s : {check_iterations("refine relax_iterations", r.relax_iterations),
+                   check_iterations("refine normal_iterations", r.normal_iterations),
+                   check_iterations("refine vertex_iterations", r.vertex_iterations),
+                   check_sigma("refine normal_sigma_s", r.normal_sigma_s, false),
+                   check_sigma("refine normal_sigma_r", r.normal_sigma_r, false)}) {
+    if (!s.ok()) return s;
+  }
+  if (!(r.relax_step > 0.f && r.relax_step <= 1.f))
+    return invalid_argument("refine relax_step must be in (0, 1] (got " + show(r.relax_step) + ")");
+  if (!(r.feature_ratio >= 0.f && r.feature_ratio <= 1.f))
+    return invalid_argument("refine feature_ratio must be in [0, 1] (got " + show(r.feature_ratio) + ")");
+  return {};
+}
 
 bool parse_cluster_geometry(const std::string& s, ClusterGeometry& out) {
   if (s == "auto")
@@ -61,22 +98,54 @@ const char* cluster_geometry_name(ClusterGeometry g) {
 Status validate(const Params& p) {
   if (!p.filter && !p.cluster) return invalid_argument("nothing to compute: enable filter and/or cluster");
   const FilterParams& f = p.f;
-  for (Status s : {check_sigma("sigma_s", f.sigma_s, false), check_sigma("sigma_r", f.sigma_r, false),
-                   check_sigma("sigma_b", f.sigma_b, true), check_sigma("sigma_n", f.sigma_n, true)}) {
-    if (!s.ok()) return s;
-  }
+  for (const Status& s : {check_sigma("sigma_s", f.sigma_s, false), check_sigma("sigma_r", f.sigma_r, false),
+                          check_sigma("sigma_b", f.sigma_b, true), check_sigma("sigma_n", f.sigma_n, true)})
+    FQ_RETURN_IF_ERROR(s);
   if (!(f.tikhonov >= 0.f && f.tikhonov <= 1e3f))
     return invalid_argument("tikhonov must be in [0, 1000] (got " + show(f.tikhonov) + ")");
+  if (Status s = validate(f.refine); !s.ok()) return s;
   if (p.cluster) {
-    for (Status s : {check_sigma("sigma_d", p.c.sigma_d, false), check_sigma("sigma_q", p.c.sigma_q, false)}) {
-      if (!s.ok()) return s;
-    }
+    for (const Status& s :
+         {check_sigma("sigma_d", p.c.sigma_d, false), check_sigma("sigma_q", p.c.sigma_q, false)})
+      FQ_RETURN_IF_ERROR(s);
     if (p.c.sticky_rings > 64)
       return invalid_argument("sticky_rings must be at most 64 (got " + std::to_string(p.c.sticky_rings) + ")");
     if (!(p.c.theta > 0.f && p.c.theta <= 1.f))
       return invalid_argument("theta must be in (0, 1] (got " + show(p.c.theta) + ")");
   }
   return {};
+}
+
+const char* method_name(FilterMethod m) { return name_in_table(m); }
+const char* method_name(ClusterMethod m) { return name_in_table(m); }
+
+template <typename Method>
+std::optional<Method> parse_method(std::string_view name) {
+  for (const auto& [method, n] : names_of(Method{}))
+    if (name == n) return method;
+  return std::nullopt;
+}
+template std::optional<FilterMethod> parse_method<FilterMethod>(std::string_view);
+template std::optional<ClusterMethod> parse_method<ClusterMethod>(std::string_view);
+
+template <typename Method>
+std::vector<std::string> method_names() {
+  std::vector<std::string> out;
+  for (const auto& entry : names_of(Method{})) out.emplace_back(entry.second);
+  return out;
+}
+template std::vector<std::string> method_names<FilterMethod>();
+template std::vector<std::string> method_names<ClusterMethod>();
+
+std::string join_names(const std::vector<std::string>& names, std::string_view separator, bool quoted) {
+  std::string out;
+  for (const std::string& n : names) {
+    if (!out.empty()) out += separator;
+    if (quoted) out += '"';
+    out += n;
+    if (quoted) out += '"';
+  }
+  return out;
 }
 
 }  // namespace fq

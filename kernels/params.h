@@ -2,29 +2,51 @@
 // mean edge length, as in the paper; neighbourhoods have radius 2 sigma.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "common/status.h"
 
 namespace fq {
 
-enum class FilterMethod { kQuadric, kBilateral };   ///< "qf" (the paper) | "bf" (Jones 2003)
+/// "qf+" (the paper's filter, then the refinement below; the default) | "qf" (the paper
+/// exactly) | "bf" (Jones 2003).
+enum class FilterMethod { kQuadric, kBilateral, kQuadricRefined };
 enum class ClusterMethod { kQuadric, kEuclidean };  ///< the paper | plain quick shift (Fig. 17)
 /// Whose quadrics the clustering scores and links with: the input's (the paper) or those
 /// of the mesh after a normal-constrained filter, at half the filter's sigma_s and sigma_r
 /// (docs/ALGORITHM.md). kAuto: filtered with a target cluster count, input otherwise.
 enum class ClusterGeometry { kAuto, kInput, kFiltered };
 
+/// Feature-preserving refinement after QF (method "qf+"; docs/ALGORITHM.md, kernels/refine_math.h).
+/// Distances in mean edge lengths of the frame.
+struct RefineParams {
+  int relax_iterations = 5;      ///< tangential relaxation passes (un-fold triangles)
+  float relax_step = 0.5f;       ///< fraction of the way to the 1-ring mean per pass, in (0, 1]
+  float feature_ratio = 0.1f;    ///< normal-tensor eigenvalues below ratio × largest are free directions
+  int normal_iterations = 3;     ///< bilateral face-normal filtering passes
+  float normal_sigma_s = 1.0f;   ///< spatial extent (face centroid distance)
+  float normal_sigma_r = 0.35f;  ///< range extent (|n_i − n_j|)
+  int vertex_iterations = 20;    ///< normal-driven vertex update passes (Sun et al. 2007)
+};
+
 struct FilterParams {
-  FilterMethod method = FilterMethod::kQuadric;
-  float sigma_s = 2.0f;  ///< spatial extent of the quadric diffusion (BF: of the filter)
-  float sigma_r = 1.0f;  ///< range extent (RMS quadric distance; BF: prediction distance)
+  FilterMethod method = FilterMethod::kQuadricRefined;
+  /// Defaults 1.5 / 0.7: the best setting of "qf+" on docs/QUALITY.md's benchmark (the
+  /// paper's Table 1 uses 2 / 1 and 2 / 0.7; pass them for the paper's rows).
+  float sigma_s = 1.5f;  ///< spatial extent of the quadric diffusion (BF: of the filter)
+  float sigma_r = 0.7f;  ///< range extent (RMS quadric distance; BF: prediction distance)
   float sigma_b = 0.0f;  ///< finest detail captured by Q'; 0 means sigma_s / 2
   float sigma_n = 0.0f;  ///< normal smoothing for constrained mode; 0 means sigma_s / 2
   bool constrained = false;  ///< move along the smoothed normal instead of to the minimizer
   /// Tikhonov pull toward the current position, relative to tr(A)/3. 0.05 keeps a clean
   /// mesh intact and improves noisy ones (see docs/QUALITY.md); 0 is the paper's solver.
   float tikhonov = 0.05f;
+  RefineParams refine;  ///< used by "qf+" only
+
+  bool uses_quadrics() const { return method != FilterMethod::kBilateral; }
 
   float effective_sigma_b() const { return sigma_b > 0.f ? sigma_b : 0.5f * sigma_s; }
   float effective_sigma_n() const { return sigma_n > 0.f ? sigma_n : 0.5f * sigma_s; }
@@ -60,11 +82,33 @@ struct Params {
   ClusterParams c;
 };
 
+/// "qf+", "qf", "bf": the names of configs, the command line and JSON.
+const char* filter_method_name(FilterMethod m);
+/// Parses a name of filter_method_name(); false for anything else.
+bool parse_filter_method(const std::string& s, FilterMethod& out);
+
+/// Clear message for the first bad refinement value (negative or huge iteration count, ...).
+Status validate(const RefineParams& r);
+
 /// "auto" | "input" | "filtered" (command lines, config files).
 bool parse_cluster_geometry(const std::string& s, ClusterGeometry& out);
 const char* cluster_geometry_name(ClusterGeometry g);
 
 /// Clear message for the first bad value (sigma <= 0, NaN, theta outside (0, 1], ...).
 Status validate(const Params& p);
+
+/// The one place for the methods' names on command lines, in configs and in JSON:
+/// "qf+" | "qf" | "bf" (FilterMethod) and "quadric" | "euclidean" (ClusterMethod).
+const char* method_name(FilterMethod m);
+const char* method_name(ClusterMethod m);
+/// The method a name stands for; nullopt for any other string (names are case-sensitive).
+template <typename Method>
+std::optional<Method> parse_method(std::string_view name);
+/// Every name of FilterMethod or ClusterMethod, in enum order (help texts, option checks).
+template <typename Method>
+std::vector<std::string> method_names();
+/// "qf or bf" for messages; `quoted`: "\"qf\" or \"bf\""; `separator` " | " for help texts.
+std::string join_names(const std::vector<std::string>& names, std::string_view separator = " or ",
+                       bool quoted = false);
 
 }  // namespace fq

@@ -57,35 +57,79 @@ std::string draco_message(const draco::Status& s) {
 
 /// Binary STL: 80-byte header, uint32 count, 50 bytes per triangle. ASCII STL starts with
 /// "solid" (a binary header may too, so the size test decides).
-Status check_stl_size(const std::string& path) {
+struct StlHead {
+  bool says_solid = false;
+  bool has_count = false;  ///< at least 84 bytes
+  uint32_t count = 0;
+  uint64_t size = 0;
+  bool binary_size() const { return has_count && 84 + 50 * uint64_t(count) == size; }
+};
+
+StlHead stl_head(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   char head[84] = {};
   f.read(head, sizeof head);
   const auto got = f.gcount();
-  const uint64_t size = std::filesystem::file_size(path);
-  const bool says_solid = got >= 5 && std::memcmp(head, "solid", 5) == 0;
-  if (got < 84)
-    return says_solid ? Status{} : invalid_input("cannot decode '" + path + "': too short for an STL file");
-  uint32_t count = 0;
-  for (int i = 0; i < 4; ++i) count |= uint32_t(static_cast<unsigned char>(head[80 + i])) << (8 * i);
-  if (84 + 50 * uint64_t(count) == size || says_solid) return {};
-  return invalid_input("cannot decode '" + path + "': binary STL header announces " + std::to_string(count) +
-                       " triangles but the file has " + std::to_string(size) + " bytes");
+  StlHead h;
+  std::error_code ec;
+  h.size = std::filesystem::file_size(path, ec);
+  h.says_solid = got >= 5 && std::memcmp(head, "solid", 5) == 0;
+  h.has_count = got >= 84;
+  for (int i = 0; i < 4 && h.has_count; ++i)
+    h.count |= uint32_t(static_cast<unsigned char>(head[80 + i])) << (8 * i);
+  return h;
+}
+
+Status check_stl_size(const std::string& path) {
+  const StlHead h = stl_head(path);
+  if (!h.has_count) return invalid_input("cannot decode '" + path + "': too short for an STL file");
+  if (h.binary_size()) return {};
+  return invalid_input("cannot decode '" + path + "': binary STL header announces " +
+                       std::to_string(h.count) + " triangles but the file has " + std::to_string(h.size) +
+                       " bytes");
+}
+
+/// Names the attributes of `dm` other than positions in `attributes->dropped`.
+void name_dropped(const draco::Mesh& dm, const std::string& why, MeshAttributes* attributes) {
+  if (!attributes) return;
+  for (int i = 0; i < dm.num_attributes(); ++i) {
+    switch (dm.attribute(i)->attribute_type()) {
+      case draco::GeometryAttribute::NORMAL:
+        attributes->dropped.push_back("normals" + why);
+        break;
+      case draco::GeometryAttribute::COLOR:
+        attributes->dropped.push_back("colours" + why);
+        break;
+      case draco::GeometryAttribute::TEX_COORD:
+        attributes->dropped.push_back("texture coordinates" + why);
+        break;
+      case draco::GeometryAttribute::GENERIC:
+        attributes->dropped.push_back("a generic attribute" + why);
+        break;
+      default:
+        break;
+    }
+  }
 }
 
 }  // namespace
 
 Status read_file_bytes(const std::string& path, std::vector<char>& bytes) {
   std::ifstream f(path, std::ios::binary);
-  if (!f) return invalid_argument("cannot open '" + path + "' for reading");
+  if (!f) return io_error("cannot open '" + path + "' for reading");
   bytes.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-  if (f.bad()) return invalid_argument("cannot read '" + path + "': read error");
+  if (f.bad()) return io_error("cannot read '" + path + "': read error");
   return {};
 }
 
-Status read_drc(const std::string& path, Mesh& out) {
+bool is_ascii_stl(const std::string& path) {
+  const StlHead h = stl_head(path);
+  return h.says_solid && !h.binary_size();
+}
+
+Status read_drc(const std::string& path, Mesh& out, MeshAttributes* attributes) {
   std::vector<char> bytes;
-  if (Status s = read_file_bytes(path, bytes); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(read_file_bytes(path, bytes));
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
   auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
@@ -95,17 +139,21 @@ Status read_drc(const std::string& path, Mesh& out) {
   draco::Decoder decoder;
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
   if (!decoded.ok()) return invalid_input("cannot decode '" + path + "': " + draco_message(decoded.status()));
+  name_dropped(*decoded.value(), " (only positions are read from .drc)", attributes);
   return from_draco(path, *decoded.value(), Vertices::kPoints, out);
 }
 
-Status read_obj_or_stl(const std::string& path, Mesh& out) {
+Status read_obj_or_stl(const std::string& path, Mesh& out, MeshAttributes* attributes) {
   if (lower_extension(path) == ".stl") {
-    if (Status s = check_stl_size(path); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(check_stl_size(path));
   }
   auto decoded = draco::ReadMeshFromFile(path);
   if (!decoded.ok()) return invalid_input("cannot decode '" + path + "': " + draco_message(decoded.status()));
   const std::unique_ptr<draco::Mesh> dm = std::move(decoded).value();
   if (!dm) return invalid_input("cannot decode '" + path + "': Draco returned no mesh");
+  // STL facet normals follow from the triangles; an OBJ's normals and UVs are data.
+  if (lower_extension(path) == ".obj")
+    name_dropped(*dm, " (per-corner values; vertices are welded by position)", attributes);
   // Welded: Draco splits a position into one point per texture coordinate or normal it
   // carries, which would cut the surface open along every seam.
   return from_draco(path, *dm, Vertices::kPositionValues, out);

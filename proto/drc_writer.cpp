@@ -59,10 +59,10 @@ Status write_drc(const std::string& path, const MeshView& mesh, const uint32_t* 
   const draco::Status s = encoder.EncodeMeshToBuffer(*dm, &buffer);
   if (!s.ok()) return invalid_input("cannot encode '" + path + "' with Draco: " + s.error_msg_string());
   std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  if (!f) return invalid_argument("cannot open '" + path + "' for writing: " + std::strerror(errno));
+  if (!f) return io_error("cannot open '" + path + "' for writing: " + std::strerror(errno));
   f.write(buffer.data(), std::streamsize(buffer.size()));
   f.close();
-  if (!f) return invalid_argument("cannot write '" + path + "': write failed (disk full?)");
+  if (!f) return io_error("cannot write '" + path + "': write failed (disk full?)");
   return {};
 }
 

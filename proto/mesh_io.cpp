@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "proto/assimp_io.h"
 #include "proto/draco_reader.h"
 #include "proto/drc_writer.h"
 #include "proto/ply_reader.h"
@@ -18,12 +19,41 @@ namespace fq::io {
 namespace {
 
 constexpr std::string_view kReadable[] = {".ply", ".obj", ".stl", ".drc"};
+constexpr std::string_view kWritable[] = {".ply", ".drc", ".obj", ".glb"};
 
-Status read_by_extension(const std::string& path, Mesh& out) {
+template <size_t N>
+bool one_of(const std::string& ext, const std::string_view (&list)[N]) {
+  return std::find(std::begin(list), std::end(list), ext) != std::end(list);
+}
+
+template <size_t N>
+std::string expected(const std::string_view (&list)[N]) {
+  std::string s = "(expected ";
+  for (size_t i = 0; i < N; ++i) s += std::string(list[i]) + (i + 2 < N ? ", " : i + 2 == N ? " or " : ")");
+  return s;
+}
+
+Status read_by_extension(const std::string& path, Mesh& out, MeshAttributes* attributes) {
   const std::string ext = lower_extension(path);
-  if (ext == ".ply") return read_ply(path, out);
-  if (ext == ".drc") return read_drc(path, out);
-  return read_obj_or_stl(path, out);
+  if (ext == ".ply") return read_ply(path, out, attributes);
+  if (ext == ".drc") return read_drc(path, out, attributes);
+  if (ext == ".stl" && is_ascii_stl(path)) return read_ascii_stl(path, out);
+  return read_obj_or_stl(path, out, attributes);
+}
+
+/// Every kept property has one value (or list) per vertex or face of `mesh`.
+Status check_attributes(const std::string& path, const MeshView& mesh, const MeshAttributes& a) {
+  for (const auto* list : {&a.vertex, &a.face}) {
+    const size_t n = list == &a.vertex ? mesh.num_vertices : mesh.num_triangles;
+    for (const ElementProperty& p : *list) {
+      const bool ok =
+          p.is_list ? p.offsets.size() == n + 1 && p.offsets.back() == p.values.size() : p.values.size() == n;
+      if (!ok)
+        return invalid_argument("cannot write '" + path + "': property '" + p.name +
+                                "' does not match the mesh");
+    }
+  }
+  return {};
 }
 
 Status check_for_writing(const std::string& path, const MeshView& mesh, const uint32_t* labels,
@@ -51,23 +81,23 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-bool is_readable_mesh_file(const std::string& path) {
-  const std::string ext = lower_extension(path);
-  return std::find(std::begin(kReadable), std::end(kReadable), ext) != std::end(kReadable);
-}
+bool is_readable_mesh_file(const std::string& path) { return one_of(lower_extension(path), kReadable); }
+bool is_writable_mesh_file(const std::string& path) { return one_of(lower_extension(path), kWritable); }
+std::string expected_read_extensions() { return expected(kReadable); }
+std::string expected_write_extensions() { return expected(kWritable); }
 
-Status read_mesh(const std::string& path, Mesh& out) {
+Status read_mesh(const std::string& path, Mesh& out, MeshAttributes* attributes) {
   out = Mesh{};
+  if (attributes) *attributes = MeshAttributes{};
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return invalid_argument("cannot read '" + path + "': no such file");
-  if (std::filesystem::is_directory(path, ec))
-    return invalid_argument("cannot read '" + path + "': is a folder");
+  if (!std::filesystem::exists(path, ec)) return io_error("cannot read '" + path + "': no such file");
+  if (std::filesystem::is_directory(path, ec)) return io_error("cannot read '" + path + "': is a folder");
   if (!is_readable_mesh_file(path))
     return invalid_argument("cannot read '" + path + "': unsupported extension '" + lower_extension(path) +
-                            "' (expected .ply, .obj, .stl or .drc)");
+                            "' " + expected_read_extensions());
   Status s;
   try {
-    s = read_by_extension(path, out);
+    s = read_by_extension(path, out, attributes);
   } catch (const std::length_error&) {
     // Draco sizes allocations from counts in the file; a corrupt one can ask for too much.
     s = invalid_input("cannot decode '" + path + "': its header announces more data than can be allocated");
@@ -76,26 +106,48 @@ Status read_mesh(const std::string& path, Mesh& out) {
   } catch (const std::exception& e) {
     s = invalid_input("cannot decode '" + path + "': " + e.what());
   }
-  if (!s.ok()) out = Mesh{};
+  if (!s.ok()) {
+    out = Mesh{};
+    if (attributes) *attributes = MeshAttributes{};
+  }
   return s;
 }
 
 Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t* labels,
-                  uint32_t num_clusters, int drc_position_bits) {
+                  uint32_t num_clusters, const WriteOptions& options, std::vector<std::string>* dropped) {
   const std::string ext = lower_extension(path);
-  if (ext != ".ply" && ext != ".drc")
-    return invalid_argument("cannot write '" + path + "': unsupported output extension '" + ext +
-                            "' (expected .ply or .drc)");
-  if (Status s = check_for_writing(path, mesh, labels, num_clusters); !s.ok()) return s;
-  if (ext == ".ply") return write_ply(path, mesh, labels);
-  if (drc_position_bits < 0 || drc_position_bits > 30)
-    return invalid_argument("Draco position bits must be in 0..30 (got " + std::to_string(drc_position_bits) +
-                            ")");
-  try {
-    return write_drc(path, mesh, labels, num_clusters, drc_position_bits);
-  } catch (const std::exception& e) {
-    return invalid_input("cannot encode '" + path + "' with Draco: " + e.what());
+  if (!is_writable_mesh_file(path))
+    return invalid_argument("cannot write '" + path + "': unsupported output extension '" + ext + "' " +
+                            expected_write_extensions());
+  FQ_RETURN_IF_ERROR(check_for_writing(path, mesh, labels, num_clusters));
+  const MeshAttributes* a = options.attributes;
+  if (a) {
+    if (Status s = check_attributes(path, mesh, *a); !s.ok()) return s;
   }
+  std::vector<std::string> ignored;
+  std::vector<std::string>& lost = dropped ? *dropped : ignored;
+  try {
+    if (ext == ".ply") return write_ply(path, mesh, labels, a, options.colour_clusters);
+    if (ext == ".obj" || ext == ".glb")
+      return write_with_assimp(path, mesh, labels, a, options.colour_clusters, lost);
+    if (options.drc_position_bits < 0 || options.drc_position_bits > 30)
+      return invalid_argument("Draco position bits must be in 0..30 (got " +
+                              std::to_string(options.drc_position_bits) + ")");
+    if (a) {
+      for (const ElementProperty& p : a->vertex) lost.push_back("vertex property '" + p.name + "'");
+      for (const ElementProperty& p : a->face) lost.push_back("face property '" + p.name + "'");
+    }
+    return write_drc(path, mesh, labels, num_clusters, options.drc_position_bits);
+  } catch (const std::exception& e) {
+    return invalid_input("cannot encode '" + path + "': " + e.what());
+  }
+}
+
+Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t* labels,
+                  uint32_t num_clusters, int drc_position_bits) {
+  WriteOptions options;
+  options.drc_position_bits = drc_position_bits;
+  return write_mesh(path, mesh, labels, num_clusters, options);
 }
 
 }  // namespace fq::io

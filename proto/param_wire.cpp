@@ -16,6 +16,9 @@ fq::Status set_mode(FilterMode m, fq::FilterParams& f) {
     case BF:
       f.method = fq::FilterMethod::kBilateral;
       return {};
+    case QF_PLUS:
+      f.method = fq::FilterMethod::kQuadricRefined;
+      return {};
     default:
       return invalid_argument("filter mode " + std::to_string(m) + " is not a FilterMode");
   }
@@ -65,7 +68,14 @@ ClusterGeometryWire geometry_of(const fq::ClusterParams& c) {
   }
 }
 
-FilterMode mode_of(const fq::FilterParams& f) { return f.method == fq::FilterMethod::kBilateral ? BF : QF; }
+FilterMode mode_of(const fq::FilterParams& f) {
+  switch (f.method) {
+    case fq::FilterMethod::kBilateral: return BF;
+    case fq::FilterMethod::kQuadricRefined: return QF_PLUS;
+    case fq::FilterMethod::kQuadric: break;
+  }
+  return QF;
+}
 
 ClusterMethodWire method_of(const fq::ClusterParams& c) {
   return c.method == fq::ClusterMethod::kEuclidean ? EUCLIDEAN : QUADRIC;

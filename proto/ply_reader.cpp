@@ -1,5 +1,9 @@
 #include "proto/ply_reader.h"
 
+#include <algorithm>
+#include <initializer_list>
+#include <sstream>
+#include <string_view>
 #include <vector>
 
 #include "draco/core/decoder_buffer.h"
@@ -56,22 +60,114 @@ Status read_faces(const std::string& path, const draco::PlyElement* face, Mesh& 
   return {};
 }
 
+bool scalar_type(draco::DataType t, ScalarType& out) {
+  switch (t) {
+    case draco::DT_INT8:
+      out = ScalarType::kInt8;
+      return true;
+    case draco::DT_UINT8:
+      out = ScalarType::kUInt8;
+      return true;
+    case draco::DT_INT16:
+      out = ScalarType::kInt16;
+      return true;
+    case draco::DT_UINT16:
+      out = ScalarType::kUInt16;
+      return true;
+    case draco::DT_INT32:
+      out = ScalarType::kInt32;
+      return true;
+    case draco::DT_UINT32:
+      out = ScalarType::kUInt32;
+      return true;
+    case draco::DT_FLOAT32:
+      out = ScalarType::kFloat32;
+      return true;
+    case draco::DT_FLOAT64:
+      out = ScalarType::kFloat64;
+      return true;
+    default:
+      return false;
+  }
+}
+
+/// Copies one property of `element`; false when its type has no PLY name we write.
+bool copy_property(const draco::PlyElement& element, const draco::PlyProperty& p, ElementProperty& out) {
+  out.name = p.name();
+  out.is_list = p.is_list();
+  if (!scalar_type(p.data_type(), out.type)) return false;
+  if (out.is_list && !scalar_type(p.list_data_type(), out.count_type)) return false;
+  const draco::PlyPropertyReader<double> reader(&p);
+  const int n = element.num_entries();
+  if (!out.is_list) {
+    out.values.resize(size_t(n));
+    for (int i = 0; i < n; ++i) out.values[size_t(i)] = reader.ReadValue(i);
+    return true;
+  }
+  out.offsets.assign(1, 0);
+  for (int i = 0; i < n; ++i) {
+    const int64_t first = p.GetListEntryOffset(i), count = p.GetListEntryNumValues(i);
+    for (int64_t k = 0; k < count; ++k) out.values.push_back(reader.ReadValue(static_cast<int>(first + k)));
+    out.offsets.push_back(static_cast<uint32_t>(out.values.size()));
+  }
+  return true;
+}
+
+/// Every property of `element` but those in `skip`, into `out`; the others into `dropped`.
+void keep_properties(const draco::PlyReader& reader, const std::string& name,
+                     std::initializer_list<const char*> skip, std::vector<ElementProperty>& out,
+                     std::vector<std::string>& dropped) {
+  const draco::PlyElement* element = reader.GetElementByName(name);
+  if (!element) return;
+  for (int i = 0; i < element->num_properties(); ++i) {
+    const draco::PlyProperty& p = element->property(i);
+    if (std::find(skip.begin(), skip.end(), p.name()) != skip.end()) continue;
+    ElementProperty kept;
+    if (copy_property(*element, p, kept))
+      out.push_back(std::move(kept));
+    else
+      dropped.push_back(name + " property '" + p.name() + "' (64-bit integer type)");
+  }
+}
+
+/// Names of the header's elements (draco::PlyElement does not expose its name).
+std::vector<std::string> element_names(const std::vector<char>& bytes) {
+  std::vector<std::string> names;
+  const std::string_view all(bytes.data(), bytes.size());
+  std::istringstream header(std::string(all.substr(0, all.find("end_header"))));
+  for (std::string line; std::getline(header, line);) {
+    std::istringstream words(line);
+    std::string key, name;
+    if (words >> key >> name && key == "element") names.push_back(name);
+  }
+  return names;
+}
+
+void keep_attributes(const draco::PlyReader& reader, const std::vector<char>& bytes, MeshAttributes& a) {
+  keep_properties(reader, "vertex", {"x", "y", "z"}, a.vertex, a.dropped);
+  keep_properties(reader, "face", {"vertex_indices", "vertex_index"}, a.face, a.dropped);
+  for (const std::string& name : element_names(bytes)) {
+    if (name != "vertex" && name != "face") a.dropped.push_back("element '" + name + "'");
+  }
+}
+
 }  // namespace
 
-Status read_ply(const std::string& path, Mesh& out) {
+Status read_ply(const std::string& path, Mesh& out, MeshAttributes* attributes) {
   std::vector<char> bytes;
-  if (Status s = read_file_bytes(path, bytes); !s.ok()) return s;
-  if (Status s = check_binary_ply_extent(path, bytes); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(read_file_bytes(path, bytes));
+  FQ_RETURN_IF_ERROR(check_binary_ply_extent(path, bytes));
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
   draco::PlyReader reader;
   const draco::Status s = reader.Read(&buffer);
   if (!s.ok()) {
-    const std::string msg = s.error_msg_string();
+    const std::string& msg = s.error_msg_string();
     return invalid_input("cannot decode '" + path + "': " + (msg.empty() ? "not a valid PLY file" : msg));
   }
   Status st = read_vertices(path, reader.GetElementByName("vertex"), out);
   if (st.ok()) st = read_faces(path, reader.GetElementByName("face"), out);
+  if (st.ok() && attributes) keep_attributes(reader, bytes, *attributes);
   return st;
 }
 

@@ -3,8 +3,9 @@
 
 #include <string>
 
-#include "kernels/mesh_view.h"
 #include "common/status.h"
+#include "kernels/mesh_view.h"
+#include "proto/mesh_attributes.h"
 
 namespace fq::io {
 
@@ -13,7 +14,9 @@ namespace fq::io {
 /// and point ids, which merges coincident vertices (dragon.ply: 435,545 -> 383,559) and
 /// reorders them; filtered output must keep the input's vertex count and order.
 /// Faces must be triangles ("not a triangle mesh" otherwise); a file without a face
-/// element reads as zero triangles.
-Status read_ply(const std::string& path, Mesh& out);
+/// element reads as zero triangles. With `attributes`, also every other vertex and face
+/// property (colours, normals, texture coordinates, scalars, lists); other elements are
+/// named in attributes->dropped.
+Status read_ply(const std::string& path, Mesh& out, MeshAttributes* attributes = nullptr);
 
 }  // namespace fq::io

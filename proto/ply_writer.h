@@ -4,13 +4,19 @@
 #include <cstdint>
 #include <string>
 
-#include "kernels/mesh_view.h"
 #include "common/status.h"
+#include "kernels/mesh_view.h"
+#include "proto/mesh_attributes.h"
 
 namespace fq::io {
 
-/// Binary little-endian PLY with optional per-vertex label and colour. Labels are
-/// assumed checked by the caller.
-Status write_ply(const std::string& path, const MeshView& mesh, const uint32_t* labels);
+/// Binary little-endian PLY: `float x, y, z`, then the kept vertex properties of
+/// `attributes` (may be null) in their types; with labels also `uint label` and
+/// `uchar cluster_red, cluster_green, cluster_blue`. `red, green, blue` hold the input's
+/// colours when it had them, else (with labels) the cluster colours; `colour_clusters`
+/// puts the cluster colours there in any case. Faces: `list uchar int vertex_indices`,
+/// then the kept face properties. Labels are assumed checked by the caller.
+Status write_ply(const std::string& path, const MeshView& mesh, const uint32_t* labels,
+                 const MeshAttributes* attributes = nullptr, bool colour_clusters = false);
 
 }  // namespace fq::io

@@ -1,6 +1,6 @@
 # fq_proto: the wire protocol. Protobuf headers (fq.proto, generated into the build dir by
 # Debian's protoc 3.21) and the chunked Draco frame codec.
-find_package(Protobuf REQUIRED)
+fq_require_package(Protobuf DEBIAN_PKG "libprotobuf-dev protobuf-compiler")
 find_package(Threads REQUIRED)
 
 add_library(fq_proto STATIC

@@ -5,7 +5,9 @@
 
 Prints markdown on stdout: the denoising table (noise 0.2 mean edge, seed 1), the clustering
 table at the paper's Table 3 parameters and the feature-following clustering table (sharp-edge
-recall, eval/sharp_edge_recall.h). Every number comes from the run it prints.
+recall, eval/sharp_edge_recall.h), for the paper's filter (--mode qf); the comparison of fq's
+default (qf+) with other smoothers is scripts/peer_quality.py. Every number comes from the run
+it prints.
 """
 import argparse
 import json
@@ -30,14 +32,16 @@ CLUSTER = [
 NOISE, SEED = 0.2, 1
 # Feature-following clusters on fandisk: (label, noise, extra fqfilter arguments).
 FEATURE_PARAMS = ["--sigma-s", "1", "--sigma-r", "0.5", "--sigma-d", "2", "--sigma-q", "0.3", "--theta", "0.9"]
+# "defaults": the clustering's defaults with the paper's filter at σ_s 2, σ_r 1.
+QF_DEFAULTS = ["--cluster", "--mode", "qf", "--sigma-s", "2", "--sigma-r", "1"]
 FEATURE = [
     ("clean, paper (θ 0.9)", 0.0, ["--no-filter", *FEATURE_PARAMS]),
     ("noisy, paper (θ 0.9)", NOISE, ["--no-filter", *FEATURE_PARAMS]),
-    ("noisy, fqfilter defaults (σ 2, 1, 5, 1, θ 0.9)", NOISE, ["--cluster"]),
-    ("noisy, defaults, target 60, input geometry (paper)", NOISE, ["--cluster", "--target-clusters", "60", "--cluster-geometry", "input"]),
-    ("noisy, defaults, target 60 (filtered geometry: auto)", NOISE, ["--cluster", "--target-clusters", "60"]),
-    ("noisy, defaults, target 60, min cluster size 20", NOISE, ["--cluster", "--target-clusters", "60", "--min-cluster-size", "20"]),
-    ("noisy, defaults, target 25 (filtered geometry: auto)", NOISE, ["--cluster", "--target-clusters", "25"]),
+    ("noisy, qf defaults (σ 2, 1, 5, 1, θ 0.9)", NOISE, QF_DEFAULTS),
+    ("noisy, defaults, target 60, input geometry (paper)", NOISE, [*QF_DEFAULTS, "--target-clusters", "60", "--cluster-geometry", "input"]),
+    ("noisy, defaults, target 60 (filtered geometry: auto)", NOISE, [*QF_DEFAULTS, "--target-clusters", "60"]),
+    ("noisy, defaults, target 60, min cluster size 20", NOISE, [*QF_DEFAULTS, "--target-clusters", "60", "--min-cluster-size", "20"]),
+    ("noisy, defaults, target 25 (filtered geometry: auto)", NOISE, [*QF_DEFAULTS, "--target-clusters", "25"]),
 ]
 
 
@@ -68,8 +72,8 @@ def denoise_table(fqfilter, meshes):
         base = [path, "--noise", str(NOISE), "--seed", str(SEED), "--repeat", "3"]
         runs = [
             ("BF (Jones 2003)", bf, run(fqfilter, base + ["--mode", "bf", "--sigma-s", str(bf[0]), "--sigma-r", str(bf[1])])),
-            ("QF unconstrained", qf, run(fqfilter, base + ["--sigma-s", str(qf[0]), "--sigma-r", str(qf[1])])),
-            ("QF constrained", qf, run(fqfilter, base + ["--sigma-s", str(qf[0]), "--sigma-r", str(qf[1]), "--constrained"])),
+            ("QF unconstrained", qf, run(fqfilter, base + ["--mode", "qf", "--sigma-s", str(qf[0]), "--sigma-r", str(qf[1])])),
+            ("QF constrained", qf, run(fqfilter, base + ["--mode", "qf", "--sigma-s", str(qf[0]), "--sigma-r", str(qf[1]), "--constrained"])),
         ]
         first = runs[0][2]
         print(f"| {name} ({first['vertices']} V; σ from {source}) | noisy input | – "
@@ -115,7 +119,7 @@ def clean_table(fqfilter, meshes):
     for name, (ss, sr), _, _ in DENOISE[:3]:
         path = os.path.join(meshes, name)
         for label, eps in (("Tikhonov ε = 0.05 (default)", "0.05"), ("ε = 0 (paper's −A⁻¹b, eigenvalues < 1e-3 λmax dropped)", "0")):
-            r = run(fqfilter, [path, "--reference", path, "--sigma-s", str(ss), "--sigma-r", str(sr), "--tikhonov", eps])
+            r = run(fqfilter, [path, "--reference", path, "--mode", "qf", "--sigma-s", str(ss), "--sigma-r", str(sr), "--tikhonov", eps])
             print(f"| {name} (σ_s {ss:g}, σ_r {sr:g}) | {label} | {fmt_metrics(r['metrics']['output'])} |")
             sys.stdout.flush()
 

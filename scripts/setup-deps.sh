@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages fq builds against, skipping those already present.
 # Safe to run repeatedly; needs root (or sudo) only when something is missing.
+# --peers also installs the other smoothers scripts/peer_quality.py compares with (Open3D,
+# MeshLab run headless under Xvfb); neither the build nor the tests need them.
 # Then installs the live viewer's npm packages (scripts/web-deps.sh).
 # FQ_SETUP_BROWSER=0 leaves out Chromium and yamllint (only tests use them; the Docker image
 # sets it, Ubuntu's chromium package being a snap stub).
@@ -9,16 +11,21 @@ here=$(cd "$(dirname "$0")" && pwd)
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libdraco-dev draco
+  libdraco-dev draco libassimp-dev
   libzmq3-dev cppzmq-dev
   libprotobuf-dev protobuf-compiler
   libspdlog-dev libfmt-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-open3d
+  clang-tidy
   python3-zmq python3-protobuf   # clients/examples/consume.py and its test
   libcpp-httplib-dev
   python3-prometheus-client
 )
+if [[ "${1:-}" == "--peers" ]]; then
+  packages+=(python3-numpy python3-open3d meshlab xvfb xauth)
+fi
 if [[ ${FQ_SETUP_BROWSER:-1} != 0 ]]; then
   packages+=(chromium yamllint)
 fi

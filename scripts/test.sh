@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# README command 2: install what is missing, build, run every test.
+# README command 2: install what is missing, build, run every test, clang-tidy the changed files.
 # GPU tests skip cleanly on a machine without a GPU.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -8,3 +8,4 @@ bash "$root/scripts/build.sh"
 build=${BUILD_DIR:-$root/build}
 export FQ_MESH_DIR=${FQ_MESH_DIR:-$root/../shared/meshes}
 ctest --test-dir "$build" --output-on-failure -j "${JOBS:-$(nproc)}" --timeout 900
+BUILD_DIR=$build bash "$root/scripts/tidy.sh"   # clang-tidy on the C++ files this change touches

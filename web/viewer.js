@@ -1,4 +1,5 @@
-// The live viewer: long-polls GET /streams/ID/latest, decodes the Draco chunks (frame_decode.js),
+// The live viewer: long-polls GET /streams/ID/latest, decodes the result (frame_decode.js; both
+// result forms, the faces of a POSITIONS stream fetched once and reused by their id),
 // shows the mesh shaded and coloured by cluster, orbit with the mouse (OrbitControls), and an
 // overlay with display fps and fqd's latency. window.fqViewer exposes the counts for tests.
 import * as THREE from 'three';
@@ -105,14 +106,14 @@ function overlay(headers) {
     `display ${state.fps} fps   frames ${state.frames}\n` +
     `fqd latency ${Number(headers.get('X-Fq-Latency-Ms')).toFixed(1)} ms${headers.get('X-Fq-Late') === '1' ? ' (late)' : ''}\n` +
     `decode ${state.decodeMs.toFixed(1)} ms in the browser\n` +
-    `${headers.get('X-Fq-Vertex-Count')} vertices, ${headers.get('X-Fq-Cluster-Count')} clusters\n` +
+    `${headers.get('X-Fq-Vertex-Count')} vertices, ${headers.get('X-Fq-Cluster-Count')} clusters, ${headers.get('X-Fq-Form')} form\n` +
     `engine ${headers.get('X-Fq-Engine')}   sequence ${headers.get('X-Fq-Sequence')}`;
 }
 
 // One long poll: the response with its body read, or null for 204 (nothing newer yet).
-async function request(stream, after) {
+async function request(stream, after, facesId) {
   const t0 = performance.now();
-  const res = await fetch(`streams/${encodeURIComponent(stream)}/latest?after=${after}&wait_ms=2000`);
+  const res = await fetch(`streams/${encodeURIComponent(stream)}/latest?after=${after}&faces=${facesId}&wait_ms=2000`);
   if (res.status === 204) return null;
   if (!res.ok) throw new Error(`${res.status} ${await res.text()}`);
   const body = await res.arrayBuffer();
@@ -121,8 +122,19 @@ async function request(stream, after) {
 
 // The next request is sent before the current result is decoded and drawn, so that the
 // transfer overlaps the decode instead of adding to it.
+function metaOf(headers) {
+  return {
+    form: headers.get('X-Fq-Form'),
+    facesBytes: Number(headers.get('X-Fq-Faces-Bytes')),
+    labelsBytes: Number(headers.get('X-Fq-Labels-Bytes')),
+    sizes: headers.get('X-Fq-Chunk-Sizes').split(',').filter((s) => s !== '').map(Number),
+    vertexCount: Number(headers.get('X-Fq-Vertex-Count')),
+  };
+}
+
 async function pollStream(M) {
   let pending = null;
+  let faces = { id: '0', indices: null };  // the faces of the last POSITIONS result shown
   for (;;) {
     const stream = state.stream;
     if (!stream) {
@@ -131,16 +143,21 @@ async function pollStream(M) {
     }
     try {
       const after = replay ? Math.max(0, state.index - 1) : state.index;
-      const got = await (pending || request(stream, after));
+      if (faces.stream !== stream) faces = { id: '0', indices: null, stream };
+      const got = await (pending || request(stream, after, faces.id));
       pending = null;
       if (!got || got.stream !== state.stream) continue;
       state.index = Number(got.headers.get('X-Fq-Index'));
-      pending = request(stream, replay ? state.index - 1 : state.index);
+      const meta = metaOf(got.headers);
+      const facesId = got.headers.get('X-Fq-Faces-Id');
+      // The next request says which faces this one leaves the viewer holding.
+      const heldId = meta.facesBytes > 0 || facesId === faces.id ? facesId : '0';
+      pending = request(stream, replay ? state.index - 1 : state.index, heldId);
       pending.catch(() => {});  // a failure is reported when it is awaited
       state.fetchMs = got.fetchMs;
       const t1 = performance.now();
-      const sizes = got.headers.get('X-Fq-Chunk-Sizes').split(',').map(Number);
-      const frame = decodeFrame(M, got.body, sizes, Number(got.headers.get('X-Fq-Vertex-Count')));
+      const frame = decodeFrame(M, got.body, meta, facesId === faces.id ? faces.indices : null);
+      if (meta.form === 'positions') faces = { id: facesId, indices: frame.indices, stream };
       const t2 = performance.now();
       state.decodeMs = t2 - t1;
       show(frame);
@@ -150,6 +167,7 @@ async function pollStream(M) {
       state.error = '';
     } catch (e) {
       pending = null;
+      faces = { id: '0', indices: null };
       state.error = String(e);
       statsBox.textContent = `stream ${stream}: ${state.error}`;
       await new Promise((r) => setTimeout(r, 1000));

@@ -14,8 +14,7 @@ Status control_call(zmq::socket_t& req, const wire::ControlRequest& request, wir
   zmq::message_t m;
   if (!req.recv(m))
     return {StatusCode::kUnavailable, "no control reply within " + std::to_string(timeout_ms) + " ms"};
-  if (Status s = wire::parse_control_reply(std::string_view(m.data<char>(), m.size()), reply); !s.ok())
-    return s;
+  FQ_RETURN_IF_ERROR(wire::parse_control_reply(std::string_view(m.data<char>(), m.size()), reply));
   if (!reply.ok()) return invalid_argument(reply.error());
   return {};
 }

@@ -21,7 +21,7 @@ Status build_frame(const MeshView& mesh, const FrameSpec& spec, uint64_t sequenc
   opt.encode_speed = spec.encode_speed;
   opt.decode_speed = spec.decode_speed;
   opt.threads = spec.encode_threads;
-  if (Status s = wire::encode_frame(mesh, nullptr, spec.chunks, opt, chunks); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(wire::encode_frame(mesh, nullptr, spec.chunks, opt, chunks));
   wire::FrameHeader h;
   h.set_version(wire::kWireVersion);
   h.set_stream_id(spec.stream_id);
@@ -39,15 +39,20 @@ Status build_frame(const MeshView& mesh, const FrameSpec& spec, uint64_t sequenc
   return {};
 }
 
-void restamp_send_time(std::vector<std::string>& parts) {
+int64_t restamp_frame(std::vector<std::string>& parts, uint64_t sequence) {
   wire::FrameHeader h;
-  if (parts.size() < 2 || !h.ParseFromString(parts[1])) return;
-  h.set_send_time_ns(now_ns());
+  if (parts.size() < 2 || !h.ParseFromString(parts[1])) return 0;
+  h.set_sequence(sequence);
+  const int64_t now = now_ns();
+  h.set_capture_time_ns(now);
+  h.set_send_time_ns(now);
   parts[1] = h.SerializeAsString();
+  return now;
 }
 
 void send_parts(zmq::socket_t& push, const std::vector<std::string>& parts) {
   std::vector<zmq::const_buffer> buffers;
+  buffers.reserve(parts.size());
   for (const std::string& p : parts) buffers.push_back(zmq::buffer(p));
   zmq::send_multipart(push, buffers);
 }

@@ -29,8 +29,10 @@ struct FrameSpec {
 Status build_frame(const MeshView& mesh, const FrameSpec& spec, uint64_t sequence,
                    std::vector<std::string>& parts);
 
-/// Restamps send_time_ns in an already built frame (parts[1]) to now.
-void restamp_send_time(std::vector<std::string>& parts);
+/// Makes an already built frame (build_frame's parts) frame number `sequence`, captured and
+/// sent now, so encoded frames can be sent again without encoding. Returns the new send time
+/// (now_ns), or 0 when parts[1] is not a frame header (then the parts are left unchanged).
+int64_t restamp_frame(std::vector<std::string>& parts, uint64_t sequence);
 
 /// Sends the parts as one multipart message (blocking while the socket's queue is full).
 void send_parts(zmq::socket_t& push, const std::vector<std::string>& parts);

@@ -25,7 +25,7 @@ Status MeshSource::open(const std::string& path) {
   meshes_.clear();
   for (const std::string& f : files) {
     Mesh m;
-    if (Status s = io::read_mesh(f, m); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(io::read_mesh(f, m));
     names_.push_back(fs::path(f).filename().string());
     meshes_.push_back(std::move(m));
   }

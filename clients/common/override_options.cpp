@@ -1,5 +1,9 @@
 #include "clients/common/override_options.h"
 
+#include <optional>
+
+#include "kernels/params.h"
+
 namespace fq::client {
 
 void add_override_options(CLI::App& app, OverrideArgs& a) {
@@ -10,11 +14,12 @@ void add_override_options(CLI::App& app, OverrideArgs& a) {
   app.add_option("--sigma-n", a.sigma_n, "normal smoothing of the constrained update")->group(g);
   app.add_option("--constrained", a.constrained, "normal-constrained update (true/false)")->group(g);
   app.add_option("--tikhonov", a.tikhonov, "pull toward the current position")->group(g);
-  app.add_option("--mode", a.mode, "filter: qf | bf")->group(g);
+  app.add_option("--mode", a.mode, "filter: " + join_names(method_names<FilterMethod>(), " | "))->group(g);
   app.add_option("--sigma-d", a.sigma_d, "clustering spatial extent")->group(g);
   app.add_option("--sigma-q", a.sigma_q, "clustering range extent")->group(g);
   app.add_option("--theta", a.theta, "clustering threshold in (0, 1]")->group(g);
-  app.add_option("--cluster-method", a.cluster_method, "quadric | euclidean")->group(g);
+  app.add_option("--cluster-method", a.cluster_method, join_names(method_names<ClusterMethod>(), " | "))
+      ->group(g);
   app.add_option("--target-clusters", a.target_clusters, "cluster count to aim for, theta found per frame (0 = theta)")
       ->group(g);
   app.add_option("--cluster-geometry", a.cluster_geometry, "auto | input | filtered")->group(g);
@@ -48,18 +53,20 @@ Status to_wire(const OverrideArgs& a, wire::ParamOverrides& o, wire::Compute& co
     o.set_cluster_geometry(wire::GEOMETRY_FILTERED);
   else if (!a.cluster_geometry.empty())
     return invalid_argument("--cluster-geometry must be auto, input or filtered (got " + a.cluster_geometry + ")");
-  if (a.mode == "qf")
-    o.set_mode(wire::QF);
-  else if (a.mode == "bf")
-    o.set_mode(wire::BF);
-  else if (!a.mode.empty())
-    return invalid_argument("--mode must be qf or bf (got " + a.mode + ")");
-  if (a.cluster_method == "quadric")
-    o.set_cluster_method(wire::QUADRIC);
-  else if (a.cluster_method == "euclidean")
-    o.set_cluster_method(wire::EUCLIDEAN);
-  else if (!a.cluster_method.empty())
-    return invalid_argument("--cluster-method must be quadric or euclidean (got " + a.cluster_method + ")");
+  if (!a.mode.empty()) {
+    const std::optional<FilterMethod> m = parse_method<FilterMethod>(a.mode);
+    if (!m)
+      return invalid_argument("--mode must be " + join_names(method_names<FilterMethod>()) + " (got " +
+                              a.mode + ")");
+    o.set_mode(*m == FilterMethod::kQuadric ? wire::QF : *m == FilterMethod::kBilateral ? wire::BF : wire::QF_PLUS);
+  }
+  if (!a.cluster_method.empty()) {
+    const std::optional<ClusterMethod> m = parse_method<ClusterMethod>(a.cluster_method);
+    if (!m)
+      return invalid_argument("--cluster-method must be " + join_names(method_names<ClusterMethod>()) +
+                              " (got " + a.cluster_method + ")");
+    o.set_cluster_method(*m == ClusterMethod::kQuadric ? wire::QUADRIC : wire::EUCLIDEAN);
+  }
   compute = wire::COMPUTE_DEFAULT;
   if (a.compute == "filter")
     compute = wire::FILTER;

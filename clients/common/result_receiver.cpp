@@ -9,22 +9,21 @@
 
 namespace fq::client {
 
-bool receive_result(zmq::socket_t& sub, ReceivedResult& out, Status& why) {
+StatusOr<bool> receive_result(zmq::socket_t& sub, ReceivedResult& out) {
   std::vector<zmq::message_t> parts;
   if (!zmq::recv_multipart(sub, std::back_inserter(parts))) return false;
   out = ReceivedResult{};
   out.receive_ns = now_ns();
-  why = {};
-  if (parts.size() < 2) {
-    why = invalid_input("published message has " + std::to_string(parts.size()) + " part(s)");
-    return true;
-  }
+  if (parts.size() < 2)
+    return invalid_input("published message has " + std::to_string(parts.size()) + " part(s)");
   out.topic = parts[0].to_string();
-  why = wire::parse_result_header(std::string_view(parts[1].data<char>(), parts[1].size()), out.header);
+  const Status header =
+      wire::parse_result_header(std::string_view(parts[1].data<char>(), parts[1].size()), out.header);
   for (size_t i = 2; i < parts.size(); ++i) out.chunks.push_back(std::move(parts[i]));
-  if (why.ok() && out.header.chunk_count() != out.chunks.size())
-    why = invalid_input("result header says " + std::to_string(out.header.chunk_count()) +
-                        " chunk(s), message has " + std::to_string(out.chunks.size()));
+  FQ_RETURN_IF_ERROR(header);
+  if (out.header.chunk_count() != out.chunks.size())
+    return invalid_input("result header says " + std::to_string(out.header.chunk_count()) +
+                         " chunk(s), message has " + std::to_string(out.chunks.size()));
   return true;
 }
 

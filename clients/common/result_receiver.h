@@ -7,9 +7,10 @@
 #include <vector>
 #include <zmq.hpp>
 
-#include "proto/fq.pb.h"
-#include "kernels/mesh_view.h"
 #include "common/status.h"
+#include "common/status_or.h"
+#include "kernels/mesh_view.h"
+#include "proto/fq.pb.h"
 
 namespace fq::client {
 
@@ -22,9 +23,13 @@ struct ReceivedResult {
   std::vector<uint32_t> labels;  ///< after decode_result: the header's labels
 };
 
-/// Blocks for one published message (honours the socket's receive timeout: false when it
-/// expires). A message that is not a valid result gets a non-ok status in `why`.
-bool receive_result(zmq::socket_t& sub, ReceivedResult& out, Status& why);
+/// Blocks for one published message into `out`: true for a valid result, false when the
+/// socket's receive timeout expired first, an error for a message that is not a valid result
+/// (`out` then keeps what could be read, so the caller can still count it by topic and header).
+StatusOr<bool> receive_result(zmq::socket_t& sub, ReceivedResult& out);
+
+/// True when receive_result's socket timed out (no message at all).
+inline bool timed_out(const StatusOr<bool>& received) { return received.ok() && !*received; }
 
 /// Decodes the chunks of an OK/LATE result (threads: chunks decoded at once). A POSITIONS
 /// result carries no faces: they are `faces` (the input frame's triangles, 3 vertex ids

@@ -2,13 +2,12 @@
 
 #include <cstdio>
 
-#include "daemon/stage_metrics.h"
+#include "common/sample_stats.h"
 
 namespace fq::client {
 namespace {
 
 nlohmann::json summary(const std::vector<double>& v) {
-  using fq::daemon::percentile;
   return {{"p50_ms", percentile(v, 0.50)},
           {"p95_ms", percentile(v, 0.95)},
           {"p99_ms", percentile(v, 0.99)},
@@ -43,7 +42,6 @@ double StreamStats::fps() const {
 }
 
 std::string StreamStats::status_line() const {
-  using fq::daemon::percentile;
   char line[256];
   std::snprintf(
       line, sizeof line,

@@ -1,22 +1,11 @@
 #include "clients/fqbench/bench_stats.h"
 
-#include <algorithm>
-#include <cmath>
+#include "common/sample_stats.h"
 
 namespace fq::bench {
 
-Spread spread_of(std::vector<double> v) {
-  Spread s;
-  s.count = static_cast<int>(v.size());
-  if (v.empty()) return s;
-  std::sort(v.begin(), v.end());
-  auto at = [&](double q) {
-    return v[std::min(v.size() - 1, size_t(std::floor(q * double(v.size() - 1) + 0.5)))];
-  };
-  s.median = v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-  s.p10 = at(0.1);
-  s.p90 = at(0.9);
-  return s;
+Spread spread_of(const std::vector<double>& v) {
+  return {median(v), percentile(v, 0.1), percentile(v, 0.9), static_cast<int>(v.size())};
 }
 
 bool is_host_or_transfer(const std::string& pass) {

@@ -14,8 +14,8 @@ struct Spread {
   int count = 0;
 };
 
-/// Median and 10th/90th percentiles (nearest rank) of `v`.
-Spread spread_of(std::vector<double> v);
+/// Median and 10th/90th percentiles (nearest rank, common/sample_stats.h) of `v`.
+Spread spread_of(const std::vector<double>& v);
 
 /// Timings of repeated frames, per pass name, in first-seen pass order.
 class PassSamples {

@@ -14,10 +14,12 @@
 #include "clients/fqbench/bench_rows.h"
 #include "clients/fqbench/bench_stats.h"
 #include "clients/fqbench/codec_bench.h"
+#include "clients/fqbench/neighbour_stats.h"
+#include "common/tool_main.h"
+#include "common/version.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/engine.h"
 #include "proto/mesh_io.h"
-#include "clients/fqbench/neighbour_stats.h"
 
 namespace {
 
@@ -144,12 +146,11 @@ void print_passes(const std::vector<RowResult>& results) {
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   Options o;
   o.mesh_dir = default_mesh_dir();
   CLI::App app{"fqbench: device time per pass for the paper's Table 2 and 3 rows"};
+  app.set_version_flag("--version", fq::version_line("fqbench"));
   app.add_option("--mesh-dir", o.mesh_dir,
                  "folder of the shared meshes (default: $FQ_MESH_DIR or ../shared/meshes)");
   app.add_option("--rows", o.rows, "comma-separated row ids, or all")->capture_default_str();
@@ -216,12 +217,13 @@ int main(int argc, char** argv) {
   }
   EngineKind kind{};
   parse_engine_kind(o.engine, kind);
-  Status why;
-  std::unique_ptr<Engine> engine = make_engine({kind, o.cpu_threads, 0, o.cuda}, &why);
-  if (!engine) {
-    std::fprintf(stderr, "fqbench: engine %s unavailable: %s\n", o.engine.c_str(), why.message().c_str());
+  StatusOr<std::unique_ptr<Engine>> made = make_engine({kind, o.cpu_threads, 0, o.cuda});
+  if (!made.ok()) {
+    std::fprintf(stderr, "fqbench: engine %s unavailable: %s\n", o.engine.c_str(),
+                 made.status().message().c_str());
     return 3;
   }
+  std::unique_ptr<Engine> engine = std::move(made).value();
   std::unique_ptr<CpuEngine> cpu;
   if (o.cpu_repeat > 0) cpu = std::make_unique<CpuEngine>(o.cpu_threads);
 
@@ -263,3 +265,7 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return fq::tool_main("fqbench", run, argc, argv); }

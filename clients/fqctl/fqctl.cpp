@@ -15,6 +15,8 @@
 #include "clients/common/control_client.h"
 #include "clients/fqctl/counters_table.h"
 #include "clients/fqctl/param_assign.h"
+#include "common/tool_main.h"
+#include "common/version.h"
 #include "daemon/counters_json.h"
 
 namespace {
@@ -63,7 +65,7 @@ int cmd_streams(const Args& a) {
 }
 
 int print_params(const fq::wire::ControlReply& r) {
-  for (const auto& [key, value] : fq::client::describe_fields(r.params()))
+  for (const auto& [key, value] : fq::client::describe_params(r))
     std::printf("%s = %s\n", key.c_str(), value.c_str());
   return 0;
 }
@@ -129,10 +131,9 @@ int cmd_watch(const Args& a) {
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"fqctl: inspect and steer a running fqd through its control socket"};
+  app.set_version_flag("--version", fq::version_line("fqctl"));
   Args a;
   app.add_option("-c,--control", a.control, "fqd's control endpoint")->capture_default_str();
   app.add_option("--timeout-ms", a.timeout_ms, "how long to wait for fqd's reply")
@@ -144,7 +145,7 @@ int main(int argc, char** argv) {
   params->add_option("stream", a.stream, "stream id")->required();
   CLI::App* set = app.add_subcommand("set", "change a stream's parameters from its next frame on");
   set->add_option("stream", a.stream, "stream id (created when new)")->required();
-  set->add_option("assignments", a.assignments, "key=value, e.g. sigma_s=3 mode=bf compute=filter")
+  set->add_option("assignments", a.assignments, "key=value, e.g. sigma_s=3 mode=bf compute=filter result_form=mesh")
       ->required();
   CLI::App* counters = app.add_subcommand("counters", "frame counters and stage latencies");
   counters->add_option("stream", a.stream, "one stream (default: all)");
@@ -163,3 +164,7 @@ int main(int argc, char** argv) {
   if (*watch) return cmd_watch(a);
   return cmd_streams(a);
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return fq::tool_main("fqctl", run, argc, argv); }

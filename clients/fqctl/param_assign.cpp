@@ -50,12 +50,20 @@ std::string valid_keys(const wire::SetParams& q) {
   return keys;
 }
 
+// A value named *_DEFAULT means "unset" on the wire (COMPUTE_DEFAULT, MODE_DEFAULT); any other
+// value is a choice, zero included (ResultForm's POSITIONS).
+bool choosable(const pb::EnumValueDescriptor* v) {
+  const std::string& n = v->name();
+  return !(n.size() >= 8 && n.compare(n.size() - 8, 8, "_DEFAULT") == 0);
+}
+
 Status set_enum(pb::Message& m, const pb::FieldDescriptor* f, const std::string& value) {
   const pb::EnumValueDescriptor* v = f->enum_type()->FindValueByName(upper(value));
-  if (!v || v->number() == 0) {
+  if (!v || !choosable(v)) {
     std::string names;
-    for (int i = 1; i < f->enum_type()->value_count(); ++i)
-      names += (names.empty() ? "" : ", ") + lower(f->enum_type()->value(i)->name());
+    for (int i = 0; i < f->enum_type()->value_count(); ++i)
+      if (choosable(f->enum_type()->value(i)))
+        names += (names.empty() ? "" : ", ") + lower(f->enum_type()->value(i)->name());
     return invalid_argument(f->name() + " must be one of " + names + " (got \"" + value + "\")");
   }
   m.GetReflection()->SetEnum(&m, f, v);
@@ -128,6 +136,18 @@ Status assign_param(const std::string& key_value, wire::SetParams& out) {
   if (const pb::FieldDescriptor* f = out.GetDescriptor()->FindFieldByName(key); settable(f))
     return set_field(out, f, value);
   return invalid_argument("unknown parameter '" + key + "'; one of: " + valid_keys(out));
+}
+
+std::vector<std::pair<std::string, std::string>> describe_params(const wire::ControlReply& r) {
+  // The reply carries each settable field of SetParams outside `params` (compute,
+  // result_form) under the same name: found by reflection, as assign_param finds keys.
+  std::vector<std::pair<std::string, std::string>> out = describe_fields(r.params());
+  const pb::Descriptor* set = wire::SetParams::descriptor();
+  for (int i = 0; i < set->field_count(); ++i)
+    if (settable(set->field(i)))
+      if (const pb::FieldDescriptor* f = r.GetDescriptor()->FindFieldByName(set->field(i)->name()))
+        out.emplace_back(f->name(), field_text(r, f));
+  return out;
 }
 
 std::vector<std::pair<std::string, std::string>> describe_fields(const pb::Message& m) {

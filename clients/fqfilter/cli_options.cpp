@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "common/version.h"
+
 namespace fq::cli {
 
 namespace {
@@ -10,8 +12,8 @@ namespace {
 void add_filter_options(CLI::App& app, Options& o, std::string& mode) {
   FilterParams& f = o.params.f;
   const std::string g = "Filter";
-  app.add_option("--mode", mode, "Filter: qf (filtered quadrics, the paper) or bf (bilateral baseline)")
-      ->check(CLI::IsMember({"qf", "bf"}))
+  app.add_option("--mode", mode, "Filter: qf+ (filtered quadrics, then the feature-preserving refinement), qf (the paper exactly) or bf (bilateral baseline)")
+      ->check(CLI::IsMember(method_names<FilterMethod>()))
       ->capture_default_str()
       ->group(g);
   app.add_option("--sigma-s", f.sigma_s, "Spatial extent of the diffusion, in mean edge lengths")
@@ -29,6 +31,32 @@ void add_filter_options(CLI::App& app, Options& o, std::string& mode) {
       ->group(g);
   app.add_flag("--constrained", f.constrained, "Move vertices along the smoothed normal only")->group(g);
   app.add_option("--tikhonov", f.tikhonov, "Pull toward the current position, relative to tr(A)/3; 0 = paper")
+      ->capture_default_str()
+      ->group(g);
+}
+
+void add_refine_options(CLI::App& app, RefineParams& r) {
+  const std::string g = "Refinement (--mode qf+)";
+  app.add_option("--relax-iterations", r.relax_iterations, "Tangential relaxation passes (un-fold triangles)")
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--relax-step", r.relax_step, "Fraction of the way to the 1-ring mean per relaxation pass")
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--feature-ratio", r.feature_ratio,
+                 "Normal-tensor eigenvalues below this times the largest are free to relax along")
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--normal-iterations", r.normal_iterations, "Bilateral face-normal filtering passes")
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--normal-sigma-s", r.normal_sigma_s, "Spatial extent of the normal filter, in mean edge lengths")
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--normal-sigma-r", r.normal_sigma_r, "Range extent of the normal filter (|n_i - n_j|)")
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--vertex-iterations", r.vertex_iterations, "Normal-driven vertex update passes (Sun et al. 2007)")
       ->capture_default_str()
       ->group(g);
 }
@@ -56,10 +84,14 @@ void add_cluster_options(CLI::App& app, Options& o, std::string& method, bool& n
   const std::string g = "Clustering";
   app.add_flag("--cluster", o.params.cluster, "Compute a cluster label per vertex (written with the output)")
       ->group(g);
+  app.add_flag(
+         "--colour-clusters", o.colour_clusters,
+         "Cluster colours replace the input's vertex colours (default: they go to cluster_red/green/blue)")
+      ->group(g);
   app.add_flag("--no-filter", no_filter, "Cluster only: keep the input positions (implies --cluster)")
       ->group(g);
   app.add_option("--cluster-method", method, "quadric (the paper) or euclidean (plain quick shift)")
-      ->check(CLI::IsMember({"quadric", "euclidean"}))
+      ->check(CLI::IsMember(method_names<ClusterMethod>()))
       ->capture_default_str()
       ->group(g);
   app.add_option("--sigma-d", c.sigma_d, "Spatial extent of score and proximity, in mean edge lengths")
@@ -73,10 +105,12 @@ void add_cluster_options(CLI::App& app, Options& o, std::string& method, bool& n
       ->group(g);
 }
 
-void add_run_options(CLI::App& app, Options& o, std::string& engine) {
+void add_run_options(CLI::App& app, Options& o, std::string& engine, std::string& noise_direction) {
   app.add_option("IN", o.input, "Mesh file (.ply .obj .stl .drc) or folder of them")->required();
   app.add_option("OUT", o.output,
-                 "Output file (.ply or .drc), or folder when IN is a folder; none: write nothing");
+                 "Output file (.ply .drc .obj .glb), or folder when IN is a folder; none: write nothing");
+  app.add_flag("--in-place", o.in_place,
+               "Allow OUT to be IN: the input is replaced once the result is written");
   app.add_option("--engine", engine, "auto (CUDA when a GPU is present), cpu or cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
       ->capture_default_str();
@@ -86,7 +120,13 @@ void add_run_options(CLI::App& app, Options& o, std::string& engine) {
   app.add_option("--noise", o.noise_sigma,
                  "Add Gaussian noise of this std (mean edge lengths) before filtering")
       ->check(CLI::Range(0.0, 100.0));
+  app.add_option("--noise-direction", noise_direction,
+                 "iso: every coordinate; normal: along the clean mesh's vertex normals")
+      ->check(CLI::IsMember({"iso", "normal"}))
+      ->capture_default_str();
   app.add_option("--seed", o.seed, "Seed of --noise")->capture_default_str();
+  app.add_option("--noisy-out", o.noisy_out,
+                 "Also write the noisy input mesh to this file (to run other smoothers on the same input)");
   app.add_option("--reference", o.reference,
                  "Clean mesh (same vertices and faces) to measure errors against");
   app.add_option("--repeat", o.repeat, "Run the engine N times per mesh; timings are medians")
@@ -98,46 +138,44 @@ void add_run_options(CLI::App& app, Options& o, std::string& engine) {
   app.add_flag("--json", o.json, "One JSON object per mesh on stdout (see docs/FQFILTER.md)");
 }
 
-/// Checks that need several options together; empty when consistent.
-std::string cross_check(const Options& o) {
-  if (Status s = validate(o.params); !s.ok()) return s.message();
-  return {};
-}
+/// fq::validate of the parsed parameters (CLI11 checks each option alone: not NaN, theta
+/// in (0, 1], nothing to compute); the message, empty when valid.
+std::string check_params(const Options& o) { return validate(o.params).message(); }
 
 }  // namespace
-
-const char* filter_method_name(FilterMethod m) { return m == FilterMethod::kQuadric ? "qf" : "bf"; }
-const char* cluster_method_name(ClusterMethod m) {
-  return m == ClusterMethod::kQuadric ? "quadric" : "euclidean";
-}
-
 
 ParseOutcome parse_options(int argc, char** argv, Options& o) {
   CLI::App app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
                "fqfilter"};
-  std::string mode = "qf", method = "quadric", engine = "auto", geometry = "auto";
+  app.set_version_flag("--version", fq::version_line("fqfilter"));
+  std::string mode = method_name(o.params.f.method), method = method_name(o.params.c.method), engine = "auto",
+              geometry = "auto";
   bool no_filter = false;
-  add_run_options(app, o, engine);
+  std::string noise_direction = "iso";
+  add_run_options(app, o, engine, noise_direction);
   add_filter_options(app, o, mode);
+  add_refine_options(app, o.params.f.refine);
   add_cluster_options(app, o, method, no_filter);
   add_cluster_control_options(app, o, geometry);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
+  } catch (const CLI::Success& e) {  // --help, --version
     return {false, app.exit(e)};
   } catch (const CLI::ParseError& e) {
     std::cerr << "fqfilter: error: " << e.what() << " (see fqfilter --help)\n";
     return {false, 2};
   }
-  o.params.f.method = mode == "qf" ? FilterMethod::kQuadric : FilterMethod::kBilateral;
-  o.params.c.method = method == "quadric" ? ClusterMethod::kQuadric : ClusterMethod::kEuclidean;
+  // CLI::IsMember has accepted only known names.
+  o.params.f.method = *parse_method<FilterMethod>(mode);
+  o.params.c.method = *parse_method<ClusterMethod>(method);
   parse_cluster_geometry(geometry, o.params.c.geometry);  // checked by IsMember above
   parse_engine_kind(engine, o.engine.kind);
+  o.noise_along_normal = noise_direction == "normal";
   if (no_filter) {
     o.params.filter = false;
     o.params.cluster = true;
   }
-  if (const std::string why = cross_check(o); !why.empty()) {
+  if (const std::string why = check_params(o); !why.empty()) {
     std::cerr << "fqfilter: error: " << why << "\n";
     return {false, 2};
   }

@@ -11,17 +11,20 @@ namespace fq::cli {
 
 struct Options {
   std::string input;   ///< a mesh file or a folder of them
-  std::string output;  ///< file (.ply/.drc) or folder; empty: write nothing
+  std::string output;  ///< file (.ply/.drc/.obj/.glb) or folder; empty: write nothing
   EngineOptions engine;
   Params params;           ///< defaults from fq::Params
   double noise_sigma = 0;  ///< in mean edge lengths; 0: no noise
+  bool noise_along_normal = false;  ///< --noise-direction normal
+  std::string noisy_out;            ///< also write the noisy input here (.ply/.drc); empty: don't
   uint64_t seed = 1;
   std::string reference;  ///< clean mesh for the metrics; empty: the input when noise is added
   int repeat = 1;         ///< engine runs per frame; timings are medians
   int drc_bits = 16;      ///< position quantization of .drc outputs
   bool json = false;
+  bool colour_clusters = false;  ///< cluster colours replace the input's vertex colours
+  bool in_place = false;         ///< OUT may be IN itself (replaced once the result is written)
 
-  bool has_metrics() const { return noise_sigma > 0 || !reference.empty(); }
 };
 
 /// Outcome of parsing: run, or exit with `exit_code` (help printed, or an error line).
@@ -33,9 +36,5 @@ struct ParseOutcome {
 /// Parses argv into `out`. Prints help to stdout, or one "fqfilter: error: ..." line to
 /// stderr (exit code 2) for a bad option, a bad value or inconsistent options.
 ParseOutcome parse_options(int argc, char** argv, Options& out);
-
-/// "qf" / "bf", "quadric" / "euclidean": the names used on the command line and in JSON.
-const char* filter_method_name(FilterMethod m);
-const char* cluster_method_name(ClusterMethod m);
 
 }  // namespace fq::cli

@@ -1,13 +1,18 @@
 #include "clients/fqfilter/file_job.h"
 
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <iostream>
 #include <vector>
 
-#include "kernels/cpu_engine.h"
-#include "proto/mesh_io.h"
+#include "clients/fqfilter/progress.h"
 #include "eval/error_metrics.h"
 #include "eval/noise.h"
 #include "eval/sharp_edge_recall.h"
 #include "eval/surface_distance.h"
+#include "kernels/cpu_engine.h"
+#include "proto/mesh_io.h"
 
 namespace fq::cli {
 
@@ -24,7 +29,7 @@ MeshError measure(const MeshView& reference, const float* positions) {
 Status load_reference(const Options& o, const std::string& input, Mesh& clean, std::string& reference_name) {
   reference_name.clear();
   if (!o.reference.empty()) {
-    if (Status s = io::read_mesh(o.reference, clean); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(io::read_mesh(o.reference, clean));
     reference_name = o.reference;
   } else if (o.noise_sigma > 0) {
     reference_name = input + " (before noise)";
@@ -33,10 +38,11 @@ Status load_reference(const Options& o, const std::string& input, Mesh& clean, s
 }
 
 Status run_engine(const Options& o, Engine& engine, const MeshView& view, FrameResult& result,
-                  FileReport& report) {
+                  FileReport& report, Progress& progress) {
   std::vector<std::vector<PassTiming>> runs;
   for (int i = 0; i < o.repeat; ++i) {
-    if (Status s = engine.process(view, o.params, result); !s.ok()) return s;
+    progress.watch(engine, i + 1, o.repeat);
+    FQ_RETURN_IF_ERROR(engine.process(view, o.params, result));
     runs.push_back(result.timings);
   }
   summarize_timings(runs, report);
@@ -55,6 +61,7 @@ void describe(const std::string& input, const Options& o, const Engine& engine, 
   if (const auto* cpu = dynamic_cast<const CpuEngine*>(&engine)) r.threads = cpu->threads();
   r.params = o.params;
   r.noise_sigma = o.noise_sigma;
+  r.noise_along_normal = o.noise_along_normal;
   r.seed = o.seed;
   r.repeat = o.repeat;
 }
@@ -64,19 +71,74 @@ Status fail(FileReport& r, Status s) {
   return s;
 }
 
+void warn(FileReport& r, const std::string& what) {
+  r.warnings.push_back(what);
+  std::cerr << "fqfilter: warning: '" << r.file << "': " << what << "\n";
+}
+
+/// Writes through a temporary file beside the real one, renamed over it once complete, so
+/// a failed write never leaves the input half-replaced. Through a symbolic link the
+/// link's target is replaced.
+Status write_in_place(const std::string& output, const MeshView& mesh, const uint32_t* labels,
+                      uint32_t num_clusters, const io::WriteOptions& options,
+                      std::vector<std::string>& dropped) {
+  namespace fs = std::filesystem;
+  const fs::path target = fs::canonical(output);
+  fs::path temp = target;
+  temp.replace_filename(target.stem().concat(".fq-tmp").concat(target.extension().string()));
+  Status s = io::write_mesh(temp.string(), mesh, labels, num_clusters, options, &dropped);
+  std::error_code ec;
+  if (s.ok()) fs::rename(temp, target, ec);
+  if (s.ok() && ec) s = invalid_argument("cannot replace '" + output + "': " + ec.message());
+  if (!s.ok()) fs::remove(temp, ec);
+  return s;
+}
+
+Status write_output(const Options& o, const std::string& output, const MeshView& mesh,
+                    const FrameResult& result, io::MeshAttributes& attributes, FileReport& r) {
+  if (is_same_file(r.file, output) && !o.in_place)
+    return invalid_argument("OUT '" + output + "' is the input file; pass --in-place to replace it");
+  MeshView out = mesh;
+  out.positions = result.positions.data();
+  // Normals of a moved surface must follow it.
+  if (o.params.filter) io::recompute_normals(out, attributes);
+  io::WriteOptions options;
+  options.drc_position_bits = o.drc_bits;
+  options.attributes = &attributes;
+  options.colour_clusters = o.colour_clusters;
+  const uint32_t* labels = o.params.cluster ? result.labels.data() : nullptr;
+  std::vector<std::string> dropped;
+  const Status s = o.in_place && is_same_file(r.file, output)
+                       ? write_in_place(output, out, labels, result.num_clusters, options, dropped)
+                       : io::write_mesh(output, out, labels, result.num_clusters, options, &dropped);
+  for (const std::string& d : dropped) warn(r, "not kept in '" + output + "': " + d);
+  return s;
+}
+
 }  // namespace
 
 Status run_file_job(const std::string& input, const std::string& output, const Options& o, Engine& engine,
                     FileReport& r) {
   describe(input, o, engine, r);
+  Progress progress(!o.json, input);
+  progress.show("reading");
   Mesh mesh, clean;
-  if (Status s = io::read_mesh(input, mesh); !s.ok()) return fail(r, s);
+  io::MeshAttributes attributes;
+  if (Status s = io::read_mesh(input, mesh, output.empty() ? nullptr : &attributes); !s.ok())
+    return fail(r, s);
+  for (const std::string& d : attributes.dropped) warn(r, "cannot keep " + d);
   r.vertices = mesh.num_vertices();
   r.triangles = mesh.num_triangles();
   if (Status s = load_reference(o, input, clean, r.reference); !s.ok()) return fail(r, s);
   if (o.noise_sigma > 0) {
     if (o.reference.empty()) clean = mesh;
-    add_gaussian_noise(mesh, o.noise_sigma, o.seed);
+    if (o.noise_along_normal)
+      add_normal_noise(mesh, o.noise_sigma, o.seed);
+    else
+      add_gaussian_noise(mesh, o.noise_sigma, o.seed);
+    if (!o.noisy_out.empty()) {
+      if (Status s = io::write_mesh(o.noisy_out, mesh.view(), nullptr, 0, 0); !s.ok()) return fail(r, s);
+    }
   }
   if (!r.reference.empty()) {
     if (Status s = check_same_connectivity(clean.view(), mesh.view()); !s.ok())
@@ -84,7 +146,7 @@ Status run_file_job(const std::string& input, const std::string& output, const O
           r, invalid_input("reference '" + o.reference + "' does not match '" + input + "': " + s.message()));
   }
   FrameResult result;
-  if (Status s = run_engine(o, engine, mesh.view(), result, r); !s.ok())
+  if (Status s = run_engine(o, engine, mesh.view(), result, r, progress); !s.ok())
     return fail(r, Status(s.code(), "'" + input + "': " + status_code_name(s.code()) + ": " + s.message()));
   if (!r.reference.empty()) {
     r.input_error = measure(clean.view(), mesh.positions.data());
@@ -92,14 +154,20 @@ Status run_file_job(const std::string& input, const std::string& output, const O
     if (o.params.cluster) r.sharp_edges = sharp_edge_recall(clean.view(), result.labels.data());
   }
   if (!output.empty()) {
-    MeshView out = mesh.view();
-    out.positions = result.positions.data();
-    const uint32_t* labels = o.params.cluster ? result.labels.data() : nullptr;
-    if (Status s = io::write_mesh(output, out, labels, result.num_clusters, o.drc_bits); !s.ok())
-      return fail(r, s);
+    progress.show("writing " + output);
+    if (Status s = write_output(o, output, mesh.view(), result, attributes, r); !s.ok()) return fail(r, s);
     r.output = output;
   }
   return {};
+}
+
+bool is_same_file(const std::string& a, const std::string& b) {
+  // stat() follows symbolic links; equal device and inode is the same file, whatever the
+  // path (symbolic links, hard links, "./", "..").
+  struct stat sa {
+  }, sb{};
+  return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev &&
+         sa.st_ino == sb.st_ino;
 }
 
 }  // namespace fq::cli

@@ -11,10 +11,18 @@
 namespace fq::cli {
 
 /// Processes `input` with `engine` and writes the result to `output` (nothing when
-/// empty): filtered positions (or the input's when clustering only) and, with
-/// clustering, the labels. Fills `report`; on failure also report.error, and the
-/// returned status says what went wrong in one line naming the file.
+/// empty): filtered positions (or the input's when clustering only), with clustering the
+/// labels, and what the input holds besides (a PLY's colours, normals recomputed from the
+/// filtered surface, texture coordinates, scalars, face properties) as far as the output
+/// format can hold it. What is lost is warned about on stderr and listed in
+/// report.warnings. Refuses to write over the input unless options.in_place. Fills
+/// `report`; on failure also report.error, and the returned status says what went wrong in
+/// one line naming the file.
 Status run_file_job(const std::string& input, const std::string& output, const Options& options,
                     Engine& engine, FileReport& report);
+
+/// True when both paths exist and name the same file (same device and inode, so also
+/// through symbolic and hard links).
+bool is_same_file(const std::string& a, const std::string& b);
 
 }  // namespace fq::cli

@@ -9,6 +9,7 @@
 #include <ostream>
 
 #include "clients/fqfilter/cli_options.h"
+#include "common/sample_stats.h"
 
 namespace fq::cli {
 
@@ -22,31 +23,35 @@ double as_typed(float v) {
   return std::strtod(std::string(buf, end).c_str(), nullptr);
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+nlohmann::json refine_json(const RefineParams& r) {
+  return {{"relax_iterations", r.relax_iterations},
+          {"relax_step", as_typed(r.relax_step)},
+          {"feature_ratio", as_typed(r.feature_ratio)},
+          {"normal_iterations", r.normal_iterations},
+          {"normal_sigma_s", as_typed(r.normal_sigma_s)},
+          {"normal_sigma_r", as_typed(r.normal_sigma_r)},
+          {"vertex_iterations", r.vertex_iterations}};
 }
 
 nlohmann::json params_json(const Params& p) {
   const FilterParams& f = p.f;
   return {{"filter", p.filter},
           {"cluster", p.cluster},
-          {"mode", filter_method_name(f.method)},
+          {"mode", method_name(f.method)},
           {"sigma_s", as_typed(f.sigma_s)},
           {"sigma_r", as_typed(f.sigma_r)},
           {"sigma_b", as_typed(f.effective_sigma_b())},
           {"sigma_n", as_typed(f.effective_sigma_n())},
           {"constrained", f.constrained},
           {"tikhonov", as_typed(f.tikhonov)},
-          {"cluster_method", cluster_method_name(p.c.method)},
+          {"cluster_method", method_name(p.c.method)},
           {"sigma_d", as_typed(p.c.sigma_d)},
           {"sigma_q", as_typed(p.c.sigma_q)},
           {"theta", as_typed(p.c.theta)},
           {"target_clusters", p.c.target_clusters},
           {"cluster_geometry", cluster_geometry_name(p.c.geometry)},
-          {"min_cluster_size", p.c.min_cluster_size}};
+          {"min_cluster_size", p.c.min_cluster_size},
+          {"refine", f.method == FilterMethod::kQuadricRefined ? refine_json(f.refine) : nullptr}};
 }
 
 nlohmann::json error_json(const std::optional<MeshError>& e) {
@@ -114,12 +119,15 @@ nlohmann::json to_json(const FileReport& r) {
             {"triangles", r.triangles},
             {"mean_edge", r.mean_edge},
             {"params", params_json(r.params)},
-            {"noise", r.noise_sigma > 0 ? nlohmann::json{{"sigma", r.noise_sigma}, {"seed", r.seed}}
+            {"noise", r.noise_sigma > 0 ? nlohmann::json{{"sigma", r.noise_sigma},
+                                                                      {"direction", r.noise_along_normal ? "normal" : "iso"},
+                                                                      {"seed", r.seed}}
                                         : nlohmann::json(nullptr)},
             {"repeat", r.repeat},
             {"timings_ms", {{"passes", passes}, {"total", r.total_ms}}},
             {"clusters", r.clusters ? nlohmann::json(*r.clusters) : nlohmann::json(nullptr)},
-            {"theta_used", r.theta_used ? nlohmann::json(as_typed(*r.theta_used)) : nlohmann::json(nullptr)}});
+            {"theta_used", r.theta_used ? nlohmann::json(as_typed(*r.theta_used)) : nlohmann::json(nullptr)},
+            {"warnings", r.warnings}});
   if (r.reference.empty()) {
     j["metrics"] = nullptr;
   } else {

@@ -33,6 +33,7 @@ struct FileReport {
   double mean_edge = 0.0;  ///< of the engine's input, in input units
   Params params;
   double noise_sigma = 0.0;
+  bool noise_along_normal = false;
   uint64_t seed = 0;
   int repeat = 1;
   std::vector<PassTiming> passes;  ///< median ms of each pass over the repeats
@@ -43,6 +44,7 @@ struct FileReport {
   std::string reference;                  ///< what the metrics compare to; empty: no metrics
   std::optional<MeshError> input_error;   ///< engine input (noisy) vs reference
   std::optional<MeshError> output_error;  ///< result vs reference (when filtering)
+  std::vector<std::string> warnings;      ///< what the output could not keep of the input
   std::string error;                      ///< non-empty when the file failed
 };
 

@@ -1,6 +1,7 @@
 #include "clients/fqfilter/folder_mode.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <map>
 
@@ -69,7 +70,7 @@ int run_folder(const Options& o, Engine& engine) {
     FileReport report;
     Status s;
     if (!output.empty() && claimed.count(out_name)) {
-      s = invalid_argument("output '" + output + "' would also be written by " + claimed[out_name]);
+      s = io_error("output '" + output + "' would also be written by " + claimed[out_name]);
       report.file = files[i].string();
       report.error = s.message();
     } else {
@@ -78,7 +79,7 @@ int run_folder(const Options& o, Engine& engine) {
     }
     std::cerr << "[" << (i + 1) << "/" << files.size() << "] " << name << ": ";
     if (s.ok()) {
-      std::cerr << report.vertices << " V, " << static_cast<long>(report.total_ms + 0.5) << " ms\n";
+      std::cerr << report.vertices << " V, " << std::lround(report.total_ms) << " ms\n";
     } else {
       std::cerr << "FAILED: " << s.message() << "\n";
       ++failed;

@@ -4,9 +4,10 @@
 #include <iostream>
 
 #include "clients/fqfilter/cli_options.h"
-#include "kernels/engine.h"
 #include "clients/fqfilter/file_job.h"
 #include "clients/fqfilter/folder_mode.h"
+#include "common/tool_main.h"
+#include "kernels/engine.h"
 #include "proto/mesh_io.h"
 
 namespace {
@@ -24,9 +25,12 @@ std::string single_output_path(const Options& o) {
 
 int run_single(const Options& o, fq::Engine& engine) {
   const std::string output = single_output_path(o);
-  const std::string ext = fq::io::lower_extension(output);
-  if (!output.empty() && ext != ".ply" && ext != ".drc") {
-    std::cerr << "fqfilter: error: OUT '" << output << "' must end in .ply or .drc\n";
+  if (!output.empty() && !fq::io::is_writable_mesh_file(output)) {
+    std::cerr << "fqfilter: error: OUT '" << output << "' must end in .ply, .drc, .obj or .glb\n";
+    return 2;
+  }
+  if (!output.empty() && !o.in_place && fq::cli::is_same_file(o.input, output)) {
+    std::cerr << "fqfilter: error: OUT '" << output << "' is the input file; pass --in-place to replace it\n";
     return 2;
   }
   fq::cli::FileReport report;
@@ -54,23 +58,14 @@ int run(int argc, char** argv) {
     std::cerr << "fqfilter: error: --reference needs a single input file, not a folder\n";
     return 2;
   }
-  fq::Status why;
-  const std::unique_ptr<fq::Engine> engine = fq::make_engine(o.engine, &why);
-  if (!engine) {
-    std::cerr << "fqfilter: error: " << why.message() << "\n";
+  const fq::StatusOr<std::unique_ptr<fq::Engine>> engine = fq::make_engine(o.engine);
+  if (!engine.ok()) {
+    std::cerr << "fqfilter: error: " << engine.status().message() << "\n";
     return 1;
   }
-  return folder ? fq::cli::run_folder(o, *engine) : run_single(o, *engine);
+  return folder ? fq::cli::run_folder(o, **engine) : run_single(o, **engine);
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    // Faults (out of memory, a filesystem error) end the run with one line, not a trace.
-    std::cerr << "fqfilter: error: " << e.what() << "\n";
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return fq::tool_main("fqfilter", run, argc, argv); }

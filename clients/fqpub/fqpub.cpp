@@ -12,6 +12,8 @@
 #include "clients/common/frame_sender.h"
 #include "clients/common/mesh_source.h"
 #include "clients/common/override_options.h"
+#include "common/tool_main.h"
+#include "common/version.h"
 
 namespace {
 
@@ -61,12 +63,7 @@ Totals publish(const Args& a, const fq::client::MeshSource& source, zmq::socket_
       if (a.noise <= 0) slot = parts;
     } else {
       parts = slot;
-      fq::wire::FrameHeader h;
-      h.ParseFromString(parts[1]);
-      h.set_sequence(i);
-      h.set_capture_time_ns(fq::client::now_ns());
-      h.set_send_time_ns(fq::client::now_ns());
-      parts[1] = h.SerializeAsString();
+      fq::client::restamp_frame(parts, i);
     }
     t.encode_ms += std::chrono::duration<double, std::milli>(clock::now() - t0).count();
     fq::client::send_parts(push, parts);
@@ -111,10 +108,9 @@ void add_options(CLI::App& app, Args& a) {
   fq::client::add_override_options(app, a.overrides);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"fqpub: publish mesh frames to fqd (a file, or a folder as a looped sequence)"};
+  app.set_version_flag("--version", fq::version_line("fqpub"));
   Args a;
   add_options(app, a);
   CLI11_PARSE(app, argc, argv);
@@ -169,3 +165,7 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return fq::tool_main("fqpub", run, argc, argv); }

@@ -23,11 +23,10 @@ Status Collector::connect(zmq::context_t& ctx, const std::string& publish, const
   spec.compute = wire::FILTER;
   for (uint64_t attempt = 0; attempt < 300; ++attempt) {
     std::vector<std::string> parts;
-    if (Status s = client::build_frame(probe.view(), spec, attempt, parts); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(client::build_frame(probe.view(), spec, attempt, parts));
     client::send_parts(push, parts);
     client::ReceivedResult r;
-    Status why;
-    while (client::receive_result(sub_, r, why))
+    while (!client::timed_out(client::receive_result(sub_, r)))
       if (r.topic == "__probe") return {};
   }
   return {StatusCode::kUnavailable, "no result from fqd at " + publish + " within 30 s"};
@@ -36,8 +35,9 @@ Status Collector::connect(zmq::context_t& ctx, const std::string& publish, const
 void Collector::run(const std::atomic<bool>& stop, int64_t measure_from_ns, bool decode) {
   while (!stop) {
     client::ReceivedResult r;
-    Status why;
-    if (!client::receive_result(sub_, r, why) || r.topic == "__probe") continue;
+    const StatusOr<bool> got = client::receive_result(sub_, r);
+    if (client::timed_out(got) || r.topic == "__probe") continue;
+    Status why = got.status();
     if (why.ok() && decode) why = client::decode_result(r, 1);
     if (why.ok() && decode) why = client::check_result(r);
     std::lock_guard<std::mutex> lock(mutex_);

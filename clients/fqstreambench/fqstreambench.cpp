@@ -12,14 +12,16 @@
 #include <filesystem>
 #include <thread>
 
-#include "clients/fqstreambench/collector.h"
 #include "clients/common/control_client.h"
+#include "clients/common/override_options.h"
+#include "clients/fqstreambench/collector.h"
+#include "clients/fqstreambench/producer.h"
+#include "clients/fqstreambench/report.h"
+#include "common/tool_main.h"
+#include "common/version.h"
 #include "daemon/daemon.h"
 #include "proto/header_codec.h"
 #include "proto/mesh_io.h"
-#include "clients/common/override_options.h"
-#include "clients/fqstreambench/producer.h"
-#include "clients/fqstreambench/report.h"
 
 namespace {
 
@@ -51,7 +53,7 @@ fq::Status start_daemon(const Args& a, std::unique_ptr<fq::daemon::Daemon>& d, E
                         std::string& engine) {
   fq::daemon::DaemonConfig c;
   if (!a.config.empty()) {
-    if (fq::Status s = fq::daemon::load_config(a.config, c); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(fq::daemon::load_config(a.config, c));
   } else {
     if (!fq::parse_engine_kind(a.engine, c.engine.kind))
       return fq::invalid_argument("--engine must be auto, cuda or cpu");
@@ -64,13 +66,11 @@ fq::Status start_daemon(const Args& a, std::unique_ptr<fq::daemon::Daemon>& d, E
   c.http.listen.clear();  // no HTTP listener or stats lines while measuring
   c.stats.interval_s = 0;
   if (a.budget_ms > 0) c.defaults.budget_ms = a.budget_ms;
-  for (fq::daemon::StreamSettings* s : {&c.defaults}) {
-    s->output.encode_speed = s->output.decode_speed = a.encode_speed;
-    if (!a.result_form.empty() && !fq::daemon::parse_result_form(a.result_form, s->output.form))
-      return fq::invalid_argument("--result-form must be positions or mesh");
-  }
+  c.defaults.output.encode_speed = c.defaults.output.decode_speed = a.encode_speed;
+  if (!a.result_form.empty() && !fq::daemon::parse_result_form(a.result_form, c.defaults.output.form))
+    return fq::invalid_argument("--result-form must be positions or mesh");
   d = std::make_unique<fq::daemon::Daemon>(c);
-  if (fq::Status s = d->start(); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(d->start());
   ep = {d->endpoints().ingest, d->endpoints().publish, d->endpoints().control};
   for (const std::string& n : d->engine_names()) engine += (engine.empty() ? "" : "+") + n;
   return {};
@@ -125,13 +125,13 @@ bool settled(const fq::bench::RunInfo& run, const std::map<std::string, fq::wire
 fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep, fq::bench::RunInfo& run) {
   zmq::context_t ctx(1);
   fq::bench::Collector col;
-  if (fq::Status s = col.connect(ctx, ep.publish, ep.ingest); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(col.connect(ctx, ep.publish, ep.ingest));
   std::vector<fq::bench::Producer> producers(static_cast<size_t>(a.streams));
   for (int i = 0; i < a.streams; ++i) {
     fq::bench::ProducerOptions o = a.producer;
     o.spec.stream_id = a.stream_prefix + std::to_string(i);
     o.seed += static_cast<uint64_t>(i) * 1000;
-    if (fq::Status s = producers[size_t(i)].prepare(mesh, o); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(producers[size_t(i)].prepare(mesh, o));
   }
   run.before = counters(ctx, ep.control);
   std::atomic<bool> stop_sending{false}, stop_collecting{false};
@@ -210,10 +210,9 @@ void add_options(CLI::App& app, Args& a) {
   fq::client::add_override_options(app, a.overrides);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"fqstreambench: latency and throughput of fqd at a sustained frame rate"};
+  app.set_version_flag("--version", fq::version_line("fqstreambench"));
   Args a;
   add_options(app, a);
   CLI11_PARSE(app, argc, argv);
@@ -255,3 +254,7 @@ int main(int argc, char** argv) {
                 fq::bench::report_markdown_row(run).c_str());
   return run.overall.results() > 0 && run.overall.bad() == 0 ? 0 : 1;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return fq::tool_main("fqstreambench", run, argc, argv); }

@@ -16,7 +16,7 @@ Status Producer::prepare(const Mesh& mesh, const ProducerOptions& o) {
     Mesh m = mesh;
     if (o.noise > 0) add_gaussian_noise(m, o.noise, o.seed + static_cast<uint64_t>(i));
     std::vector<std::string> parts;
-    if (Status s = client::build_frame(m.view(), o.spec, 0, parts); !s.ok()) return s;
+    FQ_RETURN_IF_ERROR(client::build_frame(m.view(), o.spec, 0, parts));
     frames_.push_back(std::move(parts));
   }
   encode_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / n;
@@ -32,18 +32,12 @@ Producer::Sent Producer::run(zmq::context_t& ctx, const std::string& endpoint, c
   const auto start = clock::now();
   const auto period = std::chrono::duration<double>(1.0 / options_.fps);
   Sent sent;
-  wire::FrameHeader h;
   for (uint64_t i = 0; !stop; ++i) {
     const auto due = start + std::chrono::duration_cast<clock::duration>(period * static_cast<double>(i));
     if (std::chrono::duration<double>(due - start).count() >= options_.seconds) break;
     std::this_thread::sleep_until(due);  // pacing the frame rate
     std::vector<std::string>& parts = frames_[i % frames_.size()];
-    h.ParseFromString(parts[1]);
-    h.set_sequence(i);
-    h.set_capture_time_ns(client::now_ns());
-    const int64_t now = client::now_ns();
-    h.set_send_time_ns(now);
-    parts[1] = h.SerializeAsString();
+    const int64_t now = client::restamp_frame(parts, i);
     client::send_parts(push, parts);
     ++sent.all;
     if (now >= measure_from_ns) ++sent.measured;

@@ -11,10 +11,12 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "proto/mesh_io.h"
 #include "clients/common/curve_client.h"
 #include "clients/common/result_receiver.h"
 #include "clients/common/stream_stats.h"
+#include "common/tool_main.h"
+#include "common/version.h"
+#include "proto/mesh_io.h"
 
 namespace {
 
@@ -101,12 +103,12 @@ std::string receive_loop(const Args& a, zmq::socket_t& sub, fq::client::StreamSt
       last_line = now;
     }
     fq::client::ReceivedResult r;
-    fq::Status why;
-    if (!fq::client::receive_result(sub, r, why)) continue;
+    const fq::StatusOr<bool> got = fq::client::receive_result(sub, r);
+    if (fq::client::timed_out(got)) continue;
     if (!a.streams.empty() && std::find(a.streams.begin(), a.streams.end(), r.topic) == a.streams.end())
       continue;
     last_result = clock::now();
-    const bool ok = inspect(a, r, why);
+    const bool ok = inspect(a, r, got.status());
     stats.add(r, ok);
     if (ok && r.header.status() != fq::wire::ERROR && a.write_every > 0 && good++ % a.write_every == 0) {
       if (std::string p = write_ply(a, r); !p.empty()) last_ply = p;
@@ -115,10 +117,9 @@ std::string receive_loop(const Args& a, zmq::socket_t& sub, fq::client::StreamSt
   return last_ply;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"fqsub: receive, check and save fqd results"};
+  app.set_version_flag("--version", fq::version_line("fqsub"));
   Args a;
   app.add_option("-e,--endpoint", a.endpoint, "fqd publish endpoint (SUB connects)")->capture_default_str();
   app.add_option("-s,--stream", a.streams, "stream id to subscribe to (repeatable; none = all streams)");
@@ -172,3 +173,7 @@ int main(int argc, char** argv) {
   }
   return stats.results() > 0 && stats.bad() == 0 && stats.errors() == 0 ? 0 : 1;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return fq::tool_main("fqsub", run, argc, argv); }

@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <iostream>
 
+#include "common/tool_main.h"
+#include "common/version.h"
 #include "eval/capture_sequence.h"
 #include "eval/label_persistence.h"
 #include "eval/sharp_edge_recall.h"
@@ -25,11 +27,10 @@ struct Totals {
   int pairs = 0, frames = 0;
 };
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   int to_rings = 2;
   CLI::App app{"fqtrackbench: cluster id persistence over synthetic capture frames"};
+  app.set_version_flag("--version", fq::version_line("fqtrackbench"));
   std::string mesh_path;
   int frames = 10, threads = 0;
   double noise = 0.2, degrees = 0.0;
@@ -58,7 +59,12 @@ int main(int argc, char** argv) {
   fq::EngineOptions eo;
   eo.kind = fq::EngineKind::kCpu;
   eo.threads = threads;
-  auto engine = fq::make_engine(eo);
+  fq::StatusOr<std::unique_ptr<fq::Engine>> made = fq::make_engine(eo);
+  if (!made.ok()) {
+    std::cerr << "fqtrackbench: error: " << made.status().message() << "\n";
+    return 1;
+  }
+  const std::unique_ptr<fq::Engine> engine = std::move(made).value();
   const float cell = float(fq::mean_edge_length(clean.view()));
   fq::TrackingOptions to;
   to.cell = cell;
@@ -108,3 +114,7 @@ int main(int argc, char** argv) {
               t.recall_tracked / t.frames, t.track_ms / t.frames);
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return fq::tool_main("fqtrackbench", run, argc, argv); }

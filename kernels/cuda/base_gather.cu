@@ -6,6 +6,7 @@
 // any valence: a fan of 1e5 triangles on one vertex is sorted by a whole block, where a
 // per-thread insertion sort took O(valence^2).
 #include <algorithm>
+#include <utility>
 #include <cub/device/device_scan.cuh>
 #include <cub/device/device_segmented_sort.cuh>
 
@@ -86,6 +87,8 @@ void base_quadrics(DeviceFrame& f, cudaStream_t s) {
                                                      f.points.data(), f.base.reserve(n), f.base_p.reserve(n),
                                                      f.vnormal.reserve(n));
   FQ_CUDA_CHECK_LAUNCH("gather_base");
+  // Later passes (the "qf+" refinement) read the sorted table as vf_faces.
+  if (faces.Current() != f.vf_faces.data()) std::swap(f.vf_faces, f.vf_slot);
 }
 
 }  // namespace fq::cuda

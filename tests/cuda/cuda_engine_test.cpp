@@ -27,11 +27,11 @@ TEST(CudaAvailability, EngineIsNamedOrUnavailableWithAReason) {
     EXPECT_FALSE(why.message().empty());
     // auto falls back to the CPU engine; an explicit request reports the reason.
     auto e = make_engine({EngineKind::kAuto, 1, 0, {}});
-    ASSERT_TRUE(e);
-    EXPECT_EQ(e->name(), "cpu");
-    Status s;
-    EXPECT_FALSE(make_engine({EngineKind::kCuda, 1, 0, {}}, &s));
-    EXPECT_EQ(s.code(), StatusCode::kUnavailable);
+    ASSERT_TRUE(e.ok());
+    EXPECT_EQ((*e)->name(), "cpu");
+    auto cuda = make_engine({EngineKind::kCuda, 1, 0, {}});
+    EXPECT_FALSE(cuda.ok());
+    EXPECT_EQ(cuda.status().code(), StatusCode::kUnavailable);
   }
 }
 

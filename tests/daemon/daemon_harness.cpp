@@ -71,8 +71,7 @@ void DaemonHarness::wait_for_subscription() {
   for (int attempt = 0; attempt < 600; ++attempt) {
     send(probe, spec, static_cast<uint64_t>(attempt));
     client::ReceivedResult r;
-    Status why;
-    while (client::receive_result(sub_, r, why)) {
+    while (!client::timed_out(client::receive_result(sub_, r))) {
       if (r.topic == "__probe") {
         // Later probe results may still come; receive() skips other streams.
         sub_.set(zmq::sockopt::rcvtimeo, 60'000);
@@ -99,13 +98,13 @@ client::ReceivedResult DaemonHarness::receive(const std::string& stream) {
     it->second.pop_front();
     return r;
   }
-  Status why;
   for (;;) {
-    if (!client::receive_result(sub_, r, why)) {
+    const StatusOr<bool> got = client::receive_result(sub_, r);
+    if (client::timed_out(got)) {
       ADD_FAILURE() << "no result on stream '" << stream << "' within 60 s";
       return r;
     }
-    EXPECT_TRUE(why.ok()) << why.message();
+    EXPECT_TRUE(got.ok()) << got.status().message();
     if (r.topic == stream) return r;
     if (r.topic != "__probe") pending_[r.topic].push_back(std::move(r));
   }

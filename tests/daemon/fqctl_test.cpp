@@ -44,13 +44,22 @@ TEST(Fqctl, InspectsAndSteersARunningFqd) {
   EXPECT_EQ(streams.status, 0) << streams.output;
   EXPECT_EQ(streams.output, "cam0\n");
 
-  const ToolRun set = fqctl(control, {"set", "cam0", "sigma_s=3.5", "mode=BF", "compute=filter"});
+  const ToolRun set = fqctl(control, {"set", "cam0", "sigma_s=3.5", "mode=BF", "compute=filter", "result_form=mesh"});
   EXPECT_EQ(set.status, 0) << set.output;
   const ToolRun params = fqctl(control, {"params", "cam0"});
   EXPECT_EQ(params.status, 0) << params.output;
   EXPECT_NE(params.output.find("sigma_s = 3.5\n"), std::string::npos) << params.output;
   EXPECT_NE(params.output.find("mode = bf\n"), std::string::npos) << params.output;
   EXPECT_NE(params.output.find("compute = filter\n"), std::string::npos) << params.output;
+  EXPECT_NE(params.output.find("result_form = mesh\n"), std::string::npos) << params.output;
+  // POSITIONS is enum value 0 on the wire, yet a real choice (unlike COMPUTE_DEFAULT).
+  const ToolRun back = fqctl(control, {"set", "cam0", "result_form=positions"});
+  EXPECT_EQ(back.status, 0) << back.output;
+  EXPECT_NE(back.output.find("result_form = positions\n"), std::string::npos) << back.output;
+  const ToolRun no_default = fqctl(control, {"set", "cam0", "compute=compute_default"});
+  EXPECT_EQ(no_default.status, 2);
+  EXPECT_NE(no_default.output.find("compute must be one of filter, cluster, filter_and_cluster"), std::string::npos)
+      << no_default.output;
 
   // fqd refuses an invalid value (nothing changes); fqctl refuses an unknown key itself.
   const ToolRun invalid = fqctl(control, {"set", "cam0", "sigma_s=-1"});

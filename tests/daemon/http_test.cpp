@@ -1,12 +1,17 @@
 // fqd's HTTP listener against fqd as a child process fed by fqpub: /metrics parsed by
 // prometheus_client's text parser agrees with `fqctl counters --json`, /healthz, /streams,
-// /streams/ID/latest (real Draco chunks), and the viewer's install hint when web_root is empty.
+// /streams/ID/latest (real Draco chunks, faces and labels), and the viewer's install hint when web_root is empty.
 #include <gtest/gtest.h>
 #include <httplib.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstring>
+#include <optional>
 #include <thread>
 
+#include "proto/frame_codec.h"
+#include "proto/ply_reader.h"
 #include "tests/daemon/fqd_process.h"
 
 namespace fq::test {
@@ -24,6 +29,23 @@ nlohmann::json fqctl_counters(const FqdProcess& fqd) {
   const ToolRun r = run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "counters", "--json"});
   EXPECT_EQ(r.status, 0) << r.output;
   return nlohmann::json::parse(r.output, nullptr, false);
+}
+
+// The Draco chunks of a /streams/ID/latest body, after its first `offset` bytes (faces and
+// labels), split by X-Fq-Chunk-Sizes; empty when the sizes do not add up to the body.
+std::vector<std::string_view> chunks_of(const httplib::Response& r, size_t at) {
+  std::vector<std::string_view> chunks;
+  const std::string sizes = r.get_header_value("X-Fq-Chunk-Sizes");
+  for (size_t s = 0; s < sizes.size();) {
+    const size_t comma = sizes.find(',', s);
+    const size_t n = std::stoul(sizes.substr(s, comma - s));
+    if (at + n > r.body.size()) return {};
+    chunks.emplace_back(r.body.data() + at, n);
+    at += n;
+    s = comma == std::string::npos ? sizes.size() : comma + 1;
+  }
+  if (at != r.body.size()) return {};
+  return chunks;
 }
 
 // Waits until every one of `sent` frames of `stream` is accounted for.
@@ -104,21 +126,66 @@ TEST(Http, HealthLatestResultAndViewerHint) {
   pub.join();
   ASSERT_TRUE(latest);
   ASSERT_EQ(latest->status, 200);
-  size_t total = 0;
-  std::string sizes = latest->get_header_value("X-Fq-Chunk-Sizes");
-  for (size_t at = 0; at < sizes.size();) {
-    const size_t comma = sizes.find(',', at);
-    total += std::stoul(sizes.substr(at, comma - at));
-    at = comma == std::string::npos ? sizes.size() : comma + 1;
-  }
-  EXPECT_EQ(total, latest->body.size());
-  EXPECT_EQ(latest->body.substr(0, 5), "DRACO");  // every chunk is a Draco mesh
-  EXPECT_EQ(latest->get_header_value("X-Fq-Vertex-Count"), "6475");  // data/fandisk.ply
+  // The default POSITIONS form: [faces][labels][point-cloud chunks], the faces being the
+  // input frame's and the labels the header's, one per vertex.
+  Mesh input;
+  ASSERT_TRUE(io::read_ply(std::string(FQ_SOURCE_DIR) + "/data/fandisk.ply", input).ok());
+  EXPECT_EQ(latest->get_header_value("X-Fq-Form"), "positions");
+  EXPECT_EQ(latest->get_header_value("X-Fq-Vertex-Count"), std::to_string(input.num_vertices()));
   EXPECT_GT(std::stoi(latest->get_header_value("X-Fq-Cluster-Count")), 0);
+  const size_t face_bytes = std::stoul(latest->get_header_value("X-Fq-Faces-Bytes"));
+  const size_t label_bytes = std::stoul(latest->get_header_value("X-Fq-Labels-Bytes"));
+  EXPECT_EQ(face_bytes, input.triangles.size() * 4);
+  EXPECT_EQ(label_bytes, input.num_vertices() * 4u);
+  ASSERT_GE(latest->body.size(), face_bytes + label_bytes);
+  std::vector<uint32_t> words((face_bytes + label_bytes) / 4);
+  std::memcpy(words.data(), latest->body.data(), face_bytes + label_bytes);
+  EXPECT_LT(*std::max_element(words.begin(), words.begin() + face_bytes / 4), input.num_vertices());
+  const uint32_t clusters = std::stoul(latest->get_header_value("X-Fq-Cluster-Count"));
+  EXPECT_LT(*std::max_element(words.begin() + face_bytes / 4, words.end()), clusters);
+  const std::vector<std::string_view> chunks = chunks_of(*latest, face_bytes + label_bytes);
+  EXPECT_FALSE(chunks.empty());
+  std::vector<float> positions;
+  EXPECT_TRUE(wire::decode_positions(chunks, input.num_vertices(), {}, positions).ok());
   const uint64_t index_seen = std::stoull(latest->get_header_value("X-Fq-Index"));
-  auto newer = c.Get("/streams/cam0/latest?after=" + std::to_string(index_seen) + "&wait_ms=0");
+  // A viewer holding this result's faces (faces=ID) is not sent them again: a stream's faces
+  // do not change from frame to frame.
+  const std::string faces_id = latest->get_header_value("X-Fq-Faces-Id");
+  EXPECT_NE(faces_id, "0");
+  std::thread more([&] { publish_fandisk(fqd.endpoint("ingest"), "cam0", 20, 10); });
+  auto newer = c.Get("/streams/cam0/latest?after=" + std::to_string(index_seen) + "&faces=" + faces_id + "&wait_ms=5000");
+  for (int i = 0; i < 10 && newer && newer->status == 204; ++i)
+    newer = c.Get("/streams/cam0/latest?after=" + std::to_string(index_seen) + "&faces=" + faces_id + "&wait_ms=5000");
+  more.join();
   ASSERT_TRUE(newer);
-  EXPECT_TRUE(newer->status == 204 || std::stoull(newer->get_header_value("X-Fq-Index")) > index_seen);
+  ASSERT_EQ(newer->status, 200);
+  EXPECT_GT(std::stoull(newer->get_header_value("X-Fq-Index")), index_seen);
+  EXPECT_EQ(newer->get_header_value("X-Fq-Faces-Id"), faces_id);
+  EXPECT_EQ(newer->get_header_value("X-Fq-Faces-Bytes"), "0");
+  EXPECT_EQ(newer->get_header_value("X-Fq-Labels-Bytes"), std::to_string(label_bytes));
+
+  // The MESH form: chunked Draco meshes as published, no faces beside them, labels still first.
+  ASSERT_EQ(run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "set", "cam0", "result_form=mesh"}).status, 0);
+  std::thread meshes([&] { publish_fandisk(fqd.endpoint("ingest"), "cam0", 20, 10); });
+  uint64_t after = std::stoull(newer->get_header_value("X-Fq-Index"));
+  std::optional<httplib::Response> mesh;
+  for (int i = 0; i < 40; ++i) {
+    auto r = c.Get("/streams/cam0/latest?after=" + std::to_string(after) + "&wait_ms=5000");
+    if (!r || r->status != 200) continue;
+    after = std::stoull(r->get_header_value("X-Fq-Index"));
+    if (r->get_header_value("X-Fq-Form") == "mesh") {
+      mesh = *r;
+      break;
+    }
+  }
+  meshes.join();
+  ASSERT_TRUE(mesh) << "no MESH-form result after result_form=mesh";
+  EXPECT_EQ(mesh->get_header_value("X-Fq-Faces-Id"), "0");
+  EXPECT_EQ(mesh->get_header_value("X-Fq-Faces-Bytes"), "0");
+  EXPECT_EQ(mesh->get_header_value("X-Fq-Labels-Bytes"), std::to_string(label_bytes));
+  Mesh decoded;
+  EXPECT_TRUE(wire::decode_frame(chunks_of(*mesh, label_bytes), input.num_vertices(), {}, decoded, nullptr).ok());
+  EXPECT_EQ(decoded.triangles.size(), input.triangles.size());
   EXPECT_EQ(fqd.stop(), 0);
 }
 

@@ -86,7 +86,7 @@ TEST(Service, SighupReloadsStreamSettingsAndSurvivesABadFile) {
   write_temp_file("sighup.toml", ops_config("[streams.cam0.filter]\nsigma_s = 4\n[streams.cam9]\nbudget_ms = 50\n"));
   ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
   EXPECT_TRUE(eventually([&] { return sigma_s(fqd, "cam0") == "4"; })) << read_file(log);
-  EXPECT_EQ(sigma_s(fqd, "cam9"), "2");  // newly configured stream, defaults' sigma_s
+  EXPECT_EQ(sigma_s(fqd, "cam9"), "1.5");  // newly configured stream, defaults' sigma_s
 
   write_temp_file("sighup.toml", "this is [not toml");
   ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);

@@ -68,8 +68,8 @@ class ShardTest : public testing::Test {
     while (!done() && std::chrono::steady_clock::now() < deadline) {
       for (size_t i = 0; i < shards_.size(); ++i) {
         client::ReceivedResult r;
-        Status why;
-        if (client::receive_result(shards_[i].sub, r, why)) on(i, r);
+        const StatusOr<bool> got = client::receive_result(shards_[i].sub, r);
+        if (got.ok() && *got) on(i, r);
       }
     }
   }

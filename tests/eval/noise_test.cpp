@@ -31,6 +31,26 @@ Stats displacement_stats(const std::vector<float>& before, const std::vector<flo
   return s;
 }
 
+TEST(Noise, NormalNoiseMovesAPlaneOnlyAlongItsNormal) {
+  const Mesh clean = test::make_plane_grid(100, 100, 0.01f);
+  const double edge = mean_edge_length(clean.view());
+  Mesh noisy = clean;
+  add_normal_noise(noisy, 0.3, 42);
+  std::vector<float> z0, z1;
+  for (uint32_t v = 0; v < clean.num_vertices(); ++v) {
+    EXPECT_EQ(noisy.positions[3 * v], clean.positions[3 * v]);
+    EXPECT_EQ(noisy.positions[3 * v + 1], clean.positions[3 * v + 1]);
+    z0.push_back(clean.positions[3 * v + 2]);
+    z1.push_back(noisy.positions[3 * v + 2]);
+  }
+  const Stats s = displacement_stats(z0, z1);
+  EXPECT_NEAR(s.std / edge, 0.3, 0.01);
+  EXPECT_NEAR(s.within_one_std, 0.6827, 0.015);
+  Mesh again = clean;
+  add_normal_noise(again, 0.3, 42);
+  EXPECT_EQ(again.positions, noisy.positions);
+}
+
 TEST(Noise, StandardDeviationIsSigmaTimesMeanEdge) {
   const Mesh clean = test::make_plane_grid(100, 100, 0.01f);  // 30,603 coordinates
   const double edge = mean_edge_length(clean.view());

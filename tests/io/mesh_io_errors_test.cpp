@@ -99,7 +99,7 @@ TEST(MeshIoErrors, TruncatedBinaryPly) {
   }
   // A face whose list count runs past the end.
   std::string lying = bytes;
-  lying[body + vertex_bytes + 13 * (mesh.num_triangles() - 1)] = char(200);
+  lying[body + vertex_bytes + size_t{13} * (mesh.num_triangles() - 1)] = char(200);
   test::write_bytes(dir.file("lying.ply"), lying);
   expect_read_error(dir.file("lying.ply"), "truncated");
 }
@@ -147,7 +147,7 @@ TEST(MeshIoErrors, DracoPointCloudIsNotATriangleMesh) {
   ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 12, 0);
   const int id = pc.AddAttribute(ga, true, 3);
   const float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-  for (int i = 0; i < 3; ++i) pc.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(i), p + 3 * i);
+  for (int i = 0; i < 3; ++i) pc.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(i), p + std::ptrdiff_t{3} * i);
   draco::Encoder encoder;
   draco::EncoderBuffer buffer;
   ASSERT_TRUE(encoder.EncodePointCloudToBuffer(pc, &buffer).ok());
@@ -158,9 +158,9 @@ TEST(MeshIoErrors, DracoPointCloudIsNotATriangleMesh) {
 TEST(MeshIoErrors, WriteUnknownExtension) {
   test::ScratchDir dir;
   const Mesh m = test::make_single_triangle();
-  const Status s = write_mesh(dir.file("out.obj"), m.view(), nullptr, 0);
+  const Status s = write_mesh(dir.file("out.stl"), m.view(), nullptr, 0);
   EXPECT_FALSE(s.ok());
-  EXPECT_NE(s.message().find("unsupported output extension '.obj'"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("unsupported output extension '.stl'"), std::string::npos) << s.message();
 }
 
 TEST(MeshIoErrors, WriteUnwritablePath) {
@@ -174,6 +174,19 @@ TEST(MeshIoErrors, WriteUnwritablePath) {
   }
   std::filesystem::create_directories(dir.file("taken.ply"));  // a folder where the file should go
   EXPECT_FALSE(write_mesh(dir.file("taken.ply"), m.view(), nullptr, 0).ok());
+}
+
+// Files that cannot be found, opened or written are i/o errors; bad content is invalid input.
+TEST(MeshIoErrors, FileErrorsAreIoErrors) {
+  test::ScratchDir dir;
+  Mesh m;
+  EXPECT_EQ(read_mesh("/nonexistent/dir/mesh.ply", m).code(), StatusCode::kIoError);
+  EXPECT_EQ(read_mesh(dir.path().string(), m).code(), StatusCode::kIoError);
+  const Mesh tri = test::make_single_triangle();
+  EXPECT_EQ(write_mesh("/nonexistent/dir/out.ply", tri.view(), nullptr, 0).code(), StatusCode::kIoError);
+  EXPECT_EQ(write_mesh("/nonexistent/dir/out.drc", tri.view(), nullptr, 0).code(), StatusCode::kIoError);
+  test::write_bytes(dir.file("g.ply"), "ply\nnot a header");
+  EXPECT_EQ(read_mesh(dir.file("g.ply"), m).code(), StatusCode::kInvalidInput);
 }
 
 TEST(MeshIoErrors, WriteRejectsBadLabelsIndicesAndBits) {

@@ -48,19 +48,24 @@ TEST(MeshIoPly, RoundTripIsExactAndCarriesLabelsAndColours) {
   ASSERT_NE(end, std::string::npos);
   const std::string header = bytes.substr(0, end);
   EXPECT_NE(header.find("format binary_little_endian 1.0"), std::string::npos);
-  EXPECT_NE(header.find("property uint label"), std::string::npos);
-  EXPECT_NE(header.find("property uchar red\nproperty uchar green\nproperty uchar blue"), std::string::npos);
+  EXPECT_NE(
+      header.find("property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uint label\n"
+                  "property uchar cluster_red\nproperty uchar cluster_green\nproperty uchar cluster_blue\n"),
+      std::string::npos);
   EXPECT_NE(header.find("property list uchar int vertex_indices"), std::string::npos);
-  // Vertex records: 3 floats, uint label, 3 colour bytes.
+  // Vertex records: 3 floats, 3 colour bytes (the input had none: the cluster colours),
+  // uint label, 3 cluster colour bytes.
   const size_t body = end + std::strlen("end_header\n");
-  ASSERT_EQ(bytes.size(), body + 19 * size_t(mesh.num_vertices()) + 13 * size_t(mesh.num_triangles()));
+  ASSERT_EQ(bytes.size(), body + 22 * size_t(mesh.num_vertices()) + 13 * size_t(mesh.num_triangles()));
   for (uint32_t v = 0; v < mesh.num_vertices(); ++v) {
-    const size_t at = body + 19 * size_t(v);
-    ASSERT_EQ(le32(bytes, at + 12), labels[v]) << v;
+    const size_t at = body + 22 * size_t(v);
+    ASSERT_EQ(le32(bytes, at + 15), labels[v]) << v;
     const Rgb8 c = cluster_color(labels[v]);
-    ASSERT_EQ(uint8_t(bytes[at + 16]), c.r);
-    ASSERT_EQ(uint8_t(bytes[at + 17]), c.g);
-    ASSERT_EQ(uint8_t(bytes[at + 18]), c.b);
+    for (const size_t rgb : {at + 12, at + 19}) {
+      ASSERT_EQ(uint8_t(bytes[rgb]), c.r);
+      ASSERT_EQ(uint8_t(bytes[rgb + 1]), c.g);
+      ASSERT_EQ(uint8_t(bytes[rgb + 2]), c.b);
+    }
   }
 }
 

@@ -27,6 +27,8 @@ Params clustering(float theta = 0.9f) {
   Params p;
   p.filter = false;
   p.cluster = true;
+  p.f.sigma_s = 2.f;  // Q^bl at the paper's extents (the defaults follow qf+: 1.5, 0.7)
+  p.f.sigma_r = 1.f;
   p.c.sigma_d = 2.f;
   p.c.sigma_q = 0.5f;
   p.c.theta = theta;

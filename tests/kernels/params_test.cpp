@@ -62,8 +62,8 @@ TEST(KernelParams, OptionalSigmasAcceptZeroAsDefault) {
       expect_rejected(p, name);
     }
   }
-  EXPECT_FLOAT_EQ(Params{}.f.effective_sigma_b(), 1.f);  // sigma_s / 2
-  EXPECT_FLOAT_EQ(Params{}.f.effective_sigma_n(), 1.f);
+  EXPECT_FLOAT_EQ(Params{}.f.effective_sigma_b(), 0.75f);  // sigma_s / 2 (default sigma_s 1.5)
+  EXPECT_FLOAT_EQ(Params{}.f.effective_sigma_n(), 0.75f);
 }
 
 TEST(KernelParams, TikhonovRange) {
@@ -122,6 +122,21 @@ TEST(KernelParams, EngineRejectsBadParamsAndKeepsWorking) {
   ASSERT_TRUE(engine.process(mesh.view(), clustering_params(), out).ok());
   EXPECT_EQ(out.positions.size(), mesh.positions.size());
   EXPECT_EQ(out.labels.size(), mesh.num_vertices());
+}
+
+TEST(KernelParams, MethodNamesRoundTrip) {
+  EXPECT_EQ(method_names<FilterMethod>(), (std::vector<std::string>{"qf", "bf"}));
+  EXPECT_EQ(method_names<ClusterMethod>(), (std::vector<std::string>{"quadric", "euclidean"}));
+  for (FilterMethod m : {FilterMethod::kQuadric, FilterMethod::kBilateral})
+    EXPECT_EQ(parse_method<FilterMethod>(method_name(m)), m);
+  for (ClusterMethod m : {ClusterMethod::kQuadric, ClusterMethod::kEuclidean})
+    EXPECT_EQ(parse_method<ClusterMethod>(method_name(m)), m);
+  EXPECT_EQ(parse_method<FilterMethod>("QF"), std::nullopt);
+  EXPECT_EQ(parse_method<FilterMethod>("quadric"), std::nullopt);  // a cluster method's name
+  EXPECT_EQ(parse_method<ClusterMethod>(""), std::nullopt);
+  EXPECT_EQ(join_names(method_names<FilterMethod>()), "qf or bf");
+  EXPECT_EQ(join_names(method_names<ClusterMethod>(), " | "), "quadric | euclidean");
+  EXPECT_EQ(join_names(method_names<FilterMethod>(), " or ", true), "\"qf\" or \"bf\"");
 }
 
 }  // namespace

@@ -10,6 +10,8 @@
 #include <ctime>
 #include <string>
 
+#include "common/sample_stats.h"
+#include "common/tool_main.h"
 #include "proto/frame_codec.h"
 #include "tests/proto/proto_test_meshes.h"
 
@@ -28,10 +30,7 @@ double cpu_ms() {
   return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using fq::median;
 
 bool encode(const std::string& form, const fq::Mesh& m, uint32_t chunks, const fq::wire::CodecOptions& o,
             std::vector<std::string>& out) {
@@ -73,9 +72,7 @@ void bench(const std::string& name, const std::string& form, const fq::Mesh& m, 
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"Encode/decode time of the chunked Draco frame codec on the shared meshes"};
   fq::wire::CodecOptions o;
   o.threads = 2;
@@ -108,3 +105,7 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return fq::tool_main("fq_frame_codec_bench", run, argc, argv); }

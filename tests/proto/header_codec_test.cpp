@@ -249,11 +249,24 @@ TEST(HeaderCodec, ComputeMapping) {
   EXPECT_TRUE(p.filter && !p.cluster);
 }
 
+TEST(HeaderCodec, EveryFilterMethodRoundTrips) {
+  for (FilterMethod m : {FilterMethod::kQuadric, FilterMethod::kBilateral, FilterMethod::kQuadricRefined}) {
+    Params p;
+    p.f.method = m;
+    ParamOverrides w;
+    params_to_wire(p, w);
+    Params back;
+    back.f.method = m == FilterMethod::kQuadric ? FilterMethod::kBilateral : FilterMethod::kQuadric;
+    ASSERT_TRUE(apply_overrides(w, back).ok());
+    EXPECT_EQ(back.f.method, m) << filter_method_name(m);
+  }
+}
+
 TEST(HeaderCodec, ParamsRoundTrip) {
   Params p;
   p.filter = false;
   p.cluster = true;
-  p.f = {FilterMethod::kBilateral, 3.f, 0.5f, 1.25f, 0.75f, true, 0.f};
+  p.f = {FilterMethod::kBilateral, 3.f, 0.5f, 1.25f, 0.75f, true, 0.f, {}};
   p.c = {ClusterMethod::kEuclidean, 7.f, 2.f, 0.8f};
   p.c.target_clusters = 42;
   p.c.geometry = ClusterGeometry::kFiltered;

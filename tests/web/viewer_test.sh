@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # fqd's live viewer in real headless Chromium: fqd (CPU engine, HTTP on a free port, viewer
-# from web/) and fqpub on the bundled fandisk; viewer_check.mjs loads the page, waits for a
-# frame, checks the canvas and the rising frame count, and saves a screenshot.
+# from web/) and fqpub on the bundled fandisk, once per result form (stream "fandisk" in the
+# default POSITIONS form, "fandisk_mesh" in the MESH form); viewer_check.mjs loads the page,
+# waits for a frame, checks the canvas and the rising frame count, and saves a screenshot; the
+# overlay must name the form shown.
 #   viewer_test.sh FQD FQPUB SOURCE_DIR OUT_DIR
 # Exit 77 (skipped) only when Chromium is absent.
 set -euo pipefail
@@ -18,6 +20,7 @@ mkdir -p "$out"
 tmp=$(mktemp -d)
 cleanup() {
   [[ -n ${pub:-} ]] && kill "$pub" 2>/dev/null || true
+  [[ -n ${pub_mesh:-} ]] && kill "$pub_mesh" 2>/dev/null || true
   [[ -n ${daemon:-} ]] && kill "$daemon" 2>/dev/null && wait "$daemon" 2>/dev/null || true
   rm -rf "$tmp"
 }
@@ -26,6 +29,8 @@ trap cleanup EXIT
 [http]
 listen = "127.0.0.1:0"
 web_root = "$src/web"
+[streams.fandisk_mesh.output]
+result_form = "mesh"
 TOML
 "$fqd" --config "$tmp/fqd.toml" --endpoints-file "$tmp/endpoints.json" &
 daemon=$!
@@ -35,4 +40,14 @@ field() { sed -E "s/.*\"$1\":\"([^\"]+)\".*/\1/" "$tmp/endpoints.json"; }
 "$fqpub" "$src/data/fandisk.ply" --endpoint "$(field ingest)" --stream fandisk --fps 5 --noise 0.1 \
   --duration 240 --quiet &
 pub=$!
-node "$src/tests/web/viewer_check.mjs" "$(field http)" fandisk "$out/viewer.png"
+"$fqpub" "$src/data/fandisk.ply" --endpoint "$(field ingest)" --stream fandisk_mesh --fps 5 --noise 0.1 \
+  --duration 240 --quiet &
+pub_mesh=$!
+check() {  # STREAM FORM SCREENSHOT
+  local result
+  result=$(node "$src/tests/web/viewer_check.mjs" "$(field http)" "$1" "$3") || { echo "$result"; return 1; }
+  echo "$result"
+  [[ $result == *"$2 form"* ]] || { echo "FAIL: the overlay of stream $1 does not say \"$2 form\"" >&2; return 1; }
+}
+check fandisk positions "$out/viewer.png"
+check fandisk_mesh mesh "$out/viewer-mesh.png"

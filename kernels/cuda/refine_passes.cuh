@@ -1,0 +1,23 @@
+// The "qf+" refinement on the device (kernels/refine_math.h; the CPU engine's
+// cpu::refine_positions). Needs the vertex -> triangle table of base_quadrics.
+#pragma once
+
+#include <cuda_runtime.h>
+
+#include "kernels/cuda/device_frame.cuh"
+#include "kernels/params.h"
+
+namespace fq::cuda {
+
+/// Scratch of the refinement, kept between frames (grow-only).
+struct RefineBuffers {
+  DeviceBuffer<Vec3> x;  ///< the other position buffer of the ping-pong with f.moved
+  DeviceBuffer<uint8_t> closed;  ///< closed_fan per vertex
+  DeviceBuffer<TriangleGeom> geom;
+  DeviceBuffer<Vec3> normals[2];
+};
+
+/// Refines f.moved in place (sorted order), one launch per pass as the CPU's passes.
+void refine_positions(DeviceFrame& f, RefineBuffers& b, const RefineParams& r, cudaStream_t s);
+
+}  // namespace fq::cuda

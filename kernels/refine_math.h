@@ -1,0 +1,146 @@
+// Per-vertex and per-face math of the refinement after the quadric filter ("qf+", see
+// docs/ALGORITHM.md), written once for the CPU and the CUDA engine. It works on the mesh
+// connectivity (vertex -> incident triangles) in normalized units (mean edge = 1):
+//   1. relaxed_position: tangential relaxation restricted to the directions in which the
+//      1-ring's normal tensor is weak, so folded triangles open up without any vertex
+//      crossing a crease or a corner;
+//   2. filtered_face_normal: one iteration of bilateral face-normal filtering (Zheng et
+//      al. 2011) over the faces sharing a vertex;
+//   3. normal_driven_position: one iteration of Sun et al. 2007's vertex update, which
+//      moves each vertex onto the planes of its filtered incident faces.
+// Every sum runs over a vertex's triangles in the CSR order (increasing triangle index), so
+// results do not depend on the thread count.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "kernels/gaussian.h"
+#include "kernels/hd.h"
+#include "kernels/sym3_eigen.h"
+#include "kernels/triangle_math.h"
+#include "kernels/vec3.h"
+
+namespace fq {
+
+/// Connectivity: triangles (3 indices each) and the vertex -> triangles CSR.
+struct FanView {
+  const uint32_t* tris;
+  const uint32_t* vf_offsets;  ///< n + 1
+  const uint32_t* vf_faces;
+};
+
+namespace detail {
+
+FQ_HD bool has_vertex(const uint32_t* tri, uint32_t v) { return tri[0] == v || tri[1] == v || tri[2] == v; }
+
+}  // namespace detail
+
+/// Interior manifold vertex: every 1-ring neighbour lies in exactly two incident triangles.
+/// Boundary and non-manifold vertices are left where they are by the relaxation (a
+/// 1-ring mean there pulls the boundary inward). Connectivity only: computed once per frame.
+FQ_HD bool closed_fan(const FanView& m, uint32_t v) {
+  const uint32_t b = m.vf_offsets[v], e = m.vf_offsets[v + 1];
+  for (uint32_t k = b; k < e; ++k) {
+    const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[k]);
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t o = tri[c];
+      if (o == v) continue;
+      int count = 0;
+      for (uint32_t k2 = b; k2 < e; ++k2) count += detail::has_vertex(m.tris + 3 * size_t(m.vf_faces[k2]), o) ? 1 : 0;
+      if (count != 2) return false;
+    }
+  }
+  return e > b;
+}
+
+/// Step 1. x_v + step * P (mean of the 1-ring − x_v), with P the projector on the
+/// eigen-directions of T = Σ_f a_f n_f n_fᵀ (incident faces) whose eigenvalue is below
+/// `feature_ratio` × the largest: the tangent plane on a smooth or flat region, the
+/// crease line on a crease, nothing at a corner. A folded triangle still contributes
+/// n nᵀ along the surface normal, so T keeps seeing the surface through the fold.
+/// `closed` is closed_fan(m, v).
+FQ_HD Vec3 relaxed_position(const FanView& m, const Vec3* x, uint32_t v, bool closed, float step,
+                            float feature_ratio) {
+  const Vec3 xv = x[v];
+  if (!closed) return xv;
+  float t00 = 0.f, t01 = 0.f, t02 = 0.f, t11 = 0.f, t12 = 0.f, t22 = 0.f;
+  Vec3 ring{0.f, 0.f, 0.f};
+  float count = 0.f;
+  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
+    const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[k]);
+    const Vec3 a = x[tri[0]], b = x[tri[1]], c = x[tri[2]];
+    const Vec3 n2 = cross(b - a, c - a);  // 2 a_f n_f
+    const float len = std::sqrt(norm2(n2));
+    if (len > 1e-12f) {
+      const float s = 0.5f / len;  // a_f n nᵀ = n2 n2ᵀ / (2 |n2|)
+      t00 += s * n2.x * n2.x; t01 += s * n2.x * n2.y; t02 += s * n2.x * n2.z;
+      t11 += s * n2.y * n2.y; t12 += s * n2.y * n2.z; t22 += s * n2.z * n2.z;
+    }
+    ring = ring + (a + b + c) - xv;  // the two other corners (each neighbour twice)
+    count += 2.f;
+  }
+  const Sym3Eigen e = sym3_eigen(t00, t01, t02, t11, t12, t22);
+  const float l01 = e.values[0] > e.values[1] ? e.values[0] : e.values[1];
+  const float lmax = l01 > e.values[2] ? l01 : e.values[2];
+  if (!(lmax > 0.f)) return xv;
+  const Vec3 d = (1.0f / count) * ring - xv;
+  Vec3 move{0.f, 0.f, 0.f};
+FQ_UNROLL
+  for (int k = 0; k < 3; ++k) {
+    if (e.values[k] < feature_ratio * lmax) {
+      const Vec3 ek{e.vectors[0][k], e.vectors[1][k], e.vectors[2][k]};
+      move = move + dot(ek, d) * ek;
+    }
+  }
+  return xv + step * move;
+}
+
+/// Step 2. Bilateral filtering of face normals (Zheng et al. 2011, eq. 3) over the faces
+/// that share a vertex with f (f included), each counted once:
+///   n_f' = normalize(Σ_j a_j G_σs(|c_f − c_j|) G_σr(|n_f − n_j|) n_j).
+/// `geom` gives centroids and areas (fixed during the iterations), `normals` the current
+/// iterate. A face whose sum vanishes keeps its normal.
+FQ_HD Vec3 filtered_face_normal(const FanView& m, const TriangleGeom* geom, const Vec3* normals, uint32_t f,
+                                Gaussian gs, Gaussian gr) {
+  const uint32_t* tri = m.tris + 3 * size_t(f);
+  const Vec3 nf = normals[f], cf = geom[f].centroid;
+  Vec3 acc{0.f, 0.f, 0.f};
+  for (int c = 0; c < 3; ++c) {
+    const uint32_t v = tri[c];
+    for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
+      const uint32_t j = m.vf_faces[k];
+      const uint32_t* tj = m.tris + 3 * size_t(j);
+      // Counted at the first corner of f it shares.
+      if (c >= 1 && detail::has_vertex(tj, tri[0])) continue;
+      if (c >= 2 && detail::has_vertex(tj, tri[1])) continue;
+      // G_s G_r as one exp of the summed exponents (half the exps of the hot loop).
+      const float w = geom[j].area * std::exp(norm2(cf - geom[j].centroid) * gs.neg_inv_two_sigma2 +
+                                              norm2(nf - normals[j]) * gr.neg_inv_two_sigma2);
+      acc = acc + w * normals[j];
+    }
+  }
+  const Vec3 n = normalized_or_zero(acc);
+  return norm2(n) > 0.f ? n : nf;
+}
+
+/// Step 3. One iteration of Sun et al. 2007 (eq. 8), the positions moved onto the planes
+/// of the filtered normals: x_v + 1/|F_v| Σ_{f∋v} n_f (n_f · (c_f − x_v)), c_f the current
+/// centroid. Faces with a zero normal (degenerate) are skipped.
+FQ_HD Vec3 normal_driven_position(const FanView& m, const Vec3* x, const Vec3* normals, uint32_t v) {
+  const Vec3 xv = x[v];
+  Vec3 acc{0.f, 0.f, 0.f};
+  float count = 0.f;
+  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
+    const uint32_t f = m.vf_faces[k];
+    const Vec3 n = normals[f];
+    if (!(norm2(n) > 0.f)) continue;
+    const uint32_t* tri = m.tris + 3 * size_t(f);
+    const Vec3 c = (1.0f / 3.0f) * (x[tri[0]] + x[tri[1]] + x[tri[2]]);
+    acc = acc + dot(n, c - xv) * n;
+    count += 1.f;
+  }
+  return count > 0.f ? xv + (1.0f / count) * acc : xv;
+}
+
+}  // namespace fq

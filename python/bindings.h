@@ -1,0 +1,14 @@
+// The functions of the `fq` Python module, in two groups (see docs/PYTHON.md).
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+namespace fq::py {
+
+/// filter, cluster, engine_name: the engines on numpy meshes.
+void bind_engine_functions(pybind11::module_& m);
+
+/// read_mesh, write_mesh, add_noise, metrics: files, noise and error measures.
+void bind_mesh_functions(pybind11::module_& m);
+
+}  // namespace fq::py

@@ -1,0 +1,125 @@
+// fq.read_mesh, fq.write_mesh, fq.add_noise, fq.metrics. File work and measures run
+// without the GIL.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <numbers>
+#include <string>
+
+#include "eval/error_metrics.h"
+#include "eval/noise.h"
+#include "eval/surface_distance.h"
+#include "proto/mesh_io.h"
+#include "python/bindings.h"
+#include "python/numpy_mesh.h"
+#include "python/py_errors.h"
+
+namespace fq::py {
+
+namespace {
+
+namespace pyb = pybind11;
+using namespace pybind11::literals;
+
+std::string path_string(const pyb::handle& path) {
+  return pyb::str(pyb::module_::import("os").attr("fspath")(path));
+}
+
+pyb::tuple read_mesh(const pyb::handle& path_like) {
+  const std::string path = path_string(path_like);
+  if (!io::is_readable_mesh_file(path))
+    throw pyb::value_error("cannot read '" + path + "': unsupported extension " +
+                           io::expected_read_extensions());
+  if (!std::filesystem::exists(path)) {
+    PyErr_SetObject(PyExc_FileNotFoundError, pyb::make_tuple(2, "no such file", path).ptr());
+    throw pyb::error_already_set();
+  }
+  Mesh mesh;
+  Status s;
+  {
+    const pyb::gil_scoped_release unlocked;
+    s = io::read_mesh(path, mesh);
+  }
+  throw_if_file_error(s);
+  pyb::array_t<float> v({ssize_t(mesh.num_vertices()), ssize_t(3)});
+  std::copy(mesh.positions.begin(), mesh.positions.end(), v.mutable_data());
+  return pyb::make_tuple(v, faces_array(mesh.triangles));
+}
+
+void write_mesh(const pyb::handle& path_like, const pyb::handle& v, const pyb::handle& f,
+                const std::optional<pyb::handle>& labels_like, int drc_bits) {
+  const std::string path = path_string(path_like);
+  if (!io::is_writable_mesh_file(path))
+    throw pyb::value_error("cannot write '" + path + "': unsupported output extension '" +
+                           io::lower_extension(path) + "' " + io::expected_write_extensions());
+  const Mesh mesh = to_mesh(v, f);
+  std::vector<uint32_t> labels;
+  uint32_t num_clusters = 0;
+  if (labels_like && !labels_like->is_none()) {
+    const auto l = pyb::array_t<int64_t, pyb::array::c_style | pyb::array::forcecast>::ensure(*labels_like);
+    if (!l || l.ndim() != 1 || l.shape(0) != ssize_t(mesh.num_vertices()))
+      throw pyb::value_error("labels must be a 1-D integer array with one label per vertex");
+    for (ssize_t i = 0; i < l.size(); ++i) {
+      if (l.data()[i] < 0 || l.data()[i] > int64_t(UINT32_MAX - 1))
+        throw pyb::value_error("labels: vertex " + std::to_string(i) + " has label " +
+                               std::to_string(l.data()[i]));
+      labels.push_back(uint32_t(l.data()[i]));
+      num_clusters = std::max(num_clusters, labels.back() + 1);
+    }
+  }
+  Status s;
+  {
+    const pyb::gil_scoped_release unlocked;
+    s = io::write_mesh(path, mesh.view(), labels.empty() ? nullptr : labels.data(), num_clusters, drc_bits);
+  }
+  throw_if_file_error(s);
+}
+
+pyb::array add_noise(const pyb::handle& v, const pyb::handle& f, double sigma, uint64_t seed) {
+  Mesh mesh = to_mesh(v, f);
+  {
+    const pyb::gil_scoped_release unlocked;
+    add_gaussian_noise(mesh, sigma, seed);
+  }
+  return positions_array(mesh.positions, v);
+}
+
+pyb::dict metrics(const pyb::handle& v_ref, const pyb::handle& f, const pyb::handle& v) {
+  const Mesh reference = to_mesh(v_ref, f);
+  const std::vector<float> candidate = to_positions(v, "V");
+  if (candidate.size() != reference.positions.size())
+    throw pyb::value_error("V has " + std::to_string(candidate.size() / 3) + " vertices but V_ref has " +
+                           std::to_string(reference.num_vertices()));
+  double rmse = 0;
+  SurfaceDistance surface;
+  MfneResult mfne;
+  {
+    const pyb::gil_scoped_release unlocked;
+    rmse = rmse_over_diagonal(reference.view(), candidate.data());
+    surface = distance_to_surface(reference.view(), candidate.data(), reference.num_vertices());
+    mfne = mean_face_normal_error(reference.view(), candidate.data());
+  }
+  return pyb::dict(
+      "rmse_over_diagonal"_a = rmse, "surface_rms_over_diagonal"_a = surface.rms_over_diagonal,
+      "surface_max_over_diagonal"_a = surface.max_over_diagonal, "mfne_rad"_a = mfne.mean_radians,
+      "mfne_deg"_a = mfne.mean_radians * 180.0 / std::numbers::pi, "faces_skipped"_a = mfne.faces_skipped);
+}
+
+}  // namespace
+
+void bind_mesh_functions(pyb::module_& m) {
+  m.def("read_mesh", &read_mesh, "path"_a,
+        "(V, F) of a mesh file (.ply .obj .stl .drc): float32 (n, 3) positions, int64 (m, 3) triangles.");
+  m.def("write_mesh", &write_mesh, "path"_a, "V"_a, "F"_a, "labels"_a = pyb::none(), pyb::kw_only(),
+        "drc_bits"_a = 16,
+        "Writes (V, F) as .ply, .drc, .obj or .glb, with one cluster label per vertex when given.");
+  m.def("add_noise", &add_noise, "V"_a, "F"_a, "sigma"_a, "seed"_a = 1,
+        "V plus Gaussian noise of std sigma mean edge lengths per coordinate; the same seed gives "
+        "the same noise everywhere (fqfilter --noise).");
+  m.def("metrics", &metrics, "V_ref"_a, "F"_a, "V"_a,
+        "Errors of V against the reference (V_ref, F): the keys of fqfilter's JSON metrics.");
+}
+
+}  // namespace fq::py

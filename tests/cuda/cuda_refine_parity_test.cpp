@@ -1,0 +1,45 @@
+// The "qf+" refinement on the CUDA engine against the CPU engine: noisy synthetic shapes
+// and the shared real meshes (FQ_MESH_DIR), under every kernel path of the quadric passes
+// (the refinement reads base_quadrics' vertex -> triangle table). Skips without a device.
+#include <gtest/gtest.h>
+
+#include "eval/noise.h"
+#include "proto/mesh_io.h"
+#include "tests/cuda/parity.h"
+#include "tests/support/mesh_dir.h"
+#include "tests/support/test_meshes.h"
+
+namespace fq::test {
+namespace {
+
+class CudaRefineParity : public CudaTest {};
+
+Params refined() {
+  Params p;
+  p.f.method = FilterMethod::kQuadricRefined;
+  return p;
+}
+
+TEST_F(CudaRefineParity, NoisyCubeAndSphere) {
+  Mesh shapes[] = {make_cube(16), make_icosphere(5)};
+  for (Mesh& m : shapes) {
+    add_gaussian_noise(m, 0.3, 7);
+    expect_parity_for_each(*cpu_, m.view(), refined(), kKernelPaths);
+  }
+}
+
+TEST_F(CudaRefineParity, RealMeshesWithNoise) {
+  for (const char* file : {"fandisk.ply", "bunny.ply", "igea.ply"}) {
+    const auto path = find_mesh(file);
+    if (!path) GTEST_SKIP() << file << " not found in " << mesh_dir();
+    Mesh mesh;
+    const Status rs = io::read_mesh(*path, mesh);
+    ASSERT_TRUE(rs.ok()) << rs.message();
+    add_gaussian_noise(mesh, 0.2, 7);
+    std::printf("  %s (%u vertices):\n", file, mesh.num_vertices());
+    expect_parity_for_each(*cpu_, mesh.view(), refined(), {{CudaTuning::kTeamBySize, false}, {0, false}});
+  }
+}
+
+}  // namespace
+}  // namespace fq::test

@@ -1,0 +1,11 @@
+# Runs BIN --version; fails unless it exits 0 and prints exactly one line
+# "TOOL VERSION (CUDA engine: ...)". (A PASS_REGULAR_EXPRESSION alone would ignore the exit code.)
+execute_process(COMMAND "${BIN}" --version RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${TOOL} --version exited ${rc}: ${out}${err}")
+endif()
+string(REPLACE "." "\\." version_re "${VERSION}")
+if(NOT out MATCHES "^${TOOL} ${version_re} \\(CUDA engine: [^\n]+\\)\n$")
+  message(FATAL_ERROR "${TOOL} --version printed '${out}' (stderr '${err}')")
+endif()
+message(STATUS "${out}")
