@@ -147,11 +147,22 @@ Status read_sections(TomlReader& root, DaemonConfig& c) {
     r.read("encode", c.encode_threads, 0, kMaxThreads);
     FQ_RETURN_IF_ERROR(r.finish());
   }
+  if (const toml::table* t = root.table("security")) {
+    TomlReader r(*t, root.source(), "security");
+    r.read("curve_key_file", c.security.curve_key_file);
+    r.read("client_keys_file", c.security.client_keys_file);
+    if (Status s = r.finish(); !s.ok()) return s;
+  }
   if (const toml::table* t = root.table("caps")) {
     TomlReader r(*t, root.source(), "caps");
     r.read("max_vertices", c.caps.max_vertices, 3, 1ll << 31);
     r.read("max_frame_bytes", c.caps.max_frame_bytes, 64, 1ll << 40);
     r.read("max_streams", c.caps.max_streams, 1, 1 << 20);
+    r.read("max_stream_id_bytes", c.caps.max_stream_id_bytes, 1, 4096);
+    r.read("stream_idle_s", c.caps.stream_idle_s, 0.0, 1e9);
+    r.read("allowed_streams", c.caps.allowed_streams);
+    r.read("max_neighbour_work", c.caps.max_neighbour_work, 1e3, 1e18);
+    r.read("pool_idle_s", c.caps.pool_idle_s, 0.0, 1e9);
     FQ_RETURN_IF_ERROR(r.finish());
   }
   return {};

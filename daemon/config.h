@@ -10,6 +10,7 @@
 
 #include "kernels/engine.h"
 #include "common/status.h"
+#include "daemon/curve_auth.h"
 #include "daemon/service_config.h"
 #include "daemon/stream_settings.h"
 
@@ -31,8 +32,18 @@ struct EngineConfig {
 
 struct Caps {
   uint32_t max_vertices = 4'000'000;
-  uint64_t max_frame_bytes = 256ull << 20;  ///< sum of all parts of one ingest message
+  uint64_t max_frame_bytes = 256ull << 20;  ///< sum of all parts of one ingest message (also
+                                            ///< the socket's per-part limit: ZMQ_MAXMSGSIZE)
   uint32_t max_streams = 64;
+  uint32_t max_stream_id_bytes = 128;  ///< longer ids are refused (they are topics and log words)
+  double stream_idle_s = 300.0;        ///< a stream without frames this long is forgotten; 0 = never
+  /// Stream ids admitted: exact ids, or prefixes ending in '*'. Empty: every valid id.
+  std::vector<std::string> allowed_streams;
+  /// Expected neighbour visits of one frame (vertices x neighbours per vertex from the
+  /// sigmas) above which its parameters are refused before the engine runs.
+  double max_neighbour_work = 2e10;
+  /// Kept frame buffers are freed after this long without frames (memory returns).
+  double pool_idle_s = 30.0;
 };
 
 struct DaemonConfig {
@@ -41,6 +52,7 @@ struct DaemonConfig {
   int decode_threads = 0;  ///< decode pool; 0 = half the hardware threads, at least 2
   int encode_threads = 0;  ///< encode pool; 0 = half the hardware threads, at least 2
   Caps caps;
+  SecurityConfig security;
   StreamSettings defaults;
   std::map<std::string, StreamSettings> streams;  ///< per-stream overrides, resolved
   std::string log_level = "info";

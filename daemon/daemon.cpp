@@ -78,8 +78,26 @@ Status Daemon::bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::
   control = zmq::socket_t(input_context_, zmq::socket_type::rep);
   publish = zmq::socket_t(output_context_, zmq::socket_type::pub);
   ingest.set(zmq::sockopt::linger, 0);
+  // Refused at the socket: a peer sending a larger part is disconnected before the part is
+  // buffered (max_frame_bytes bounds the whole message, so it bounds every part too).
+  ingest.set(zmq::sockopt::maxmsgsize, static_cast<int64_t>(config_.caps.max_frame_bytes));
+  // Wakes the ingest thread once a second when nothing arrives, for idle-stream expiry.
+  ingest.set(zmq::sockopt::rcvtimeo, 1000);
   control.set(zmq::sockopt::linger, 0);
   publish.set(zmq::sockopt::linger, kPublishLingerMs);
+  if (config_.security.enabled()) {
+    CurveServerKeys keys;
+    FQ_RETURN_IF_ERROR(load_curve_server_keys(config_.security, keys));
+    input_zap_ = std::make_unique<ZapHandler>(input_context_, keys.clients, registry_.refusals());
+    output_zap_ = std::make_unique<ZapHandler>(output_context_, keys.clients, registry_.refusals());
+    for (zmq::socket_t* s : {&ingest, &publish, &control}) make_curve_server(*s, keys.server);
+    spdlog::info("fqd: CURVE on every socket, {} client key(s) allowed", keys.clients.size());
+  } else {
+    for (const std::string& e : {config_.endpoints.ingest, config_.endpoints.publish, config_.endpoints.control})
+      if (!is_local_endpoint(e))
+        spdlog::warn("fqd: {} is reachable from other hosts without CURVE: anyone who can connect may send "
+                     "frames, read results and change parameters (set [security] curve_key_file)", e);
+  }
   FQ_RETURN_IF_ERROR(bind_one(ingest, config_.endpoints.ingest, "ingest", endpoints_.ingest));
   FQ_RETURN_IF_ERROR(bind_one(publish, config_.endpoints.publish, "publish", endpoints_.publish));
   return bind_one(control, config_.endpoints.control, "control", endpoints_.control);
@@ -163,6 +181,7 @@ void Daemon::stop() {
   if (ingest_thread_.joinable()) ingest_thread_.join();
   if (control_thread_.joinable()) control_thread_.join();
   input_context_.close();
+  if (input_zap_) input_zap_->join();
   // Drain stage by stage: each queue closes once everything before it has finished.
   pipeline_.decode_queue.close();
   join_all(decoders_);
@@ -173,6 +192,7 @@ void Daemon::stop() {
   pipeline_.publish_queue.close();
   if (publisher_thread_.joinable()) publisher_thread_.join();
   output_context_.close();
+  if (output_zap_) output_zap_->join();
   spdlog::info("fqd: stopped");
 }
 

@@ -57,6 +57,9 @@ class Daemon {
   StreamRegistry registry_;
   Pipeline pipeline_;
   std::vector<std::unique_ptr<Engine>> engines_;
+  // Declared before the contexts, so destroyed after them: closing a context ends its
+  // handler's thread.
+  std::unique_ptr<ZapHandler> input_zap_, output_zap_;
   zmq::context_t input_context_;   // ingest + control: shut down first
   zmq::context_t output_context_;  // publish: closed after the pipeline drained
   BoundEndpoints endpoints_;

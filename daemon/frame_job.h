@@ -31,7 +31,7 @@ inline double ms_between(int64_t from_ns, int64_t to_ns) {
 
 struct FrameJob {
   std::string stream_id;
-  uint64_t arrival = 0;                ///< per-stream arrival index (ingest order)
+  uint64_t arrival = 0;                ///< arrival index (ingest order, increasing within a stream)
   uint64_t ticket = 0;                 ///< per-stream publish order, given when a worker takes it
   bool ticketed = false;               ///< the publisher orders ticketed results per stream
   wire::FrameHeader header;            ///< as received (empty for messages whose header failed)
@@ -47,6 +47,7 @@ struct FrameJob {
   std::vector<std::string> out_chunks;  ///< encoded result
   int64_t decoded_ns = 0;
   Status error;  ///< non-ok: published as an ERROR result
+  bool refused = false;  ///< refused at admission: no stream state, counted in the refusals
 };
 
 using FramePtr = std::unique_ptr<FrameJob>;

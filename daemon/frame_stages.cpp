@@ -4,10 +4,12 @@
 #include <chrono>
 #include <exception>
 
+#include "proto/draco_budget.h"
 #include "proto/frame_codec.h"
 #include "kernels/frame_prep.h"
 #include "proto/header_codec.h"
 #include "daemon/pipeline.h"
+#include "daemon/work_budget.h"
 #include "kernels/parallel_for.h"
 
 namespace fq::daemon {
@@ -40,6 +42,11 @@ Status resolve_settings(FrameJob& f) {
 Status decode(FrameJob& f, const DaemonConfig& c) {
   std::vector<std::string_view> views;
   for (const zmq::message_t& m : f.chunks) views.emplace_back(m.data<char>(), m.size());
+  // Counts are checked before Draco sees the bytes: it allocates for what a chunk declares.
+  const wire::ChunkBudget budget{c.caps.max_vertices};
+  for (size_t i = 0; i < views.size(); ++i)
+    if (Status s = wire::check_chunk_budget(views[i], budget); !s.ok())
+      return invalid_input("chunk " + std::to_string(i) + ": " + s.message());
   wire::CodecOptions opt;
   opt.threads = std::max(1, std::min<int>(c.decode_threads, static_cast<int>(views.size())));
   FQ_RETURN_IF_ERROR(wire::decode_frame(views, f.header.vertex_count(), opt, f.mesh, nullptr));
@@ -67,7 +74,13 @@ void Pipeline::note_queued(const FrameJob& f) {
 
 bool Pipeline::newer_queued(const FrameJob& f) {
   std::lock_guard<std::mutex> lock(newest_mutex_);
-  return newest_queued_[f.stream_id] > f.arrival;
+  auto it = newest_queued_.find(f.stream_id);
+  return it != newest_queued_.end() && it->second > f.arrival;
+}
+
+void Pipeline::forget(const std::string& stream_id) {
+  std::lock_guard<std::mutex> lock(newest_mutex_);
+  newest_queued_.erase(stream_id);
 }
 
 void run_decode_worker(Pipeline& p) {
@@ -87,6 +100,7 @@ void run_decode_worker(Pipeline& p) {
     const auto t0 = std::chrono::steady_clock::now();
     Status s = guarded("decode", [&] { return decode(*f, p.config); });
     if (s.ok()) s = resolve_settings(*f);
+    if (s.ok()) s = check_work_budget(f->settings.params, f->mesh.num_vertices(), p.config.caps.max_neighbour_work);
     f->timings.push_back({"decode", ms_since(t0)});
     if (!s.ok()) {
       p.fail(std::move(f), s);
@@ -114,7 +128,7 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
     if (!f) continue;
     f->timings.push_back({"wait", ms_between(f->decoded_ns, wall_ns())});
     f->engine = engine.name();
-    f->result = p.results.acquire();
+    f->result = p.results.acquire(wall_ns());
     const auto t0 = std::chrono::steady_clock::now();
     const Status s =
         guarded("engine", [&] { return engine.process(f->mesh.view(), f->settings.params, f->result); });

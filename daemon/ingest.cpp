@@ -1,5 +1,6 @@
 #include "daemon/ingest.h"
 
+#include <malloc.h>
 #include <spdlog/spdlog.h>
 
 #include <zmq_addon.hpp>
@@ -35,27 +36,79 @@ Status check_header(const wire::FrameHeader& h, const std::string& topic, size_t
   return {};
 }
 
+// Streams without frames for caps.stream_idle_s give their slot back (at most one sweep
+// a second; the ingest socket's receive timeout wakes the thread when nothing arrives).
+}  // namespace
+
+void expire_idle_streams(Pipeline& p) {
+  static thread_local int64_t last_sweep_ns = 0;
+  const int64_t now = wall_ns();
+  if (now - last_sweep_ns < 1'000'000'000) return;
+  last_sweep_ns = now;
+  const auto idle_ns = static_cast<int64_t>(p.config.caps.pool_idle_s * 1e9);
+  p.results.trim(now, idle_ns);
+  // Freed buffers go back to the allocator's arenas, which keep the pages: every few seconds
+  // while frames flow, hand free pages back to the system, so that memory taken by a huge
+  // frame returns once smaller frames follow (the call walks the arenas, ~1 ms).
+  static thread_local int64_t last_trim_ns = 0;
+  if (now - last_trim_ns >= 5'000'000'000) {
+    last_trim_ns = now;
+    malloc_trim(0);
+  }
+  for (const std::string& id : p.registry.expire_idle(now, p.config.caps.stream_idle_s)) {
+    p.forget(id);
+    spdlog::info("stream '{}' expired after {} s without frames", id, p.config.caps.stream_idle_s);
+  }
+}
+
+namespace {
+
+// A message refused before any stream state exists for it: counted by reason, logged at a
+// bounded rate, and answered with an error result under the (escaped) topic so that the
+// producer's operator can see why.
+FramePtr refuse(FramePtr f, Refusal why, Status message, Pipeline& p) {
+  p.registry.refusals().add(why);
+  uint64_t held_back = 0;
+  if (p.refusal_log.allow(f->receive_ns, held_back))
+    spdlog::warn("refused a frame for stream '{}' ({}): {}{}", f->stream_id, refusal_name(why), message.message(),
+                 held_back ? fmt::format(" ({} similar messages not logged)", held_back) : std::string());
+  f->error = std::move(message);
+  f->refused = true;
+  return f;
+}
+
 }  // namespace
 
 FramePtr admit_message(std::vector<zmq::message_t>& parts, Pipeline& p) {
   auto f = std::make_unique<FrameJob>();
   f->receive_ns = wall_ns();
-  f->stream_id = parts.empty() ? std::string() : parts[0].to_string();
-  f->arrival = p.arrivals[f->stream_id]++;
-  if (!p.registry.settings(f->stream_id, f->settings)) {
-    f->error = invalid_input(
-        "too many streams (caps.max_streams = " + std::to_string(p.config.caps.max_streams) + ")");
-    return f;
-  }
-  p.registry.count(f->stream_id, Counter::kIn);
-  Status s = check_framing(parts, p.config.caps);
-  if (s.ok())
-    s = wire::parse_frame_header(std::string_view(parts[1].data<char>(), parts[1].size()), f->header);
-  if (s.ok()) s = check_header(f->header, f->stream_id, parts.size() - 2, p.config.caps);
+  const Caps& caps = p.config.caps;
+  const std::string topic = parts.empty() ? std::string() : parts[0].to_string();
+  f->stream_id = printable_id(topic, caps.max_stream_id_bytes);
+  if (Status s = validate_stream_id(topic, caps.max_stream_id_bytes); !s.ok())
+    return refuse(std::move(f), Refusal::kBadStreamId, std::move(s), p);
+  f->stream_id = topic;
+  // Only a well-formed frame can make a stream: junk never takes a slot.
+  Status s = check_framing(parts, caps);
+  if (s.ok()) s = wire::parse_frame_header(std::string_view(parts[1].data<char>(), parts[1].size()), f->header);
+  if (s.ok()) s = check_header(f->header, f->stream_id, parts.size() - 2, caps);
   if (!s.ok()) {
-    f->error = s;
-    return f;
+    // A stream that exists already gets the error counted as its own.
+    if (p.registry.find(topic, f->settings)) {
+      p.registry.count(topic, Counter::kIn);
+      f->arrival = p.next_arrival++;
+      f->error = std::move(s);
+      return f;
+    }
+    return refuse(std::move(f), Refusal::kMalformed, std::move(s), p);
   }
+  if (!stream_allowed(topic, caps.allowed_streams))
+    return refuse(std::move(f), Refusal::kNotAllowed, invalid_input("stream '" + topic + "' is not in caps.allowed_streams"), p);
+  if (!p.registry.settings(topic, f->settings, f->receive_ns))
+    return refuse(std::move(f), Refusal::kTooManyStreams,
+                  invalid_input("too many streams (caps.max_streams = " + std::to_string(caps.max_streams) + ")"), p);
+  f->arrival = p.next_arrival++;
+  p.registry.count(f->stream_id, Counter::kIn);
   for (size_t i = 2; i < parts.size(); ++i) f->chunks.push_back(std::move(parts[i]));
   return f;
 }
@@ -64,23 +117,29 @@ void run_ingest(zmq::socket_t socket, Pipeline& p) {
   std::vector<zmq::message_t> parts;
   for (;;) {
     parts.clear();
+    expire_idle_streams(p);
     try {
-      if (!zmq::recv_multipart(socket, std::back_inserter(parts))) continue;
+      if (!zmq::recv_multipart(socket, std::back_inserter(parts))) continue;  // receive timeout
     } catch (const zmq::error_t& e) {
       if (e.num() == ETERM) break;
       spdlog::error("ingest: {}", e.what());
       continue;
     }
-    FramePtr f = admit_message(parts, p);
-    if (!f->error.ok()) {
-      const Status why = f->error;
-      p.fail(std::move(f), why);
-    } else {
-      p.note_queued(*f);
-      p.decode_queue.push(std::move(f));
-    }
+    queue_admitted(admit_message(parts, p), p);
   }
   socket.close();
+}
+
+void queue_admitted(FramePtr f, Pipeline& p) {
+  if (f->refused) {
+    p.publish_queue.push(std::move(f));  // logged (rate-limited) and counted at refusal
+  } else if (!f->error.ok()) {
+    const Status why = f->error;
+    p.fail(std::move(f), why);
+  } else {
+    p.note_queued(*f);
+    p.decode_queue.push(std::move(f));
+  }
 }
 
 }  // namespace fq::daemon

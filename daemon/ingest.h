@@ -15,4 +15,10 @@ void run_ingest(zmq::socket_t socket, Pipeline& p);
 /// otherwise a job whose `error` is set (its stream id is the message's topic).
 FramePtr admit_message(std::vector<zmq::message_t>& parts, Pipeline& p);
 
+/// Hands an admitted job on: refusals and errors to the publisher, frames to the decoders.
+void queue_admitted(FramePtr f, Pipeline& p);
+
+/// At most once a second: forgets idle streams and frees idle pools (ingest thread).
+void expire_idle_streams(Pipeline& p);
+
 }  // namespace fq::daemon

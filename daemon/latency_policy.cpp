@@ -24,11 +24,18 @@ bool FrameSlots::take(FramePtr& out, std::vector<FramePtr>& stale) {
   ready_.wait(lock, [&] { return closed_ || waiting_ > 0; });
   if (waiting_ == 0) return false;
   while (waiting_ > 0) {
-    // Oldest frame first, so that no stream starves another.
+    // Round robin: the stream served least recently goes first (oldest frame among equals).
+    // Oldest-frame-first alone starves a stream under overload: when its waiting frame is
+    // superseded while the engine is busy, the replacement is always younger than the other
+    // stream's, which then wins every time.
     Stream* best = nullptr;
     for (auto& [id, s] : streams_) {
-      if (s.waiting && (!best || s.waiting->receive_ns < best->waiting->receive_ns)) best = &s;
+      if (!s.waiting) continue;
+      if (!best || s.served < best->served ||
+          (s.served == best->served && s.waiting->receive_ns < best->waiting->receive_ns))
+        best = &s;
     }
+    best->served = ++served_;
     FramePtr f = std::move(best->waiting);
     --waiting_;
     best->last_taken_arrival = f->arrival;

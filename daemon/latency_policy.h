@@ -28,8 +28,8 @@ class FrameSlots {
   /// waiting or taken (decode finished out of order); null when nothing was replaced.
   FramePtr offer(FramePtr frame);
 
-  /// Blocks until a frame is waiting, then hands the oldest one (by receive time, across
-  /// streams) to the calling worker in `out`, ticketed; frames found stale on the way are
+  /// Blocks until a frame is waiting, then hands one out round robin across streams (the stream
+  /// served least recently first, the oldest frame among equals) to the calling worker in `out`, ticketed; frames found stale on the way are
   /// moved to `stale` (and `out` stays null when nothing fresh is left). False once closed
   /// and empty.
   bool take(FramePtr& out, std::vector<FramePtr>& stale);
@@ -43,12 +43,14 @@ class FrameSlots {
     uint64_t last_taken_arrival = 0;
     bool taken_any = false;
     uint64_t next_ticket = 0;
+    uint64_t served = 0;  ///< when it was last handed out (served_ at the time); 0 = never
   };
 
   std::mutex mutex_;
   std::condition_variable ready_;
   std::map<std::string, Stream> streams_;
   size_t waiting_ = 0;
+  uint64_t served_ = 0;
   bool closed_ = false;
 };
 

@@ -15,13 +15,27 @@
 #include "daemon/latency_policy.h"
 #include "daemon/latest_results.h"
 #include "daemon/object_pool.h"
+#include "daemon/stream_admission.h"
 #include "daemon/stream_registry.h"
 #include "daemon/work_queue.h"
 
 namespace fq::daemon {
 
+template <class V>
+size_t bytes_held(const V& v) {
+  return v.capacity() * sizeof(typename V::value_type);
+}
+template <class V>
+size_t bytes_used(const V& v) {
+  return v.size() * sizeof(typename V::value_type);
+}
+
 struct Pipeline {
-  Pipeline(const DaemonConfig& c, StreamRegistry& r) : config(c), registry(r) {}
+  Pipeline(const DaemonConfig& c, StreamRegistry& r)
+      : config(c),
+        registry(r),
+        results(8, [](const FrameResult& x) { return bytes_held(x.positions) + bytes_held(x.labels); },
+                [](const FrameResult& x) { return bytes_used(x.positions) + bytes_used(x.labels); }) {}
 
   const DaemonConfig& config;
   StreamRegistry& registry;
@@ -29,9 +43,12 @@ struct Pipeline {
   FrameSlots slots;
   WorkQueue<FramePtr> encode_queue;
   WorkQueue<FramePtr> publish_queue;
-  std::map<std::string, uint64_t> arrivals;  ///< per-stream arrival counter, ingest thread only
-  /// Engine outputs, reused: the engines keep a result's buffers (grow-only). Decoded meshes
-  /// are not pooled: decode_frame starts from an empty mesh, so a pooled one kept nothing.
+  /// Arrival index of the next ingest message, across streams (monotonic, so also within
+  /// each stream; one counter instead of one per topic). Ingest thread only.
+  uint64_t next_arrival = 0;
+  LogLimiter refusal_log;  ///< ingest thread only
+  /// Engine outputs, reused: the engines keep a result's buffers. Decoded meshes are not
+  /// pooled: decode_frame starts from an empty mesh, so a pooled one kept nothing.
   ObjectPool<FrameResult> results;
   LatestResults latest;                      ///< each watched stream's last result (HTTP viewer)
   LabelTracks label_tracks;                  ///< stable cluster ids per stream
@@ -47,6 +64,8 @@ struct Pipeline {
   /// older one skips it (superseded), as the newer one would take its slot anyway. This
   /// keeps a backlog from building up in front of the decoders.
   bool newer_queued(const FrameJob& frame);
+  /// Drops what the pipeline keeps for a stream that expired (ingest thread).
+  void forget(const std::string& stream_id);
 
  private:
   std::mutex newest_mutex_;

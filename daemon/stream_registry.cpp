@@ -1,5 +1,6 @@
 #include "daemon/stream_registry.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <iterator>
 
@@ -8,7 +9,15 @@ namespace fq::daemon {
 StreamRegistry::StreamRegistry(const DaemonConfig& config)
     : config_(config), defaults_(config.defaults), configured_(config.streams) {
   // Configured streams are listed (and controllable) before their first frame.
-  for (const auto& [id, s] : config.streams) streams_[id].settings = s;
+  for (const auto& [id, s] : config.streams) {
+    streams_[id].settings = s;
+    streams_[id].pinned = true;
+  }
+}
+
+StreamRegistry::Entry* StreamRegistry::existing(const std::string& stream_id) {
+  auto it = streams_.find(stream_id);
+  return it == streams_.end() ? nullptr : &it->second;
 }
 
 StreamRegistry::Entry* StreamRegistry::entry(const std::string& stream_id) {
@@ -29,16 +38,33 @@ void StreamRegistry::reload(const StreamSettings& defaults, const std::map<std::
   std::lock_guard<std::mutex> lock(mutex_);
   defaults_ = defaults;
   configured_ = streams;
-  for (const auto& [id, s] : configured_) streams_[id].settings = s;
+  for (const auto& [id, s] : configured_) streams_[id].pinned = true;
   for (auto& [id, e] : streams_) e.settings = configured(id);
 }
 
-bool StreamRegistry::settings(const std::string& stream_id, StreamSettings& out) {
+bool StreamRegistry::settings(const std::string& stream_id, StreamSettings& out, int64_t now_ns) {
   std::lock_guard<std::mutex> lock(mutex_);
   Entry* e = entry(stream_id);
   if (!e) return false;
+  e->last_seen_ns = std::max(e->last_seen_ns, now_ns);
   out = e->settings;
   return true;
+}
+
+std::vector<std::string> StreamRegistry::expire_idle(int64_t now_ns, double idle_s) {
+  std::vector<std::string> gone;
+  if (idle_s <= 0) return gone;
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (auto it = streams_.begin(); it != streams_.end();) {
+    const Entry& e = it->second;
+    if (!e.pinned && double(now_ns - e.last_seen_ns) > idle_s * 1e9) {
+      gone.push_back(it->first);
+      it = streams_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  return gone;
 }
 
 bool StreamRegistry::set_settings(const std::string& stream_id, const StreamSettings& s) {
@@ -46,6 +72,7 @@ bool StreamRegistry::set_settings(const std::string& stream_id, const StreamSett
   Entry* e = entry(stream_id);
   if (!e) return false;
   e->settings = s;
+  e->pinned = true;
   return true;
 }
 
@@ -59,7 +86,7 @@ bool StreamRegistry::find(const std::string& stream_id, StreamSettings& out) con
 
 void StreamRegistry::count(const std::string& stream_id, Counter c, uint64_t n) {
   std::lock_guard<std::mutex> lock(mutex_);
-  Entry* e = entry(stream_id);
+  Entry* e = existing(stream_id);
   if (!e) return;
   // The field of each Counter, in the enum's order.
   static constexpr uint64_t StreamCounters::*kFields[] = {
@@ -71,7 +98,7 @@ void StreamRegistry::count(const std::string& stream_id, Counter c, uint64_t n) 
 
 void StreamRegistry::record(const std::string& stream_id, const std::string& stage, double ms) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (Entry* e = entry(stream_id)) e->metrics.add(stage, ms);
+  if (Entry* e = existing(stream_id)) e->metrics.add(stage, ms);
 }
 
 std::vector<std::string> StreamRegistry::list() const {

@@ -11,6 +11,7 @@
 
 #include "daemon/config.h"
 #include "daemon/stage_metrics.h"
+#include "daemon/stream_admission.h"
 
 namespace fq::daemon {
 
@@ -39,10 +40,16 @@ class StreamRegistry {
   explicit StreamRegistry(const DaemonConfig& config);
 
   /// The stream's settings, registering it (from its config entry or the defaults) on
-  /// first sight. False when the stream is new and max_streams are already registered.
-  bool settings(const std::string& stream_id, StreamSettings& out);
-  /// Replaces a stream's settings (registering it); the caller has validated them.
+  /// first sight, and noting it as active at `now_ns`. False when the stream is new and
+  /// max_streams are already registered. The only call that registers a stream from a frame:
+  /// the ingest thread calls it once the stream id has been admitted.
+  bool settings(const std::string& stream_id, StreamSettings& out, int64_t now_ns = 0);
+  /// Replaces a stream's settings (registering it); the caller has validated them. A stream
+  /// whose settings were set this way, like one from the config, never expires.
   bool set_settings(const std::string& stream_id, const StreamSettings& s);
+  /// Forgets streams that are neither configured nor set at run time and have had no frame
+  /// for `idle_s` seconds; returns their ids.
+  std::vector<std::string> expire_idle(int64_t now_ns, double idle_s);
   /// The settings of a registered stream; false when unknown.
   bool find(const std::string& stream_id, StreamSettings& out) const;
   /// Replaces the configured settings (a reloaded config's [defaults] and [streams.*]): every
@@ -57,13 +64,20 @@ class StreamRegistry {
   /// One stream (false when unknown) or, with an empty id, every stream.
   bool snapshot(const std::string& stream_id, std::vector<StreamSnapshot>& out) const;
 
+  /// Messages refused before any stream state was made for them, by reason.
+  RefusalCounters& refusals() { return refusals_; }
+  const RefusalCounters& refusals() const { return refusals_; }
+
  private:
   struct Entry {
     StreamSettings settings;
     StreamCounters counters;
     StageMetrics metrics;
+    int64_t last_seen_ns = 0;
+    bool pinned = false;  ///< configured or set through the control socket: never expires
   };
   Entry* entry(const std::string& stream_id);  // registers; null when full
+  Entry* existing(const std::string& stream_id);  // null when unknown
   StreamSnapshot snapshot_of(const std::string& id, const Entry& e) const;
 
   const StreamSettings& configured(const std::string& stream_id) const;
@@ -73,6 +87,7 @@ class StreamRegistry {
   std::map<std::string, StreamSettings> configured_;  ///< [streams.*], replaced by reload()
   mutable std::mutex mutex_;
   std::map<std::string, Entry> streams_;
+  RefusalCounters refusals_;
 };
 
 }  // namespace fq::daemon

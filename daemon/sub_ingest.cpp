@@ -26,13 +26,6 @@ Status make_sub_socket(zmq::context_t& ctx, const SubIngestConfig& config, zmq::
 
 namespace {
 
-// As the PULL ingest does: an error result at once, else on to the decode pool.
-void queue_admitted(FramePtr f, Pipeline& p) {
-  if (Status why = f->error; !why.ok()) return p.fail(std::move(f), why);
-  p.note_queued(*f);
-  p.decode_queue.push(std::move(f));
-}
-
 // One whole message from `s` (which poll said is readable) into `parts`.
 bool receive(zmq::socket_t& s, std::vector<zmq::message_t>& parts) {
   parts.clear();
@@ -46,7 +39,8 @@ void run_sub_ingest(zmq::socket_t pull, zmq::socket_t sub, Pipeline& p, const st
   zmq::pollitem_t items[] = {{pull.handle(), 0, ZMQ_POLLIN, 0}, {sub.handle(), 0, ZMQ_POLLIN, 0}};
   for (;;) {
     try {
-      zmq::poll(items, 2, std::chrono::milliseconds(-1));
+      expire_idle_streams(p);
+      zmq::poll(items, 2, std::chrono::milliseconds(1000));  // wakes for the idle sweep
       if ((items[0].revents & ZMQ_POLLIN) && receive(pull, parts)) queue_admitted(admit_message(parts, p), p);
       if ((items[1].revents & ZMQ_POLLIN) && receive(sub, parts)) {
         if (streams.empty() || (!parts.empty() && streams.count(parts[0].to_string())))

@@ -98,6 +98,20 @@ void TomlReader::read(const char* key, std::vector<int>& out, int64_t lo, int64_
   out = std::move(values);
 }
 
+void TomlReader::read(const char* key, std::vector<std::string>& out) {
+  const toml::node* n = get(key);
+  if (!n) return;
+  const toml::array* a = n->as_array();
+  if (!a) return fail(key, "must be an array of strings");
+  std::vector<std::string> values;
+  for (const toml::node& e : *a) {
+    auto v = e.value_exact<std::string>();
+    if (!v) return fail(key, "must hold strings");
+    values.push_back(*v);
+  }
+  out = std::move(values);
+}
+
 const toml::table* TomlReader::table(const char* key) {
   const toml::node* n = get(key);
   if (!n) return nullptr;

@@ -28,6 +28,7 @@ class TomlReader {
   void read(const char* key, uint32_t& out, int64_t lo, int64_t hi);
   void read(const char* key, uint64_t& out, int64_t lo, int64_t hi);
   void read(const char* key, std::vector<int>& out, int64_t lo, int64_t hi);
+  void read(const char* key, std::vector<std::string>& out);
 
   /// The sub-table `key`, or null when absent (an error when it is not a table).
   const toml::table* table(const char* key);

@@ -44,6 +44,8 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
   FQ_RETURN_IF_ERROR(validate(params));
   if (needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
   PassClock clock(out.timings, observer_);
+  // A frame far smaller than the largest one so far gives that one's scratch back.
+  if (size_t(mesh.num_vertices) * 4 < f_.points.capacity() && f_.points.capacity() > (1u << 16)) f_ = CpuFrame{};
   FQ_RETURN_IF_ERROR(check_mesh(mesh, threads_));
   FQ_RETURN_IF_ERROR(compute_normalization(mesh, f_.norm, threads_));
   out.mean_edge = f_.norm.mean_edge;

@@ -12,6 +12,7 @@ add_library(fq_proto STATIC
   ${CMAKE_CURRENT_LIST_DIR}/vertex_id_runs.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frame_encode.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frame_decode.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/draco_budget.cpp
   ${CMAKE_CURRENT_LIST_DIR}/position_chunks.cpp)
 
 # Generated fq.pb.h / fq.pb.cc land in <build>/generated/proto (never in the source tree).

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "clients/common/curve_client.h"
 #include "clients/common/frame_sender.h"
 #include "clients/common/mesh_source.h"
 #include "clients/common/override_options.h"
@@ -21,6 +22,7 @@ void on_signal(int) { g_stop = true; }
 
 struct Args {
   std::string input, endpoint = "tcp://127.0.0.1:5555", bind_pub;
+  fq::client::CurveClientOptions curve;
   double fps = 10.0, noise = 0.0, duration = 0.0;
   uint64_t seed = 1, count = 0;
   bool json = false, quiet = false;
@@ -100,6 +102,7 @@ void add_options(CLI::App& app, Args& a) {
   app.add_option("--seed", a.seed, "noise seed (frame i uses seed + i)")->capture_default_str();
   app.add_option("-n,--count", a.count, "frames to send (0 = until --duration or Ctrl-C)");
   app.add_option("-d,--duration", a.duration, "seconds to publish (0 = until --count or Ctrl-C)");
+  fq::client::add_curve_options(app, a.curve);
   app.add_flag("--json", a.json, "print the summary as JSON");
   app.add_flag("-q,--quiet", a.quiet, "no progress line");
   fq::client::add_override_options(app, a.overrides);
@@ -127,6 +130,10 @@ int run(int argc, char** argv) {
   const bool pub = !a.bind_pub.empty();
   zmq::socket_t push(ctx, pub ? zmq::socket_type::pub : zmq::socket_type::push);
   push.set(zmq::sockopt::linger, 5000);  // deliver queued frames before exiting
+  if (fq::Status s = fq::client::apply_curve_client(push, a.curve); !s.ok()) {
+    std::fprintf(stderr, "fqpub: %s\n", s.message().c_str());
+    return 2;
+  }
   try {
     if (pub)
       push.bind(a.bind_pub);

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "clients/common/curve_client.h"
 #include "clients/common/result_receiver.h"
 #include "clients/common/stream_stats.h"
 #include "common/tool_main.h"
@@ -24,6 +25,7 @@ void on_signal(int) { g_stop = true; }
 
 struct Args {
   std::string endpoint = "tcp://127.0.0.1:5556", out_dir, faces_file;
+  fq::client::CurveClientOptions curve;
   std::vector<uint32_t> faces;  ///< triangles of --faces
   std::vector<std::string> streams;
   uint64_t count = 0, write_every = 0;
@@ -68,6 +70,10 @@ bool inspect(const Args& a, fq::client::ReceivedResult& r, fq::Status why) {
 bool subscribe(const Args& a, zmq::socket_t& sub) {
   sub.set(zmq::sockopt::rcvtimeo, 200);  // wake up for the status line and the time limits
   sub.set(zmq::sockopt::rcvhwm, 100000);
+  if (fq::Status s = fq::client::apply_curve_client(sub, a.curve); !s.ok()) {
+    std::fprintf(stderr, "fqsub: %s\n", s.message().c_str());
+    return false;
+  }
   if (a.streams.empty()) sub.set(zmq::sockopt::subscribe, "");
   // ZeroMQ topics are prefixes: receive_loop's exact-match check drops e.g. "cam10" for "cam1".
   for (const std::string& s : a.streams) sub.set(zmq::sockopt::subscribe, s);
@@ -119,6 +125,7 @@ int run(int argc, char** argv) {
   app.add_option("-s,--stream", a.streams, "stream id to subscribe to (repeatable; none = all streams)");
   app.add_option("-n,--count", a.count, "stop after this many results (0 = no limit)");
   app.add_option("-d,--duration", a.duration, "stop after this many seconds (0 = no limit)");
+  fq::client::add_curve_options(app, a.curve);
   app.add_option("--idle-timeout", a.idle_timeout,
                  "stop when no result came for this many seconds (0 = never)");
   app.add_option("--write-every", a.write_every, "write every Nth good result as PLY (0 = none)");

@@ -9,6 +9,7 @@
 #include "tests/daemon/daemon_harness.h"
 #include "tests/daemon/draco_plain.h"
 #include "proto/header_codec.h"
+#include "tests/proto/proto_test_meshes.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq::test {
@@ -87,10 +88,18 @@ const std::vector<BadCase>& bad_cases() {
        }},
       {"point cloud", "point cloud", [](const Mesh& m) { return plain_frame(m, draco_point_cloud(m)); }},
       {"over the vertex cap", "cap", [](const Mesh&) { return good_parts(make_icosphere(4, 1.0f)); }},
+      // Every part under the cap (a larger part is refused at the socket: see
+      // admission_test.cpp), the whole message over it.
       {"over the byte cap", "bytes",
        [](const Mesh& m) {
          auto p = good_parts(m);
-         p[2] += std::string(200'000, '\0');
+         for (int i = 0; i < 3; ++i) p.push_back(std::string(60'000, '\0'));
+         return p;
+       }},
+      {"decode bomb", "declares",
+       [](const Mesh& m) {
+         auto p = good_parts(m);
+         p[2] = test_proto::forge_face_count(p[2], 300'000'000);
          return p;
        }},
       {"invalid parameters", "theta",

@@ -24,8 +24,8 @@ Mesh noisy_sphere(uint64_t seed, int subdivisions) {
   return m;
 }
 
-DaemonHarness::DaemonHarness(daemon::DaemonConfig config)
-    : daemon_(std::make_unique<daemon::Daemon>(std::move(config))) {
+DaemonHarness::DaemonHarness(daemon::DaemonConfig config, client::CurveClientOptions curve)
+    : daemon_(std::make_unique<daemon::Daemon>(std::move(config))), curve_(std::move(curve)) {
   const Status s = daemon_->start();
   if (!s.ok()) {
     ADD_FAILURE() << "daemon did not start: " << s.message();
@@ -40,7 +40,11 @@ void DaemonHarness::connect(const daemon::BoundEndpoints& e) {
   push_ = zmq::socket_t(ctx_, zmq::socket_type::push);
   sub_ = zmq::socket_t(ctx_, zmq::socket_type::sub);
   req_ = zmq::socket_t(ctx_, zmq::socket_type::req);
-  for (zmq::socket_t* s2 : {&push_, &sub_, &req_}) s2->set(zmq::sockopt::linger, 0);
+  for (zmq::socket_t* s2 : {&push_, &sub_, &req_}) {
+    s2->set(zmq::sockopt::linger, 0);
+    const Status s = client::apply_curve_client(*s2, curve_);
+    if (!s.ok()) ADD_FAILURE() << s.message();
+  }
   sub_.set(zmq::sockopt::subscribe, "");
   sub_.set(zmq::sockopt::rcvhwm, 100000);
   push_.connect(e.ingest);

@@ -11,6 +11,7 @@
 
 #include "daemon/config.h"
 #include "clients/common/control_client.h"
+#include "clients/common/curve_client.h"
 #include "daemon/daemon.h"
 #include "clients/common/frame_sender.h"
 #include "clients/common/result_receiver.h"
@@ -27,7 +28,7 @@ Mesh noisy_sphere(uint64_t seed = 7, int subdivisions = 3);
 class DaemonHarness {
  public:
   /// Starts a daemon in this process and connects to it.
-  explicit DaemonHarness(daemon::DaemonConfig config = test_config());
+  explicit DaemonHarness(daemon::DaemonConfig config = test_config(), client::CurveClientOptions curve = {});
   /// Connects to a daemon running elsewhere (e.g. a child process).
   explicit DaemonHarness(const daemon::BoundEndpoints& endpoints);
   ~DaemonHarness();
@@ -55,6 +56,7 @@ class DaemonHarness {
   void wait_for_subscription();
 
   std::unique_ptr<daemon::Daemon> daemon_;
+  client::CurveClientOptions curve_;
   zmq::context_t ctx_{1};
   zmq::socket_t push_, sub_, req_;
   std::map<std::string, std::deque<client::ReceivedResult>> pending_;

@@ -1,5 +1,7 @@
 #include "tests/proto/proto_test_meshes.h"
 
+#include "proto/draco_budget.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -86,6 +88,37 @@ std::vector<std::array<uint32_t, 3>> triangle_set(const std::vector<uint32_t>& t
   }
   std::sort(out.begin(), out.end());
   return out;
+}
+
+}  // namespace fq::test_proto
+
+namespace fq::test_proto {
+namespace {
+
+std::string varint(uint64_t v) {
+  std::string out;
+  do {
+    uint8_t b = v & 0x7f;
+    v >>= 7;
+    out.push_back(static_cast<char>(v ? (b | 0x80) : b));
+  } while (v);
+  return out;
+}
+
+}  // namespace
+
+std::string forge_face_count(const std::string& chunk, uint64_t faces) {
+  wire::ChunkCounts c;
+  if (!wire::read_chunk_counts(chunk, c).ok()) return chunk;
+  // Rewrite each place that holds the face count as a varint until the header reads back
+  // the forged count: that place is the field, whichever coder wrote the chunk.
+  const std::string old = varint(c.faces);
+  for (size_t at = chunk.find(old, 11); at != std::string::npos; at = chunk.find(old, at + 1)) {
+    std::string forged = chunk.substr(0, at) + varint(faces) + chunk.substr(at + old.size());
+    wire::ChunkCounts f;
+    if (wire::read_chunk_counts(forged, f).ok() && f.faces == faces && f.points == c.points) return forged;
+  }
+  return chunk;
 }
 
 }  // namespace fq::test_proto

@@ -24,3 +24,11 @@ std::optional<Mesh> load_shared_mesh(const std::string& file_name);
 std::vector<std::array<uint32_t, 3>> triangle_set(const std::vector<uint32_t>& triangles);
 
 }  // namespace fq::test_proto
+
+namespace fq::test_proto {
+
+/// `chunk` (a Draco mesh) with its declared face count replaced by `faces`: the shape of a
+/// decode bomb, a few hundred bytes that ask the decoder for gigabytes.
+std::string forge_face_count(const std::string& chunk, uint64_t faces);
+
+}  // namespace fq::test_proto

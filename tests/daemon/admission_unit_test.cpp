@@ -1,0 +1,124 @@
+// Stream-id admission, refusal log limiting and the neighbourhood work budget.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "daemon/object_pool.h"
+#include "daemon/stream_admission.h"
+#include "daemon/work_budget.h"
+
+namespace fq::daemon {
+namespace {
+
+TEST(StreamId, ValidUtf8WithoutControlCharactersIsAccepted) {
+  EXPECT_TRUE(validate_stream_id("cam0", 128).ok());
+  EXPECT_TRUE(validate_stream_id("Kamera-\xc3\xbc-\xe2\x82\xac-\xf0\x9f\x8e\xa5", 128).ok());  // ü € 🎥
+}
+
+TEST(StreamId, BadIdsAreRefusedWithAReadableMessage) {
+  struct Case {
+    std::string id;
+    const char* words;
+  };
+  const Case cases[] = {
+      {"", "empty"},
+      {std::string(129, 'a'), "over the cap"},
+      {"\xff\xfe" "cam", "not valid UTF-8"},
+      {"\xc0\x80", "not valid UTF-8"},          // overlong NUL
+      {"\xed\xa0\x80", "not valid UTF-8"},      // surrogate
+      {"\xf4\x90\x80\x80", "not valid UTF-8"},  // above U+10FFFF
+      {"\xe2\x82", "not valid UTF-8"},          // cut short
+      {"cam\n0", "control character"},
+      {std::string("ca\0m", 4), "control character"},
+  };
+  for (const Case& c : cases) {
+    const Status s = validate_stream_id(c.id, 128);
+    ASSERT_FALSE(s.ok()) << printable_id(c.id);
+    EXPECT_NE(s.message().find(c.words), std::string::npos) << s.message();
+    for (unsigned char ch : s.message()) EXPECT_TRUE(ch >= 0x20 && ch < 0x7f) << s.message();
+  }
+}
+
+TEST(StreamId, PrintableIdEscapesAndCuts) {
+  EXPECT_EQ(printable_id("cam"), "cam");
+  EXPECT_EQ(printable_id("\xff" "a\\"), "\\xffa\\x5c");
+  EXPECT_EQ(printable_id(std::string(100, 'x'), 8), "xxxxxxxx...");
+}
+
+TEST(StreamId, AllowListTakesExactIdsAndPrefixes) {
+  const std::vector<std::string> allowed{"cam0", "studio-*"};
+  EXPECT_TRUE(stream_allowed("anything", {}));
+  EXPECT_TRUE(stream_allowed("cam0", allowed));
+  EXPECT_FALSE(stream_allowed("cam01", allowed));
+  EXPECT_TRUE(stream_allowed("studio-a", allowed));
+  EXPECT_TRUE(stream_allowed("studio-", allowed));
+  EXPECT_FALSE(stream_allowed("studio", allowed));
+}
+
+TEST(LogLimiter, PassesAFewASecondAndReportsTheRest) {
+  LogLimiter l(2);
+  uint64_t held = 99;
+  int64_t t = 10'000'000'000;
+  EXPECT_TRUE(l.allow(t, held));
+  EXPECT_EQ(held, 0u);
+  EXPECT_TRUE(l.allow(t + 1, held));
+  for (int i = 0; i < 1000; ++i) EXPECT_FALSE(l.allow(t + 2 + i, held));
+  EXPECT_TRUE(l.allow(t + 1'000'000'001, held));
+  EXPECT_EQ(held, 1000u);
+}
+
+TEST(WorkBudget, NeighboursGrowWithTheSquareOfSigma) {
+  EXPECT_NEAR(expected_neighbours(1.0), 14.51, 0.01);
+  EXPECT_NEAR(expected_neighbours(10.0) / expected_neighbours(1.0), 100.0, 1e-9);
+}
+
+TEST(WorkBudget, HugeSigmaIsRefusedNamingItDefaultsPass) {
+  Params p;  // defaults: filter only
+  EXPECT_TRUE(check_work_budget(p, 4'000'000, 2e10).ok());
+  p.cluster = true;
+  EXPECT_TRUE(check_work_budget(p, 4'000'000, 2e10).ok());
+  p.f.sigma_s = 1e4f;
+  const Status s = check_work_budget(p, 35'000, 2e10);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("sigma_s"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("max_neighbour_work"), std::string::npos) << s.message();
+}
+
+}  // namespace
+}  // namespace fq::daemon
+
+namespace fq::daemon {
+namespace {
+
+ObjectPool<std::vector<float>> vector_pool() {
+  return ObjectPool<std::vector<float>>(
+      8, [](const std::vector<float>& v) { return v.capacity() * sizeof(float); },
+      [](const std::vector<float>& v) { return v.size() * sizeof(float); });
+}
+
+TEST(ObjectPool, KeepsBuffersOfSteadyFramesAndFreesOversizedOnes) {
+  auto pool = vector_pool();
+  std::vector<float> steady(1 << 20);
+  pool.release(std::move(steady));
+  EXPECT_EQ(pool.kept(), 1u);
+  std::vector<float> reused = pool.acquire();
+  EXPECT_GE(reused.capacity(), size_t(1) << 20) << "a kept buffer comes back with its capacity";
+  reused.resize(1000);  // a small frame in a huge frame's buffer
+  pool.release(std::move(reused));
+  EXPECT_EQ(pool.kept(), 0u) << "a buffer holding far more than it used is freed";
+}
+
+TEST(ObjectPool, TrimFreesEverythingAfterIdleTime) {
+  auto pool = vector_pool();
+  (void)pool.acquire(1'000);
+  pool.release(std::vector<float>(1000));
+  pool.release(std::vector<float>(1000));
+  pool.trim(2'000, 5'000);
+  EXPECT_EQ(pool.kept(), 2u) << "not idle long enough";
+  pool.trim(10'000, 5'000);
+  EXPECT_EQ(pool.kept(), 0u);
+}
+
+}  // namespace
+}  // namespace fq::daemon

@@ -1,0 +1,50 @@
+// Writes the fuzzers' seed corpora from real frames: headers and Draco chunks of the
+// bundled fandisk (several chunk counts and Draco speeds) and the example configuration.
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "clients/common/frame_sender.h"
+#include "proto/frame_codec.h"
+#include "proto/header_codec.h"
+#include "proto/mesh_io.h"
+
+namespace fs = std::filesystem;
+
+static void put(const fs::path& p, const std::string& bytes) { std::ofstream(p, std::ios::binary) << bytes; }
+
+int main(int argc, char** argv) {
+  if (argc != 4) return 2;  // make_seeds MESH CONFIG OUTDIR
+  const fs::path out = argv[3];
+  for (const char* d : {"headers", "frame_decode", "config"}) fs::create_directories(out / d);
+  std::ifstream cfg(argv[2]);
+  put(out / "config" / "fqd.toml", std::string(std::istreambuf_iterator<char>(cfg), {}));
+  fq::Mesh m;
+  if (!fq::io::read_mesh(argv[1], m).ok()) return 1;
+  int n = 0;
+  for (uint32_t chunks : {1u, 4u}) {
+    for (int speed : {0, 5, 10}) {
+      fq::client::FrameSpec spec;
+      spec.stream_id = "seed";
+      spec.chunks = chunks;
+      spec.encode_speed = spec.decode_speed = speed;
+      std::vector<std::string> parts;
+      if (!fq::client::build_frame(m.view(), spec, uint64_t(n), parts).ok()) return 1;
+      put(out / "headers" / ("frame" + std::to_string(n)), parts[1]);
+      for (size_t i = 2; i < parts.size(); ++i)
+        put(out / "frame_decode" / ("chunk" + std::to_string(n) + "_" + std::to_string(i)), std::string(1, '\0') + parts[i]);
+      ++n;
+    }
+  }
+  fq::wire::ResultHeader r;
+  r.set_version(fq::wire::kWireVersion);
+  r.set_stream_id("seed");
+  r.set_sequence(7);
+  put(out / "headers" / "result", r.SerializeAsString());
+  fq::wire::ControlRequest q;
+  q.set_version(fq::wire::kWireVersion);
+  q.mutable_get_counters()->set_stream_id("seed");
+  put(out / "headers" / "control", q.SerializeAsString());
+  return 0;
+}
