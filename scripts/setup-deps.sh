@@ -29,6 +29,9 @@ fi
 if [[ ${FQ_SETUP_BROWSER:-1} != 0 ]]; then
   packages+=(chromium yamllint)
 fi
+if [[ ${FQ_SETUP_FUZZ:-1} != 0 ]]; then
+  packages+=(clang-14 libclang-rt-14-dev)   # scripts/fuzz.sh: libFuzzer with ASan + UBSan
+fi
 
 missing=()
 for p in "${packages[@]}"; do

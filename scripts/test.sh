@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# README command 2: install what is missing, build, run every test, clang-tidy the changed files.
+# README command 2: install what is missing, build, run every test, clang-tidy the changed files,
+# then each fuzzer for a minute.
 # GPU tests skip cleanly on a machine without a GPU.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -9,3 +10,5 @@ build=${BUILD_DIR:-$root/build}
 export FQ_MESH_DIR=${FQ_MESH_DIR:-$root/../shared/meshes}
 ctest --test-dir "$build" --output-on-failure -j "${JOBS:-$(nproc)}" --timeout 900
 BUILD_DIR=$build bash "$root/scripts/tidy.sh"   # clang-tidy on the C++ files this change touches
+# Every fuzzer for FQ_FUZZ_SECONDS (default 60) under ASan + UBSan; 0 skips them.
+if [[ ${FQ_FUZZ_SECONDS:-60} != 0 ]]; then bash "$root/scripts/fuzz.sh" "${FQ_FUZZ_SECONDS:-60}"; fi

@@ -6,9 +6,14 @@
 #include <cstdio>
 
 #include "common/curve_keys.h"
+#include "common/tool_main.h"
+#include "common/version.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   CLI::App app{"fqkeys: make a CURVE key pair (NAME.key with the secret, NAME.pub without)"};
+  app.set_version_flag("--version", fq::version_line("fqkeys"));
   std::string name;
   bool force = false;
   app.add_option("name", name, "path prefix of the two files")->required();
@@ -34,3 +39,7 @@ int main(int argc, char** argv) {
   std::fprintf(stderr, "fqkeys: wrote %s (keep it secret) and %s\n", key.c_str(), pub.c_str());
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return fq::tool_main("fqkeys", run, argc, argv); }
