@@ -163,6 +163,19 @@ def rebuild(fq_pb2, parts, faces, decoder):
     return header, positions, labels
 
 
+def read_curve_keys(path):
+    """The Z85 keys of a key file as fqkeys writes it: lines `public = "..."`, `secret = "..."`."""
+    keys = {}
+    with open(path) as f:
+        for line in f:
+            name, _, value = line.partition("=")
+            if name.strip() in ("public", "secret"):
+                keys[name.strip()] = value.strip().strip('"')
+    if "public" not in keys:
+        sys.exit(f"consume.py: {path} holds no public key")
+    return keys
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--endpoint", default="tcp://127.0.0.1:5556", help="fqd's publish endpoint")
@@ -173,6 +186,8 @@ def main():
     ap.add_argument("--timeout", type=float, default=30.0, help="seconds to wait for each result")
     ap.add_argument("--proto-dir", help="folder holding fq_pb2.py (else found on PYTHONPATH)")
     ap.add_argument("--draco-decoder", default="draco_decoder", help="Draco's decoder program")
+    ap.add_argument("--server-key", help="fqd's CURVE public key file (fqkeys NAME.pub), when fqd runs with CURVE")
+    ap.add_argument("--key-file", help="this consumer's CURVE key pair file (fqkeys NAME.key)")
     a = ap.parse_args()
     if a.proto_dir:
         sys.path.insert(0, a.proto_dir)
@@ -188,6 +203,15 @@ def main():
     sub = ctx.socket(zmq.SUB)
     sub.setsockopt(zmq.RCVTIMEO, int(a.timeout * 1000))
     sub.setsockopt(zmq.SUBSCRIBE, a.stream.encode())
+    if a.server_key or a.key_file:
+        if not (a.server_key and a.key_file):
+            sys.exit("consume.py: CURVE needs both --server-key and --key-file")
+        server, mine = read_curve_keys(a.server_key), read_curve_keys(a.key_file)
+        if "secret" not in mine:
+            sys.exit(f"consume.py: {a.key_file} holds no secret key")
+        sub.setsockopt(zmq.CURVE_SERVERKEY, server["public"].encode())
+        sub.setsockopt(zmq.CURVE_PUBLICKEY, mine["public"].encode())
+        sub.setsockopt(zmq.CURVE_SECRETKEY, mine["secret"].encode())
     sub.connect(a.endpoint)
     written = 0
     while written < a.count:

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "clients/common/curve_client.h"
 #include "clients/common/control_client.h"
 #include "clients/fqctl/counters_table.h"
 #include "clients/fqctl/param_assign.h"
@@ -30,6 +31,7 @@ struct Args {
   int timeout_ms = 2000, count = 0;
   double interval = 1.0;
   bool json = false;
+  fq::client::CurveClientOptions curve;
 };
 
 // One request on a fresh REQ socket (a REQ socket is unusable after a timeout). A missing
@@ -38,6 +40,7 @@ fq::Status call(const Args& a, const fq::wire::ControlRequest& q, fq::wire::Cont
   zmq::context_t ctx(1);
   zmq::socket_t req(ctx, zmq::socket_type::req);
   req.set(zmq::sockopt::linger, 0);
+  FQ_RETURN_IF_ERROR(fq::client::apply_curve_client(req, a.curve));
   try {
     req.connect(a.control);
   } catch (const zmq::error_t& e) {
@@ -136,6 +139,7 @@ int run(int argc, char** argv) {
   app.set_version_flag("--version", fq::version_line("fqctl"));
   Args a;
   app.add_option("-c,--control", a.control, "fqd's control endpoint")->capture_default_str();
+  fq::client::add_curve_options(app, a.curve);
   app.add_option("--timeout-ms", a.timeout_ms, "how long to wait for fqd's reply")
       ->capture_default_str()
       ->check(CLI::Range(1, 600000));
