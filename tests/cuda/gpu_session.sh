@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# One device-machine session for the CUDA engine: device facts, the GPU tests,
+# One run on a GPU host for the CUDA engine: device facts, the GPU tests,
 # compute-sanitizer (memcheck + racecheck) on a bunny-sized run, optional block-size sweep
 # and ncu profile, then fqbench. Run from the repository root on the GPU host, after
 # staging (see docs/BENCHMARKS.md):
