@@ -8,7 +8,7 @@
 namespace fq {
 
 /// One run() call. Lives on its caller's stack: the caller unqueues it and waits until no
-/// helper is inside before returning.
+/// worker is inside before returning.
 struct ThreadPool::Job {
   RangeFn fn;
   void* ctx;
@@ -16,7 +16,7 @@ struct ThreadPool::Job {
   size_t max_workers;
   std::atomic<size_t> next{0};
   size_t joined = 1;  ///< worker ids handed out (the caller is 0); under the pool mutex
-  size_t inside = 0;  ///< helpers working on it; under the pool mutex
+  size_t inside = 0;  ///< workers working on it; under the pool mutex
 
   bool exhausted() const { return next.load(std::memory_order_relaxed) >= count; }
   void work(size_t worker) {
@@ -25,13 +25,13 @@ struct ThreadPool::Job {
   }
 };
 
-ThreadPool::ThreadPool(int helpers) {
-  threads_.reserve(static_cast<size_t>(std::max(helpers, 0)));
-  for (int i = 0; i < helpers; ++i) {
+ThreadPool::ThreadPool(int workers) {
+  threads_.reserve(static_cast<size_t>(std::max(workers, 0)));
+  for (int i = 0; i < workers; ++i) {
     try {
-      threads_.emplace_back([this] { helper_loop(); });
+      threads_.emplace_back([this] { worker_loop(); });
     } catch (const std::system_error&) {
-      break;  // resource limits: fewer helpers, loops still complete on their callers
+      break;  // resource limits: fewer workers, loops still complete on their callers
     }
   }
 }
@@ -47,7 +47,7 @@ ThreadPool::~ThreadPool() {
 
 ThreadPool& ThreadPool::shared() {
   // Never destroyed: joining at static destruction would deadlock if exit() were called from a
-  // pool thread, and could race a loop still running on another thread. The helpers sleep in
+  // pool thread, and could race a loop still running on another thread. The workers sleep in
   // their wait and end with the process.
   static ThreadPool* pool = new ThreadPool(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) - 1);
   return *pool;
@@ -71,7 +71,7 @@ void ThreadPool::run_ranges(size_t count, int max_workers, size_t grain, RangeFn
   std::exception_ptr failed;
   try {
     job.work(0);
-  } catch (...) {  // fn must not throw; if it does, no helper may be left inside this job
+  } catch (...) {  // fn must not throw; if it does, no worker may be left inside this job
     failed = std::current_exception();
     job.next.store(job.count);
   }
@@ -81,7 +81,7 @@ void ThreadPool::run_ranges(size_t count, int max_workers, size_t grain, RangeFn
   if (failed) std::rethrow_exception(failed);
 }
 
-void ThreadPool::helper_loop() {
+void ThreadPool::worker_loop() {
   std::unique_lock lock(mutex_);
   for (;;) {
     work_.wait(lock, [&] { return stop_ || !jobs_.empty(); });

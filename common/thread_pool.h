@@ -27,18 +27,18 @@ namespace fq {
 
 class ThreadPool {
  public:
-  /// A pool of `helpers` threads (0: every loop runs on its caller).
-  explicit ThreadPool(int helpers);
+  /// A pool of `workers` threads (0: every loop runs on its caller).
+  explicit ThreadPool(int workers);
   ~ThreadPool();
   ThreadPool(const ThreadPool&) = delete;
   ThreadPool& operator=(const ThreadPool&) = delete;
 
-  /// The process-wide pool: hardware threads - 1 helpers (the caller is the last core).
+  /// The process-wide pool: hardware threads - 1 workers (the caller is the last core).
   /// Started on first use; its threads end with the process.
   static ThreadPool& shared();
 
   /// Threads of the pool (not counting callers).
-  int helpers() const { return static_cast<int>(threads_.size()); }
+  int workers() const { return static_cast<int>(threads_.size()); }
 
   /// Calls fn(begin, end, worker) over [0, count) cut in ranges of `grain` items, on the
   /// calling thread (worker 0) and at most max_workers - 1 pool threads (workers 1, 2, ...):
@@ -46,7 +46,7 @@ class ThreadPool {
   /// Returns when every range is done. Which worker runs which range is not fixed, so fn
   /// must write only the outputs of its items (and its worker's scratch). fn must not throw
   /// (on a pool thread that ends the process, as in an OpenMP loop; on the caller, the other
-  /// ranges are dropped and the exception is rethrown once no helper is inside the loop).
+  /// ranges are dropped and the exception is rethrown once no worker is inside the loop).
   template <class F>
   void run(size_t count, int max_workers, F&& fn, size_t grain = 1) {
     using Fn = std::remove_reference_t<F>;
@@ -60,12 +60,12 @@ class ThreadPool {
   struct Job;
 
   void run_ranges(size_t count, int max_workers, size_t grain, RangeFn fn, void* ctx);
-  void helper_loop();
+  void worker_loop();
 
   std::mutex mutex_;
   std::condition_variable work_;  ///< a job was queued, or the pool stops
-  std::condition_variable done_;  ///< a helper left a job
-  std::deque<Job*> jobs_;         ///< jobs that may still take a helper, oldest first
+  std::condition_variable done_;  ///< a worker left a job
+  std::deque<Job*> jobs_;         ///< jobs that may still take a worker, oldest first
   bool stop_ = false;
   std::vector<std::thread> threads_;
 };

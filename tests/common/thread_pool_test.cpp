@@ -1,5 +1,5 @@
 // The shared host thread pool: every item once, worker ids in range and never shared while in
-// use, nested and concurrent calls complete, and a pool without helpers runs on its caller.
+// use, nested and concurrent calls complete, and a pool without workers runs on its caller.
 #include "common/thread_pool.h"
 
 #include <gtest/gtest.h>
@@ -36,7 +36,7 @@ void check_run(ThreadPool& pool, size_t count, int max_workers, size_t grain) {
 
 TEST(ThreadPool, EveryItemOnceOnAValidWorker) {
   ThreadPool pool(3);
-  EXPECT_EQ(pool.helpers(), 3);
+  EXPECT_EQ(pool.workers(), 3);
   for (size_t count : {size_t(0), size_t(1), size_t(7), size_t(1000), size_t(100003)}) {
     for (int workers : {1, 2, 4, 16}) {
       for (size_t grain : {size_t(1), size_t(64), size_t(4096)}) check_run(pool, count, workers, grain);
@@ -56,7 +56,7 @@ TEST(ThreadPool, WithoutHelpersEverythingRunsOnTheCaller) {
 TEST(ThreadPool, NestedAndConcurrentCallsComplete) {
   ThreadPool pool(2);
   // Several threads each run loops whose items run loops of their own on the same pool: the
-  // caller always works on its own loop, so nothing waits for a helper that never comes.
+  // caller always works on its own loop, so nothing waits for a worker that never comes.
   std::vector<std::thread> callers;
   std::atomic<size_t> total{0};
   for (int c = 0; c < 4; ++c) {
@@ -89,7 +89,7 @@ TEST(ThreadPool, AnExceptionOnTheCallerReachesItAndThePoolGoesOn) {
 
 TEST(ThreadPool, SharedPoolLeavesTheCallerOneCore) {
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  EXPECT_EQ(ThreadPool::shared().helpers(), int(hw) - 1);
+  EXPECT_EQ(ThreadPool::shared().workers(), int(hw) - 1);
   check_run(ThreadPool::shared(), 5000, 64, 16);
 }
 
