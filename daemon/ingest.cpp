@@ -36,23 +36,21 @@ Status check_header(const wire::FrameHeader& h, const std::string& topic, size_t
   return {};
 }
 
-// Streams without frames for caps.stream_idle_s give their slot back (at most one sweep
-// a second; the ingest socket's receive timeout wakes the thread when nothing arrives).
 }  // namespace
 
+// Streams without frames for caps.stream_idle_s give their slot back (at most one sweep
+// a second; the ingest socket's receive timeout wakes the thread when nothing arrives).
 void expire_idle_streams(Pipeline& p) {
-  static thread_local int64_t last_sweep_ns = 0;
   const int64_t now = wall_ns();
-  if (now - last_sweep_ns < 1'000'000'000) return;
-  last_sweep_ns = now;
+  if (now - p.last_sweep_ns < 1'000'000'000) return;
+  p.last_sweep_ns = now;
   const auto idle_ns = static_cast<int64_t>(p.config.caps.pool_idle_s * 1e9);
   p.results.trim(now, idle_ns);
-  // Freed buffers go back to the allocator's arenas, which keep the pages: every few seconds
-  // while frames flow, hand free pages back to the system, so that memory taken by a huge
-  // frame returns once smaller frames follow (the call walks the arenas, ~1 ms).
-  static thread_local int64_t last_trim_ns = 0;
-  if (now - last_trim_ns >= 5'000'000'000) {
-    last_trim_ns = now;
+  // Freed buffers go back to the allocator's arenas, which keep the pages: every 5 s, hand
+  // free pages back to the system, so that memory taken by a huge frame returns once smaller
+  // frames follow (the call walks the arenas).
+  if (now - p.last_malloc_trim_ns >= 5'000'000'000) {
+    p.last_malloc_trim_ns = now;
     malloc_trim(0);
   }
   for (const std::string& id : p.registry.expire_idle(now, p.config.caps.stream_idle_s)) {

@@ -47,6 +47,8 @@ struct Pipeline {
   /// each stream; one counter instead of one per topic). Ingest thread only.
   uint64_t next_arrival = 0;
   LogLimiter refusal_log;  ///< ingest thread only
+  int64_t last_sweep_ns = 0;        ///< idle-stream sweep (expire_idle_streams), ingest thread only
+  int64_t last_malloc_trim_ns = 0;  ///< free pages last handed back, ingest thread only
   /// Engine outputs, reused: the engines keep a result's buffers. Decoded meshes are not
   /// pooled: decode_frame starts from an empty mesh, so a pooled one kept nothing.
   ObjectPool<FrameResult> results;
