@@ -65,7 +65,10 @@ void Pipeline::fail(FramePtr frame, Status why) {
   publish_queue.push(std::move(frame));
 }
 
-void Pipeline::recycle(FrameJob& f) { results.release(std::move(f.result)); }
+void Pipeline::recycle(FrameJob& f) {
+  results.release(std::move(f.result));
+  meshes.release(std::move(f.mesh));
+}
 
 void Pipeline::note_queued(const FrameJob& f) {
   std::lock_guard<std::mutex> lock(newest_mutex_);
@@ -98,6 +101,7 @@ void run_decode_worker(Pipeline& p) {
       continue;
     }
     const auto t0 = std::chrono::steady_clock::now();
+    f->mesh = p.meshes.acquire(wall_ns());
     Status s = guarded("decode", [&] { return decode(*f, p.config); });
     if (s.ok()) s = resolve_settings(*f);
     if (s.ok()) s = check_work_budget(f->settings.params, f->mesh.num_vertices(), p.config.caps.max_neighbour_work);

@@ -38,6 +38,28 @@ Status check_header(const wire::FrameHeader& h, const std::string& topic, size_t
 
 }  // namespace
 
+// Freed buffers go back to the allocator's arenas, which keep the pages. They are handed
+// back to the system (malloc_trim, at most every 5 s) when it pays: after a pool freed a
+// buffer far larger than its frame needed (a small frame after a huge one), or once frames
+// stopped for 5 s. Not on a timer while frames flow: each trim made the next frames fault
+// their pages in again (tens of MB for a 4M-triangle frame).
+static void hand_back_free_pages(Pipeline& p, int64_t now) {
+  constexpr int64_t kPeriod = 5'000'000'000;
+  if (p.next_arrival != p.arrival_seen) {
+    p.arrival_seen = p.next_arrival;
+    p.arrival_seen_ns = now;
+  }
+  if (now - p.last_malloc_trim_ns < kPeriod) return;
+  const uint64_t oversized = p.results.oversized_freed() + p.meshes.oversized_freed();
+  const bool shrank = oversized != p.oversized_at_trim;
+  const bool went_idle = p.next_arrival != p.arrival_at_trim && now - p.arrival_seen_ns >= kPeriod;
+  if (!shrank && !went_idle) return;
+  p.last_malloc_trim_ns = now;
+  p.oversized_at_trim = oversized;
+  p.arrival_at_trim = p.next_arrival;
+  malloc_trim(0);
+}
+
 // Streams without frames for caps.stream_idle_s give their slot back (at most one sweep
 // a second; the ingest socket's receive timeout wakes the thread when nothing arrives).
 void expire_idle_streams(Pipeline& p) {
@@ -46,13 +68,8 @@ void expire_idle_streams(Pipeline& p) {
   p.last_sweep_ns = now;
   const auto idle_ns = static_cast<int64_t>(p.config.caps.pool_idle_s * 1e9);
   p.results.trim(now, idle_ns);
-  // Freed buffers go back to the allocator's arenas, which keep the pages: every 5 s, hand
-  // free pages back to the system, so that memory taken by a huge frame returns once smaller
-  // frames follow (the call walks the arenas).
-  if (now - p.last_malloc_trim_ns >= 5'000'000'000) {
-    p.last_malloc_trim_ns = now;
-    malloc_trim(0);
-  }
+  p.meshes.trim(now, idle_ns);
+  hand_back_free_pages(p, now);
   for (const std::string& id : p.registry.expire_idle(now, p.config.caps.stream_idle_s)) {
     p.forget(id);
     spdlog::info("stream '{}' expired after {} s without frames", id, p.config.caps.stream_idle_s);

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <atomic>
 #include <functional>
 #include <mutex>
 #include <vector>
@@ -37,7 +38,10 @@ class ObjectPool {
   void release(T&& t) {
     if (capacity_ && used_) {
       const size_t cap = capacity_(t), use = used_(t);
-      if (cap > 4 * use && cap - use > (size_t(1) << 20)) return;  // freed here
+      if (cap > 4 * use && cap - use > (size_t(1) << 20)) {  // freed here
+        oversized_freed_.fetch_add(1, std::memory_order_relaxed);
+        return;
+      }
     }
     std::lock_guard<std::mutex> lock(mutex_);
     if (free_.size() < max_kept_) free_.push_back(std::move(t));
@@ -53,6 +57,10 @@ class ObjectPool {
     }
   }
 
+  /// Objects freed by release() because they held far more than they used: memory that a
+  /// huge frame took and a smaller one gave back (the daemon returns free pages after one).
+  uint64_t oversized_freed() const { return oversized_freed_.load(std::memory_order_relaxed); }
+
   size_t kept() {
     std::lock_guard<std::mutex> lock(mutex_);
     return free_.size();
@@ -64,6 +72,7 @@ class ObjectPool {
   size_t max_kept_;
   Bytes capacity_, used_;
   int64_t last_use_ns_ = 0;
+  std::atomic<uint64_t> oversized_freed_{0};
 };
 
 }  // namespace fq::daemon

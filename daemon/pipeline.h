@@ -35,7 +35,9 @@ struct Pipeline {
       : config(c),
         registry(r),
         results(8, [](const FrameResult& x) { return bytes_held(x.positions) + bytes_held(x.labels); },
-                [](const FrameResult& x) { return bytes_used(x.positions) + bytes_used(x.labels); }) {}
+                [](const FrameResult& x) { return bytes_used(x.positions) + bytes_used(x.labels); }),
+        meshes(8, [](const Mesh& m) { return bytes_held(m.positions) + bytes_held(m.triangles); },
+               [](const Mesh& m) { return bytes_used(m.positions) + bytes_used(m.triangles); }) {}
 
   const DaemonConfig& config;
   StreamRegistry& registry;
@@ -49,15 +51,21 @@ struct Pipeline {
   LogLimiter refusal_log;  ///< ingest thread only
   int64_t last_sweep_ns = 0;        ///< idle-stream sweep (expire_idle_streams), ingest thread only
   int64_t last_malloc_trim_ns = 0;  ///< free pages last handed back, ingest thread only
-  /// Engine outputs, reused: the engines keep a result's buffers. Decoded meshes are not
-  /// pooled: decode_frame starts from an empty mesh, so a pooled one kept nothing.
+  uint64_t oversized_at_trim = 0;   ///< the pools' oversized_freed() then, ingest thread only
+  uint64_t arrival_at_trim = 0;     ///< next_arrival then, ingest thread only
+  uint64_t arrival_seen = 0;        ///< next_arrival at the last sweep, ingest thread only
+  int64_t arrival_seen_ns = 0;      ///< when it last changed, ingest thread only
+  /// Engine outputs, reused: the engines keep a result's buffers.
   ObjectPool<FrameResult> results;
+  /// Decoded input meshes, reused: decode_frame keeps their capacity, so a steady stream
+  /// stops allocating (and faulting in) tens of MB per frame for 4M-triangle frames.
+  ObjectPool<Mesh> meshes;
   LatestResults latest;                      ///< each watched stream's last result (HTTP viewer)
   LabelTracks label_tracks;                  ///< stable cluster ids per stream
 
   /// Marks `frame` failed (message logged) and sends it straight to the publisher.
   void fail(FramePtr frame, Status why);
-  /// Returns the frame's result buffers to the pool once it is published or dropped.
+  /// Returns the frame's mesh and result buffers to their pools once it is published or dropped.
   void recycle(FrameJob& frame);
 
   /// Notes that `frame` is being queued for decode (ingest thread).

@@ -64,11 +64,15 @@ Status check_mesh_counts(const MeshView& mesh) {
   return {};
 }
 
+uint64_t first_non_finite(const float* values, uint64_t count, int threads) {
+  return first_bad(count, threads, [&](uint64_t k) { return !std::isfinite(values[k]); });
+}
+
 Status check_mesh(const MeshView& mesh, int threads) {
   if (Status s = check_mesh_counts(mesh); !s.ok()) return s;
   const uint64_t nc = uint64_t(mesh.num_vertices) * 3;
   const uint64_t ni = uint64_t(mesh.num_triangles) * 3;
-  uint64_t bad_coordinate = first_bad(nc, threads, [&](uint64_t k) { return !std::isfinite(mesh.positions[k]); });
+  uint64_t bad_coordinate = first_non_finite(mesh.positions, nc, threads);
   uint64_t bad_index = kNone;
   if (bad_coordinate == nc) {
     bad_coordinate = kNone;

@@ -36,6 +36,10 @@ struct Normalization {
 /// Non-empty, finite coordinates, every index in range, at least one triangle.
 Status check_mesh(const MeshView& mesh, int threads = 0);
 
+/// Index of the first non-finite value of values[0, count), or count; on `threads` threads
+/// (0 = all), the same answer for any thread count.
+uint64_t first_non_finite(const float* values, uint64_t count, int threads = 0);
+
 /// check_mesh's first part: at least one vertex and one triangle.
 Status check_mesh_counts(const MeshView& mesh);
 

@@ -21,7 +21,9 @@ uint32_t NearestVertexIndex::nearest(Vec3 p, float max_radius) const {
   if (sorted_.empty()) return kNone;
   const GridView g = grid_.view(sorted_.data());
   // Growing spheres: the first that holds a point holds the nearest one.
-  for (float r = std::min(grid_.layout.cell, max_radius);; r = std::min(2.f * r, max_radius)) {
+  // Half a cell first: most queries (a vertex of the next capture of the same surface) find
+  // their nearest within it, among ~8 cells instead of ~27.
+  for (float r = std::min(0.5f * grid_.layout.cell, max_radius);; r = std::min(2.f * r, max_radius)) {
     uint32_t best = kNone;
     float best_d2 = 0.f;
     for_each_neighbor(g, p, r, [&](uint32_t k, const Point4&, Vec3, float d2) {

@@ -49,7 +49,8 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
 /// Decodes `chunks` and merges them by "fq_vid" into `vertex_count` vertices (0 = infer:
 /// the largest id + 1, or the point count of a plain mesh). A single chunk without
 /// "fq_vid" (a plain Draco mesh) is taken in Draco point order. `labels` (nullable) is filled
-/// when every chunk has "fq_label", cleared otherwise. kInvalidInput for any malformed input.
+/// when every chunk has "fq_label", cleared otherwise. kInvalidInput for any malformed input;
+/// `out` is then empty. `out`'s buffers keep their capacity, so a reused mesh stops allocating.
 fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t vertex_count,
                         const CodecOptions& options, fq::Mesh& out, std::vector<uint32_t>* labels);
 

