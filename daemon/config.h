@@ -49,8 +49,8 @@ struct Caps {
 struct DaemonConfig {
   Endpoints endpoints;
   EngineConfig engine;
-  int decode_threads = 0;  ///< decode pool; 0 = half the hardware threads, at least 2
-  int encode_threads = 0;  ///< encode pool; 0 = half the hardware threads, at least 2
+  int decode_threads = 0;  ///< frames decoded at once; 0 = half the hardware threads, at least 2
+  int encode_threads = 0;  ///< results encoded at once; 0 = half the hardware threads, at least 2
   Caps caps;
   SecurityConfig security;
   StreamSettings defaults;
