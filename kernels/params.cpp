@@ -97,7 +97,7 @@ const char* cluster_geometry_name(ClusterGeometry g) {
 
 Status validate(const Params& p) {
   if (!p.filter && !p.cluster) return invalid_argument("nothing to compute: enable filter and/or cluster");
-  const FilterParams& f = p.f;
+  const FilterParams& f = p.filtering;
   for (const Status& s : {check_sigma("sigma_s", f.sigma_s, false), check_sigma("sigma_r", f.sigma_r, false),
                           check_sigma("sigma_b", f.sigma_b, true), check_sigma("sigma_n", f.sigma_n, true)})
     FQ_RETURN_IF_ERROR(s);
@@ -106,12 +106,12 @@ Status validate(const Params& p) {
   if (Status s = validate(f.refine); !s.ok()) return s;
   if (p.cluster) {
     for (const Status& s :
-         {check_sigma("sigma_d", p.c.sigma_d, false), check_sigma("sigma_q", p.c.sigma_q, false)})
+         {check_sigma("sigma_d", p.clustering.sigma_d, false), check_sigma("sigma_q", p.clustering.sigma_q, false)})
       FQ_RETURN_IF_ERROR(s);
-    if (p.c.sticky_rings > 64)
-      return invalid_argument("sticky_rings must be at most 64 (got " + std::to_string(p.c.sticky_rings) + ")");
-    if (!(p.c.theta > 0.f && p.c.theta <= 1.f))
-      return invalid_argument("theta must be in (0, 1] (got " + show(p.c.theta) + ")");
+    if (p.clustering.sticky_rings > 64)
+      return invalid_argument("sticky_rings must be at most 64 (got " + std::to_string(p.clustering.sticky_rings) + ")");
+    if (!(p.clustering.theta > 0.f && p.clustering.theta <= 1.f))
+      return invalid_argument("theta must be in (0, 1] (got " + show(p.clustering.theta) + ")");
   }
   return {};
 }

@@ -85,28 +85,28 @@ ClusterMethodWire method_of(const fq::ClusterParams& c) {
 
 fq::Status apply_overrides(const ParamOverrides& o, fq::Params& inout) {
   fq::Params p = inout;  // all or nothing: a bad enum leaves `inout` untouched
-  if (o.has_sigma_s()) p.f.sigma_s = o.sigma_s();
-  if (o.has_sigma_r()) p.f.sigma_r = o.sigma_r();
-  if (o.has_sigma_b()) p.f.sigma_b = o.sigma_b();
-  if (o.has_sigma_n()) p.f.sigma_n = o.sigma_n();
-  if (o.has_constrained()) p.f.constrained = o.constrained();
-  if (o.has_tikhonov()) p.f.tikhonov = o.tikhonov();
+  if (o.has_sigma_s()) p.filtering.sigma_s = o.sigma_s();
+  if (o.has_sigma_r()) p.filtering.sigma_r = o.sigma_r();
+  if (o.has_sigma_b()) p.filtering.sigma_b = o.sigma_b();
+  if (o.has_sigma_n()) p.filtering.sigma_n = o.sigma_n();
+  if (o.has_constrained()) p.filtering.constrained = o.constrained();
+  if (o.has_tikhonov()) p.filtering.tikhonov = o.tikhonov();
   if (o.has_mode()) {
-    if (auto s = set_mode(o.mode(), p.f); !s.ok()) return s;
+    if (auto s = set_mode(o.mode(), p.filtering); !s.ok()) return s;
   }
-  if (o.has_sigma_d()) p.c.sigma_d = o.sigma_d();
-  if (o.has_sigma_q()) p.c.sigma_q = o.sigma_q();
-  if (o.has_theta()) p.c.theta = o.theta();
+  if (o.has_sigma_d()) p.clustering.sigma_d = o.sigma_d();
+  if (o.has_sigma_q()) p.clustering.sigma_q = o.sigma_q();
+  if (o.has_theta()) p.clustering.theta = o.theta();
   if (o.has_cluster_method()) {
-    if (auto s = set_method(o.cluster_method(), p.c); !s.ok()) return s;
+    if (auto s = set_method(o.cluster_method(), p.clustering); !s.ok()) return s;
   }
-  if (o.has_target_clusters()) p.c.target_clusters = o.target_clusters();
+  if (o.has_target_clusters()) p.clustering.target_clusters = o.target_clusters();
   if (o.has_cluster_geometry()) {
-    if (auto s = set_geometry(o.cluster_geometry(), p.c); !s.ok()) return s;
+    if (auto s = set_geometry(o.cluster_geometry(), p.clustering); !s.ok()) return s;
   }
-  if (o.has_min_cluster_size()) p.c.min_cluster_size = o.min_cluster_size();
-  if (o.has_track_ids()) p.c.track_ids = o.track_ids();
-  if (o.has_sticky_rings()) p.c.sticky_rings = o.sticky_rings();
+  if (o.has_min_cluster_size()) p.clustering.min_cluster_size = o.min_cluster_size();
+  if (o.has_track_ids()) p.clustering.track_ids = o.track_ids();
+  if (o.has_sticky_rings()) p.clustering.sticky_rings = o.sticky_rings();
   inout = p;
   return {};
 }
@@ -138,22 +138,22 @@ Compute compute_of(const fq::Params& p) {
 }
 
 void params_to_wire(const fq::Params& p, ParamOverrides& out) {
-  out.set_sigma_s(p.f.sigma_s);
-  out.set_sigma_r(p.f.sigma_r);
-  out.set_sigma_b(p.f.sigma_b);
-  out.set_sigma_n(p.f.sigma_n);
-  out.set_constrained(p.f.constrained);
-  out.set_tikhonov(p.f.tikhonov);
-  out.set_mode(mode_of(p.f));
-  out.set_sigma_d(p.c.sigma_d);
-  out.set_sigma_q(p.c.sigma_q);
-  out.set_theta(p.c.theta);
-  out.set_cluster_method(method_of(p.c));
-  out.set_target_clusters(p.c.target_clusters);
-  out.set_cluster_geometry(geometry_of(p.c));
-  out.set_min_cluster_size(p.c.min_cluster_size);
-  out.set_track_ids(p.c.track_ids);
-  out.set_sticky_rings(p.c.sticky_rings);
+  out.set_sigma_s(p.filtering.sigma_s);
+  out.set_sigma_r(p.filtering.sigma_r);
+  out.set_sigma_b(p.filtering.sigma_b);
+  out.set_sigma_n(p.filtering.sigma_n);
+  out.set_constrained(p.filtering.constrained);
+  out.set_tikhonov(p.filtering.tikhonov);
+  out.set_mode(mode_of(p.filtering));
+  out.set_sigma_d(p.clustering.sigma_d);
+  out.set_sigma_q(p.clustering.sigma_q);
+  out.set_theta(p.clustering.theta);
+  out.set_cluster_method(method_of(p.clustering));
+  out.set_target_clusters(p.clustering.target_clusters);
+  out.set_cluster_geometry(geometry_of(p.clustering));
+  out.set_min_cluster_size(p.clustering.min_cluster_size);
+  out.set_track_ids(p.clustering.track_ids);
+  out.set_sticky_rings(p.clustering.sticky_rings);
 }
 
 }  // namespace fq::wire

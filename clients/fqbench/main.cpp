@@ -61,10 +61,10 @@ std::string fmt(const Spread& s) {
 std::string params_text(const Params& p) {
   char b[128];
   if (p.cluster)
-    std::snprintf(b, sizeof b, "σs %.3g σr %.3g σd %.3g σq %.3g θ %.3g", p.f.sigma_s, p.f.sigma_r,
-                  p.c.sigma_d, p.c.sigma_q, p.c.theta);
+    std::snprintf(b, sizeof b, "σs %.3g σr %.3g σd %.3g σq %.3g θ %.3g", p.filtering.sigma_s, p.filtering.sigma_r,
+                  p.clustering.sigma_d, p.clustering.sigma_q, p.clustering.theta);
   else
-    std::snprintf(b, sizeof b, "σs %.3g σr %.3g", p.f.sigma_s, p.f.sigma_r);
+    std::snprintf(b, sizeof b, "σs %.3g σr %.3g", p.filtering.sigma_s, p.filtering.sigma_r);
   return b;
 }
 

@@ -10,7 +10,7 @@ namespace fq::cli {
 namespace {
 
 void add_filter_options(CLI::App& app, Options& o, std::string& mode) {
-  FilterParams& f = o.params.f;
+  FilterParams& f = o.params.filtering;
   const std::string g = "Filter";
   app.add_option("--mode", mode, "Filter: qf+ (filtered quadrics, then the feature-preserving refinement), qf (the paper exactly) or bf (bilateral baseline)")
       ->check(CLI::IsMember(method_names<FilterMethod>()))
@@ -62,7 +62,7 @@ void add_refine_options(CLI::App& app, RefineParams& r) {
 }
 
 void add_cluster_control_options(CLI::App& app, Options& o, std::string& geometry) {
-  ClusterParams& c = o.params.c;
+  ClusterParams& c = o.params.clustering;
   const std::string g = "Clustering";
   app.add_option("--target-clusters", c.target_clusters,
                  "Choose theta per mesh to give about K clusters (0 = use --theta)")
@@ -80,7 +80,7 @@ void add_cluster_control_options(CLI::App& app, Options& o, std::string& geometr
 }
 
 void add_cluster_options(CLI::App& app, Options& o, std::string& method, bool& no_filter) {
-  ClusterParams& c = o.params.c;
+  ClusterParams& c = o.params.clustering;
   const std::string g = "Clustering";
   app.add_flag("--cluster", o.params.cluster, "Compute a cluster label per vertex (written with the output)")
       ->group(g);
@@ -148,13 +148,13 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
   CLI::App app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
                "fqfilter"};
   app.set_version_flag("--version", fq::version_line("fqfilter"));
-  std::string mode = method_name(o.params.f.method), method = method_name(o.params.c.method), engine = "auto",
+  std::string mode = method_name(o.params.filtering.method), method = method_name(o.params.clustering.method), engine = "auto",
               geometry = "auto";
   bool no_filter = false;
   std::string noise_direction = "iso";
   add_run_options(app, o, engine, noise_direction);
   add_filter_options(app, o, mode);
-  add_refine_options(app, o.params.f.refine);
+  add_refine_options(app, o.params.filtering.refine);
   add_cluster_options(app, o, method, no_filter);
   add_cluster_control_options(app, o, geometry);
   try {
@@ -166,9 +166,9 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
     return {false, 2};
   }
   // CLI::IsMember has accepted only known names.
-  o.params.f.method = *parse_method<FilterMethod>(mode);
-  o.params.c.method = *parse_method<ClusterMethod>(method);
-  parse_cluster_geometry(geometry, o.params.c.geometry);  // checked by IsMember above
+  o.params.filtering.method = *parse_method<FilterMethod>(mode);
+  o.params.clustering.method = *parse_method<ClusterMethod>(method);
+  parse_cluster_geometry(geometry, o.params.clustering.geometry);  // checked by IsMember above
   parse_engine_kind(engine, o.engine.kind);
   o.noise_along_normal = noise_direction == "normal";
   if (no_filter) {
