@@ -5,6 +5,8 @@
 #include <string>
 #include <utility>
 
+#include "common/pair_table.h"
+
 namespace fq {
 
 namespace {
@@ -14,15 +16,13 @@ constexpr std::pair<FilterMethod, const char*> kFilterMethodNames[] = {
 constexpr std::pair<ClusterMethod, const char*> kClusterMethodNames[] = {
     {ClusterMethod::kQuadric, "quadric"}, {ClusterMethod::kEuclidean, "euclidean"}};
 
+constexpr std::pair<ClusterGeometry, const char*> kClusterGeometryNames[] = {
+    {ClusterGeometry::kAuto, "auto"},
+    {ClusterGeometry::kInput, "input"},
+    {ClusterGeometry::kFiltered, "filtered"}};
+
 constexpr const auto& names_of(FilterMethod) { return kFilterMethodNames; }
 constexpr const auto& names_of(ClusterMethod) { return kClusterMethodNames; }
-
-template <typename Method>
-const char* name_in_table(Method m) {
-  for (const auto& [method, name] : names_of(Method{}))
-    if (method == m) return name;
-  return "?";
-}
 
 // "-1" or "0.25" rather than std::to_string's "-1.000000".
 std::string show(float v) {
@@ -80,19 +80,13 @@ Status validate(const RefineParams& r) {
 }
 
 bool parse_cluster_geometry(const std::string& s, ClusterGeometry& out) {
-  if (s == "auto")
-    out = ClusterGeometry::kAuto;
-  else if (s == "input")
-    out = ClusterGeometry::kInput;
-  else if (s == "filtered")
-    out = ClusterGeometry::kFiltered;
-  else
-    return false;
-  return true;
+  const std::optional<ClusterGeometry> g = first_of(kClusterGeometryNames, s);
+  if (g) out = *g;
+  return g.has_value();
 }
 
 const char* cluster_geometry_name(ClusterGeometry g) {
-  return g == ClusterGeometry::kInput ? "input" : g == ClusterGeometry::kFiltered ? "filtered" : "auto";
+  return second_of(kClusterGeometryNames, g).value_or("auto");
 }
 
 Status validate(const Params& p) {
@@ -116,14 +110,12 @@ Status validate(const Params& p) {
   return {};
 }
 
-const char* method_name(FilterMethod m) { return name_in_table(m); }
-const char* method_name(ClusterMethod m) { return name_in_table(m); }
+const char* method_name(FilterMethod m) { return second_of(kFilterMethodNames, m).value_or("?"); }
+const char* method_name(ClusterMethod m) { return second_of(kClusterMethodNames, m).value_or("?"); }
 
 template <typename Method>
 std::optional<Method> parse_method(std::string_view name) {
-  for (const auto& [method, n] : names_of(Method{}))
-    if (name == n) return method;
-  return std::nullopt;
+  return first_of(names_of(Method{}), name);
 }
 template std::optional<FilterMethod> parse_method<FilterMethod>(std::string_view);
 template std::optional<ClusterMethod> parse_method<ClusterMethod>(std::string_view);
