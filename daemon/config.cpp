@@ -82,8 +82,8 @@ Status read_stream(const toml::table& t, const std::string& source, const std::s
     void (*fn)(TomlReader&, StreamSettings&);
   };
   const Sub subs[] = {
-      {"filter", [](TomlReader& x, StreamSettings& st) { read_filter(x, st.params.f); }},
-      {"cluster", [](TomlReader& x, StreamSettings& st) { read_cluster(x, st.params.c); }},
+      {"filter", [](TomlReader& x, StreamSettings& st) { read_filter(x, st.params.filtering); }},
+      {"cluster", [](TomlReader& x, StreamSettings& st) { read_cluster(x, st.params.clustering); }},
       {"output", [](TomlReader& x, StreamSettings& st) { read_output(x, st.output); }},
   };
   for (const Sub& sub : subs) {

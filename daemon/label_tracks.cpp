@@ -14,7 +14,7 @@ void LabelTracks::apply(FrameJob& f, int threads) {
   f.distinct_clusters = r.num_clusters;
   Track& t = track_of(f.stream_id);
   std::lock_guard<std::mutex> lock(t.mutex);
-  const ClusterParams& c = f.settings.params.c;
+  const ClusterParams& c = f.settings.params.clustering;
   if (!f.settings.params.cluster || !c.track_ids || r.labels.empty()) {
     t.tracker.reset();
     return;

@@ -1,38 +1,35 @@
 #include "daemon/stream_settings.h"
 
 #include <cmath>
+#include <optional>
+#include <utility>
+
+#include "common/pair_table.h"
+#include "proto/header_codec.h"
 
 namespace fq::daemon {
 
+namespace {
+
+constexpr std::pair<ResultForm, const char*> kResultFormNames[] = {{ResultForm::kPositions, "positions"},
+                                                                   {ResultForm::kMesh, "mesh"}};
+
+}  // namespace
+
 bool parse_compute(const std::string& s, Params& inout) {
-  if (s == "filter")
-    inout.filter = true, inout.cluster = false;
-  else if (s == "cluster")
-    inout.filter = false, inout.cluster = true;
-  else if (s == "filter_and_cluster")
-    inout.filter = true, inout.cluster = true;
-  else
-    return false;
-  return true;
+  const std::optional<wire::Compute> c = wire::compute_from_name(s);
+  return c && wire::apply_compute(*c, inout).ok();
 }
 
-const char* compute_name(const Params& p) {
-  if (p.filter && p.cluster) return "filter_and_cluster";
-  if (p.cluster) return "cluster";
-  return "filter";
-}
+const char* compute_name(const Params& p) { return wire::compute_name(wire::compute_of(p)); }
 
 bool parse_result_form(const std::string& s, ResultForm& out) {
-  if (s == "positions")
-    out = ResultForm::kPositions;
-  else if (s == "mesh")
-    out = ResultForm::kMesh;
-  else
-    return false;
-  return true;
+  const std::optional<ResultForm> f = first_of(kResultFormNames, s);
+  if (f) out = *f;
+  return f.has_value();
 }
 
-const char* result_form_name(ResultForm f) { return f == ResultForm::kMesh ? "mesh" : "positions"; }
+const char* result_form_name(ResultForm f) { return second_of(kResultFormNames, f).value_or("positions"); }
 wire::ResultForm to_wire(ResultForm f) { return f == ResultForm::kMesh ? wire::MESH : wire::POSITIONS; }
 ResultForm from_wire(wire::ResultForm f) { return f == wire::MESH ? ResultForm::kMesh : ResultForm::kPositions; }
 

@@ -22,13 +22,13 @@ struct Pass {
 template <class F>
 void for_each_pass(const Params& p, F&& f) {
   if (p.filter) {
-    f(Pass{"sigma_b", p.f.effective_sigma_b()});
-    f(Pass{"sigma_s", p.f.sigma_s});
-    if (p.f.constrained) f(Pass{"sigma_n", p.f.effective_sigma_n()});
+    f(Pass{"sigma_b", p.filtering.effective_sigma_b()});
+    f(Pass{"sigma_s", p.filtering.sigma_s});
+    if (p.filtering.constrained) f(Pass{"sigma_n", p.filtering.effective_sigma_n()});
   }
   if (p.cluster) {
-    f(Pass{"sigma_d", p.c.sigma_d});  // score
-    f(Pass{"sigma_d", p.c.sigma_d});  // link
+    f(Pass{"sigma_d", p.clustering.sigma_d});  // score
+    f(Pass{"sigma_d", p.clustering.sigma_d});  // link
   }
 }
 

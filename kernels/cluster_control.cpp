@@ -70,7 +70,7 @@ Params geometry_filter(const Params& plain) {
   Params g = plain;
   g.filter = true;
   g.cluster = false;
-  g.f.constrained = true;
+  g.filtering.constrained = true;
   return g;
 }
 
@@ -80,15 +80,15 @@ Params clustering_pass(const Params& plain) {
   Params c = plain;
   c.filter = false;
   c.cluster = true;
-  c.f.sigma_s *= 0.5f;
-  c.f.sigma_r *= 0.5f;
-  c.f.sigma_b *= 0.5f;  // 0 (the default) stays the default, sigma_s / 2
-  c.f.sigma_n *= 0.5f;
+  c.filtering.sigma_s *= 0.5f;
+  c.filtering.sigma_r *= 0.5f;
+  c.filtering.sigma_b *= 0.5f;  // 0 (the default) stays the default, sigma_s / 2
+  c.filtering.sigma_n *= 0.5f;
   return c;
 }
 
 bool same_filter(const Params& a, const Params& b) {
-  const FilterParams &x = a.f, &y = b.f;
+  const FilterParams &x = a.filtering, &y = b.filtering;
   return x.method == y.method && x.sigma_s == y.sigma_s && x.sigma_r == y.sigma_r && x.sigma_b == y.sigma_b &&
          x.sigma_n == y.sigma_n && x.constrained == y.constrained && x.tikhonov == y.tikhonov;
 }
@@ -131,31 +131,31 @@ Status cluster_filtered(Engine& engine, const MeshView& mesh, const Params& plai
 }  // namespace
 
 bool needs_cluster_control(const Params& p) {
-  const ClusterParams& c = p.cluster ? p.c : ClusterParams{};
+  const ClusterParams& c = p.cluster ? p.clustering : ClusterParams{};
   return c.target_clusters > 0 || c.effective_geometry() == ClusterGeometry::kFiltered || c.min_cluster_size > 0;
 }
 
 Status process_with_cluster_control(Engine& engine, const MeshView& mesh, const Params& p, FrameResult& out) {
   if (Status s = validate(p); !s.ok()) return s;
   Params plain = p;
-  plain.c.target_clusters = 0;
-  plain.c.min_cluster_size = 0;
-  plain.c.geometry = ClusterGeometry::kInput;
-  const bool on_filtered = p.c.effective_geometry() == ClusterGeometry::kFiltered;
-  if (p.c.target_clusters > 0) {
-    plain.c.theta = 1.0f;  // cut nothing: the forest gives every other theta
-    plain.c.keep_links = true;
+  plain.clustering.target_clusters = 0;
+  plain.clustering.min_cluster_size = 0;
+  plain.clustering.geometry = ClusterGeometry::kInput;
+  const bool on_filtered = p.clustering.effective_geometry() == ClusterGeometry::kFiltered;
+  if (p.clustering.target_clusters > 0) {
+    plain.clustering.theta = 1.0f;  // cut nothing: the forest gives every other theta
+    plain.clustering.keep_links = true;
   }
   const Status s = on_filtered ? cluster_filtered(engine, mesh, plain, out) : engine.process(mesh, plain, out);
   if (!s.ok()) return s;
   const auto t0 = std::chrono::steady_clock::now();
-  if (p.c.target_clusters > 0) {
-    const TargetSearch search{mesh, {out.link_parent.data(), out.link_p.data(), mesh.num_vertices}, p.c};
+  if (p.clustering.target_clusters > 0) {
+    const TargetSearch search{mesh, {out.link_parent.data(), out.link_p.data(), mesh.num_vertices}, p.clustering};
     out.theta = theta_for_cut(search.run(out.labels, out.num_clusters));
-  } else if (p.c.min_cluster_size > 0) {
-    out.num_clusters = connect_clusters(mesh, out.labels, p.c.min_cluster_size);
+  } else if (p.clustering.min_cluster_size > 0) {
+    out.num_clusters = connect_clusters(mesh, out.labels, p.clustering.min_cluster_size);
   }
-  if (!p.c.keep_links) {
+  if (!p.clustering.keep_links) {
     out.link_parent.clear();
     out.link_p.clear();
   }

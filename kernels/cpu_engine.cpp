@@ -50,7 +50,7 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
   FQ_RETURN_IF_ERROR(compute_normalization(mesh, f_.norm, threads_));
   out.mean_edge = f_.norm.mean_edge;
   clock.lap("normalize");
-  const FilterParams& fp = params.f;
+  const FilterParams& fp = params.filtering;
   const bool need_quadrics = params.cluster || fp.uses_quadrics();
 
   cpu::sort_into_grid(mesh, fp.sigma_s, f_);
@@ -76,15 +76,15 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
     }
   }
   if (params.cluster) {
-    cpu::cluster_scores(f_, params.c, threads_);
+    cpu::cluster_scores(f_, params.clustering, threads_);
     clock.lap("score");
-    cpu::cluster_links(f_, params.c, threads_);
+    cpu::cluster_links(f_, params.clustering, threads_);
     clock.lap("link");
     out.num_clusters = cpu::cluster_labels(f_, out.labels, threads_);
-    out.theta = params.c.theta;
+    out.theta = params.clustering.theta;
     clock.lap("modes");
-    if (params.c.keep_links) {
-      cpu::export_links(f_, params.c, out.link_parent, out.link_p, threads_);
+    if (params.clustering.keep_links) {
+      cpu::export_links(f_, params.clustering, out.link_parent, out.link_p, threads_);
       clock.lap("export_links");
     }
   }

@@ -160,7 +160,7 @@ int CudaEngine::team_size() const {
 
 void CudaEngine::enqueue_passes(const Params& params) {
   const cudaStream_t s = stream_.get();
-  const FilterParams& fp = params.f;
+  const FilterParams& fp = params.filtering;
   const int team = team_size();
   const bool fast_exp = tuning_.fast_exp;
   cuda::sort_into_grid(f_, f_.grid.layout, s);
@@ -193,19 +193,19 @@ void CudaEngine::enqueue_passes(const Params& params) {
   }
   if (params.cluster) {
     if (team)
-      cuda::team_cluster_scores(f_, params.c, team, fast_exp, s);
+      cuda::team_cluster_scores(f_, params.clustering, team, fast_exp, s);
     else
-      cuda::cluster_scores(f_, params.c, s);
+      cuda::cluster_scores(f_, params.clustering, s);
     events_.mark("score", s);
     if (team)
-      cuda::team_cluster_links(f_, params.c, team, fast_exp, s);
+      cuda::team_cluster_links(f_, params.clustering, team, fast_exp, s);
     else
-      cuda::cluster_links(f_, params.c, s);
+      cuda::cluster_links(f_, params.clustering, s);
     events_.mark("link", s);
     cuda::cluster_labels(f_, s);
     events_.mark("modes", s);
-    if (params.c.keep_links) {
-      cuda::export_links(f_, params.c, s);  // downloads too
+    if (params.clustering.keep_links) {
+      cuda::export_links(f_, params.clustering, s);  // downloads too
       events_.mark("export_links", s);
     }
   }
@@ -222,7 +222,7 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
   upload(mesh);
   events_.mark("upload", s);
   Normalization norm;
-  if (Status st = normalize(mesh, params.f.sigma_s, norm); !st.ok()) return st;
+  if (Status st = normalize(mesh, params.filtering.sigma_s, norm); !st.ok()) return st;
   out.mean_edge = norm.mean_edge;
   enqueue_passes(params);
   if (params.filter) {
@@ -259,9 +259,9 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
   stream_.sync();
   if (params.cluster) {
     out.num_clusters = f_.h_labels.data()[n];
-    out.theta = params.c.theta;
+    out.theta = params.clustering.theta;
   }
-  if (params.cluster && params.c.keep_links) {  // downloaded by export_links on the stream
+  if (params.cluster && params.clustering.keep_links) {  // downloaded by export_links on the stream
     out.link_parent.assign(f_.h_link_parent.data(), f_.h_link_parent.data() + n);
     out.link_p.assign(f_.h_link_p.data(), f_.h_link_p.data() + n);
   }

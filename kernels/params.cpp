@@ -5,6 +5,8 @@
 #include <string>
 #include <utility>
 
+#include "common/pair_table.h"
+
 namespace fq {
 
 namespace {
@@ -14,15 +16,13 @@ constexpr std::pair<FilterMethod, const char*> kFilterMethodNames[] = {
 constexpr std::pair<ClusterMethod, const char*> kClusterMethodNames[] = {
     {ClusterMethod::kQuadric, "quadric"}, {ClusterMethod::kEuclidean, "euclidean"}};
 
+constexpr std::pair<ClusterGeometry, const char*> kClusterGeometryNames[] = {
+    {ClusterGeometry::kAuto, "auto"},
+    {ClusterGeometry::kInput, "input"},
+    {ClusterGeometry::kFiltered, "filtered"}};
+
 constexpr const auto& names_of(FilterMethod) { return kFilterMethodNames; }
 constexpr const auto& names_of(ClusterMethod) { return kClusterMethodNames; }
-
-template <typename Method>
-const char* name_in_table(Method m) {
-  for (const auto& [method, name] : names_of(Method{}))
-    if (method == m) return name;
-  return "?";
-}
 
 // "-1" or "0.25" rather than std::to_string's "-1.000000".
 std::string show(float v) {
@@ -80,24 +80,18 @@ Status validate(const RefineParams& r) {
 }
 
 bool parse_cluster_geometry(const std::string& s, ClusterGeometry& out) {
-  if (s == "auto")
-    out = ClusterGeometry::kAuto;
-  else if (s == "input")
-    out = ClusterGeometry::kInput;
-  else if (s == "filtered")
-    out = ClusterGeometry::kFiltered;
-  else
-    return false;
-  return true;
+  const std::optional<ClusterGeometry> g = first_of(kClusterGeometryNames, s);
+  if (g) out = *g;
+  return g.has_value();
 }
 
 const char* cluster_geometry_name(ClusterGeometry g) {
-  return g == ClusterGeometry::kInput ? "input" : g == ClusterGeometry::kFiltered ? "filtered" : "auto";
+  return second_of(kClusterGeometryNames, g).value_or("auto");
 }
 
 Status validate(const Params& p) {
   if (!p.filter && !p.cluster) return invalid_argument("nothing to compute: enable filter and/or cluster");
-  const FilterParams& f = p.f;
+  const FilterParams& f = p.filtering;
   for (const Status& s : {check_sigma("sigma_s", f.sigma_s, false), check_sigma("sigma_r", f.sigma_r, false),
                           check_sigma("sigma_b", f.sigma_b, true), check_sigma("sigma_n", f.sigma_n, true)})
     FQ_RETURN_IF_ERROR(s);
@@ -106,24 +100,22 @@ Status validate(const Params& p) {
   if (Status s = validate(f.refine); !s.ok()) return s;
   if (p.cluster) {
     for (const Status& s :
-         {check_sigma("sigma_d", p.c.sigma_d, false), check_sigma("sigma_q", p.c.sigma_q, false)})
+         {check_sigma("sigma_d", p.clustering.sigma_d, false), check_sigma("sigma_q", p.clustering.sigma_q, false)})
       FQ_RETURN_IF_ERROR(s);
-    if (p.c.sticky_rings > 64)
-      return invalid_argument("sticky_rings must be at most 64 (got " + std::to_string(p.c.sticky_rings) + ")");
-    if (!(p.c.theta > 0.f && p.c.theta <= 1.f))
-      return invalid_argument("theta must be in (0, 1] (got " + show(p.c.theta) + ")");
+    if (p.clustering.sticky_rings > 64)
+      return invalid_argument("sticky_rings must be at most 64 (got " + std::to_string(p.clustering.sticky_rings) + ")");
+    if (!(p.clustering.theta > 0.f && p.clustering.theta <= 1.f))
+      return invalid_argument("theta must be in (0, 1] (got " + show(p.clustering.theta) + ")");
   }
   return {};
 }
 
-const char* method_name(FilterMethod m) { return name_in_table(m); }
-const char* method_name(ClusterMethod m) { return name_in_table(m); }
+const char* method_name(FilterMethod m) { return second_of(kFilterMethodNames, m).value_or("?"); }
+const char* method_name(ClusterMethod m) { return second_of(kClusterMethodNames, m).value_or("?"); }
 
 template <typename Method>
 std::optional<Method> parse_method(std::string_view name) {
-  for (const auto& [method, n] : names_of(Method{}))
-    if (name == n) return method;
-  return std::nullopt;
+  return first_of(names_of(Method{}), name);
 }
 template std::optional<FilterMethod> parse_method<FilterMethod>(std::string_view);
 template std::optional<ClusterMethod> parse_method<ClusterMethod>(std::string_view);

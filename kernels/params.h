@@ -78,8 +78,8 @@ struct ClusterParams {
 struct Params {
   bool filter = true;    ///< move the vertices
   bool cluster = false;  ///< compute labels (on the input positions, from the same Q^bl)
-  FilterParams f;
-  ClusterParams c;
+  FilterParams filtering;    ///< the filter's parameters
+  ClusterParams clustering;  ///< the clustering's parameters
 };
 
 /// "qf+", "qf", "bf": the names of configs, the command line and JSON.

@@ -5,7 +5,9 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <utility>
 
+#include "common/pair_table.h"
 #include "draco/compression/decode.h"
 #include "draco/io/mesh_io.h"
 #include "proto/mesh_io.h"
@@ -89,26 +91,19 @@ Status check_stl_size(const std::string& path) {
                        " bytes");
 }
 
+/// What a Draco attribute holds, in the phrases of MeshAttributes::dropped.
+constexpr std::pair<draco::GeometryAttribute::Type, const char*> kAttributePhrases[] = {
+    {draco::GeometryAttribute::NORMAL, "normals"},
+    {draco::GeometryAttribute::COLOR, "colours"},
+    {draco::GeometryAttribute::TEX_COORD, "texture coordinates"},
+    {draco::GeometryAttribute::GENERIC, "a generic attribute"}};
+
 /// Names the attributes of `dm` other than positions in `attributes->dropped`.
 void name_dropped(const draco::Mesh& dm, const std::string& why, MeshAttributes* attributes) {
   if (!attributes) return;
   for (int i = 0; i < dm.num_attributes(); ++i) {
-    switch (dm.attribute(i)->attribute_type()) {
-      case draco::GeometryAttribute::NORMAL:
-        attributes->dropped.push_back("normals" + why);
-        break;
-      case draco::GeometryAttribute::COLOR:
-        attributes->dropped.push_back("colours" + why);
-        break;
-      case draco::GeometryAttribute::TEX_COORD:
-        attributes->dropped.push_back("texture coordinates" + why);
-        break;
-      case draco::GeometryAttribute::GENERIC:
-        attributes->dropped.push_back("a generic attribute" + why);
-        break;
-      default:
-        break;
-    }
+    if (const auto phrase = second_of(kAttributePhrases, dm.attribute(i)->attribute_type()))
+      attributes->dropped.push_back(*phrase + why);
   }
 }
 

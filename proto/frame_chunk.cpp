@@ -9,6 +9,7 @@
 #include <bit>
 #include <cstring>
 #include <memory>
+#include <type_traits>
 
 #include "proto/vertex_id_runs.h"
 
@@ -105,23 +106,47 @@ bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids
   return sequential;
 }
 
-fq::Status encode_chunk(const draco::Mesh& m, bool sequential, const CodecOptions& o, const Box& box,
-                        std::string& out) {
+namespace {
+
+template <class Geometry>
+fq::Status encode_with_grid(const Geometry& g, int method, const CodecOptions& o, const Box& box,
+                            std::string& out) {
   draco::Encoder enc;
   enc.SetSpeedOptions(o.encode_speed, o.decode_speed);
-  // Edgebreaker drops faces with a repeated vertex; the sequential coder keeps every face as
-  // is, and keeps point order (which kVertexIdRunsEntry relies on). Draco picks it at speed 10
-  // anyway; naming it makes that explicit.
-  enc.SetEncodingMethod(sequential ? draco::MESH_SEQUENTIAL_ENCODING : draco::MESH_EDGEBREAKER_ENCODING);
-  // One explicit grid for every chunk: a vertex on a chunk border decodes identically in both.
+  enc.SetEncodingMethod(method);
   const float extent = box.max_extent();
   enc.SetAttributeExplicitQuantization(draco::GeometryAttribute::POSITION, o.position_bits, 3, box.lo,
                                        extent > 0.f ? extent : 1.f);
   draco::EncoderBuffer buf;
-  const draco::Status s = enc.EncodeMeshToBuffer(m, &buf);
+  draco::Status s;
+  if constexpr (std::is_same_v<Geometry, draco::Mesh>)
+    s = enc.EncodeMeshToBuffer(g, &buf);
+  else
+    s = enc.EncodePointCloudToBuffer(g, &buf);
   if (!s.ok()) return {fq::StatusCode::kInternal, "Draco encoding failed: " + s.error_msg_string()};
   out.assign(buf.data(), buf.size());
   return {};
+}
+
+}  // namespace
+
+fq::Status encode_on_grid(const draco::Mesh& m, int method, const CodecOptions& o, const Box& box,
+                          std::string& out) {
+  return encode_with_grid(m, method, o, box, out);
+}
+
+fq::Status encode_on_grid(const draco::PointCloud& pc, int method, const CodecOptions& o, const Box& box,
+                          std::string& out) {
+  return encode_with_grid(pc, method, o, box, out);
+}
+
+fq::Status encode_chunk(const draco::Mesh& m, bool sequential, const CodecOptions& o, const Box& box,
+                        std::string& out) {
+  // Edgebreaker drops faces with a repeated vertex; the sequential coder keeps every face as
+  // is, and keeps point order (which kVertexIdRunsEntry relies on). Draco picks it at speed 10
+  // anyway; naming it makes that explicit.
+  return encode_on_grid(m, sequential ? draco::MESH_SEQUENTIAL_ENCODING : draco::MESH_EDGEBREAKER_ENCODING, o,
+                        box, out);
 }
 
 }  // namespace fq::wire::detail

@@ -16,6 +16,7 @@
 
 namespace draco {
 class Mesh;
+class PointCloud;
 }
 
 namespace fq::wire::detail {
@@ -40,6 +41,14 @@ struct ChunkScratch {
 /// its ids as kVertexIdRunsEntry (the coder keeps point order), any other as "fq_vid".
 bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids, const CodecOptions& o,
                  std::span<const uint32_t> corners, ChunkScratch& scratch, draco::Mesh& m);
+
+/// Encodes `m` or `pc` at `o`'s speeds with Draco's coder `method`, positions quantized to
+/// o.position_bits on one explicit grid over `box`: every chunk of a frame uses the same grid,
+/// so a vertex on a chunk border decodes identically in both. kInternal when Draco fails.
+fq::Status encode_on_grid(const draco::Mesh& m, int method, const CodecOptions& o, const Box& box,
+                          std::string& out);
+fq::Status encode_on_grid(const draco::PointCloud& pc, int method, const CodecOptions& o, const Box& box,
+                          std::string& out);
 
 /// Encodes one chunk with the codec's settings: speeds, the frame's shared quantization grid
 /// on `box`, and the coder build_chunk chose (`sequential`).

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 #include "proto/fq.pb.h"
@@ -46,6 +47,17 @@ fq::Status apply_compute(Compute c, fq::Params& inout);
 
 /// What `p` computes, as the wire enum (FILTER when neither flag is set).
 Compute compute_of(const fq::Params& p);
+
+/// "filter" | "cluster" | "filter_and_cluster": the compute modes' names in configs and on
+/// command lines ("filter" for COMPUTE_DEFAULT).
+const char* compute_name(Compute c);
+/// The mode a name of compute_name stands for; nullopt for any other string.
+std::optional<Compute> compute_from_name(std::string_view name);
+
+/// The wire enum of each method and cluster geometry.
+FilterMode to_wire(fq::FilterMethod m);
+ClusterMethodWire to_wire(fq::ClusterMethod m);
+ClusterGeometryWire to_wire(fq::ClusterGeometry g);
 
 /// Every filter and clustering parameter of `p`, each field set: the overrides that turn any
 /// Params into `p` (apply_overrides is its inverse). The compute mode is compute_of(p).

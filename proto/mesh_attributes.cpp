@@ -1,32 +1,23 @@
 #include "proto/mesh_attributes.h"
 
 #include <cmath>
+#include <utility>
 
+#include "common/pair_table.h"
 #include "kernels/vec3.h"
 
 namespace fq::io {
 
-const char* ply_type_name(ScalarType t) {
-  switch (t) {
-    case ScalarType::kInt8:
-      return "char";
-    case ScalarType::kUInt8:
-      return "uchar";
-    case ScalarType::kInt16:
-      return "short";
-    case ScalarType::kUInt16:
-      return "ushort";
-    case ScalarType::kInt32:
-      return "int";
-    case ScalarType::kUInt32:
-      return "uint";
-    case ScalarType::kFloat32:
-      return "float";
-    case ScalarType::kFloat64:
-      return "double";
-  }
-  return "float";
-}
+namespace {
+
+constexpr std::pair<ScalarType, const char*> kPlyTypeNames[] = {
+    {ScalarType::kInt8, "char"},     {ScalarType::kUInt8, "uchar"},   {ScalarType::kInt16, "short"},
+    {ScalarType::kUInt16, "ushort"}, {ScalarType::kInt32, "int"},     {ScalarType::kUInt32, "uint"},
+    {ScalarType::kFloat32, "float"}, {ScalarType::kFloat64, "double"}};
+
+}  // namespace
+
+const char* ply_type_name(ScalarType t) { return second_of(kPlyTypeNames, t).value_or("float"); }
 
 const ElementProperty* MeshAttributes::find_vertex(const std::string& name) const {
   for (const ElementProperty& p : vertex) {

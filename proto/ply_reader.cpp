@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <initializer_list>
+#include <optional>
 #include <sstream>
 #include <string_view>
+#include <utility>
 #include <vector>
 
+#include "common/pair_table.h"
 #include "draco/core/decoder_buffer.h"
 #include "draco/io/ply_property_reader.h"
 #include "draco/io/ply_reader.h"
@@ -60,35 +63,17 @@ Status read_faces(const std::string& path, const draco::PlyElement* face, Mesh& 
   return {};
 }
 
+constexpr std::pair<draco::DataType, ScalarType> kScalarTypes[] = {
+    {draco::DT_INT8, ScalarType::kInt8},       {draco::DT_UINT8, ScalarType::kUInt8},
+    {draco::DT_INT16, ScalarType::kInt16},     {draco::DT_UINT16, ScalarType::kUInt16},
+    {draco::DT_INT32, ScalarType::kInt32},     {draco::DT_UINT32, ScalarType::kUInt32},
+    {draco::DT_FLOAT32, ScalarType::kFloat32}, {draco::DT_FLOAT64, ScalarType::kFloat64}};
+
+/// False for the types PLY has no name for (64-bit integers).
 bool scalar_type(draco::DataType t, ScalarType& out) {
-  switch (t) {
-    case draco::DT_INT8:
-      out = ScalarType::kInt8;
-      return true;
-    case draco::DT_UINT8:
-      out = ScalarType::kUInt8;
-      return true;
-    case draco::DT_INT16:
-      out = ScalarType::kInt16;
-      return true;
-    case draco::DT_UINT16:
-      out = ScalarType::kUInt16;
-      return true;
-    case draco::DT_INT32:
-      out = ScalarType::kInt32;
-      return true;
-    case draco::DT_UINT32:
-      out = ScalarType::kUInt32;
-      return true;
-    case draco::DT_FLOAT32:
-      out = ScalarType::kFloat32;
-      return true;
-    case draco::DT_FLOAT64:
-      out = ScalarType::kFloat64;
-      return true;
-    default:
-      return false;
-  }
+  const std::optional<ScalarType> s = second_of(kScalarTypes, t);
+  if (s) out = *s;
+  return s.has_value();
 }
 
 /// Copies one property of `element`; false when its type has no PLY name we write.

@@ -18,41 +18,31 @@ namespace fq::io {
 
 namespace {
 
+/// Calls `f` with a zero of the C++ type that holds `type`'s values.
+template <class F>
+void with_cpp_type(ScalarType type, F&& f) {
+  switch (type) {
+    case ScalarType::kInt8: return f(int8_t{});
+    case ScalarType::kUInt8: return f(uint8_t{});
+    case ScalarType::kInt16: return f(int16_t{});
+    case ScalarType::kUInt16: return f(uint16_t{});
+    case ScalarType::kInt32: return f(int32_t{});
+    case ScalarType::kUInt32: return f(uint32_t{});
+    case ScalarType::kFloat32: return f(float{});
+    case ScalarType::kFloat64: return f(double{});
+  }
+}
+
 /// Appends `value` as the little-endian bytes of `type`, whatever the host order.
 void put(std::vector<char>& out, ScalarType type, double value) {
-  auto le = [&out](auto v) {
+  with_cpp_type(type, [&out, value](auto zero) {
+    const auto v = static_cast<decltype(zero)>(value);
     const auto bits = std::bit_cast<std::conditional_t<
         sizeof(v) == 8, uint64_t,
         std::conditional_t<sizeof(v) == 4, uint32_t, std::conditional_t<sizeof(v) == 2, uint16_t, uint8_t>>>>(
         v);
     for (size_t i = 0; i < sizeof(v); ++i) out.push_back(static_cast<char>((bits >> (8 * i)) & 0xffu));
-  };
-  switch (type) {
-    case ScalarType::kInt8:
-      le(static_cast<int8_t>(value));
-      break;
-    case ScalarType::kUInt8:
-      le(static_cast<uint8_t>(value));
-      break;
-    case ScalarType::kInt16:
-      le(static_cast<int16_t>(value));
-      break;
-    case ScalarType::kUInt16:
-      le(static_cast<uint16_t>(value));
-      break;
-    case ScalarType::kInt32:
-      le(static_cast<int32_t>(value));
-      break;
-    case ScalarType::kUInt32:
-      le(static_cast<uint32_t>(value));
-      break;
-    case ScalarType::kFloat32:
-      le(static_cast<float>(value));
-      break;
-    case ScalarType::kFloat64:
-      le(value);
-      break;
-  }
+  });
 }
 
 ElementProperty scalar(std::string name, ScalarType type, size_t n) {

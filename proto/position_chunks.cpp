@@ -10,6 +10,7 @@
 #include <exception>
 #include <string>
 
+#include "proto/frame_chunk.h"
 #include "proto/frame_codec.h"
 #include "proto/frame_split.h"
 #include "kernels/frame_prep.h"
@@ -29,19 +30,9 @@ fq::Status encode_range(const float* positions, uint32_t first, uint32_t last, c
   // Identity mapping and a tightly packed float32 buffer: one copy instead of n calls.
   std::memcpy(pos->GetAddress(draco::AttributeValueIndex(0)), positions + 3 * size_t(first),
               3 * sizeof(float) * n);
-  draco::Encoder enc;
-  enc.SetSpeedOptions(o.encode_speed, o.decode_speed);
   // The k-d tree coder (chosen for quantized point clouds below speed 10) reorders points;
   // the sequential coder keeps them in vertex order, which is what the consumer relies on.
-  enc.SetEncodingMethod(draco::POINT_CLOUD_SEQUENTIAL_ENCODING);
-  const float extent = box.max_extent();
-  enc.SetAttributeExplicitQuantization(draco::GeometryAttribute::POSITION, o.position_bits, 3, box.lo,
-                                       extent > 0.f ? extent : 1.f);
-  draco::EncoderBuffer buf;
-  const draco::Status s = enc.EncodePointCloudToBuffer(pc, &buf);
-  if (!s.ok()) return {fq::StatusCode::kInternal, "Draco encoding failed: " + s.error_msg_string()};
-  out.assign(buf.data(), buf.size());
-  return {};
+  return detail::encode_on_grid(pc, draco::POINT_CLOUD_SEQUENTIAL_ENCODING, o, box, out);
 }
 
 fq::Status decode_range(std::string_view bytes, std::vector<float>& out) {

@@ -56,10 +56,10 @@ pyb::array filter(const pyb::handle& v, const pyb::handle& f, float sigma_s, flo
                   float sigma_n, bool constrained, float tikhonov, const std::string& mode,
                   const std::string& engine, int threads) {
   Params p;
-  p.f = filter_params(sigma_s, sigma_r, sigma_b, mode);
-  p.f.sigma_n = sigma_n;
-  p.f.constrained = constrained;
-  p.f.tikhonov = tikhonov;
+  p.filtering = filter_params(sigma_s, sigma_r, sigma_b, mode);
+  p.filtering.sigma_n = sigma_n;
+  p.filtering.constrained = constrained;
+  p.filtering.tikhonov = tikhonov;
   const FrameResult r = run(v, f, p, engine_options(engine, threads));
   return positions_array(r.positions, v);
 }
@@ -70,14 +70,14 @@ pyb::array cluster(const pyb::handle& v, const pyb::handle& f, float sigma_d, fl
   Params p;
   p.filter = false;
   p.cluster = true;
-  p.f = filter_params(sigma_s, sigma_r, sigma_b, "qf");
-  p.c.sigma_d = sigma_d;
-  p.c.sigma_q = sigma_q;
-  p.c.theta = theta;
+  p.filtering = filter_params(sigma_s, sigma_r, sigma_b, "qf");
+  p.clustering.sigma_d = sigma_d;
+  p.clustering.sigma_q = sigma_q;
+  p.clustering.theta = theta;
   if (method == "quadric")
-    p.c.method = ClusterMethod::kQuadric;
+    p.clustering.method = ClusterMethod::kQuadric;
   else if (method == "euclidean")
-    p.c.method = ClusterMethod::kEuclidean;
+    p.clustering.method = ClusterMethod::kEuclidean;
   else
     throw pyb::value_error("method must be 'quadric' or 'euclidean', got '" + method + "'");
   return labels_array(run(v, f, p, engine_options(engine, threads)).labels);

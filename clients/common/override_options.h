@@ -3,7 +3,6 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <optional>
 #include <string>
 
 #include "proto/fq.pb.h"
@@ -12,10 +11,8 @@
 namespace fq::client {
 
 struct OverrideArgs {
-  std::optional<float> sigma_s, sigma_r, sigma_b, sigma_n, tikhonov, sigma_d, sigma_q, theta;
-  std::optional<bool> constrained, track_ids;
-  std::optional<uint32_t> target_clusters, min_cluster_size, sticky_rings;
-  std::string mode, cluster_method, compute, cluster_geometry;
+  wire::ParamOverrides fields;  ///< the numeric and on/off options given, set as they are parsed
+  std::string mode, cluster_method, compute, cluster_geometry;  ///< names, checked by to_wire
 };
 
 /// Registers the options on `app` (in an "Parameter overrides" group).

@@ -9,8 +9,8 @@ namespace {
 BenchRow filter_row(std::string id, std::string file, std::string paper_row, double paper_ms, float sigma_s,
                     float sigma_r) {
   BenchRow r{std::move(id), std::move(file), std::move(paper_row), paper_ms, {}};
-  r.params.f.sigma_s = sigma_s;
-  r.params.f.sigma_r = sigma_r;
+  r.params.filtering.sigma_s = sigma_s;
+  r.params.filtering.sigma_r = sigma_r;
   return r;
 }
 
@@ -18,14 +18,14 @@ BenchRow cluster_row(std::string id, std::string file, std::string paper_row, do
                      float sigma_r, float sigma_d, float sigma_q, float theta) {
   BenchRow r = filter_row(std::move(id), std::move(file), std::move(paper_row), paper_ms, sigma_s, sigma_r);
   r.params.cluster = true;
-  r.params.c.sigma_d = sigma_d;
-  r.params.c.sigma_q = sigma_q;
-  r.params.c.theta = theta;
+  r.params.clustering.sigma_d = sigma_d;
+  r.params.clustering.sigma_q = sigma_q;
+  r.params.clustering.theta = theta;
   return r;
 }
 
 BenchRow bilateral(BenchRow r) {
-  r.params.f.method = FilterMethod::kBilateral;
+  r.params.filtering.method = FilterMethod::kBilateral;
   return r;
 }
 

@@ -15,6 +15,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -123,42 +124,39 @@ std::string resolve_path(const CodecBenchOptions& o) {
 }
 
 double median(const std::vector<double>& v) { return spread_of(v).median; }
+double p90(const std::vector<double>& v) { return spread_of(v).p90; }
+
+/// One measured quantity: fq's median against the floor's on the same chunks.
+struct Compared {
+  const char* key;    ///< JSON: key_ms, floor_key_ms, key_ratio
+  const char* label;  ///< table row
+  double fq, floor;
+};
 
 void print(const CodecBenchOptions& o, const Mesh& m, const Samples& s) {
-  const double enc = median(s.encode), dec = median(s.decode);
-  const double fenc = median(s.floor_encode), fdec = median(s.floor_decode);
-  const double cenc = median(s.encode_cpu), cdec = median(s.decode_cpu);
-  const double cfenc = median(s.floor_encode_cpu), cfdec = median(s.floor_decode_cpu);
-  const double enc90 = spread_of(s.encode).p90, dec90 = spread_of(s.decode).p90;
-  const double fenc90 = spread_of(s.floor_encode).p90, fdec90 = spread_of(s.floor_decode).p90;
+  const Compared rows[] = {{"encode", "encode wall ms", median(s.encode), median(s.floor_encode)},
+                           {"decode", "decode wall ms", median(s.decode), median(s.floor_decode)},
+                           {"encode_p90", "encode wall ms, p90", p90(s.encode), p90(s.floor_encode)},
+                           {"decode_p90", "decode wall ms, p90", p90(s.decode), p90(s.floor_decode)},
+                           {"encode_cpu", "encode CPU ms", median(s.encode_cpu), median(s.floor_encode_cpu)},
+                           {"decode_cpu", "decode CPU ms", median(s.decode_cpu), median(s.floor_decode_cpu)}};
   if (o.json) {
-    const nlohmann::json j = {
-        {"mesh", o.mesh},
-        {"vertices", m.num_vertices()},
-        {"triangles", m.num_triangles()},
-        {"chunks", s.chunks},
-        {"threads", o.threads},
-        {"speed", o.speed},
-        {"position_bits", o.position_bits},
-        {"repeat", o.repeat},
-        {"encode_ms", enc},
-        {"decode_ms", dec},
-        {"floor_encode_ms", fenc},
-        {"floor_decode_ms", fdec},
-        {"encode_p90_ms", enc90},
-        {"decode_p90_ms", dec90},
-        {"floor_encode_p90_ms", fenc90},
-        {"floor_decode_p90_ms", fdec90},
-        {"encode_ratio", enc / fenc},
-        {"decode_ratio", dec / fdec},
-        {"encode_cpu_ms", cenc},
-        {"decode_cpu_ms", cdec},
-        {"floor_encode_cpu_ms", cfenc},
-        {"floor_decode_cpu_ms", cfdec},
-        {"encode_cpu_ratio", cenc / cfenc},
-        {"decode_cpu_ratio", cdec / cfdec},
-        {"bytes", s.bytes},
-        {"floor_bytes", s.floor_bytes}};
+    nlohmann::json j = {{"mesh", o.mesh},
+                        {"vertices", m.num_vertices()},
+                        {"triangles", m.num_triangles()},
+                        {"chunks", s.chunks},
+                        {"threads", o.threads},
+                        {"speed", o.speed},
+                        {"position_bits", o.position_bits},
+                        {"repeat", o.repeat},
+                        {"bytes", s.bytes},
+                        {"floor_bytes", s.floor_bytes}};
+    for (const Compared& r : rows) {
+      const std::string key = r.key;
+      j[key + "_ms"] = r.fq;
+      j["floor_" + key + "_ms"] = r.floor;
+      j[key + "_ratio"] = r.fq / r.floor;
+    }
     std::printf("%s\n", j.dump().c_str());
     return;
   }
@@ -166,12 +164,8 @@ void print(const CodecBenchOptions& o, const Mesh& m, const Samples& s) {
               o.mesh.c_str(), m.num_vertices(), m.num_triangles(), s.chunks, o.threads, o.speed, o.position_bits,
               o.repeat);
   std::printf("| | fq | floor (plain Draco, positions only) | fq / floor |\n|---|---:|---:|---:|\n");
-  std::printf("| encode wall ms | %.2f | %.2f | %.2f |\n", enc, fenc, enc / fenc);
-  std::printf("| decode wall ms | %.2f | %.2f | %.2f |\n", dec, fdec, dec / fdec);
-  std::printf("| encode wall ms, p90 | %.2f | %.2f | %.2f |\n", enc90, fenc90, enc90 / fenc90);
-  std::printf("| decode wall ms, p90 | %.2f | %.2f | %.2f |\n", dec90, fdec90, dec90 / fdec90);
-  std::printf("| encode CPU ms | %.2f | %.2f | %.2f |\n", cenc, cfenc, cenc / cfenc);
-  std::printf("| decode CPU ms | %.2f | %.2f | %.2f |\n", cdec, cfdec, cdec / cfdec);
+  for (const Compared& r : rows)
+    std::printf("| %s | %.2f | %.2f | %.2f |\n", r.label, r.fq, r.floor, r.fq / r.floor);
   std::printf("| bytes | %zu | %zu | %.2f |\n", s.bytes, s.floor_bytes, double(s.bytes) / double(s.floor_bytes));
 }
 

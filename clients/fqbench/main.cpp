@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "clients/common/defaulted_option.h"
 #include "clients/fqbench/bench_rows.h"
 #include "clients/fqbench/bench_stats.h"
 #include "clients/fqbench/codec_bench.h"
@@ -25,6 +26,8 @@ namespace {
 
 using namespace fq;
 using namespace fq::bench;
+using fq::client::add_defaulted;
+using fq::client::add_ranged;
 
 struct Options {
   std::string mesh_dir;
@@ -61,10 +64,10 @@ std::string fmt(const Spread& s) {
 std::string params_text(const Params& p) {
   char b[128];
   if (p.cluster)
-    std::snprintf(b, sizeof b, "σs %.3g σr %.3g σd %.3g σq %.3g θ %.3g", p.f.sigma_s, p.f.sigma_r,
-                  p.c.sigma_d, p.c.sigma_q, p.c.theta);
+    std::snprintf(b, sizeof b, "σs %.3g σr %.3g σd %.3g σq %.3g θ %.3g", p.filtering.sigma_s, p.filtering.sigma_r,
+                  p.clustering.sigma_d, p.clustering.sigma_q, p.clustering.theta);
   else
-    std::snprintf(b, sizeof b, "σs %.3g σr %.3g", p.f.sigma_s, p.f.sigma_r);
+    std::snprintf(b, sizeof b, "σs %.3g σr %.3g", p.filtering.sigma_s, p.filtering.sigma_r);
   return b;
 }
 
@@ -153,24 +156,17 @@ int run(int argc, char** argv) {
   app.set_version_flag("--version", fq::version_line("fqbench"));
   app.add_option("--mesh-dir", o.mesh_dir,
                  "folder of the shared meshes (default: $FQ_MESH_DIR or ../shared/meshes)");
-  app.add_option("--rows", o.rows, "comma-separated row ids, or all")->capture_default_str();
-  app.add_option("--engine", o.engine, "engine to time: cuda | cpu | auto")
-      ->capture_default_str()
+  add_defaulted(app, "--rows", o.rows, "comma-separated row ids, or all");
+  add_defaulted(app, "--engine", o.engine, "engine to time: cuda | cpu | auto")
       ->check(CLI::IsMember({"cuda", "cpu", "auto"}));
-  app.add_option("--repeat", o.repeat, "timed frames per row (>= 1)")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 100000));
-  app.add_option("--warmup", o.warmup, "untimed frames first")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1000));
-  app.add_option("--cpu-repeat", o.cpu_repeat, "CPU engine frames per row for comparison (0 = none)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1000));
-  app.add_option("--cpu-threads", o.cpu_threads, "CPU engine threads (0 = all)")->capture_default_str();
-  app.add_option("--cuda-team", o.cuda.team,
-                 "CUDA lanes per vertex in the neighbourhood passes: -1 by mesh size (default), 0 one "
-                 "thread per vertex through the math headers, or 1, 2, 4, 8, 16, 32")
-      ->capture_default_str()
+  add_ranged(app, "--repeat", o.repeat, "timed frames per row (>= 1)", 1, 100000);
+  add_ranged(app, "--warmup", o.warmup, "untimed frames first", 0, 1000);
+  add_ranged(app, "--cpu-repeat", o.cpu_repeat, "CPU engine frames per row for comparison (0 = none)", 0,
+             1000);
+  add_defaulted(app, "--cpu-threads", o.cpu_threads, "CPU engine threads (0 = all)");
+  add_defaulted(app, "--cuda-team", o.cuda.team,
+                "CUDA lanes per vertex in the neighbourhood passes: -1 by mesh size (default), 0 one "
+                "thread per vertex through the math headers, or 1, 2, 4, 8, 16, 32")
       ->check(CLI::IsMember({-1, 0, 1, 2, 4, 8, 16, 32}));
   app.add_flag("--cuda-fast-exp", o.cuda.fast_exp, "CUDA Gaussian weights through __expf (last bits differ)");
   app.add_flag("--neighbour-stats", o.neighbour_stats,
@@ -182,18 +178,10 @@ int run(int argc, char** argv) {
   auto* codec_opt = app.add_option("--codec", codec.mesh,
                                    "codec mode: time the frame codec on MESH (a file, or a name in the mesh "
                                    "folder) against plain Draco on the same chunks, instead of the engine rows");
-  app.add_option("--chunks", codec.chunks, "codec mode: chunks per frame")
-      ->capture_default_str()
-      ->check(CLI::Range(1u, 256u));
-  app.add_option("--threads", codec.threads, "codec mode: codec threads")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 256));
-  app.add_option("--speed", codec.speed, "codec mode: Draco encoding = decoding speed")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 10));
-  app.add_option("--bits", codec.position_bits, "codec mode: position quantization bits")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 30));
+  add_ranged(app, "--chunks", codec.chunks, "codec mode: chunks per frame", 1u, 256u);
+  add_ranged(app, "--threads", codec.threads, "codec mode: codec threads", 1, 256);
+  add_ranged(app, "--speed", codec.speed, "codec mode: Draco encoding = decoding speed", 0, 10);
+  add_ranged(app, "--bits", codec.position_bits, "codec mode: position quantization bits", 1, 30);
   app.add_flag("--json", codec.json, "codec mode: print one JSON object instead of a table");
   CLI11_PARSE(app, argc, argv);
 

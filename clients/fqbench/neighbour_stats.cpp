@@ -31,16 +31,16 @@ NeighbourStats neighbour_stats(const MeshView& mesh, const Params& params) {
   std::vector<Vec3> p(mesh.num_vertices);
   for (uint32_t i = 0; i < mesh.num_vertices; ++i) p[i] = norm.to_normalized(mesh.positions + 3 * size_t(i));
   CpuGrid grid;
-  build_grid(p.data(), mesh.num_vertices, params.f.sigma_s, grid);
+  build_grid(p.data(), mesh.num_vertices, params.filtering.sigma_s, grid);
   std::vector<Point4> sorted(mesh.num_vertices);
   for (uint32_t k = 0; k < mesh.num_vertices; ++k) {
     const Vec3 q = p[grid.order[k]];
     sorted[k] = {q.x, q.y, q.z, 0.f};
   }
   const GridView g = grid.view(sorted.data());
-  out.nbhd = mean_count(g, 2.f * params.f.effective_sigma_b());
-  out.diffusion = mean_count(g, 2.f * params.f.sigma_s);
-  if (params.cluster) out.cluster = mean_count(g, 2.f * params.c.sigma_d);
+  out.nbhd = mean_count(g, 2.f * params.filtering.effective_sigma_b());
+  out.diffusion = mean_count(g, 2.f * params.filtering.sigma_s);
+  if (params.cluster) out.cluster = mean_count(g, 2.f * params.clustering.sigma_d);
   return out;
 }
 

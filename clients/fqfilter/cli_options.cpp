@@ -3,106 +3,77 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "clients/common/defaulted_option.h"
 #include "common/version.h"
 
 namespace fq::cli {
 
 namespace {
 
+using client::add_defaulted;
+using client::add_ranged;
+
+// The groups below are added after app.option_defaults()->always_capture_default(): every
+// option of theirs shows its default in --help; option_defaults()->group() names the group.
+
 void add_filter_options(CLI::App& app, Options& o, std::string& mode) {
-  FilterParams& f = o.params.f;
-  const std::string g = "Filter";
-  app.add_option("--mode", mode, "Filter: qf+ (filtered quadrics, then the feature-preserving refinement), qf (the paper exactly) or bf (bilateral baseline)")
-      ->check(CLI::IsMember(method_names<FilterMethod>()))
-      ->capture_default_str()
-      ->group(g);
-  app.add_option("--sigma-s", f.sigma_s, "Spatial extent of the diffusion, in mean edge lengths")
-      ->capture_default_str()
-      ->group(g);
-  app.add_option("--sigma-r", f.sigma_r, "Range extent (RMS quadric distance), in mean edge lengths")
-      ->capture_default_str()
-      ->group(g);
+  FilterParams& f = o.params.filtering;
+  app.option_defaults()->group("Filter");
+  app.add_option("--mode", mode,
+                 "Filter: qf+ (filtered quadrics, then the feature-preserving refinement), qf (the paper "
+                 "exactly) or bf (bilateral baseline)")
+      ->check(CLI::IsMember(method_names<FilterMethod>()));
+  app.add_option("--sigma-s", f.sigma_s, "Spatial extent of the diffusion, in mean edge lengths");
+  app.add_option("--sigma-r", f.sigma_r, "Range extent (RMS quadric distance), in mean edge lengths");
   app.add_option("--sigma-b", f.sigma_b,
-                 "Finest detail captured by the neighbourhood quadrics; 0 = sigma-s/2")
-      ->capture_default_str()
-      ->group(g);
-  app.add_option("--sigma-n", f.sigma_n, "Normal smoothing of --constrained; 0 = sigma-s/2")
-      ->capture_default_str()
-      ->group(g);
-  app.add_flag("--constrained", f.constrained, "Move vertices along the smoothed normal only")->group(g);
-  app.add_option("--tikhonov", f.tikhonov, "Pull toward the current position, relative to tr(A)/3; 0 = paper")
-      ->capture_default_str()
-      ->group(g);
+                 "Finest detail captured by the neighbourhood quadrics; 0 = sigma-s/2");
+  app.add_option("--sigma-n", f.sigma_n, "Normal smoothing of --constrained; 0 = sigma-s/2");
+  app.add_flag("--constrained", f.constrained, "Move vertices along the smoothed normal only");
+  app.add_option("--tikhonov", f.tikhonov,
+                 "Pull toward the current position, relative to tr(A)/3; 0 = paper");
 }
 
 void add_refine_options(CLI::App& app, RefineParams& r) {
-  const std::string g = "Refinement (--mode qf+)";
-  app.add_option("--relax-iterations", r.relax_iterations, "Tangential relaxation passes (un-fold triangles)")
-      ->capture_default_str()
-      ->group(g);
-  app.add_option("--relax-step", r.relax_step, "Fraction of the way to the 1-ring mean per relaxation pass")
-      ->capture_default_str()
-      ->group(g);
+  app.option_defaults()->group("Refinement (--mode qf+)");
+  app.add_option("--relax-iterations", r.relax_iterations,
+                 "Tangential relaxation passes (un-fold triangles)");
+  app.add_option("--relax-step", r.relax_step, "Fraction of the way to the 1-ring mean per relaxation pass");
   app.add_option("--feature-ratio", r.feature_ratio,
-                 "Normal-tensor eigenvalues below this times the largest are free to relax along")
-      ->capture_default_str()
-      ->group(g);
-  app.add_option("--normal-iterations", r.normal_iterations, "Bilateral face-normal filtering passes")
-      ->capture_default_str()
-      ->group(g);
-  app.add_option("--normal-sigma-s", r.normal_sigma_s, "Spatial extent of the normal filter, in mean edge lengths")
-      ->capture_default_str()
-      ->group(g);
-  app.add_option("--normal-sigma-r", r.normal_sigma_r, "Range extent of the normal filter (|n_i - n_j|)")
-      ->capture_default_str()
-      ->group(g);
-  app.add_option("--vertex-iterations", r.vertex_iterations, "Normal-driven vertex update passes (Sun et al. 2007)")
-      ->capture_default_str()
-      ->group(g);
+                 "Normal-tensor eigenvalues below this times the largest are free to relax along");
+  app.add_option("--normal-iterations", r.normal_iterations, "Bilateral face-normal filtering passes");
+  app.add_option("--normal-sigma-s", r.normal_sigma_s,
+                 "Spatial extent of the normal filter, in mean edge lengths");
+  app.add_option("--normal-sigma-r", r.normal_sigma_r, "Range extent of the normal filter (|n_i - n_j|)");
+  app.add_option("--vertex-iterations", r.vertex_iterations,
+                 "Normal-driven vertex update passes (Sun et al. 2007)");
 }
 
 void add_cluster_control_options(CLI::App& app, Options& o, std::string& geometry) {
-  ClusterParams& c = o.params.c;
-  const std::string g = "Clustering";
+  ClusterParams& c = o.params.clustering;
+  app.option_defaults()->group("Clustering");
   app.add_option("--target-clusters", c.target_clusters,
-                 "Choose theta per mesh to give about K clusters (0 = use --theta)")
-      ->capture_default_str()
-      ->group(g);
+                 "Choose theta per mesh to give about K clusters (0 = use --theta)");
   app.add_option("--cluster-geometry", geometry,
-                 "Quadrics the clustering uses: input (the paper), filtered (after a constrained filter) or auto (filtered with --target-clusters)")
-      ->check(CLI::IsMember({"auto", "input", "filtered"}))
-      ->capture_default_str()
-      ->group(g);
+                 "Quadrics the clustering uses: input (the paper), filtered (after a constrained filter) or "
+                 "auto (filtered with --target-clusters)")
+      ->check(CLI::IsMember({"auto", "input", "filtered"}));
   app.add_option("--min-cluster-size", c.min_cluster_size,
-                 "Split clusters into mesh-connected parts and merge parts under N vertices (0 = off)")
-      ->capture_default_str()
-      ->group(g);
+                 "Split clusters into mesh-connected parts and merge parts under N vertices (0 = off)");
 }
 
 void add_cluster_options(CLI::App& app, Options& o, std::string& method, bool& no_filter) {
-  ClusterParams& c = o.params.c;
-  const std::string g = "Clustering";
-  app.add_flag("--cluster", o.params.cluster, "Compute a cluster label per vertex (written with the output)")
-      ->group(g);
+  ClusterParams& c = o.params.clustering;
+  app.option_defaults()->group("Clustering");
+  app.add_flag("--cluster", o.params.cluster, "Compute a cluster label per vertex (written with the output)");
   app.add_flag(
-         "--colour-clusters", o.colour_clusters,
-         "Cluster colours replace the input's vertex colours (default: they go to cluster_red/green/blue)")
-      ->group(g);
-  app.add_flag("--no-filter", no_filter, "Cluster only: keep the input positions (implies --cluster)")
-      ->group(g);
+      "--colour-clusters", o.colour_clusters,
+      "Cluster colours replace the input's vertex colours (default: they go to cluster_red/green/blue)");
+  app.add_flag("--no-filter", no_filter, "Cluster only: keep the input positions (implies --cluster)");
   app.add_option("--cluster-method", method, "quadric (the paper) or euclidean (plain quick shift)")
-      ->check(CLI::IsMember(method_names<ClusterMethod>()))
-      ->capture_default_str()
-      ->group(g);
-  app.add_option("--sigma-d", c.sigma_d, "Spatial extent of score and proximity, in mean edge lengths")
-      ->capture_default_str()
-      ->group(g);
-  app.add_option("--sigma-q", c.sigma_q, "Range extent of the clustering (RMS quadric distance)")
-      ->capture_default_str()
-      ->group(g);
-  app.add_option("--theta", c.theta, "In (0, 1]; higher gives fewer, larger clusters")
-      ->capture_default_str()
-      ->group(g);
+      ->check(CLI::IsMember(method_names<ClusterMethod>()));
+  app.add_option("--sigma-d", c.sigma_d, "Spatial extent of score and proximity, in mean edge lengths");
+  app.add_option("--sigma-q", c.sigma_q, "Range extent of the clustering (RMS quadric distance)");
+  app.add_option("--theta", c.theta, "In (0, 1]; higher gives fewer, larger clusters");
 }
 
 void add_run_options(CLI::App& app, Options& o, std::string& engine, std::string& noise_direction) {
@@ -111,30 +82,23 @@ void add_run_options(CLI::App& app, Options& o, std::string& engine, std::string
                  "Output file (.ply .drc .obj .glb), or folder when IN is a folder; none: write nothing");
   app.add_flag("--in-place", o.in_place,
                "Allow OUT to be IN: the input is replaced once the result is written");
-  app.add_option("--engine", engine, "auto (CUDA when a GPU is present), cpu or cuda")
-      ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
-      ->capture_default_str();
-  app.add_option("--threads", o.engine.threads, "CPU engine threads; 0 = all hardware threads")
-      ->check(CLI::Range(0, 4096))
-      ->capture_default_str();
+  add_defaulted(app, "--engine", engine, "auto (CUDA when a GPU is present), cpu or cuda")
+      ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  add_ranged(app, "--threads", o.engine.threads, "CPU engine threads; 0 = all hardware threads", 0, 4096);
   app.add_option("--noise", o.noise_sigma,
                  "Add Gaussian noise of this std (mean edge lengths) before filtering")
       ->check(CLI::Range(0.0, 100.0));
-  app.add_option("--noise-direction", noise_direction,
-                 "iso: every coordinate; normal: along the clean mesh's vertex normals")
-      ->check(CLI::IsMember({"iso", "normal"}))
-      ->capture_default_str();
-  app.add_option("--seed", o.seed, "Seed of --noise")->capture_default_str();
+  add_defaulted(app, "--noise-direction", noise_direction,
+                "iso: every coordinate; normal: along the clean mesh's vertex normals")
+      ->check(CLI::IsMember({"iso", "normal"}));
+  add_defaulted(app, "--seed", o.seed, "Seed of --noise");
   app.add_option("--noisy-out", o.noisy_out,
                  "Also write the noisy input mesh to this file (to run other smoothers on the same input)");
   app.add_option("--reference", o.reference,
                  "Clean mesh (same vertices and faces) to measure errors against");
-  app.add_option("--repeat", o.repeat, "Run the engine N times per mesh; timings are medians")
-      ->check(CLI::Range(1, 100000))
-      ->capture_default_str();
-  app.add_option("--drc-bits", o.drc_bits, "Position quantization bits of .drc outputs (0 = lossless)")
-      ->check(CLI::Range(0, 30))
-      ->capture_default_str();
+  add_ranged(app, "--repeat", o.repeat, "Run the engine N times per mesh; timings are medians", 1, 100000);
+  add_ranged(app, "--drc-bits", o.drc_bits, "Position quantization bits of .drc outputs (0 = lossless)", 0,
+             30);
   app.add_flag("--json", o.json, "One JSON object per mesh on stdout (see docs/FQFILTER.md)");
 }
 
@@ -148,13 +112,14 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
   CLI::App app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
                "fqfilter"};
   app.set_version_flag("--version", fq::version_line("fqfilter"));
-  std::string mode = method_name(o.params.f.method), method = method_name(o.params.c.method), engine = "auto",
+  std::string mode = method_name(o.params.filtering.method), method = method_name(o.params.clustering.method), engine = "auto",
               geometry = "auto";
   bool no_filter = false;
   std::string noise_direction = "iso";
   add_run_options(app, o, engine, noise_direction);
+  app.option_defaults()->always_capture_default();
   add_filter_options(app, o, mode);
-  add_refine_options(app, o.params.f.refine);
+  add_refine_options(app, o.params.filtering.refine);
   add_cluster_options(app, o, method, no_filter);
   add_cluster_control_options(app, o, geometry);
   try {
@@ -166,9 +131,9 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
     return {false, 2};
   }
   // CLI::IsMember has accepted only known names.
-  o.params.f.method = *parse_method<FilterMethod>(mode);
-  o.params.c.method = *parse_method<ClusterMethod>(method);
-  parse_cluster_geometry(geometry, o.params.c.geometry);  // checked by IsMember above
+  o.params.filtering.method = *parse_method<FilterMethod>(mode);
+  o.params.clustering.method = *parse_method<ClusterMethod>(method);
+  parse_cluster_geometry(geometry, o.params.clustering.geometry);  // checked by IsMember above
   parse_engine_kind(engine, o.engine.kind);
   o.noise_along_normal = noise_direction == "normal";
   if (no_filter) {

@@ -34,7 +34,7 @@ nlohmann::json refine_json(const RefineParams& r) {
 }
 
 nlohmann::json params_json(const Params& p) {
-  const FilterParams& f = p.f;
+  const FilterParams& f = p.filtering;
   return {{"filter", p.filter},
           {"cluster", p.cluster},
           {"mode", method_name(f.method)},
@@ -44,13 +44,13 @@ nlohmann::json params_json(const Params& p) {
           {"sigma_n", as_typed(f.effective_sigma_n())},
           {"constrained", f.constrained},
           {"tikhonov", as_typed(f.tikhonov)},
-          {"cluster_method", method_name(p.c.method)},
-          {"sigma_d", as_typed(p.c.sigma_d)},
-          {"sigma_q", as_typed(p.c.sigma_q)},
-          {"theta", as_typed(p.c.theta)},
-          {"target_clusters", p.c.target_clusters},
-          {"cluster_geometry", cluster_geometry_name(p.c.geometry)},
-          {"min_cluster_size", p.c.min_cluster_size},
+          {"cluster_method", method_name(p.clustering.method)},
+          {"sigma_d", as_typed(p.clustering.sigma_d)},
+          {"sigma_q", as_typed(p.clustering.sigma_q)},
+          {"theta", as_typed(p.clustering.theta)},
+          {"target_clusters", p.clustering.target_clusters},
+          {"cluster_geometry", cluster_geometry_name(p.clustering.geometry)},
+          {"min_cluster_size", p.clustering.min_cluster_size},
           {"refine", f.method == FilterMethod::kQuadricRefined ? refine_json(f.refine) : nullptr}};
 }
 
@@ -157,7 +157,7 @@ void print_human(const FileReport& r, std::ostream& os) {
   os << "\n";
   if (r.clusters) {
     os << "  clusters: " << *r.clusters;
-    if (r.theta_used && r.params.c.target_clusters > 0) os << " (theta " << std::setprecision(4) << *r.theta_used << ")";
+    if (r.theta_used && r.params.clustering.target_clusters > 0) os << " (theta " << std::setprecision(4) << *r.theta_used << ")";
     os << "\n";
   }
   if (r.sharp_edges)

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "clients/common/curve_client.h"
+#include "clients/common/defaulted_option.h"
 #include "clients/common/frame_sender.h"
 #include "clients/common/mesh_source.h"
 #include "clients/common/override_options.h"
@@ -79,27 +80,19 @@ Totals publish(const Args& a, const fq::client::MeshSource& source, zmq::socket_
 // Every command-line option, into `a`.
 void add_options(CLI::App& app, Args& a) {
   app.add_option("input", a.input, "mesh file (.ply .obj .stl .drc) or folder of them")->required();
-  app.add_option("-e,--endpoint", a.endpoint, "fqd ingest endpoint (PUSH connects)")->capture_default_str();
+  fq::client::add_defaulted(app, "-e,--endpoint", a.endpoint, "fqd ingest endpoint (PUSH connects)");
   app.add_option("--bind-pub", a.bind_pub,
                  "bind a PUB socket here instead (fqd SUB-connects: [ingest] connect); frames sent "
                  "while no fqd is subscribed are dropped");
-  app.add_option("-s,--stream", a.spec.stream_id, "stream id (the topic of the results)")
-      ->capture_default_str();
-  app.add_option("--fps", a.fps, "frames per second")
-      ->capture_default_str()
-      ->check(CLI::Range(0.001, 10000.0));
-  app.add_option("--chunks", a.spec.chunks, "Draco chunks per frame")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 256));
-  app.add_option("--position-bits", a.spec.position_bits, "Draco position bits")
-      ->capture_default_str()
-      ->check(CLI::Range(8, 30));
-  app.add_option("--encode-speed", a.spec.encode_speed, "Draco encoder speed 0..10 (10: fastest, largest)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 10));
+  fq::client::add_defaulted(app, "-s,--stream", a.spec.stream_id, "stream id (the topic of the results)");
+  fq::client::add_ranged(app, "--fps", a.fps, "frames per second", 0.001, 10000.0);
+  fq::client::add_ranged(app, "--chunks", a.spec.chunks, "Draco chunks per frame", 1, 256);
+  fq::client::add_ranged(app, "--position-bits", a.spec.position_bits, "Draco position bits", 8, 30);
+  fq::client::add_ranged(app, "--encode-speed", a.spec.encode_speed,
+                         "Draco encoder speed 0..10 (10: fastest, largest)", 0, 10);
   app.add_option("--noise", a.noise, "Gaussian noise per frame, in mean edge lengths (0 = none)")
       ->check(CLI::Range(0.0, 100.0));
-  app.add_option("--seed", a.seed, "noise seed (frame i uses seed + i)")->capture_default_str();
+  fq::client::add_defaulted(app, "--seed", a.seed, "noise seed (frame i uses seed + i)");
   app.add_option("-n,--count", a.count, "frames to send (0 = until --duration or Ctrl-C)");
   app.add_option("-d,--duration", a.duration, "seconds to publish (0 = until --count or Ctrl-C)");
   fq::client::add_curve_options(app, a.curve);

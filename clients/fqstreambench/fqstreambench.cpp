@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "clients/common/control_client.h"
+#include "clients/common/defaulted_option.h"
 #include "clients/common/override_options.h"
 #include "clients/fqstreambench/collector.h"
 #include "clients/fqstreambench/producer.h"
@@ -163,47 +164,36 @@ fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep,
 void add_options(CLI::App& app, Args& a) {
   app.add_option("mesh", a.mesh, "mesh file, or a file name in --mesh-dir (e.g. bunny.ply)")->required();
   app.add_option("--mesh-dir", a.mesh_dir, "folder of meshes (default $FQ_MESH_DIR, else ../shared/meshes)");
-  app.add_option("--streams", a.streams, "concurrent streams")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 256));
-  app.add_option("--fps", a.producer.fps, "frames per second per stream")
-      ->capture_default_str()
-      ->check(CLI::Range(0.01, 10000.0));
-  app.add_option("-d,--duration", a.producer.seconds, "seconds of sending per stream")->capture_default_str();
-  app.add_option("--warmup", a.warmup, "first seconds not measured")->capture_default_str();
-  app.add_option("--drain", a.drain, "longest wait for the last results")->capture_default_str();
-  app.add_option("--chunks", a.producer.spec.chunks, "Draco chunks per frame")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 256));
-  app.add_option("--encode-speed", a.encode_speed,
-                 "Draco encoder speed 0..10 of the producers and of fqd's results (in-process fqd)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 10));
+  fq::client::add_ranged(app, "--streams", a.streams, "concurrent streams", 1, 256);
+  fq::client::add_ranged(app, "--fps", a.producer.fps, "frames per second per stream", 0.01, 10000.0);
+  fq::client::add_defaulted(app, "-d,--duration", a.producer.seconds, "seconds of sending per stream");
+  fq::client::add_defaulted(app, "--warmup", a.warmup, "first seconds not measured");
+  fq::client::add_defaulted(app, "--drain", a.drain, "longest wait for the last results");
+  fq::client::add_ranged(app, "--chunks", a.producer.spec.chunks, "Draco chunks per frame", 1, 256);
+  fq::client::add_ranged(app, "--encode-speed", a.encode_speed,
+                         "Draco encoder speed 0..10 of the producers and of fqd's results (in-process fqd)",
+                         0, 10);
   app.add_option("--result-form", a.result_form,
                  "positions | mesh: the results of the in-process fqd (default: its config's)")
       ->check(CLI::IsMember({"positions", "mesh"}));
-  app.add_option("--noise", a.producer.noise, "noise in mean edges (0 = the mesh as is)")
-      ->capture_default_str();
-  app.add_option("--variants", a.producer.variants, "distinct noisy frames per stream")
-      ->capture_default_str();
+  fq::client::add_defaulted(app, "--noise", a.producer.noise, "noise in mean edges (0 = the mesh as is)");
+  fq::client::add_defaulted(app, "--variants", a.producer.variants, "distinct noisy frames per stream");
   app.add_option("--budget-ms", a.budget_ms,
                  "latency budget of the streams (in-process fqd; 0 = default/config)");
-  app.add_option("--engine", a.engine, "in-process engine: auto | cuda | cpu")->capture_default_str();
+  fq::client::add_defaulted(app, "--engine", a.engine, "in-process engine: auto | cuda | cpu");
   app.add_option("--gpus", a.gpus, "GPUs of the in-process fqd, one engine each (e.g. 0,1)")->delimiter(',');
   app.add_option("--cpu-threads", a.cpu_threads, "CPU engine threads (0 = all)");
-  app.add_option("--decode-threads", a.decode_threads,
-                 "fqd decode pool (0 = half the hardware threads, at least 2)")
-      ->capture_default_str();
-  app.add_option("--encode-threads", a.encode_threads,
-                 "fqd encode pool (0 = half the hardware threads, at least 2)")
-      ->capture_default_str();
+  fq::client::add_defaulted(app, "--decode-threads", a.decode_threads,
+                            "fqd decode pool (0 = half the hardware threads, at least 2)");
+  fq::client::add_defaulted(app, "--encode-threads", a.encode_threads,
+                            "fqd encode pool (0 = half the hardware threads, at least 2)");
   app.add_option("--config", a.config, "in-process fqd from this config file (its endpoints are replaced; no HTTP, no stats lines)");
   app.add_flag("--connect", a.connect, "benchmark a running fqd at --ingest, --publish, --control");
   app.add_option("--ingest", a.ingest, "running fqd's ingest endpoint");
   app.add_option("--publish", a.publish, "running fqd's publish endpoint");
   app.add_option("--control", a.control, "running fqd's control endpoint");
-  app.add_option("--stream-prefix", a.stream_prefix, "stream ids are <prefix>0, <prefix>1, ...")
-      ->capture_default_str();
+  fq::client::add_defaulted(app, "--stream-prefix", a.stream_prefix,
+                            "stream ids are <prefix>0, <prefix>1, ...");
   app.add_flag("--decode", a.decode, "decode and check every result (costs consumer CPU)");
   app.add_flag("--json", a.json, "print the report as JSON");
   app.add_flag("--markdown", a.markdown, "also print a docs/BENCHMARKS.md table row");

@@ -41,12 +41,12 @@ int run(int argc, char** argv) {
   app.add_option("--frames", frames, "Frames in the stream")->check(CLI::Range(2, 100000));
   app.add_option("--noise", noise, "Noise per frame, mean edges")->check(CLI::Range(0.0, 10.0));
   app.add_option("--degrees", degrees, "Turn per frame about the vertical axis");
-  app.add_option("--target-clusters", p.c.target_clusters, "0: theta");
-  app.add_option("--theta", p.c.theta);
-  app.add_option("--sigma-d", p.c.sigma_d);
-  app.add_option("--sigma-q", p.c.sigma_q);
+  app.add_option("--target-clusters", p.clustering.target_clusters, "0: theta");
+  app.add_option("--theta", p.clustering.theta);
+  app.add_option("--sigma-d", p.clustering.sigma_d);
+  app.add_option("--sigma-q", p.clustering.sigma_q);
   app.add_option("--threads", threads, "CPU engine threads (0 = all)");
-  app.add_option("--min-cluster-size", p.c.min_cluster_size);
+  app.add_option("--min-cluster-size", p.clustering.min_cluster_size);
   bool ids_only = false;
   app.add_option("--sticky-rings", to_rings, "Rings a border may move back");
   app.add_flag("--ids-only", ids_only, "Match ids only (no sticky boundaries)");
@@ -108,8 +108,8 @@ int run(int argc, char** argv) {
     prev_ids = ids;
   }
   std::printf("| %s | %d | %g | %g | %s | %s | %.1f | %.3f | %.3f | %.3f | %.3f | %.3f | %.1f |\n", mesh_path.c_str(), frames,
-              noise, degrees, ids_only ? "ids only" : ("ids + borders " + std::to_string(to_rings) + " rings").c_str(), p.c.target_clusters ? ("K " + std::to_string(p.c.target_clusters)).c_str()
-                                           : ("θ " + std::to_string(p.c.theta)).c_str(),
+              noise, degrees, ids_only ? "ids only" : ("ids + borders " + std::to_string(to_rings) + " rings").c_str(), p.clustering.target_clusters ? ("K " + std::to_string(p.clustering.target_clusters)).c_str()
+                                           : ("θ " + std::to_string(p.clustering.theta)).c_str(),
               t.clusters / t.frames, t.raw / t.pairs, t.tracked / t.pairs, t.min_tracked, t.recall_raw / t.frames,
               t.recall_tracked / t.frames, t.track_ms / t.frames);
   return 0;

@@ -3,6 +3,8 @@
 // (filter_math.h, cluster_math.h); the lanes' partial sums are combined by shuffles, so
 // the summation order (not the neighbour set or the math) differs from the CPU; link keeps
 // the CPU's tie-break exactly.
+#include <type_traits>
+
 #include "kernels/cluster_math.h"
 #include "kernels/filter_math.h"
 #include "kernels/cuda/cuda_check.cuh"
@@ -124,30 +126,28 @@ __global__ void FQ_TEAM_BOUNDS team_link(GridView g, const PackedQuadric* qbl, c
 
 unsigned team_blocks(uint32_t n, int team) { return blocks_for(uint64_t(n) * team); }
 
-// Instantiates `kernel` for the supported team sizes and launches the one asked for.
-#define FQ_TEAM_LAUNCH(kernel, team, n, s, ...)                              \
-  do {                                                                       \
-    switch (team) {                                                          \
-      case 1:                                                                \
-        kernel<1><<<team_blocks(n, 1), block_size(), 0, s>>>(__VA_ARGS__);   \
-        break;                                                               \
-      case 2:                                                                \
-        kernel<2><<<team_blocks(n, 2), block_size(), 0, s>>>(__VA_ARGS__);   \
-        break;                                                               \
-      case 4:                                                                \
-        kernel<4><<<team_blocks(n, 4), block_size(), 0, s>>>(__VA_ARGS__);   \
-        break;                                                               \
-      case 8:                                                                \
-        kernel<8><<<team_blocks(n, 8), block_size(), 0, s>>>(__VA_ARGS__);   \
-        break;                                                               \
-      case 16:                                                               \
-        kernel<16><<<team_blocks(n, 16), block_size(), 0, s>>>(__VA_ARGS__); \
-        break;                                                               \
-      default:                                                               \
-        kernel<32><<<team_blocks(n, 32), block_size(), 0, s>>>(__VA_ARGS__); \
-        break;                                                               \
-    }                                                                        \
-    FQ_CUDA_CHECK_LAUNCH(#kernel);                                           \
+/// Calls launch(std::integral_constant<int, T>{}) for the supported team size T that is
+/// `team` (32 for any other value): each kernel is instantiated once per size.
+template <class Launch>
+void with_team_size(int team, Launch&& launch) {
+  switch (team) {
+    case 1: return launch(std::integral_constant<int, 1>{});
+    case 2: return launch(std::integral_constant<int, 2>{});
+    case 4: return launch(std::integral_constant<int, 4>{});
+    case 8: return launch(std::integral_constant<int, 8>{});
+    case 16: return launch(std::integral_constant<int, 16>{});
+    default: return launch(std::integral_constant<int, 32>{});
+  }
+}
+
+// Launches `kernel` instantiated for the team size asked for.
+#define FQ_TEAM_LAUNCH(kernel, team, n, s, ...)                          \
+  do {                                                                   \
+    with_team_size(team, [&](auto size) {                                \
+      constexpr int T = decltype(size)::value;                           \
+      kernel<T><<<team_blocks(n, T), block_size(), 0, s>>>(__VA_ARGS__); \
+    });                                                                  \
+    FQ_CUDA_CHECK_LAUNCH(#kernel);                                       \
   } while (0)
 
 }  // namespace

@@ -56,17 +56,17 @@ Mesh noisy_cube() {
 
 Params qf(float sigma_s, float sigma_r) {
   Params p;
-  p.f.sigma_s = sigma_s;
-  p.f.sigma_r = sigma_r;
+  p.filtering.sigma_s = sigma_s;
+  p.filtering.sigma_r = sigma_r;
   return p;
 }
 
 Params clustering(float sigma_d, float sigma_q, float theta) {
   Params p = qf(2.f, 1.f);
   p.cluster = true;
-  p.c.sigma_d = sigma_d;
-  p.c.sigma_q = sigma_q;
-  p.c.theta = theta;
+  p.clustering.sigma_d = sigma_d;
+  p.clustering.sigma_q = sigma_q;
+  p.clustering.theta = theta;
   return p;
 }
 
@@ -98,20 +98,20 @@ TEST(CudaTuningOptions, TeamSizesOutsideTheKernelsAreRefused) {
 
 TEST_F(CudaEngineTest, ConstrainedAndUnregularizedFilterMatchCpu) {
   Params params = qf(2.5f, 0.8f);
-  params.f.constrained = true;
+  params.filtering.constrained = true;
   const Mesh m = noisy_cube();
   Parity p;
   run_both(*cpu_, *gpu_, m.view(), params, p);
   expect_parity(p, params);
-  params.f.constrained = false;
-  params.f.tikhonov = 0.f;  // the paper's solver
+  params.filtering.constrained = false;
+  params.filtering.tikhonov = 0.f;  // the paper's solver
   run_both(*cpu_, *gpu_, m.view(), params, p);
   expect_parity(p, params);
 }
 
 TEST_F(CudaEngineTest, BilateralBaselineMatchesCpu) {
   Params params = qf(3.f, 0.5f);
-  params.f.method = FilterMethod::kBilateral;
+  params.filtering.method = FilterMethod::kBilateral;
   for (const Mesh& m : {noisy_sphere(), noisy_cube()}) {
     Parity p;
     run_both(*cpu_, *gpu_, m.view(), params, p);
@@ -127,7 +127,7 @@ TEST_F(CudaEngineTest, ClusteringMatchesCpu) {
     }
   }
   Params euclid = clustering(5.f, 1.f, 0.9f);
-  euclid.c.method = ClusterMethod::kEuclidean;
+  euclid.clustering.method = ClusterMethod::kEuclidean;
   Parity p;
   run_both(*cpu_, *gpu_, noisy_sphere().view(), euclid, p);
   expect_parity(p, euclid);
@@ -137,7 +137,7 @@ TEST_F(CudaEngineTest, ClusteringMatchesCpu) {
 // the same host code for both engines (kernels/cluster_control.h).
 TEST_F(CudaEngineTest, TargetCountAndFilteredGeometryMatchCpu) {
   Params params = clustering(5.f, 1.f, 0.9f);
-  params.c.target_clusters = 40;
+  params.clustering.target_clusters = 40;
   for (const Mesh& m : {noisy_sphere(), noisy_cube()}) {
     Parity p;
     run_both(*cpu_, *gpu_, m.view(), params, p);
@@ -194,7 +194,7 @@ TEST_F(CudaEngineTest, UnusualMeshesMatchCpu) {
     expect_parity_for_each(*cpu_, m.view(), params, kKernelPaths,
                            [](const Parity& p) { EXPECT_TRUE(all_finite(p.gpu.positions)); });
   }
-  params.f.method = FilterMethod::kBilateral;
+  params.filtering.method = FilterMethod::kBilateral;
   for (const Mesh& m : meshes) {
     Parity p;
     run_both(*cpu_, *gpu_, m.view(), params, p);
@@ -213,7 +213,7 @@ TEST_F(CudaEngineTest, NoDeviceAllocationAfterWarmUp) {
   EXPECT_EQ(cuda_allocation_count(), warm);
   // Smaller work on the same buffers (filter only, BF) needs nothing new either.
   Params bf = qf(3.f, 1.f);
-  bf.f.method = FilterMethod::kBilateral;
+  bf.filtering.method = FilterMethod::kBilateral;
   ASSERT_TRUE(gpu_->process(m.view(), bf, r).ok());
   const uint64_t after_bf = cuda_allocation_count();
   for (int k = 0; k < 3; ++k) ASSERT_TRUE(gpu_->process(m.view(), bf, r).ok());

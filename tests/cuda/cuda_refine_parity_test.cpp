@@ -16,7 +16,7 @@ class CudaRefineParity : public CudaTest {};
 
 Params refined() {
   Params p;
-  p.f.method = FilterMethod::kQuadricRefined;
+  p.filtering.method = FilterMethod::kQuadricRefined;
   return p;
 }
 

@@ -77,7 +77,7 @@ TEST(WorkBudget, HugeSigmaIsRefusedNamingItDefaultsPass) {
   EXPECT_TRUE(check_work_budget(p, 4'000'000, 2e10).ok());
   p.cluster = true;
   EXPECT_TRUE(check_work_budget(p, 4'000'000, 2e10).ok());
-  p.f.sigma_s = 1e4f;
+  p.filtering.sigma_s = 1e4f;
   const Status s = check_work_budget(p, 35'000, 2e10);
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);

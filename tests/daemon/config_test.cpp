@@ -26,7 +26,7 @@ TEST(DaemonConfig, ShippedDefaultConfigIsValid) {
   EXPECT_TRUE(c.defaults.params.filter);
   EXPECT_TRUE(c.defaults.params.cluster);
   ASSERT_EQ(c.streams.count("preview"), 1u);
-  EXPECT_FLOAT_EQ(c.streams["preview"].params.f.sigma_s, 3.0f);
+  EXPECT_FLOAT_EQ(c.streams["preview"].params.filtering.sigma_s, 3.0f);
 }
 
 TEST(DaemonConfig, EmptyFileGivesBuiltInDefaults) {
@@ -71,8 +71,8 @@ sticky_rings = 3
                          c);
   ASSERT_TRUE(s.ok()) << s.message();
   const StreamSettings& a = c.settings_for("cam1");
-  EXPECT_FLOAT_EQ(a.params.f.sigma_s, 1.5f);
-  EXPECT_FLOAT_EQ(a.params.f.sigma_r, 0.5f);  // from [defaults]
+  EXPECT_FLOAT_EQ(a.params.filtering.sigma_s, 1.5f);
+  EXPECT_FLOAT_EQ(a.params.filtering.sigma_r, 0.5f);  // from [defaults]
   EXPECT_DOUBLE_EQ(a.budget_ms, 40.0);
   EXPECT_EQ(a.output.chunks, 4u);
   EXPECT_EQ(a.output.position_bits, 12);
@@ -82,15 +82,15 @@ sticky_rings = 3
   const StreamSettings& b = c.settings_for("cam2");
   EXPECT_FALSE(b.params.filter);
   EXPECT_TRUE(b.params.cluster);
-  EXPECT_EQ(b.params.c.method, ClusterMethod::kEuclidean);
-  EXPECT_EQ(b.params.c.target_clusters, 40u);
-  EXPECT_EQ(b.params.c.geometry, ClusterGeometry::kInput);
-  EXPECT_EQ(b.params.c.min_cluster_size, 8u);
-  EXPECT_FALSE(b.params.c.track_ids);
-  EXPECT_EQ(b.params.c.sticky_rings, 3u);
-  EXPECT_TRUE(a.params.c.track_ids) << "ids are tracked unless a stream says otherwise";
-  EXPECT_EQ(a.params.c.geometry, ClusterGeometry::kAuto);
-  EXPECT_FLOAT_EQ(c.settings_for("unlisted").params.f.sigma_s, 3.0f);
+  EXPECT_EQ(b.params.clustering.method, ClusterMethod::kEuclidean);
+  EXPECT_EQ(b.params.clustering.target_clusters, 40u);
+  EXPECT_EQ(b.params.clustering.geometry, ClusterGeometry::kInput);
+  EXPECT_EQ(b.params.clustering.min_cluster_size, 8u);
+  EXPECT_FALSE(b.params.clustering.track_ids);
+  EXPECT_EQ(b.params.clustering.sticky_rings, 3u);
+  EXPECT_TRUE(a.params.clustering.track_ids) << "ids are tracked unless a stream says otherwise";
+  EXPECT_EQ(a.params.clustering.geometry, ClusterGeometry::kAuto);
+  EXPECT_FLOAT_EQ(c.settings_for("unlisted").params.filtering.sigma_s, 3.0f);
 }
 
 TEST(DaemonConfig, UnknownKeysAreNamedWithTheirLine) {

@@ -30,7 +30,7 @@ TEST(ControlHandler, SetParamsValidatesAndGetParamsReadsBack) {
   ASSERT_TRUE(handle_control(set, r).ok());
   StreamSettings s;
   ASSERT_TRUE(r.find("s", s));
-  EXPECT_FLOAT_EQ(s.params.f.sigma_r, 0.5f);
+  EXPECT_FLOAT_EQ(s.params.filtering.sigma_r, 0.5f);
   EXPECT_FALSE(s.params.filter);
   EXPECT_TRUE(s.params.cluster);
   wire::ControlRequest get;

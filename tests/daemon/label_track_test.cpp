@@ -27,8 +27,8 @@ daemon::DaemonConfig tracking_config() {
   daemon::DaemonConfig c = test_config();
   c.defaults.params.filter = false;
   c.defaults.params.cluster = true;
-  c.defaults.params.c.sigma_d = 3.f;
-  c.defaults.params.c.target_clusters = 6;
+  c.defaults.params.clustering.sigma_d = 3.f;
+  c.defaults.params.clustering.target_clusters = 6;
   return c;
 }
 

@@ -103,9 +103,9 @@ TEST(DaemonStream, ResultMatchesTheEngineOnTheDecodedFrame) {
 TEST(DaemonStream, TwoStreamsWithDifferentParametersGiveDifferentResults) {
   daemon::DaemonConfig c = test_config();
   c.streams["soft"] = c.defaults;
-  c.streams["soft"].params.f.sigma_s = 1.0f;
+  c.streams["soft"].params.filtering.sigma_s = 1.0f;
   c.streams["strong"] = c.defaults;
-  c.streams["strong"].params.f.sigma_s = 4.0f;
+  c.streams["strong"].params.filtering.sigma_s = 4.0f;
   DaemonHarness h(c);
   const Mesh mesh = noisy_sphere();
   h.send(mesh, spec_for("soft"), 0);
@@ -142,7 +142,7 @@ TEST(DaemonStream, RuntimeParameterChangeTakesEffectOnTheNextFrame) {
   h.send(mesh, spec_for("cam"), 1);
   const client::ReceivedResult after = h.receive_decoded("cam");
   Params p = test_config().defaults.params;
-  p.f.sigma_s = 4.0f;
+  p.filtering.sigma_s = 4.0f;
   p.cluster = false;
   EXPECT_LT(max_displacement(after.mesh.positions, expected_positions(mesh, p)), 1e-6);
   EXPECT_GT(max_displacement(after.mesh.positions, before.mesh.positions), 1e-3);
@@ -162,7 +162,7 @@ TEST(DaemonStream, InvalidRuntimeParametersAreRejectedAndKeepTheOldOnes) {
   get.mutable_get_params()->set_stream_id("cam");
   const wire::ControlReply g = h.control(get);
   ASSERT_TRUE(g.ok()) << g.error();
-  EXPECT_FLOAT_EQ(g.params().theta(), test_config().defaults.params.c.theta);
+  EXPECT_FLOAT_EQ(g.params().theta(), test_config().defaults.params.clustering.theta);
   wire::ControlRequest unknown;
   unknown.mutable_get_params()->set_stream_id("nobody");
   EXPECT_FALSE(h.control(unknown).ok());

@@ -27,11 +27,11 @@ Params clustering(float theta = 0.9f) {
   Params p;
   p.filter = false;
   p.cluster = true;
-  p.f.sigma_s = 2.f;  // Q^bl at the paper's extents (the defaults follow qf+: 1.5, 0.7)
-  p.f.sigma_r = 1.f;
-  p.c.sigma_d = 2.f;
-  p.c.sigma_q = 0.5f;
-  p.c.theta = theta;
+  p.filtering.sigma_s = 2.f;  // Q^bl at the paper's extents (the defaults follow qf+: 1.5, 0.7)
+  p.filtering.sigma_r = 1.f;
+  p.clustering.sigma_d = 2.f;
+  p.clustering.sigma_q = 0.5f;
+  p.clustering.theta = theta;
   return p;
 }
 
@@ -48,7 +48,7 @@ FrameResult run(const Mesh& m, const Params& p) {
 TEST(KernelClusterTarget, ForestCutReproducesEveryTheta) {
   const Mesh m = noisy_cube();
   Params uncut = clustering(1.f);
-  uncut.c.keep_links = true;
+  uncut.clustering.keep_links = true;
   const FrameResult forest = run(m, uncut);
   ASSERT_EQ(forest.link_parent.size(), m.num_vertices());
   const LinkForest f{forest.link_parent.data(), forest.link_p.data(), m.num_vertices()};
@@ -64,11 +64,11 @@ TEST(KernelClusterTarget, ForestCutReproducesEveryTheta) {
 TEST(KernelClusterTarget, ReachesTheTargetAndReportsItsTheta) {
   const Mesh m = noisy_cube();
   Params p = clustering();
-  p.c.geometry = ClusterGeometry::kInput;
+  p.clustering.geometry = ClusterGeometry::kInput;
   uint32_t previous = 0;
   for (uint32_t target : {20u, 40u, 80u, 160u}) {
     SCOPED_TRACE(target);
-    p.c.target_clusters = target;
+    p.clustering.target_clusters = target;
     const FrameResult out = run(m, p);
     EXPECT_EQ(out.num_clusters, target);  // distinct link proximities: no ties to round over
     EXPECT_GT(out.theta, 0.f);
@@ -87,8 +87,8 @@ TEST(KernelClusterTarget, ReachesTheTargetAndReportsItsTheta) {
 TEST(KernelClusterTarget, BelowThePermanentRootsGivesThemAll) {
   const Mesh m = noisy_cube();
   Params p = clustering();
-  p.c.geometry = ClusterGeometry::kInput;
-  p.c.target_clusters = 1;
+  p.clustering.geometry = ClusterGeometry::kInput;
+  p.clustering.target_clusters = 1;
   const FrameResult out = run(m, p);
   EXPECT_EQ(out.theta, 1.f);
   EXPECT_EQ(out.num_clusters, run(m, clustering(1.f)).num_clusters);
@@ -100,9 +100,9 @@ TEST(KernelClusterTarget, BelowThePermanentRootsGivesThemAll) {
 TEST(KernelClusterTarget, ConnectedClustersNearTheTarget) {
   const Mesh m = noisy_cube();
   Params p = clustering();
-  p.c.geometry = ClusterGeometry::kInput;
-  p.c.target_clusters = 30;
-  p.c.min_cluster_size = 10;
+  p.clustering.geometry = ClusterGeometry::kInput;
+  p.clustering.target_clusters = 30;
+  p.clustering.min_cluster_size = 10;
   const FrameResult out = run(m, p);
   EXPECT_NEAR(double(out.num_clusters), 30.0, 3.0);
   std::vector<uint32_t> size(out.num_clusters, 0);
@@ -110,7 +110,7 @@ TEST(KernelClusterTarget, ConnectedClustersNearTheTarget) {
     ASSERT_LT(l, out.num_clusters);
     ++size[l];
   }
-  for (uint32_t s : size) EXPECT_GE(s, p.c.min_cluster_size);
+  for (uint32_t s : size) EXPECT_GE(s, p.clustering.min_cluster_size);
   std::vector<uint32_t> again = out.labels;
   EXPECT_EQ(connect_clusters(m.view(), again, 1), out.num_clusters) << "a label has two pieces";
 }
@@ -118,7 +118,7 @@ TEST(KernelClusterTarget, ConnectedClustersNearTheTarget) {
 TEST(KernelClusterTarget, FilteredGeometryKeepsTheOutputPositions) {
   const Mesh m = noisy_cube();
   Params p = clustering();
-  p.c.geometry = ClusterGeometry::kFiltered;
+  p.clustering.geometry = ClusterGeometry::kFiltered;
   const FrameResult only_labels = run(m, p);
   EXPECT_EQ(only_labels.positions, m.positions) << "cluster-only output keeps the input positions";
   EXPECT_GT(only_labels.num_clusters, 0u);
@@ -137,11 +137,11 @@ TEST(KernelClusterTarget, AutoGeometryIsThePapersWithoutATarget) {
   const Mesh m = noisy_cube();
   Params p = clustering();
   EXPECT_FALSE(needs_cluster_control(p));
-  p.c.geometry = ClusterGeometry::kInput;
+  p.clustering.geometry = ClusterGeometry::kInput;
   EXPECT_EQ(run(m, clustering()).labels, run(m, p).labels);
-  p.c.target_clusters = 10;
-  p.c.geometry = ClusterGeometry::kAuto;
-  EXPECT_EQ(p.c.effective_geometry(), ClusterGeometry::kFiltered);
+  p.clustering.target_clusters = 10;
+  p.clustering.geometry = ClusterGeometry::kAuto;
+  EXPECT_EQ(p.clustering.effective_geometry(), ClusterGeometry::kFiltered);
 }
 
 // The task the filtered geometry exists for: on noisy fandisk, about 60 clusters whose
@@ -154,12 +154,12 @@ TEST(KernelClusterTarget, ClustersFollowFandiskCreasesUnderNoise) {
   add_gaussian_noise(noisy, 0.2, 1);
   Params p;  // defaults, as fqfilter --cluster --target-clusters 60
   p.cluster = true;
-  p.c.target_clusters = 60;
+  p.clustering.target_clusters = 60;
   const FrameResult feature = run(noisy, p);
   const double recall = sharp_edge_recall(clean.view(), feature.labels.data()).recall;
   EXPECT_LE(feature.num_clusters, 80u);
   EXPECT_GE(recall, 0.9);
-  p.c.geometry = ClusterGeometry::kInput;
+  p.clustering.geometry = ClusterGeometry::kInput;
   const FrameResult paper = run(noisy, p);
   EXPECT_GT(recall, sharp_edge_recall(clean.view(), paper.labels.data()).recall);
   RecordProperty("recall_filtered", std::to_string(recall));

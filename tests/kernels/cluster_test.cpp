@@ -34,12 +34,12 @@ void run_stages(const Mesh& mesh, const Params& p, StageRun& r) {
   ASSERT_TRUE(validate(p).ok());
   ASSERT_TRUE(check_mesh(mesh.view()).ok());
   ASSERT_TRUE(compute_normalization(mesh.view(), r.f.norm).ok());
-  cpu::sort_into_grid(mesh.view(), p.f.sigma_s, r.f);
+  cpu::sort_into_grid(mesh.view(), p.filtering.sigma_s, r.f);
   cpu::base_quadrics(r.f, 2);
-  cpu::neighbourhood_quadrics(r.f, p.f.effective_sigma_b(), 2);
-  cpu::diffuse_quadrics(r.f, p.f, 2);
-  cpu::cluster_scores(r.f, p.c, 2);
-  cpu::cluster_links(r.f, p.c, 2);
+  cpu::neighbourhood_quadrics(r.f, p.filtering.effective_sigma_b(), 2);
+  cpu::diffuse_quadrics(r.f, p.filtering, 2);
+  cpu::cluster_scores(r.f, p.clustering, 2);
+  cpu::cluster_links(r.f, p.clustering, 2);
   r.k = cpu::cluster_labels(r.f, r.labels, 2);
 }
 
@@ -47,10 +47,10 @@ Params cluster_params(float sigma_s, float sigma_d, float sigma_q, float theta) 
   Params p;
   p.filter = false;
   p.cluster = true;
-  p.f.sigma_s = sigma_s;
-  p.c.sigma_d = sigma_d;
-  p.c.sigma_q = sigma_q;
-  p.c.theta = theta;
+  p.filtering.sigma_s = sigma_s;
+  p.clustering.sigma_d = sigma_d;
+  p.clustering.sigma_q = sigma_q;
+  p.clustering.theta = theta;
   return p;
 }
 
@@ -118,7 +118,7 @@ TEST(KernelCluster, InvariantsOnANoisySphere) {
     StageRun r;
     run_stages(m, p, r);
     SCOPED_TRACE(theta);
-    expect_invariants(r, p.c.sigma_d);
+    expect_invariants(r, p.clustering.sigma_d);
     expect_engine_agrees(m, p, r);
     EXPECT_GT(r.k, 1u);
   }
@@ -131,7 +131,7 @@ TEST(KernelCluster, InvariantsWithTiedScores) {
     const Params p = cluster_params(2, 3, 0.5f, 0.9f);
     StageRun r;
     run_stages(m, p, r);
-    expect_invariants(r, p.c.sigma_d);
+    expect_invariants(r, p.clustering.sigma_d);
   }
 }
 
@@ -169,10 +169,10 @@ TEST(KernelCluster, ClusterCountIsMonotoneInTheta) {
 TEST(KernelCluster, EuclideanQuickShiftRuns) {
   const Mesh m = noisy_icosphere();
   Params p = cluster_params(2, 2, 1.f, 0.9f);
-  p.c.method = ClusterMethod::kEuclidean;
+  p.clustering.method = ClusterMethod::kEuclidean;
   StageRun r;
   run_stages(m, p, r);
-  expect_invariants(r, p.c.sigma_d);
+  expect_invariants(r, p.clustering.sigma_d);
   expect_engine_agrees(m, p, r);
   EXPECT_GE(r.k, 1u);
 }
@@ -188,7 +188,7 @@ TEST(KernelCluster, DuplicatedVerticesClusterLikeTheWeldedMesh) {
   StageRun w, s;
   run_stages(welded, p, w);
   run_stages(soup, p, s);
-  expect_invariants(s, p.c.sigma_d);
+  expect_invariants(s, p.clustering.sigma_d);
   ASSERT_GT(w.k, 3u);
   EXPECT_EQ(s.k, w.k);
   // Same partition: welded label <-> soup label is one-to-one.
@@ -209,7 +209,7 @@ TEST(KernelCluster, CubeGivesOneClusterPerFace) {
   const Params p = cluster_params(1, 3, 0.5f, 0.9f);
   StageRun r;
   run_stages(cube, p, r);
-  expect_invariants(r, p.c.sigma_d);
+  expect_invariants(r, p.clustering.sigma_d);
   expect_engine_agrees(cube, p, r);
   ASSERT_EQ(r.k, 6u);
   // Vertices inside a face (not on a cube edge) carry their face's label; the six faces
@@ -245,10 +245,10 @@ TEST(KernelCluster, BunnyMatchesTable3) {
   ASSERT_TRUE(s.ok()) << s.message();
   ASSERT_EQ(bunny.num_vertices(), 34834u);
   Params p = cluster_params(3, 5, 0.8f, 0.9f);
-  p.f.sigma_r = 1;
+  p.filtering.sigma_r = 1;
   StageRun r;
   run_stages(bunny, p, r);
-  expect_invariants(r, p.c.sigma_d);
+  expect_invariants(r, p.clustering.sigma_d);
   expect_engine_agrees(bunny, p, r);
   EXPECT_GE(r.k, 76u);   // 89 - 15%
   EXPECT_LE(r.k, 102u);  // 89 + 15%

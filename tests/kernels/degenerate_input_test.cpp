@@ -99,8 +99,8 @@ TEST(KernelDegenerateInput, AllFacesWithoutAreaLeaveTheMeshInPlace) {
   m.positions = {0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0};
   m.triangles = {0, 1, 2, 1, 2, 3, 0, 1, 3};
   Params constrained = filter_and_cluster(), bilateral = filter_and_cluster();
-  constrained.f.constrained = true;
-  bilateral.f.method = FilterMethod::kBilateral;
+  constrained.filtering.constrained = true;
+  bilateral.filtering.method = FilterMethod::kBilateral;
   for (const Params& p : {filter_and_cluster(), constrained, bilateral}) {
     const FrameResult out = expect_ok(m, p);
     EXPECT_LT(test::max_displacement(m.positions, out.positions), 1e-6);
@@ -153,7 +153,7 @@ TEST(KernelDegenerateInput, DuplicatedVerticesGiveTheWeldedResult) {
   Params p;  // filter only (cluster_test.cpp checks the soup's clusters)
   // The paper's filter: it sees only positions and areas. qf+ refines along the mesh
   // connectivity, which a soup does not have (its steps leave a soup where QF put it).
-  p.f.method = FilterMethod::kQuadric;
+  p.filtering.method = FilterMethod::kQuadric;
   const FrameResult w = expect_ok(welded, p), s = expect_ok(soup, p);
   const double me = mean_edge_length(welded.view());
   for (uint32_t corner = 0; corner < soup.num_vertices(); ++corner) {

@@ -37,15 +37,15 @@ void expect_identical(const FrameResult& a, const FrameResult& b, const std::str
 std::vector<std::pair<std::string, Params>> modes() {
   Params quadric;
   quadric.cluster = true;
-  quadric.c.sigma_d = 2.f;  // enough clusters for the labels to mean something
-  quadric.c.sigma_q = 1.f;
+  quadric.clustering.sigma_d = 2.f;  // enough clusters for the labels to mean something
+  quadric.clustering.sigma_q = 1.f;
   Params constrained = quadric;
-  constrained.f.constrained = true;
+  constrained.filtering.constrained = true;
   Params bilateral = quadric;
-  bilateral.f.method = FilterMethod::kBilateral;
-  bilateral.f.sigma_r = 1.5f;
+  bilateral.filtering.method = FilterMethod::kBilateral;
+  bilateral.filtering.sigma_r = 1.5f;
   Params euclidean = quadric;
-  euclidean.c.method = ClusterMethod::kEuclidean;
+  euclidean.clustering.method = ClusterMethod::kEuclidean;
   return {{"quadric", quadric}, {"constrained", constrained}, {"bilateral", bilateral}, {"euclidean", euclidean}};
 }
 
@@ -75,7 +75,7 @@ TEST(KernelDeterminism, ReusedEngineMatchesAFreshOne) {
   expect_identical(run(reused, big, p), want_big, "big after small");
   expect_identical(run(reused, small, p), want_small, "small after big");
   Params bf = p;
-  bf.f.method = FilterMethod::kBilateral;
+  bf.filtering.method = FilterMethod::kBilateral;
   run(reused, big, bf);
   expect_identical(run(reused, small, p), want_small, "quadric after bilateral");
 }

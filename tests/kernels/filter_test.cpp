@@ -33,15 +33,15 @@ std::vector<float> filtered(const Mesh& mesh, const Params& p) {
 
 Params qf(float sigma_s, float sigma_r) {
   Params p;
-  p.f.method = FilterMethod::kQuadric;  // the paper's filter (the default is qf+, refine_test.cpp)
-  p.f.sigma_s = sigma_s;
-  p.f.sigma_r = sigma_r;
+  p.filtering.method = FilterMethod::kQuadric;  // the paper's filter (the default is qf+, refine_test.cpp)
+  p.filtering.sigma_s = sigma_s;
+  p.filtering.sigma_r = sigma_r;
   return p;
 }
 
 Params bf(float sigma_s, float sigma_r) {
   Params p = qf(sigma_s, sigma_r);
-  p.f.method = FilterMethod::kBilateral;
+  p.filtering.method = FilterMethod::kBilateral;
   return p;
 }
 
@@ -77,7 +77,7 @@ double distance_to_unit_cube(Vec3 p) {
 TEST(KernelFilter, CleanPlaneDoesNotMove) {
   const Mesh plane = test::make_plane_grid(20, 20);
   Params constrained = qf(2, 1);
-  constrained.f.constrained = true;
+  constrained.filtering.constrained = true;
   for (const Params& p : {qf(2, 1), constrained, bf(2, 1.5f)}) {
     EXPECT_LT(test::max_displacement(plane.positions, filtered(plane, p)), 1e-4);
   }
@@ -162,7 +162,7 @@ TEST(KernelFilter, CleanIcosphereBarelyMoves) {
 // 0.0173; on the plane, tangential moves stay below 0.12 mean edges.
 TEST(KernelFilter, ConstrainedModeDenoisesAlongNormals) {
   Params p = qf(2, 1);
-  p.f.constrained = true;
+  p.filtering.constrained = true;
   const Mesh cube = test::make_cube(12);
   const Mesh noisy = noisy_copy(cube, 0.2, 1);
   const std::vector<float> out = filtered(noisy, p);
@@ -237,10 +237,10 @@ TEST(KernelFilter, SmallRangeSigmaKeepsTheQuadricFilterFinite) {
     for (float sigma_r : small_range_sigmas()) {
       for (bool constrained : {false, true}) {
         Params p = qf(2, sigma_r);
-        p.f.constrained = constrained;
+        p.filtering.constrained = constrained;
         p.cluster = true;
-        p.c.sigma_d = 2.f;
-        p.c.sigma_q = sigma_r;
+        p.clustering.sigma_d = 2.f;
+        p.clustering.sigma_q = sigma_r;
         SCOPED_TRACE(std::to_string(sigma_r) + (constrained ? " constrained" : ""));
         filtered(noisy, p);  // asserts ok and finite
       }

@@ -129,8 +129,8 @@ double mean_persistence(bool sticky, bool tracked) {
   Params p;
   p.filter = false;
   p.cluster = true;
-  p.c.sigma_d = 3.f;
-  p.c.target_clusters = 6;
+  p.clustering.sigma_d = 3.f;
+  p.clustering.target_clusters = 6;
   CpuEngine engine(2);
   LabelTracker tracker;
   TrackingOptions o;

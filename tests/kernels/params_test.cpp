@@ -42,7 +42,7 @@ TEST(KernelParams, FilterSigmasMustBePositiveAndFinite) {
   for (const char* name : {"sigma_s", "sigma_r"}) {
     for (float bad : {0.f, -1.f, kNaN, -kInf, kInf, 2e4f}) {
       Params p;
-      (std::string(name) == "sigma_s" ? p.f.sigma_s : p.f.sigma_r) = bad;
+      (std::string(name) == "sigma_s" ? p.filtering.sigma_s : p.filtering.sigma_r) = bad;
       SCOPED_TRACE(std::to_string(bad));
       expect_rejected(p, name);
     }
@@ -52,7 +52,7 @@ TEST(KernelParams, FilterSigmasMustBePositiveAndFinite) {
 TEST(KernelParams, OptionalSigmasAcceptZeroAsDefault) {
   for (const char* name : {"sigma_b", "sigma_n"}) {
     Params p;
-    float& v = std::string(name) == "sigma_b" ? p.f.sigma_b : p.f.sigma_n;
+    float& v = std::string(name) == "sigma_b" ? p.filtering.sigma_b : p.filtering.sigma_n;
     v = 0.f;
     EXPECT_TRUE(validate(p).ok()) << name;
     v = 0.7f;
@@ -62,16 +62,16 @@ TEST(KernelParams, OptionalSigmasAcceptZeroAsDefault) {
       expect_rejected(p, name);
     }
   }
-  EXPECT_FLOAT_EQ(Params{}.f.effective_sigma_b(), 0.75f);  // sigma_s / 2 (default sigma_s 1.5)
-  EXPECT_FLOAT_EQ(Params{}.f.effective_sigma_n(), 0.75f);
+  EXPECT_FLOAT_EQ(Params{}.filtering.effective_sigma_b(), 0.75f);  // sigma_s / 2 (default sigma_s 1.5)
+  EXPECT_FLOAT_EQ(Params{}.filtering.effective_sigma_n(), 0.75f);
 }
 
 TEST(KernelParams, TikhonovRange) {
   Params p;
-  p.f.tikhonov = 0.f;  // the paper's solver
+  p.filtering.tikhonov = 0.f;  // the paper's solver
   EXPECT_TRUE(validate(p).ok());
   for (float bad : {-0.01f, kNaN, 1e4f}) {
-    p.f.tikhonov = bad;
+    p.filtering.tikhonov = bad;
     expect_rejected(p, "tikhonov");
   }
 }
@@ -80,7 +80,7 @@ TEST(KernelParams, ClusterSigmas) {
   for (const char* name : {"sigma_d", "sigma_q"}) {
     for (float bad : {0.f, -3.f, kNaN}) {
       Params p = clustering_params();
-      (std::string(name) == "sigma_d" ? p.c.sigma_d : p.c.sigma_q) = bad;
+      (std::string(name) == "sigma_d" ? p.clustering.sigma_d : p.clustering.sigma_q) = bad;
       expect_rejected(p, name);
     }
   }
@@ -89,11 +89,11 @@ TEST(KernelParams, ClusterSigmas) {
 TEST(KernelParams, ThetaInHalfOpenUnitInterval) {
   Params p = clustering_params();
   for (float good : {1e-6f, 0.5f, 1.f}) {
-    p.c.theta = good;
+    p.clustering.theta = good;
     EXPECT_TRUE(validate(p).ok()) << good;
   }
   for (float bad : {0.f, -0.1f, 1.0001f, 2.f, kNaN}) {
-    p.c.theta = bad;
+    p.clustering.theta = bad;
     SCOPED_TRACE(std::to_string(bad));
     expect_rejected(p, "theta");
   }
@@ -110,14 +110,14 @@ TEST(KernelParams, EngineRejectsBadParamsAndKeepsWorking) {
   CpuEngine engine(2);
   FrameResult out;
   Params bad = clustering_params();
-  bad.c.theta = 0.f;
+  bad.clustering.theta = 0.f;
   const Status s = engine.process(mesh.view(), bad, out);
   EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
   EXPECT_NE(s.message().find("theta"), std::string::npos) << s.message();
   EXPECT_TRUE(out.labels.empty());
   EXPECT_EQ(out.num_clusters, 0u);
   bad = Params{};
-  bad.f.sigma_r = kNaN;
+  bad.filtering.sigma_r = kNaN;
   EXPECT_NE(engine.process(mesh.view(), bad, out).message().find("sigma_r"), std::string::npos);
   ASSERT_TRUE(engine.process(mesh.view(), clustering_params(), out).ok());
   EXPECT_EQ(out.positions.size(), mesh.positions.size());

@@ -119,7 +119,7 @@ TEST(KernelRefine, NormalFilterKeepsTheCubesCreaseSharp) {
 TEST(KernelRefine, CleanPlaneDoesNotMove) {
   const Mesh plane = test::make_plane_grid(8, 8, 0.5f);
   Params p;  // the default method is qf+
-  ASSERT_EQ(p.f.method, FilterMethod::kQuadricRefined);
+  ASSERT_EQ(p.filtering.method, FilterMethod::kQuadricRefined);
   CpuEngine engine(2);
   FrameResult out;
   ASSERT_TRUE(engine.process(plane.view(), p, out).ok());
@@ -146,7 +146,7 @@ TEST(KernelRefine, RefinementBeatsThePapersFilterOnANoisyCube) {
   add_gaussian_noise(noisy, 0.3, 7);
   CpuEngine engine(2);
   Params qf;
-  qf.f.method = FilterMethod::kQuadric;
+  qf.filtering.method = FilterMethod::kQuadric;
   Params qf_plus;
   FrameResult a, b;
   ASSERT_TRUE(engine.process(noisy.view(), qf, a).ok());

@@ -190,18 +190,18 @@ TEST(HeaderCodec, OverridesApplyOnlySetFields) {
   Params p;
   const Params defaults;
   ASSERT_TRUE(apply_overrides(o, p).ok());
-  EXPECT_EQ(p.f.sigma_s, 4.f);
-  EXPECT_EQ(p.f.method, FilterMethod::kBilateral);
-  EXPECT_EQ(p.c.theta, 0.5f);
-  EXPECT_EQ(p.c.method, ClusterMethod::kEuclidean);
-  EXPECT_EQ(p.f.sigma_r, defaults.f.sigma_r);
-  EXPECT_EQ(p.f.tikhonov, defaults.f.tikhonov);
-  EXPECT_EQ(p.c.sigma_d, defaults.c.sigma_d);
+  EXPECT_EQ(p.filtering.sigma_s, 4.f);
+  EXPECT_EQ(p.filtering.method, FilterMethod::kBilateral);
+  EXPECT_EQ(p.clustering.theta, 0.5f);
+  EXPECT_EQ(p.clustering.method, ClusterMethod::kEuclidean);
+  EXPECT_EQ(p.filtering.sigma_r, defaults.filtering.sigma_r);
+  EXPECT_EQ(p.filtering.tikhonov, defaults.filtering.tikhonov);
+  EXPECT_EQ(p.clustering.sigma_d, defaults.clustering.sigma_d);
   EXPECT_TRUE(validate(p).ok());
   ParamOverrides keep;
   keep.set_mode(MODE_DEFAULT);
   ASSERT_TRUE(apply_overrides(keep, p).ok());
-  EXPECT_EQ(p.f.method, FilterMethod::kBilateral);
+  EXPECT_EQ(p.filtering.method, FilterMethod::kBilateral);
 }
 
 TEST(HeaderCodec, OverridesAreValidatedAfterwards) {
@@ -227,13 +227,13 @@ TEST(HeaderCodec, BadEnumOverrideLeavesParamsUntouched) {
   o.set_mode(static_cast<FilterMode>(7));
   Params p;
   EXPECT_EQ(apply_overrides(o, p).code(), StatusCode::kInvalidArgument);
-  EXPECT_EQ(p.f.sigma_s, Params{}.f.sigma_s);
+  EXPECT_EQ(p.filtering.sigma_s, Params{}.filtering.sigma_s);
   EXPECT_EQ(apply_compute(static_cast<Compute>(5), p).code(), StatusCode::kInvalidArgument);
   ParamOverrides g;
   g.set_target_clusters(12);
   g.set_cluster_geometry(static_cast<ClusterGeometryWire>(9));
   EXPECT_EQ(apply_overrides(g, p).code(), StatusCode::kInvalidArgument);
-  EXPECT_EQ(p.c.target_clusters, 0u);
+  EXPECT_EQ(p.clustering.target_clusters, 0u);
 }
 
 TEST(HeaderCodec, ComputeMapping) {
@@ -252,13 +252,13 @@ TEST(HeaderCodec, ComputeMapping) {
 TEST(HeaderCodec, EveryFilterMethodRoundTrips) {
   for (FilterMethod m : {FilterMethod::kQuadric, FilterMethod::kBilateral, FilterMethod::kQuadricRefined}) {
     Params p;
-    p.f.method = m;
+    p.filtering.method = m;
     ParamOverrides w;
     params_to_wire(p, w);
     Params back;
-    back.f.method = m == FilterMethod::kQuadric ? FilterMethod::kBilateral : FilterMethod::kQuadric;
+    back.filtering.method = m == FilterMethod::kQuadric ? FilterMethod::kBilateral : FilterMethod::kQuadric;
     ASSERT_TRUE(apply_overrides(w, back).ok());
-    EXPECT_EQ(back.f.method, m) << filter_method_name(m);
+    EXPECT_EQ(back.filtering.method, m) << filter_method_name(m);
   }
 }
 
@@ -266,13 +266,13 @@ TEST(HeaderCodec, ParamsRoundTrip) {
   Params p;
   p.filter = false;
   p.cluster = true;
-  p.f = {FilterMethod::kBilateral, 3.f, 0.5f, 1.25f, 0.75f, true, 0.f, {}};
-  p.c = {ClusterMethod::kEuclidean, 7.f, 2.f, 0.8f};
-  p.c.target_clusters = 42;
-  p.c.geometry = ClusterGeometry::kFiltered;
-  p.c.min_cluster_size = 9;
-  p.c.track_ids = false;
-  p.c.sticky_rings = 5;
+  p.filtering = {FilterMethod::kBilateral, 3.f, 0.5f, 1.25f, 0.75f, true, 0.f, {}};
+  p.clustering = {ClusterMethod::kEuclidean, 7.f, 2.f, 0.8f};
+  p.clustering.target_clusters = 42;
+  p.clustering.geometry = ClusterGeometry::kFiltered;
+  p.clustering.min_cluster_size = 9;
+  p.clustering.track_ids = false;
+  p.clustering.sticky_rings = 5;
   ParamOverrides w;
   params_to_wire(p, w);
   ParamOverrides via_bytes;
@@ -282,22 +282,22 @@ TEST(HeaderCodec, ParamsRoundTrip) {
   ASSERT_TRUE(apply_compute(compute_of(p), back).ok());
   EXPECT_EQ(back.filter, p.filter);
   EXPECT_EQ(back.cluster, p.cluster);
-  EXPECT_EQ(back.f.method, p.f.method);
-  EXPECT_EQ(back.f.sigma_s, p.f.sigma_s);
-  EXPECT_EQ(back.f.sigma_r, p.f.sigma_r);
-  EXPECT_EQ(back.f.sigma_b, p.f.sigma_b);
-  EXPECT_EQ(back.f.sigma_n, p.f.sigma_n);
-  EXPECT_EQ(back.f.constrained, p.f.constrained);
-  EXPECT_EQ(back.f.tikhonov, p.f.tikhonov);
-  EXPECT_EQ(back.c.method, p.c.method);
-  EXPECT_EQ(back.c.sigma_d, p.c.sigma_d);
-  EXPECT_EQ(back.c.sigma_q, p.c.sigma_q);
-  EXPECT_EQ(back.c.theta, p.c.theta);
-  EXPECT_EQ(back.c.target_clusters, p.c.target_clusters);
-  EXPECT_EQ(back.c.geometry, p.c.geometry);
-  EXPECT_EQ(back.c.min_cluster_size, p.c.min_cluster_size);
-  EXPECT_EQ(back.c.track_ids, p.c.track_ids);
-  EXPECT_EQ(back.c.sticky_rings, p.c.sticky_rings);
+  EXPECT_EQ(back.filtering.method, p.filtering.method);
+  EXPECT_EQ(back.filtering.sigma_s, p.filtering.sigma_s);
+  EXPECT_EQ(back.filtering.sigma_r, p.filtering.sigma_r);
+  EXPECT_EQ(back.filtering.sigma_b, p.filtering.sigma_b);
+  EXPECT_EQ(back.filtering.sigma_n, p.filtering.sigma_n);
+  EXPECT_EQ(back.filtering.constrained, p.filtering.constrained);
+  EXPECT_EQ(back.filtering.tikhonov, p.filtering.tikhonov);
+  EXPECT_EQ(back.clustering.method, p.clustering.method);
+  EXPECT_EQ(back.clustering.sigma_d, p.clustering.sigma_d);
+  EXPECT_EQ(back.clustering.sigma_q, p.clustering.sigma_q);
+  EXPECT_EQ(back.clustering.theta, p.clustering.theta);
+  EXPECT_EQ(back.clustering.target_clusters, p.clustering.target_clusters);
+  EXPECT_EQ(back.clustering.geometry, p.clustering.geometry);
+  EXPECT_EQ(back.clustering.min_cluster_size, p.clustering.min_cluster_size);
+  EXPECT_EQ(back.clustering.track_ids, p.clustering.track_ids);
+  EXPECT_EQ(back.clustering.sticky_rings, p.clustering.sticky_rings);
   EXPECT_EQ(w.ByteSizeLong(), via_bytes.ByteSizeLong());
   const auto* d = ParamOverrides::descriptor();
   for (int i = 0; i < d->field_count(); ++i)
