@@ -59,6 +59,14 @@ void add_refine_options(CLI::App& app, RefineParams& r) {
   app.add_option("--vertex-iterations", r.vertex_iterations, "Normal-driven vertex update passes (Sun et al. 2007)")
       ->capture_default_str()
       ->group(g);
+  app.add_option("--clean-below", r.clean_below,
+                 "Mean face-normal change (rad) at or below which the input is kept (a clean input)")
+      ->capture_default_str()
+      ->group(g);
+  app.add_option("--full-above", r.full_above,
+                 "Mean face-normal change (rad) at or above which the full result is kept; 0 = no guard")
+      ->capture_default_str()
+      ->group(g);
 }
 
 void add_cluster_control_options(CLI::App& app, Options& o, std::string& geometry) {
