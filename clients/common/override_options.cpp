@@ -26,7 +26,7 @@ void add_override_options(CLI::App& app, OverrideArgs& a) {
   app.add_option("--min-cluster-size", a.min_cluster_size, "connected clusters, small parts merged (0 = off)")
       ->group(g);
   app.add_option("--track-ids", a.track_ids, "stable cluster ids across frames (true/false)")->group(g);
-  app.add_option("--sticky-rings", a.sticky_rings, "rings a cluster border may move back (0 = none; the vote over frames still holds borders)")->group(g);
+  app.add_option("--sticky-rings", a.sticky_rings, "rings a cluster border may move back (0 = none)")->group(g);
   app.add_option("--compute", a.compute, "filter | cluster | filter_and_cluster")->group(g);
 }
 
