@@ -31,6 +31,7 @@ struct CpuFrame {
   std::vector<uint8_t> refine_closed;  ///< closed_fan per vertex
   std::vector<TriangleGeom> refine_geom;
   std::vector<Vec3> refine_n[2];
+  std::vector<float> refine_change;  ///< block sums of the clean-input guard
   // Bilateral baseline: triangles in centroid-grid order.
   CpuGrid tri_grid;
   std::vector<Point4> tri_points;    ///< centroid, w = area

@@ -132,6 +132,13 @@ void refine_positions(CpuFrame& f, const RefineParams& r, int threads) {
   for (int it = 0; it < r.vertex_iterations; ++it) {
     vertex_pass([&](const Vec3* x, uint32_t v) { return normal_driven_position(fan, x, normals, v); });
   }
+  if (!(r.full_above > 0.f)) return;
+  f.refine_change.resize(normal_change_blocks(m));
+  parallel_for(uint32_t(f.refine_change.size()), threads, [&](uint32_t b) {
+    f.refine_change[b] = normal_change_block(f.tris.data(), m, f.points.data(), f.moved.data(), b);
+  });
+  const float alpha = refine_strength(f.refine_change.data(), m, r.clean_below, r.full_above);
+  if (alpha < 1.f) vertex_pass([&](const Vec3* x, uint32_t v) { return guarded_position(f.points[v], x[v], alpha); });
 }
 
 void bilateral_filter(CpuFrame& f, const FilterParams& p, int threads) {

@@ -53,6 +53,36 @@ void stick_to_previous_side(const TrackingOptions& o, const std::vector<uint32_t
   }
 }
 
+/// The majority vote over time (see the header). `history` receives, per vertex, this
+/// frame's id then the history of its nearest previous vertex (`window` entries); `votes`
+/// are the previous frame's ids (the tie-break); `labels` become the most frequent id.
+void vote_over_frames(const std::vector<uint32_t>& nearest, const std::vector<uint32_t>& prev_history, int prev_window,
+                      int window, const std::vector<uint32_t>& votes, std::vector<uint32_t>& history,
+                      std::vector<uint32_t>& labels) {
+  const size_t n = labels.size();
+  history.assign(n * size_t(window), kNone);
+  for (size_t v = 0; v < n; ++v) {
+    uint32_t* h = &history[v * window];
+    h[0] = labels[v];
+    if (nearest[v] != kNone) {
+      const uint32_t* p = &prev_history[size_t(nearest[v]) * prev_window];
+      for (int k = 1; k < window && k <= prev_window; ++k) h[k] = p[k - 1];
+    }
+    uint32_t best = h[0];
+    int best_count = 0;
+    for (int a = 0; a < window; ++a) {
+      if (h[a] == kNone) continue;
+      int count = 0;
+      for (int b = 0; b < window; ++b) count += h[b] == h[a] ? 1 : 0;
+      if (count > best_count || (count == best_count && h[a] == votes[v])) {
+        best = h[a];
+        best_count = count;
+      }
+    }
+    labels[v] = best;
+  }
+}
+
 }  // namespace
 
 std::vector<uint32_t> match_cluster_ids(const std::vector<uint32_t>& labels, uint32_t k,
@@ -86,15 +116,31 @@ uint32_t LabelTracker::track(const float* positions, uint32_t n, std::vector<uin
     std::vector<uint32_t> nearest, votes(n);
     prev_.nearest_all(positions, n, o.max_distance, nearest, o.threads);
     for (uint32_t v = 0; v < n; ++v) votes[v] = nearest[v] == kNone ? kNone : prev_ids_[nearest[v]];
+    // Ids still in a vertex's vote window count as used: a new cluster must not take one.
     std::vector<bool> prev_used(prev_bound_, false);
     for (uint32_t id : prev_ids_) prev_used[id] = true;
+    for (uint32_t id : prev_history_) {
+      if (id != kNone) prev_used[id] = true;
+    }
     const std::vector<uint32_t> id = match_cluster_ids(labels, num_clusters, votes, prev_used);
     for (uint32_t& l : labels) l = id[l];
     if (o.triangles) {
       for (int ring = 0; ring < o.sticky_rings; ++ring) stick_to_previous_side(o, votes, labels);
     }
+    const int window = std::max(o.vote_frames, 1);
+    std::vector<uint32_t> history;
+    vote_over_frames(nearest, prev_history_, prev_window_, window, votes, history, labels);
+    prev_history_.swap(history);
+    prev_window_ = window;
     bound = 0;
     for (uint32_t l : labels) bound = std::max(bound, l + 1);
+    for (uint32_t l : prev_history_) {
+      if (l != kNone) bound = std::max(bound, l + 1);
+    }
+  }
+  if (!has_previous()) {
+    prev_history_ = labels;
+    prev_window_ = 1;
   }
   prev_.build(positions, n, o.cell);
   prev_ids_ = labels;
@@ -105,6 +151,8 @@ uint32_t LabelTracker::track(const float* positions, uint32_t n, std::vector<uin
 void LabelTracker::reset() {
   prev_ = NearestVertexIndex{};
   prev_ids_.clear();
+  prev_history_.clear();
+  prev_window_ = 0;
   prev_bound_ = 0;
 }
 

@@ -7,7 +7,11 @@
 // triangles, boundaries are also sticky: a vertex on the border between its cluster and the
 // one that holds its previous id goes back to that one. Both sides of a border are equally
 // right for such a vertex (on a crease, or where two clusters of a flat region meet), and
-// without this rule noise flips them from frame to frame.
+// without this rule noise flips them from frame to frame. Last, every vertex takes the id
+// it was given most often over the last `vote_frames` frames (its own history follows its
+// nearest previous vertex; a tie goes to the previous frame's id): a vertex the clustering
+// puts on either side at random keeps the side it was on most, while a vertex that really
+// changed cluster follows within about half the window.
 #pragma once
 
 #include <cstdint>
@@ -23,7 +27,8 @@ struct TrackingOptions {
   int threads = 1;
   const uint32_t* triangles = nullptr;  ///< the frame's triangles: sticky boundaries; null: ids only
   uint32_t num_triangles = 0;
-  int sticky_rings = 2;  ///< how deep (in edge rings) a border may move back to where it was
+  int sticky_rings = 0;  ///< how deep (in edge rings) a border may move back to where it was
+  int vote_frames = 3;   ///< frames of the per-vertex majority vote (1: off)
 };
 
 /// Ids for this frame's clusters from overlap votes. `labels`: this frame's clusters
@@ -47,6 +52,9 @@ class LabelTracker {
  private:
   NearestVertexIndex prev_;
   std::vector<uint32_t> prev_ids_;
+  /// Per previous vertex, the ids it was given before the vote, newest first (prev_window_ each).
+  std::vector<uint32_t> prev_history_;
+  int prev_window_ = 0;
   uint32_t prev_bound_ = 0;
 };
 

@@ -76,6 +76,10 @@ Status validate(const RefineParams& r) {
     return invalid_argument("refine relax_step must be in (0, 1] (got " + show(r.relax_step) + ")");
   if (!(r.feature_ratio >= 0.f && r.feature_ratio <= 1.f))
     return invalid_argument("refine feature_ratio must be in [0, 1] (got " + show(r.feature_ratio) + ")");
+  if (!(r.full_above >= 0.f && r.full_above <= 3.1416f))
+    return invalid_argument("refine full_above must be in [0, pi] radians (got " + show(r.full_above) + ")");
+  if (r.full_above > 0.f && !(r.clean_below >= 0.f && r.clean_below < r.full_above))
+    return invalid_argument("refine clean_below must be in [0, full_above) (got " + show(r.clean_below) + ")");
   return {};
 }
 

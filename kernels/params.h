@@ -30,6 +30,11 @@ struct RefineParams {
   float normal_sigma_s = 1.0f;   ///< spatial extent (face centroid distance)
   float normal_sigma_r = 0.35f;  ///< range extent (|n_i − n_j|)
   int vertex_iterations = 20;    ///< normal-driven vertex update passes (Sun et al. 2007)
+  /// Clean-input guard, on the mean angle (radians) between input and result face normals:
+  /// at or below clean_below the input is kept, at or above full_above the result, linear
+  /// between. full_above = 0 turns it off.
+  float clean_below = 0.1f;
+  float full_above = 0.2f;
 };
 
 struct FilterParams {
@@ -68,9 +73,10 @@ struct ClusterParams {
   /// merged into the neighbour they share most edges with; 0: the paper's labels.
   uint32_t min_cluster_size = 0;
   /// fqd only (engines ignore them): keep cluster ids stable from frame to frame of a stream,
-  /// and how many edge rings a border may move back to the previous frame's (0: ids only).
+  /// and how many edge rings a border may move back to the previous frame's (0: none; the
+  /// per-vertex vote over the last frames, kernels/label_tracking.h, holds borders without it).
   bool track_ids = true;
-  uint32_t sticky_rings = 2;
+  uint32_t sticky_rings = 0;
   /// Also return the link forest before the theta cut (FrameResult::link_parent, link_p).
   bool keep_links = false;
 };

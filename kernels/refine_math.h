@@ -7,7 +7,10 @@
 //   2. filtered_face_normal: one iteration of bilateral face-normal filtering (Zheng et
 //      al. 2011) over the faces sharing a vertex;
 //   3. normal_driven_position: one iteration of Sun et al. 2007's vertex update, which
-//      moves each vertex onto the planes of its filtered incident faces.
+//      moves each vertex onto the planes of its filtered incident faces;
+//   4. the clean-input guard: the mean change of the face normals between the input and the
+//      result measures how rough the input was at the filter's scale; below `clean_below`
+//      the input is kept, above `full_above` the result, linearly in between.
 // Every sum runs over a vertex's triangles in the CSR order (increasing triangle index), so
 // results do not depend on the thread count.
 #pragma once
@@ -142,5 +145,46 @@ FQ_HD Vec3 normal_driven_position(const FanView& m, const Vec3* x, const Vec3* n
   }
   return count > 0.f ? xv + (1.0f / count) * acc : xv;
 }
+
+/// Step 4. Faces per partial sum of the mean normal change: fixed blocks, each summed in
+/// triangle order and then summed in block order, so the mean does not depend on the thread
+/// count and both engines add in the same order.
+constexpr uint32_t kNormalChangeBlock = 1024;
+
+/// Angle (radians) between face f's normal on the input (`in`, w ignored) and on the result;
+/// 0 where either is degenerate.
+FQ_HD float face_normal_change(const uint32_t* tris, const Point4* in, const Vec3* out, uint32_t f) {
+  const uint32_t* t = tris + 3 * size_t(f);
+  const Vec3 a0 = xyz(in[t[0]]), a = cross(xyz(in[t[1]]) - a0, xyz(in[t[2]]) - a0);
+  const Vec3 b = cross(out[t[1]] - out[t[0]], out[t[2]] - out[t[0]]);
+  if (!(norm2(a) > 0.f) || !(norm2(b) > 0.f)) return 0.f;
+  return std::atan2(std::sqrt(norm2(cross(a, b))), dot(a, b));
+}
+
+/// Sum of face_normal_change over faces [block × kNormalChangeBlock, …) below m.
+FQ_HD float normal_change_block(const uint32_t* tris, uint32_t m, const Point4* in, const Vec3* out, uint32_t block) {
+  const uint32_t b = block * kNormalChangeBlock, e = b + kNormalChangeBlock < m ? b + kNormalChangeBlock : m;
+  float sum = 0.f;
+  for (uint32_t f = b; f < e; ++f) sum += face_normal_change(tris, in, out, f);
+  return sum;
+}
+
+FQ_HD uint32_t normal_change_blocks(uint32_t m) { return (m + kNormalChangeBlock - 1) / kNormalChangeBlock; }
+
+/// How much of the result to keep, from the block sums of normal_change_block: the mean
+/// normal change r over the m faces, 0 for r <= clean_below, 1 for r >= full_above, linear
+/// between. full_above <= 0 turns the guard off (1).
+FQ_HD float refine_strength(const float* block_sums, uint32_t m, float clean_below, float full_above) {
+  if (!(full_above > 0.f) || m == 0) return 1.f;
+  float sum = 0.f;
+  for (uint32_t k = 0; k < normal_change_blocks(m); ++k) sum += block_sums[k];
+  const float r = sum / float(m);
+  if (r >= full_above) return 1.f;
+  if (r <= clean_below) return 0.f;
+  return (r - clean_below) / (full_above - clean_below);
+}
+
+/// The input moved `alpha` of the way to the result.
+FQ_HD Vec3 guarded_position(Point4 in, Vec3 out, float alpha) { return xyz(in) + alpha * (out - xyz(in)); }
 
 }  // namespace fq

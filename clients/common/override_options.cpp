@@ -42,7 +42,7 @@ void add_override_options(CLI::App& app, OverrideArgs& a) {
             "connected clusters, small parts merged (0 = off)");
   add_field(app, g, "--track-ids", &P::set_track_ids, o, "stable cluster ids across frames (true/false)");
   add_field(app, g, "--sticky-rings", &P::set_sticky_rings, o,
-            "rings a cluster border may move back (0 = ids only)");
+            "rings a cluster border may move back (0 = none)");
   app.add_option("--compute", a.compute, "filter | cluster | filter_and_cluster")->group(g);
 }
 

@@ -46,6 +46,10 @@ void add_refine_options(CLI::App& app, RefineParams& r) {
   app.add_option("--normal-sigma-r", r.normal_sigma_r, "Range extent of the normal filter (|n_i - n_j|)");
   app.add_option("--vertex-iterations", r.vertex_iterations,
                  "Normal-driven vertex update passes (Sun et al. 2007)");
+  app.add_option("--clean-below", r.clean_below,
+                 "Mean face-normal change (rad) at or below which the input is kept (a clean input)");
+  app.add_option("--full-above", r.full_above,
+                 "Mean face-normal change (rad) at or above which the full result is kept; 0 = no guard");
 }
 
 void add_cluster_control_options(CLI::App& app, Options& o, std::string& geometry) {

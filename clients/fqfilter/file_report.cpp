@@ -30,7 +30,9 @@ nlohmann::json refine_json(const RefineParams& r) {
           {"normal_iterations", r.normal_iterations},
           {"normal_sigma_s", as_typed(r.normal_sigma_s)},
           {"normal_sigma_r", as_typed(r.normal_sigma_r)},
-          {"vertex_iterations", r.vertex_iterations}};
+          {"vertex_iterations", r.vertex_iterations},
+          {"clean_below", as_typed(r.clean_below)},
+          {"full_above", as_typed(r.full_above)}};
 }
 
 nlohmann::json params_json(const Params& p) {

@@ -27,8 +27,17 @@ struct Totals {
   int pairs = 0, frames = 0;
 };
 
+std::string tracking_label(bool ids_only, int rings, int vote_frames) {
+  if (ids_only) return "ids only";
+  std::string s = "ids";
+  if (rings > 0) s += " + borders " + std::to_string(rings) + " rings";
+  if (vote_frames > 1) s += " + vote " + std::to_string(vote_frames) + " frames";
+  return s;
+}
+
 int run(int argc, char** argv) {
-  int to_rings = 2;
+  fq::TrackingOptions defaults;
+  int to_rings = defaults.sticky_rings, vote_frames = defaults.vote_frames;
   CLI::App app{"fqtrackbench: cluster id persistence over synthetic capture frames"};
   app.set_version_flag("--version", fq::version_line("fqtrackbench"));
   std::string mesh_path;
@@ -49,7 +58,9 @@ int run(int argc, char** argv) {
   app.add_option("--min-cluster-size", p.clustering.min_cluster_size);
   bool ids_only = false;
   app.add_option("--sticky-rings", to_rings, "Rings a border may move back");
-  app.add_flag("--ids-only", ids_only, "Match ids only (no sticky boundaries)");
+  app.add_option("--vote-frames", vote_frames, "Frames of the per-vertex majority vote (1 = off)")
+      ->check(CLI::Range(1, 64));
+  app.add_flag("--ids-only", ids_only, "Match ids only (no sticky boundaries, no vote)");
   CLI11_PARSE(app, argc, argv);
   fq::Mesh clean;
   if (fq::Status s = fq::io::read_mesh(mesh_path, clean); !s.ok()) {
@@ -71,6 +82,7 @@ int run(int argc, char** argv) {
   to.max_distance = 8 * cell;
   to.threads = threads > 0 ? threads : fq::hardware_threads();
   to.sticky_rings = to_rings;
+  to.vote_frames = ids_only ? 1 : vote_frames;
   fq::LabelTracker tracker;
   fq::Mesh prev;
   std::vector<uint32_t> prev_raw, prev_ids;
@@ -108,7 +120,7 @@ int run(int argc, char** argv) {
     prev_ids = ids;
   }
   std::printf("| %s | %d | %g | %g | %s | %s | %.1f | %.3f | %.3f | %.3f | %.3f | %.3f | %.1f |\n", mesh_path.c_str(), frames,
-              noise, degrees, ids_only ? "ids only" : ("ids + borders " + std::to_string(to_rings) + " rings").c_str(), p.clustering.target_clusters ? ("K " + std::to_string(p.clustering.target_clusters)).c_str()
+              noise, degrees, tracking_label(ids_only, to_rings, to.vote_frames).c_str(), p.clustering.target_clusters ? ("K " + std::to_string(p.clustering.target_clusters)).c_str()
                                            : ("θ " + std::to_string(p.clustering.theta)).c_str(),
               t.clusters / t.frames, t.raw / t.pairs, t.tracked / t.pairs, t.min_tracked, t.recall_raw / t.frames,
               t.recall_tracked / t.frames, t.track_ms / t.frames);

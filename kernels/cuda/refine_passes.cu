@@ -42,6 +42,22 @@ __global__ void vertex_update_kernel(uint32_t n, FanView fan, const Vec3* x, con
   if (v < n) out[v] = normal_driven_position(fan, x, normals, v);
 }
 
+__global__ void normal_change_kernel(uint32_t blocks, uint32_t m, const uint32_t* tris, const Point4* in,
+                                     const Vec3* out, float* sums) {
+  const uint32_t b = blockIdx.x * blockDim.x + threadIdx.x;
+  if (b < blocks) sums[b] = normal_change_block(tris, m, in, out, b);
+}
+
+// One thread: the block sums in block order, as the CPU adds them.
+__global__ void strength_kernel(uint32_t blocks, uint32_t m, float clean_below, float full_above, float* sums) {
+  sums[blocks] = refine_strength(sums, m, clean_below, full_above);
+}
+
+__global__ void guard_kernel(uint32_t n, const Point4* in, const Vec3* x, const float* alpha, Vec3* out) {
+  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  if (v < n) out[v] = *alpha < 1.f ? guarded_position(in[v], x[v], *alpha) : x[v];
+}
+
 }  // namespace
 
 void refine_positions(DeviceFrame& f, RefineBuffers& b, const RefineParams& r, cudaStream_t s) {
@@ -75,6 +91,17 @@ void refine_positions(DeviceFrame& f, RefineBuffers& b, const RefineParams& r, c
     FQ_CUDA_CHECK_LAUNCH("vertex_update_kernel");
     std::swap(f.moved, b.x);
   }
+  if (!(r.full_above > 0.f)) return;
+  const uint32_t blocks = normal_change_blocks(m);
+  float* change = b.change.reserve(blocks + 1);
+  normal_change_kernel<<<blocks_for(blocks), block_size(), 0, s>>>(blocks, m, f.tris.data(), f.points.data(),
+                                                                   f.moved.data(), change);
+  FQ_CUDA_CHECK_LAUNCH("normal_change_kernel");
+  strength_kernel<<<1, 1, 0, s>>>(blocks, m, r.clean_below, r.full_above, change);
+  FQ_CUDA_CHECK_LAUNCH("strength_kernel");
+  guard_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, f.points.data(), f.moved.data(), change + blocks, b.x.data());
+  FQ_CUDA_CHECK_LAUNCH("guard_kernel");
+  std::swap(f.moved, b.x);
 }
 
 }  // namespace fq::cuda

@@ -15,6 +15,7 @@ struct RefineBuffers {
   DeviceBuffer<uint8_t> closed;  ///< closed_fan per vertex
   DeviceBuffer<TriangleGeom> geom;
   DeviceBuffer<Vec3> normals[2];
+  DeviceBuffer<float> change;  ///< clean-input guard: block sums, then the strength in the last slot
 };
 
 /// Refines f.moved in place (sorted order), one launch per pass as the CPU's passes.

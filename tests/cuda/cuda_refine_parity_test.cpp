@@ -28,6 +28,19 @@ TEST_F(CudaRefineParity, NoisyCubeAndSphere) {
   }
 }
 
+// The clean-input guard at a partial strength (the mean normal change over 3 rad: about
+// 0.1-0.2 of the result kept) and at its defaults on clean shapes (the input kept).
+TEST_F(CudaRefineParity, CleanInputGuard) {
+  Params partial = refined();
+  partial.filtering.refine.clean_below = 0.f;
+  partial.filtering.refine.full_above = 3.f;
+  Mesh noisy = make_icosphere(5);
+  add_gaussian_noise(noisy, 0.3, 7);
+  expect_parity_for_each(*cpu_, noisy.view(), partial, kKernelPaths);
+  Mesh shapes[] = {make_cube(16), make_icosphere(5)};
+  for (Mesh& m : shapes) expect_parity_for_each(*cpu_, m.view(), refined(), kKernelPaths);
+}
+
 TEST_F(CudaRefineParity, RealMeshesWithNoise) {
   for (const char* file : {"fandisk.ply", "bunny.ply", "igea.ply"}) {
     const auto path = find_mesh(file);

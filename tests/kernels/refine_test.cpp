@@ -133,11 +133,37 @@ TEST(KernelRefine, CleanPlaneDoesNotMove) {
 TEST(KernelRefine, CleanIcosphereKeepsItsNormals) {
   const Mesh sphere = test::make_icosphere(4);
   CpuEngine engine(2);
-  FrameResult out;
-  ASSERT_TRUE(engine.process(sphere.view(), Params{}, out).ok());
+  Params unguarded;
+  unguarded.filtering.refine.full_above = 0.f;
+  FrameResult out, guarded;
+  ASSERT_TRUE(engine.process(sphere.view(), unguarded, out).ok());
   // Measured 0.31 degrees (QF alone at its old defaults: 0.16); the bilateral normal step
   // flattens a little curvature.
-  EXPECT_LT(mean_face_normal_error(sphere.view(), out.positions.data()).mean_radians, 0.5 * 3.14159265 / 180.0);
+  const double e = mean_face_normal_error(sphere.view(), out.positions.data()).mean_radians;
+  EXPECT_LT(e, 0.5 * 3.14159265 / 180.0);
+  // That change is far under the guard's clean_below: the defaults keep the input.
+  ASSERT_LT(e, Params{}.filtering.refine.clean_below);
+  ASSERT_TRUE(engine.process(sphere.view(), Params{}, guarded).ok());
+  EXPECT_LT(test::max_displacement(sphere.positions, guarded.positions), 1e-6);  // the unit round trip only
+}
+
+// The guard's strength from the mean normal change r: 0 up to clean_below, 1 from
+// full_above, linear between; off when full_above is 0.
+TEST(KernelRefine, GuardStrengthIsLinearBetweenItsBounds) {
+  const uint32_t m = kNormalChangeBlock + 10;  // two blocks
+  auto strength = [&](float r, float lo, float hi) {
+    const float sums[2] = {r * kNormalChangeBlock, r * 10};
+    return refine_strength(sums, m, lo, hi);
+  };
+  EXPECT_EQ(strength(0.05f, 0.1f, 0.2f), 0.f);
+  EXPECT_EQ(strength(0.1f, 0.1f, 0.2f), 0.f);
+  EXPECT_NEAR(strength(0.15f, 0.1f, 0.2f), 0.5f, 1e-4f);
+  EXPECT_EQ(strength(0.25f, 0.1f, 0.2f), 1.f);
+  EXPECT_EQ(strength(0.01f, 0.1f, 0.f), 1.f);
+  const Vec3 mid = guarded_position(Point4{0.f, 0.f, 0.f, 5.f}, Vec3{2.f, 4.f, -2.f}, 0.25f);
+  EXPECT_EQ(mid.x, 0.5f);
+  EXPECT_EQ(mid.y, 1.f);
+  EXPECT_EQ(mid.z, -0.5f);
 }
 
 TEST(KernelRefine, RefinementBeatsThePapersFilterOnANoisyCube) {
