@@ -44,6 +44,16 @@ struct Caps {
   double max_neighbour_work = 2e10;
   /// Kept frame buffers are freed after this long without frames (memory returns).
   double pool_idle_s = 30.0;
+  /// Engine time of one frame (every run of a frame, clustering options included) after
+  /// which the engine stops it at its next check and the frame gets an error result
+  /// (counted time_limited); 0 = no limit.
+  double engine_time_limit_s = 10.0;
+  /// On stop (SIGTERM/SIGINT), frames already received may finish for this long; then the
+  /// frame on each engine is stopped the same way and every frame left gets an error result.
+  double stop_grace_s = 1.0;
+  /// Bytes fqd may hold for one subscriber that does not read: its send high-water mark is
+  /// derived from this and the largest result so far (docs/DAEMON.md has the formula).
+  uint64_t max_subscriber_bytes = 64ull << 20;
 };
 
 struct DaemonConfig {

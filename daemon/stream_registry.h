@@ -24,9 +24,13 @@ struct StreamCounters {
   uint64_t dropped_stale = 0;  ///< older than the budget when a worker was free
   uint64_t late = 0;           ///< published after the budget (also in frames_out)
   uint64_t errors = 0;         ///< error results published
+  uint64_t time_limited = 0;   ///< stopped at caps.engine_time_limit_s (also in errors)
+  /// Results that at least one subscriber did not get because its queue was full (a slow
+  /// subscriber; caps.max_subscriber_bytes). Not part of the sum above: they were published.
+  uint64_t subscriber_drops = 0;
 };
 
-enum class Counter { kIn, kOut, kSuperseded, kDroppedStale, kLate, kErrors };
+enum class Counter { kIn, kOut, kSuperseded, kDroppedStale, kLate, kErrors, kTimeLimited, kSubscriberDrops };
 
 struct StreamSnapshot {
   std::string stream_id;

@@ -18,6 +18,8 @@ class CpuEngine final : public Engine {
   int threads() const { return threads_; }
 
  private:
+  Status run(const MeshView& mesh, const Params& params, FrameResult& out);
+
   int threads_;
   CpuFrame f_;
 };

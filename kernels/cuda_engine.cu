@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <string>
+#include <thread>
 
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/device_frame.cuh"
@@ -27,6 +28,7 @@ namespace fq {
 namespace {
 
 std::atomic<uint64_t> g_allocations{0};
+std::atomic<uint64_t> g_device_bytes{0};
 std::atomic<bool> g_fail_next_launch{false};
 
 using Clock = std::chrono::steady_clock;
@@ -57,7 +59,8 @@ class CudaEngine final : public Engine {
   Status run_frame(const MeshView& mesh, const Params& params, FrameResult& out);
   void upload(const MeshView& mesh);
   Status normalize(const MeshView& mesh, float cell, Normalization& norm);
-  void enqueue_passes(const Params& params);
+  Status enqueue_passes(const Params& params);
+  Status mark(const char* pass);
   int team_size() const;
   Status fail(const std::string& what, FrameResult& out);
 
@@ -147,6 +150,31 @@ Status CudaEngine::normalize(const MeshView& mesh, float cell, Normalization& no
   return {};
 }
 
+// With a cancel token, the host keeps at most one pass queued behind the one running: after
+// enqueuing a pass it waits (checking the token) for the pass before it to end. The device
+// never idles for it, and a cancelled frame stops within the two passes in flight, which are
+// left to finish (a kernel cannot be interrupted) before the stream is free again.
+Status CudaEngine::mark(const char* pass) {
+  const cudaStream_t s = stream_.get();
+  events_.mark(pass, s);
+  if (cancel_ == nullptr) return {};
+  const cudaEvent_t previous = events_.recent(1);
+  const Clock::time_point spin_until = Clock::now() + std::chrono::milliseconds(2);
+  for (;;) {
+    const cudaError_t q = cudaEventQuery(previous);
+    if (q == cudaSuccess || cancel_->expired()) break;
+    if (q != cudaErrorNotReady) FQ_CUDA_CHECK(q);
+    // Short passes are waited for by spinning (as cudaEventSynchronize does); long ones in
+    // 1 ms naps.
+    if (Clock::now() > spin_until) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  if (Status st = check_cancel(); !st.ok()) {
+    stream_.sync();
+    return st;
+  }
+  return {};
+}
+
 // Lanes per vertex in the neighbourhood passes, from vertices per SM. Measured on the H100
 // (docs/BENCHMARKS.md, sweep of the team size): small meshes need lanes to fill the GPU
 // (bunny: 8 lanes 0.31 ms, 1 lane 0.72 ms); up to ~1.6M vertices 4 lanes still win by
@@ -158,62 +186,69 @@ int CudaEngine::team_size() const {
   return per_sm <= 512 ? 8 : (per_sm <= 12288 ? 4 : 1);
 }
 
-void CudaEngine::enqueue_passes(const Params& params) {
+Status CudaEngine::enqueue_passes(const Params& params) {
   const cudaStream_t s = stream_.get();
   const FilterParams& fp = params.f;
   const int team = team_size();
   const bool fast_exp = tuning_.fast_exp;
   cuda::sort_into_grid(f_, f_.grid.layout, s);
-  events_.mark("grid", s);
+  FQ_RETURN_IF_ERROR(mark("grid"));
   const bool refine = params.filter && fp.method == FilterMethod::kQuadricRefined;
   cuda::base_quadrics(f_, s);  // also the vertex -> triangle table the refinement reads
-  events_.mark("base_quadrics", s);
+  FQ_RETURN_IF_ERROR(mark("base_quadrics"));
   if (params.cluster || fp.uses_quadrics()) {
     if (team)
       cuda::team_neighbourhood_quadrics(f_, fp.effective_sigma_b(), team, fast_exp, s);
     else
       cuda::neighbourhood_quadrics(f_, fp.effective_sigma_b(), s);
-    events_.mark("neighbourhood_quadrics", s);
+    FQ_RETURN_IF_ERROR(mark("neighbourhood_quadrics"));
     if (team)
       cuda::team_diffuse_quadrics(f_, fp, team, fast_exp, s);
     else
       cuda::diffuse_quadrics(f_, fp, s);
-    events_.mark("diffusion", s);
+    FQ_RETURN_IF_ERROR(mark("diffusion"));
   }
   if (params.filter) {
     if (fp.uses_quadrics())
       cuda::update_positions(f_, fp, s);
     else
       cuda::bilateral_filter(f_, fp, s);
-    events_.mark(fp.uses_quadrics() ? "update" : "bilateral_filter", s);
+    FQ_RETURN_IF_ERROR(mark(fp.uses_quadrics() ? "update" : "bilateral_filter"));
   }
   if (refine) {
     cuda::refine_positions(f_, refine_, fp.refine, s);
-    events_.mark("refine", s);
+    FQ_RETURN_IF_ERROR(mark("refine"));
   }
   if (params.cluster) {
     if (team)
       cuda::team_cluster_scores(f_, params.c, team, fast_exp, s);
     else
       cuda::cluster_scores(f_, params.c, s);
-    events_.mark("score", s);
+    FQ_RETURN_IF_ERROR(mark("score"));
     if (team)
       cuda::team_cluster_links(f_, params.c, team, fast_exp, s);
     else
       cuda::cluster_links(f_, params.c, s);
-    events_.mark("link", s);
+    FQ_RETURN_IF_ERROR(mark("link"));
     cuda::cluster_labels(f_, s);
-    events_.mark("modes", s);
+    FQ_RETURN_IF_ERROR(mark("modes"));
     if (params.c.keep_links) {
       cuda::export_links(f_, params.c, s);  // downloads too
-      events_.mark("export_links", s);
+      FQ_RETURN_IF_ERROR(mark("export_links"));
     }
   }
+  return {};
 }
 
 Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameResult& out) {
   FQ_CUDA_CHECK(cudaSetDevice(device_.id));
   const cudaStream_t s = stream_.get();
+  // A frame far smaller than the largest one so far gives that one's buffers back (the CPU
+  // engine's rule for its scratch).
+  if (size_t(mesh.num_vertices) * 4 < f_.points.capacity() && f_.points.capacity() > (1u << 16)) {
+    f_ = cuda::DeviceFrame{};
+    refine_ = cuda::RefineBuffers{};
+  }
   f_.n = mesh.num_vertices;
   f_.m = mesh.num_triangles;
   const uint32_t n = f_.n;
@@ -224,10 +259,11 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
   Normalization norm;
   if (Status st = normalize(mesh, params.f.sigma_s, norm); !st.ok()) return st;
   out.mean_edge = norm.mean_edge;
-  enqueue_passes(params);
+  FQ_RETURN_IF_ERROR(check_cancel());
+  FQ_RETURN_IF_ERROR(enqueue_passes(params));
   if (params.filter) {
     cuda::positions_to_input(f_, norm, s);
-    events_.mark("output", s);
+    FQ_RETURN_IF_ERROR(mark("output"));
   }
   // Results come down in chunks, each copied out of pinned memory while the next is in flight.
   const int half = downloads_.size() / 2;
@@ -275,7 +311,12 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
 
 namespace cuda {
 
-void note_device_allocation() { g_allocations.fetch_add(1, std::memory_order_relaxed); }
+void note_device_allocation(size_t bytes) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  g_device_bytes.fetch_add(bytes, std::memory_order_relaxed);
+}
+
+void note_device_free(size_t bytes) { g_device_bytes.fetch_sub(bytes, std::memory_order_relaxed); }
 
 unsigned block_size() {
   static const unsigned size = [] {
@@ -297,6 +338,8 @@ void fail_next_launch() { g_fail_next_launch.store(true); }
 }  // namespace cuda
 
 uint64_t cuda_allocation_count() { return g_allocations.load(std::memory_order_relaxed); }
+
+uint64_t cuda_device_bytes_held() { return g_device_bytes.load(std::memory_order_relaxed); }
 
 void cuda_fail_next_launch_for_testing() { cuda::fail_next_launch(); }
 
