@@ -51,9 +51,10 @@ struct Caps {
   /// On stop (SIGTERM/SIGINT), frames already received may finish for this long; then the
   /// frame on each engine is stopped the same way and every frame left gets an error result.
   double stop_grace_s = 1.0;
-  /// Bytes fqd may hold for one subscriber that does not read: its send high-water mark is
-  /// derived from this and the largest result so far (docs/DAEMON.md has the formula).
-  uint64_t max_subscriber_bytes = 64ull << 20;
+  /// Results queued for a subscriber that does not keep up (the publish socket's SNDHWM);
+  /// later ones are dropped for it and counted. Bounds what such a subscriber costs:
+  /// (this + 1) x the largest result + 2 MiB of kernel buffer (docs/DAEMON.md).
+  uint32_t max_subscriber_results = 16;
 };
 
 struct DaemonConfig {

@@ -109,7 +109,7 @@ Status Daemon::bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::
   ingest = zmq::socket_t(input_context_, zmq::socket_type::pull);
   control = zmq::socket_t(input_context_, zmq::socket_type::rep);
   publish = zmq::socket_t(output_context_, zmq::socket_type::xpub);
-  ResultSocket::configure(publish);
+  ResultSocket::configure(publish, static_cast<int>(config_.caps.max_subscriber_results));
   ingest.set(zmq::sockopt::linger, 0);
   // Refused at the socket: a peer sending a larger part is disconnected before the part is
   // buffered (max_frame_bytes bounds the whole message, so it bounds every part too).

@@ -35,8 +35,8 @@ constexpr CounterFamily kCounters[] = {
      &StreamCounters::errors},
     {"fq_time_limited_total", "Frames stopped at the engine time limit (also in fq_errors_total).",
      &StreamCounters::time_limited},
-    {"fq_subscriber_drops_total", "Results at least one subscriber did not get because its queue was full.",
-     &StreamCounters::subscriber_drops},
+    {"fq_subscriber_overflows_total", "Times a subscriber's queue was full and it started missing results.",
+     &StreamCounters::subscriber_overflows},
 };
 
 void histograms(std::string& out, const std::vector<StreamSnapshot>& streams) {

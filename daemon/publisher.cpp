@@ -88,7 +88,7 @@ void Publisher::publish(FrameJob& f) {
   account(f, h);
   p_.latest.offer(h, f.out_chunks, f.mesh.triangles);
   try {
-    if (!socket_.send(parts)) p_.registry.count(f.stream_id, Counter::kSubscriberDrops);
+    if (!socket_.send(parts)) p_.registry.count(f.stream_id, Counter::kSubscriberOverflows);
   } catch (const zmq::error_t& e) {
     spdlog::error("publish of stream '{}' frame {} failed: {}", f.stream_id, h.sequence(), e.what());
   }

@@ -16,7 +16,7 @@ namespace fq::daemon {
 class Publisher {
  public:
   Publisher(zmq::socket_t socket, Pipeline& p)
-      : socket_(std::move(socket), p.config.caps.max_subscriber_bytes), p_(p) {}
+      : socket_(std::move(socket)), p_(p) {}
 
   /// Publishes until the publish queue is closed and drained, then closes the socket.
   void run();

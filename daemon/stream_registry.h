@@ -25,12 +25,14 @@ struct StreamCounters {
   uint64_t late = 0;           ///< published after the budget (also in frames_out)
   uint64_t errors = 0;         ///< error results published
   uint64_t time_limited = 0;   ///< stopped at caps.engine_time_limit_s (also in errors)
-  /// Results that at least one subscriber did not get because its queue was full (a slow
-  /// subscriber; caps.max_subscriber_bytes). Not part of the sum above: they were published.
-  uint64_t subscriber_drops = 0;
+  /// Times a subscriber's queue was found full (caps.max_subscriber_results), so that it
+  /// missed the result being published; ZeroMQ then skips that subscriber without telling
+  /// until it has read half its queue, so one overflow may stand for many missed results.
+  /// Not part of the sum above: the results were published.
+  uint64_t subscriber_overflows = 0;
 };
 
-enum class Counter { kIn, kOut, kSuperseded, kDroppedStale, kLate, kErrors, kTimeLimited, kSubscriberDrops };
+enum class Counter { kIn, kOut, kSuperseded, kDroppedStale, kLate, kErrors, kTimeLimited, kSubscriberOverflows };
 
 struct StreamSnapshot {
   std::string stream_id;

@@ -19,13 +19,18 @@ namespace fq {
 template <class F>
 void parallel_for(uint32_t n, int threads, F&& f, int grain = 256) {
   const CancelToken* cancel = current_cancel_token();
+  const size_t chunk = static_cast<size_t>(std::max(grain, 1));
   ThreadPool::shared().run(
       n, threads,
-      [&f, cancel](size_t begin, size_t end, size_t) {
-        if (cancel != nullptr && cancel->expired()) return;
-        for (size_t i = begin; i < end; ++i) f(static_cast<uint32_t>(i));
+      [&f, cancel, chunk](size_t begin, size_t end, size_t) {
+        // The pool may hand one thread the whole range: the token is checked every `chunk`.
+        for (size_t i = begin; i < end;) {
+          if (cancel != nullptr && cancel->expired()) return;
+          const size_t stop = cancel != nullptr ? std::min(end, i + chunk) : end;
+          for (; i < stop; ++i) f(static_cast<uint32_t>(i));
+        }
       },
-      static_cast<size_t>(std::max(grain, 1)));
+      chunk);
 }
 
 /// Hardware threads available to the process.

@@ -102,23 +102,25 @@ TEST(KernelCancel, ADeadlineEndsAWideNeighbourhoodRun) {
 // Inside one loop: once the token expires, chunks not yet started are skipped.
 TEST(KernelCancel, ALoopSkipsTheChunksLeftOnceTheTokenExpires) {
   constexpr uint32_t kItems = 1u << 20;
-  std::atomic<bool> stop{false};
-  const CancelToken token(&stop);
-  std::atomic<uint32_t> ran{0};
-  {
-    const CancelScope scope(&token);
-    parallel_for(kItems, 2, [&](uint32_t) {
-      ran.fetch_add(1, std::memory_order_relaxed);
-      stop = true;  // expires during the first chunk of each thread
-    });
+  for (int threads : {1, 2}) {
+    std::atomic<bool> stop{false};
+    const CancelToken token(&stop);
+    std::atomic<uint32_t> ran{0};
+    {
+      const CancelScope scope(&token);
+      parallel_for(kItems, threads, [&](uint32_t) {
+        ran.fetch_add(1, std::memory_order_relaxed);
+        stop = true;  // expires during the first chunk of each thread
+      });
+    }
+    // At most the chunks already started when the flag was set (256 items each).
+    EXPECT_GT(ran.load(), 0u) << threads << " threads";
+    EXPECT_LT(ran.load(), kItems / 64) << threads << " threads: the loop ran on after the token expired";
+    // Outside the scope, loops run whole whatever the token says.
+    ran = 0;
+    parallel_for(kItems, threads, [&](uint32_t) { ran.fetch_add(1, std::memory_order_relaxed); });
+    EXPECT_EQ(ran.load(), kItems) << threads << " threads";
   }
-  // At most the chunks already started when the flag was set (256 items each).
-  EXPECT_GT(ran.load(), 0u);
-  EXPECT_LT(ran.load(), kItems / 64) << "the loop ran on after the token expired";
-  // Outside the scope, loops run whole whatever the token says.
-  ran = 0;
-  parallel_for(kItems, 2, [&](uint32_t) { ran.fetch_add(1, std::memory_order_relaxed); });
-  EXPECT_EQ(ran.load(), kItems);
 }
 
 }  // namespace
