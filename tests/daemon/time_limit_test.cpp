@@ -36,7 +36,7 @@ client::FrameSpec wide_spec(const std::string& stream, float sigma) {
 
 TEST(DaemonTimeLimit, AFrameOverTheLimitGetsAnErrorAndTheNextIsServed) {
   const std::string config =
-      write_temp_file("fqd_time_limit.toml", ops_config("[caps]\nengine_time_limit_s = 0.2\n"));
+      write_temp_file("fqd_time_limit.toml", ops_config("[caps]\nengine_time_limit_s = 0.5\n"));
   FqdProcess fqd({"--config", config});
   ASSERT_TRUE(fqd.alive()) << "fqd did not start";
   DaemonHarness h(endpoints_of(fqd));
@@ -48,7 +48,7 @@ TEST(DaemonTimeLimit, AFrameOverTheLimitGetsAnErrorAndTheNextIsServed) {
   EXPECT_EQ(stopped.header.status(), wire::ERROR);
   EXPECT_EQ(stopped.header.sequence(), 1u);
   EXPECT_NE(stopped.header.error().find("time_limit"), std::string::npos) << stopped.header.error();
-  EXPECT_NE(stopped.header.error().find("caps.engine_time_limit_s = 0.2 s"), std::string::npos)
+  EXPECT_NE(stopped.header.error().find("caps.engine_time_limit_s = 0.5 s"), std::string::npos)
       << stopped.header.error();
   // The next frame (a small one: milliseconds, far inside the limit) is served.
   client::FrameSpec plain;
