@@ -138,7 +138,15 @@ void run_decode_worker(Pipeline& p) {
 void run_engine_worker(Pipeline& p, Engine& engine) {
   FramePtr f;
   std::vector<FramePtr> stale;
-  while (p.slots.take(f, stale)) {
+  const auto idle_ns = static_cast<int64_t>(p.config.caps.pool_idle_s * 1e9);
+  int64_t last_frame_ns = wall_ns();
+  bool holding = false;  // the engine keeps a frame's buffers
+  while (p.slots.take(f, stale, std::chrono::seconds(1))) {
+    // Idle as long as the pools: the engine's buffers (host or device) go back too.
+    if (!f && stale.empty() && holding && wall_ns() - last_frame_ns >= idle_ns) {
+      engine.release_memory();
+      holding = false;
+    }
     for (FramePtr& s : stale) {
       p.registry.count(s->stream_id, Counter::kDroppedStale);
       p.recycle(*s);
@@ -152,6 +160,8 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
     const auto t0 = std::chrono::steady_clock::now();
     const Status s = run_engine(p, engine, *f);
     const double total = ms_since(t0);
+    last_frame_ns = wall_ns();
+    holding = true;
     for (const PassTiming& t : f->result.timings) f->timings.push_back({"engine." + t.name, t.ms});
     f->timings.push_back({"engine", total});
     if (!s.ok())

@@ -52,6 +52,7 @@ class CudaEngine final : public Engine {
   }
   std::string name() const override { return name_; }
   Status process(const MeshView& mesh, const Params& params, FrameResult& out) override;
+  void release_memory() override;
 
  private:
   static constexpr int kMaxMarks = 16;
@@ -101,6 +102,16 @@ Status CudaEngine::process(const MeshView& mesh, const Params& params, FrameResu
   }
   if (!st.ok() || !params.cluster) out.labels.clear();
   return st;
+}
+
+void CudaEngine::release_memory() {
+  // The frees must be made on this engine's device; the destructors log a failed free.
+  if (cudaSetDevice(device_.id) != cudaSuccess) {
+    (void)cudaGetLastError();
+    return;
+  }
+  f_ = cuda::DeviceFrame{};
+  refine_ = cuda::RefineBuffers{};
 }
 
 // A bad launch is cleared by reading it; a fault inside a kernel is sticky and leaves the

@@ -56,6 +56,9 @@ class Engine {
   /// Processes one frame. Bad parameters or a bad mesh give a non-ok status and leave the
   /// engine usable for the next frame, as does a run stopped by the cancel token.
   virtual Status process(const MeshView& mesh, const Params& params, FrameResult& out) = 0;
+  /// Gives back the buffers kept for the next frame (an idle engine: fqd calls it after
+  /// caps.pool_idle_s without frames); the next frame allocates them again.
+  virtual void release_memory() {}
 
  protected:
   /// Ok, or kCancelled once the cancel token has expired.

@@ -323,7 +323,8 @@ TEST_F(CudaEngineTest, ReportsDeviceTimePerPassAndTransfers) {
 
 
 // The CPU engine's rule for its scratch (cpu_engine.cpp), on the device: a frame under a
-// quarter of the largest one's vertices makes the engine give that one's buffers back.
+// quarter of the largest one's vertices makes the engine give that one's buffers back, and
+// release_memory (an idle engine) gives everything back.
 TEST_F(CudaEngineTest, DeviceMemoryReturnsWhenASmallFrameFollowsAHugeOne) {
   const Mesh small = noisy_sphere();  // 10,242 vertices
   Mesh huge = make_icosphere(8, 10.0f);  // 655,362 vertices
@@ -343,6 +344,12 @@ TEST_F(CudaEngineTest, DeviceMemoryReturnsWhenASmallFrameFollowsAHugeOne) {
               static_cast<unsigned long long>(huge_bytes), static_cast<unsigned long long>(after));
   EXPECT_LT(after, huge_bytes / 4) << "grow-only buffers kept the huge frame's memory";
   EXPECT_LE(after, 2 * small_bytes);
+  // What fqd does after caps.pool_idle_s without frames: everything goes back, and the
+  // next frame allocates anew.
+  gpu_->release_memory();
+  EXPECT_EQ(cuda_device_bytes_held(), 0u);
+  run_both(*cpu_, *gpu_, small.view(), params, p);
+  expect_parity(p, params);
 }
 
 // Cancellation (kernels/cancel_token.h) between the device passes: a token that never
