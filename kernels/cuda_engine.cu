@@ -62,6 +62,7 @@ class CudaEngine final : public Engine {
   Status normalize(const MeshView& mesh, float cell, Normalization& norm);
   Status enqueue_passes(const Params& params);
   Status mark(const char* pass);
+  Status stop_if_cancelled();
   int team_size() const;
   Status fail(const std::string& what, FrameResult& out);
 
@@ -162,9 +163,11 @@ Status CudaEngine::normalize(const MeshView& mesh, float cell, Normalization& no
 }
 
 // With a cancel token, the host keeps at most one pass queued behind the one running: after
-// enqueuing a pass it waits (checking the token) for the pass before it to end. The device
-// never idles for it, and a cancelled frame stops within the two passes in flight, which are
-// left to finish (a kernel cannot be interrupted) before the stream is free again.
+// enqueuing a pass it waits (checking the token) for the pass before it to end, so the device
+// always has the next pass. A cancelled frame stops within the two passes in flight, which are
+// left to finish (a kernel cannot be interrupted) before the stream is free again. Only after a
+// pass of over 2 ms does the host wait in 1 ms naps, and a following pass shorter than a nap
+// may then leave the device idle until the host wakes.
 Status CudaEngine::mark(const char* pass) {
   const cudaStream_t s = stream_.get();
   events_.mark(pass, s);
@@ -179,11 +182,15 @@ Status CudaEngine::mark(const char* pass) {
     // 1 ms naps.
     if (Clock::now() > spin_until) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
-  if (Status st = check_cancel(); !st.ok()) {
-    stream_.sync();
-    return st;
-  }
-  return {};
+  return stop_if_cancelled();
+}
+
+// A cancelled frame returns once the device is done with what was queued: the next frame
+// may free or reuse the buffers at once.
+Status CudaEngine::stop_if_cancelled() {
+  Status st = check_cancel();
+  if (!st.ok()) stream_.sync();
+  return st;
 }
 
 // Lanes per vertex in the neighbourhood passes, from vertices per SM. Measured on the H100
@@ -270,7 +277,7 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
   Normalization norm;
   if (Status st = normalize(mesh, params.f.sigma_s, norm); !st.ok()) return st;
   out.mean_edge = norm.mean_edge;
-  FQ_RETURN_IF_ERROR(check_cancel());
+  FQ_RETURN_IF_ERROR(stop_if_cancelled());
   FQ_RETURN_IF_ERROR(enqueue_passes(params));
   if (params.filter) {
     cuda::positions_to_input(f_, norm, s);
