@@ -31,7 +31,7 @@ TEST(DaemonSlowSubscriber, QueuesAreBoundedInBytesAndDropsAreCounted) {
                  "\n[defaults.filter]\nmethod = \"qf\"\n[defaults.output]\nposition_bits = 22\n"));
   FqdProcess fqd({"--config", config});
   ASSERT_TRUE(fqd.alive()) << "fqd did not start";
-  DaemonHarness h(daemon::BoundEndpoints{fqd.endpoint("ingest"), fqd.endpoint("publish"), fqd.endpoint("control")});
+  DaemonHarness h(daemon::BoundEndpoints{fqd.endpoint("ingest"), fqd.endpoint("publish"), fqd.endpoint("control"), ""});
 
   Mesh mesh = make_icosphere(7, 1.0f);  // 163,842 vertices
   add_gaussian_noise(mesh, 0.05, 3);

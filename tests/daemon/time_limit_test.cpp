@@ -20,7 +20,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 daemon::BoundEndpoints endpoints_of(const FqdProcess& fqd) {
-  return {fqd.endpoint("ingest"), fqd.endpoint("publish"), fqd.endpoint("control")};
+  return {fqd.endpoint("ingest"), fqd.endpoint("publish"), fqd.endpoint("control"), ""};
 }
 
 // A neighbourhood wider than the mesh (sigmas in mean edges): every vertex visits every
