@@ -163,6 +163,9 @@ Status read_sections(TomlReader& root, DaemonConfig& c) {
     r.read("allowed_streams", c.caps.allowed_streams);
     r.read("max_neighbour_work", c.caps.max_neighbour_work, 1e3, 1e18);
     r.read("pool_idle_s", c.caps.pool_idle_s, 0.0, 1e9);
+    r.read("engine_time_limit_s", c.caps.engine_time_limit_s, 0.0, 1e9);
+    r.read("stop_grace_s", c.caps.stop_grace_s, 0.0, 3600.0);
+    r.read("max_subscriber_results", c.caps.max_subscriber_results, 2, 1000);
     FQ_RETURN_IF_ERROR(r.finish());
   }
   return {};

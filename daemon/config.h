@@ -44,6 +44,17 @@ struct Caps {
   double max_neighbour_work = 2e10;
   /// Kept frame buffers are freed after this long without frames (memory returns).
   double pool_idle_s = 30.0;
+  /// Engine time of one frame (every run of a frame, clustering options included) after
+  /// which the engine stops it at its next check and the frame gets an error result
+  /// (counted time_limited); 0 = no limit.
+  double engine_time_limit_s = 10.0;
+  /// On stop (SIGTERM/SIGINT), frames already received may finish for this long; then the
+  /// frame on each engine is stopped the same way and every frame left gets an error result.
+  double stop_grace_s = 1.0;
+  /// Results queued for a subscriber that does not keep up (the publish socket's SNDHWM);
+  /// later ones are dropped for it and counted. Bounds what such a subscriber costs:
+  /// (this + 1) x the largest result + 2 MiB of kernel buffer (docs/DAEMON.md).
+  uint32_t max_subscriber_results = 16;
 };
 
 struct DaemonConfig {

@@ -63,6 +63,8 @@ wire::ControlReply get_counters(const wire::GetCounters& q, StreamRegistry& regi
     c->set_dropped_stale(s.counters.dropped_stale);
     c->set_late(s.counters.late);
     c->set_errors(s.counters.errors);
+    c->set_time_limited(s.counters.time_limited);
+    c->set_subscriber_overflows(s.counters.subscriber_overflows);
     for (const auto& [name, pc] : s.stages) {
       wire::StagePercentiles* sp = c->add_stages();
       sp->set_name(name);

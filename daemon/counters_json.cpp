@@ -9,7 +9,8 @@ nlohmann::json counters_json(const wire::StreamCounters& c) {
   return {{"stream", c.stream_id()},      {"frames_in", c.frames_in()},
           {"frames_out", c.frames_out()}, {"superseded", c.superseded()},
           {"dropped_stale", c.dropped_stale()}, {"late", c.late()},
-          {"errors", c.errors()},          {"stages", std::move(stages)}};
+          {"errors", c.errors()},          {"time_limited", c.time_limited()},
+          {"subscriber_overflows", c.subscriber_overflows()}, {"stages", std::move(stages)}};
 }
 
 nlohmann::json counters_json(const wire::ControlReply& reply) {

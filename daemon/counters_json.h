@@ -10,7 +10,8 @@
 namespace fq::daemon {
 
 /// One stream: {"stream", "frames_in", "frames_out", "superseded", "dropped_stale", "late",
-/// "errors", "stages": {name: {"p50_ms", "p95_ms", "p99_ms", "count"}}}.
+/// "errors", "time_limited", "subscriber_overflows",
+/// "stages": {name: {"p50_ms", "p95_ms", "p99_ms", "count"}}}.
 nlohmann::json counters_json(const wire::StreamCounters& c);
 
 /// {"streams": [counters_json of each]}.

@@ -2,9 +2,14 @@
 
 #include <spdlog/spdlog.h>
 
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+
 #include "daemon/control_server.h"
 #include "daemon/ingest.h"
 #include "daemon/publisher.h"
+#include "daemon/result_socket.h"
 #include "daemon/sub_ingest.h"
 
 namespace fq::daemon {
@@ -12,6 +17,33 @@ namespace {
 
 // Lets the publisher flush what it has queued when the daemon stops.
 constexpr int kPublishLingerMs = 2000;
+
+// Sets `flag` after `delay` on a thread of its own unless disarmed first (destruction
+// disarms and joins).
+class Alarm {
+ public:
+  Alarm(std::chrono::duration<double> delay, std::atomic<bool>& flag)
+      : thread_([this, delay, &flag] {
+          std::unique_lock<std::mutex> lock(mutex_);
+          if (!disarmed_cv_.wait_for(lock, delay, [&] { return disarmed_; })) flag = true;
+        }) {}
+  ~Alarm() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      disarmed_ = true;
+    }
+    disarmed_cv_.notify_all();
+    thread_.join();
+  }
+  Alarm(const Alarm&) = delete;
+  Alarm& operator=(const Alarm&) = delete;
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable disarmed_cv_;
+  bool disarmed_ = false;
+  std::thread thread_;  // last: starts once the members above exist
+};
 
 void join_all(std::vector<std::thread>& threads) {
   for (std::thread& t : threads)
@@ -76,7 +108,8 @@ std::vector<std::string> Daemon::engine_names() const {
 Status Daemon::bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::socket_t& control) {
   ingest = zmq::socket_t(input_context_, zmq::socket_type::pull);
   control = zmq::socket_t(input_context_, zmq::socket_type::rep);
-  publish = zmq::socket_t(output_context_, zmq::socket_type::pub);
+  publish = zmq::socket_t(output_context_, zmq::socket_type::xpub);
+  ResultSocket::configure(publish, static_cast<int>(config_.caps.max_subscriber_results));
   ingest.set(zmq::sockopt::linger, 0);
   // Refused at the socket: a peer sending a larger part is disconnected before the part is
   // buffered (max_frame_bytes bounds the whole message, so it bounds every part too).
@@ -142,7 +175,7 @@ Status Daemon::start() {
   for (const std::string& n : engine_names()) names += (names.empty() ? "" : ", ") + n;
   spdlog::info("fqd: engines [{}], {} decode / {} encode threads", names, config_.decode_threads,
                config_.encode_threads);
-  spdlog::info("fqd: ingest {} (PULL), publish {} (PUB), control {} (REP)", endpoints_.ingest,
+  spdlog::info("fqd: ingest {} (PULL), publish {} (XPUB), control {} (REP)", endpoints_.ingest,
                endpoints_.publish, endpoints_.control);
   if (http_) spdlog::info("fqd: http {} (/metrics /healthz /streams, viewer at /)", endpoints_.http);
   for (const std::string& ep : config_.sub_ingest.connect)
@@ -182,11 +215,16 @@ void Daemon::stop() {
   if (control_thread_.joinable()) control_thread_.join();
   input_context_.close();
   if (input_zap_) input_zap_->join();
-  // Drain stage by stage: each queue closes once everything before it has finished.
-  pipeline_.decode_queue.close();
-  join_all(decoders_);
-  pipeline_.slots.close();
-  join_all(workers_);
+  // Drain stage by stage: each queue closes once everything before it has finished. Frames
+  // already received may finish within the grace; then the engines stop theirs and every
+  // frame left gets an error result (so a huge frame does not hold the exit for minutes).
+  {
+    const Alarm grace(std::chrono::duration<double>(config_.caps.stop_grace_s), pipeline_.cancel_engines);
+    pipeline_.decode_queue.close();
+    join_all(decoders_);
+    pipeline_.slots.close();
+    join_all(workers_);
+  }
   pipeline_.encode_queue.close();
   join_all(encoders_);
   pipeline_.publish_queue.close();

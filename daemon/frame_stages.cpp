@@ -66,6 +66,26 @@ Status decode(FrameJob& f, const DaemonConfig& c) {
   return check_mesh(f.mesh.view());
 }
 
+// One frame on `engine` under the time limit and the stop flag; a stopped frame's error
+// says which of the two stopped it.
+Status run_engine(Pipeline& p, Engine& engine, FrameJob& f) {
+  const double limit_s = p.config.caps.engine_time_limit_s;
+  const auto deadline = limit_s > 0 ? CancelToken::Clock::now() + std::chrono::duration_cast<CancelToken::Clock::duration>(
+                                                                       std::chrono::duration<double>(limit_s))
+                                    : CancelToken::Clock::time_point::max();
+  const CancelToken token(&p.cancel_engines, deadline);
+  engine.set_cancel_token(&token);
+  const Status s = guarded("engine", [&] { return engine.process(f.mesh.view(), f.settings.params, f.result); });
+  engine.set_cancel_token(nullptr);
+  if (s.code() != StatusCode::kCancelled) return s;
+  if (token.stopped())
+    return {StatusCode::kCancelled, "cancelled: fqd is stopping (caps.stop_grace_s passed before the frame finished)"};
+  p.registry.count(f.stream_id, Counter::kTimeLimited);
+  return {StatusCode::kCancelled, fmt::format("time_limit: the engine stopped the frame after caps.engine_time_limit_s "
+                                              "= {} s (its parameters fit max_neighbour_work but it ran too long)",
+                                              limit_s)};
+}
+
 }  // namespace
 
 void Pipeline::fail(FramePtr frame, Status why) {
@@ -131,7 +151,15 @@ void run_decode_worker(Pipeline& p) {
 void run_engine_worker(Pipeline& p, Engine& engine) {
   FramePtr f;
   std::vector<FramePtr> stale;
-  while (p.slots.take(f, stale)) {
+  const auto idle_ns = static_cast<int64_t>(p.config.caps.pool_idle_s * 1e9);
+  int64_t last_frame_ns = wall_ns();
+  bool holding = false;  // the engine keeps a frame's buffers
+  while (p.slots.take(f, stale, std::chrono::seconds(1))) {
+    // Idle as long as the pools: the engine's buffers (host or device) go back too.
+    if (!f && stale.empty() && holding && wall_ns() - last_frame_ns >= idle_ns) {
+      engine.release_memory();
+      holding = false;
+    }
     for (FramePtr& s : stale) {
       p.registry.count(s->stream_id, Counter::kDroppedStale);
       p.recycle(*s);
@@ -143,9 +171,10 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
     f->engine = engine.name();
     f->result = p.results.acquire(wall_ns());
     const auto t0 = std::chrono::steady_clock::now();
-    const Status s =
-        guarded("engine", [&] { return engine.process(f->mesh.view(), f->settings.params, f->result); });
+    const Status s = run_engine(p, engine, *f);
     const double total = ms_since(t0);
+    last_frame_ns = wall_ns();
+    holding = true;
     for (const PassTiming& t : f->result.timings) f->timings.push_back({"engine." + t.name, t.ms});
     f->timings.push_back({"engine", total});
     if (!s.ok())

@@ -19,9 +19,13 @@ FramePtr FrameSlots::offer(FramePtr frame) {
   return loser;
 }
 
-bool FrameSlots::take(FramePtr& out, std::vector<FramePtr>& stale) {
+bool FrameSlots::take(FramePtr& out, std::vector<FramePtr>& stale, std::chrono::milliseconds wait) {
   std::unique_lock<std::mutex> lock(mutex_);
-  ready_.wait(lock, [&] { return closed_ || waiting_ > 0; });
+  const auto ready = [&] { return closed_ || waiting_ > 0; };
+  if (wait == std::chrono::milliseconds::max())
+    ready_.wait(lock, ready);
+  else if (!ready_.wait_for(lock, wait, ready))
+    return true;  // nothing came: the caller does its idle work
   if (waiting_ == 0) return false;
   while (waiting_ > 0) {
     // Round robin: the stream served least recently goes first (oldest frame among equals).

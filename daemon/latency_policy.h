@@ -5,6 +5,7 @@
 // engines. Thread-safe.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <map>
@@ -31,8 +32,9 @@ class FrameSlots {
   /// Blocks until a frame is waiting, then hands one out round robin across streams (the stream
   /// served least recently first, the oldest frame among equals) to the calling worker in `out`, ticketed; frames found stale on the way are
   /// moved to `stale` (and `out` stays null when nothing fresh is left). False once closed
-  /// and empty.
-  bool take(FramePtr& out, std::vector<FramePtr>& stale);
+  /// and empty. With `wait`, also returns (true, `out` null) after waiting that long for a frame.
+  bool take(FramePtr& out, std::vector<FramePtr>& stale,
+            std::chrono::milliseconds wait = std::chrono::milliseconds::max());
 
   /// Wakes every waiting worker; waiting frames are still handed out.
   void close();

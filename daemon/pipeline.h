@@ -5,6 +5,7 @@
 // Error results skip ahead to publish_queue from whichever stage found the problem.
 #pragma once
 
+#include <atomic>
 #include <map>
 #include <mutex>
 #include <string>
@@ -62,6 +63,9 @@ struct Pipeline {
   ObjectPool<Mesh> meshes;
   LatestResults latest;                      ///< each watched stream's last result (HTTP viewer)
   LabelTracks label_tracks;                  ///< stable cluster ids per stream
+  /// Set when a stopping daemon's grace (caps.stop_grace_s) has passed: every engine run
+  /// ends at its next check, and frames still waiting get an error result at once.
+  std::atomic<bool> cancel_engines{false};
 
   /// Marks `frame` failed (message logged) and sends it straight to the publisher.
   void fail(FramePtr frame, Status why);

@@ -33,6 +33,10 @@ constexpr CounterFamily kCounters[] = {
      &StreamCounters::late},
     {"fq_errors_total", "Error results published (bad input, invalid parameters, engine failure).",
      &StreamCounters::errors},
+    {"fq_time_limited_total", "Frames stopped at the engine time limit (also in fq_errors_total).",
+     &StreamCounters::time_limited},
+    {"fq_subscriber_overflows_total", "Times a subscriber's queue was full and it started missing results.",
+     &StreamCounters::subscriber_overflows},
 };
 
 void histograms(std::string& out, const std::vector<StreamSnapshot>& streams) {

@@ -2,7 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include <zmq_addon.hpp>
+#include <chrono>
 
 #include "proto/header_codec.h"
 
@@ -48,7 +48,16 @@ wire::ResultHeader make_result_header(const FrameJob& f, int64_t publish_ns) {
 }
 
 void Publisher::run() {
-  while (auto item = p_.publish_queue.pop()) accept(std::move(*item));
+  for (;;) {
+    // Wakes once a second without results to read the subscriptions that came in.
+    bool idle = false;
+    auto item = p_.publish_queue.pop_for(std::chrono::seconds(1), idle);
+    socket_.drain_subscriptions();
+    if (item)
+      accept(std::move(*item));
+    else if (!idle)
+      break;  // closed and drained
+  }
   // Everything ticketed has arrived by now; anything still held would be a bug upstream.
   for (auto& [id, o] : order_)
     for (auto& [t, f] : o.held) publish(*f);
@@ -79,7 +88,7 @@ void Publisher::publish(FrameJob& f) {
   account(f, h);
   p_.latest.offer(h, f.out_chunks, f.mesh.triangles);
   try {
-    zmq::send_multipart(socket_, parts);
+    if (!socket_.send(parts)) p_.registry.count(f.stream_id, Counter::kSubscriberOverflows);
   } catch (const zmq::error_t& e) {
     spdlog::error("publish of stream '{}' frame {} failed: {}", f.stream_id, h.sequence(), e.what());
   }

@@ -1,4 +1,4 @@
-// The publisher thread: owns the PUB socket, stamps each result's publish time and
+// The publisher thread: owns the publish socket (an XPUB, result_socket.h), stamps each result's publish time and
 // latency, publishes [stream id][ResultHeader][chunks...] and keeps each stream's results
 // in arrival order (ticketed frames can finish out of order on several engines).
 #pragma once
@@ -9,12 +9,14 @@
 #include <zmq.hpp>
 
 #include "daemon/pipeline.h"
+#include "daemon/result_socket.h"
 
 namespace fq::daemon {
 
 class Publisher {
  public:
-  Publisher(zmq::socket_t socket, Pipeline& p) : socket_(std::move(socket)), p_(p) {}
+  Publisher(zmq::socket_t socket, Pipeline& p)
+      : socket_(std::move(socket)), p_(p) {}
 
   /// Publishes until the publish queue is closed and drained, then closes the socket.
   void run();
@@ -28,7 +30,7 @@ class Publisher {
   void publish(FrameJob& f);
   void account(const FrameJob& f, const wire::ResultHeader& h);
 
-  zmq::socket_t socket_;
+  ResultSocket socket_;
   Pipeline& p_;
   std::map<std::string, Order> order_;
 };

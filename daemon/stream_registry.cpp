@@ -91,8 +91,9 @@ void StreamRegistry::count(const std::string& stream_id, Counter c, uint64_t n) 
   // The field of each Counter, in the enum's order.
   static constexpr uint64_t StreamCounters::*kFields[] = {
       &StreamCounters::frames_in,     &StreamCounters::frames_out, &StreamCounters::superseded,
-      &StreamCounters::dropped_stale, &StreamCounters::late,       &StreamCounters::errors};
-  static_assert(std::size(kFields) == static_cast<size_t>(Counter::kErrors) + 1, "one field per Counter");
+      &StreamCounters::dropped_stale, &StreamCounters::late,       &StreamCounters::errors,
+      &StreamCounters::time_limited,  &StreamCounters::subscriber_overflows};
+  static_assert(std::size(kFields) == static_cast<size_t>(Counter::kSubscriberOverflows) + 1, "one field per Counter");
   e->counters.*kFields[static_cast<size_t>(c)] += n;
 }
 

@@ -24,9 +24,15 @@ struct StreamCounters {
   uint64_t dropped_stale = 0;  ///< older than the budget when a worker was free
   uint64_t late = 0;           ///< published after the budget (also in frames_out)
   uint64_t errors = 0;         ///< error results published
+  uint64_t time_limited = 0;   ///< stopped at caps.engine_time_limit_s (also in errors)
+  /// Times a subscriber's queue was found full (caps.max_subscriber_results), so that it
+  /// missed the result being published; ZeroMQ then skips that subscriber without telling
+  /// until it has read half its queue, so one overflow may stand for many missed results.
+  /// Not part of the sum above: the results were published.
+  uint64_t subscriber_overflows = 0;
 };
 
-enum class Counter { kIn, kOut, kSuperseded, kDroppedStale, kLate, kErrors };
+enum class Counter { kIn, kOut, kSuperseded, kDroppedStale, kLate, kErrors, kTimeLimited, kSubscriberOverflows };
 
 struct StreamSnapshot {
   std::string stream_id;

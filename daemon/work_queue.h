@@ -4,6 +4,7 @@
 // consumer; items already queued are still handed out, so closing drains the pipeline.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <mutex>
@@ -36,12 +37,15 @@ class WorkQueue {
   std::optional<T> pop() {
     std::unique_lock<std::mutex> lock(mutex_);
     ready_.wait(lock, [&] { return closed_ || !items_.empty(); });
-    if (items_.empty()) return std::nullopt;
-    T item = std::move(items_.front());
-    items_.pop_front();
-    lock.unlock();
-    room_.notify_one();
-    return item;
+    return take_front(lock);
+  }
+
+  /// pop() that gives up after `wait`: nothing then too, with `timed_out` set (so the
+  /// caller can do periodic work); false when the queue is closed and empty.
+  std::optional<T> pop_for(std::chrono::milliseconds wait, bool& timed_out) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    timed_out = !ready_.wait_for(lock, wait, [&] { return closed_ || !items_.empty(); });
+    return take_front(lock);
   }
 
   void close() {
@@ -59,6 +63,15 @@ class WorkQueue {
   }
 
  private:
+  std::optional<T> take_front(std::unique_lock<std::mutex>& lock) {
+    if (items_.empty()) return std::nullopt;
+    T item = std::move(items_.front());
+    items_.pop_front();
+    lock.unlock();
+    room_.notify_one();
+    return item;
+  }
+
   mutable std::mutex mutex_;
   std::condition_variable ready_, room_;
   std::deque<T> items_;

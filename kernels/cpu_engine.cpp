@@ -35,6 +35,16 @@ class PassClock {
 CpuEngine::CpuEngine(int threads) : threads_(threads > 0 ? threads : hardware_threads()) {}
 
 Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResult& out) {
+  // The loops of this run skip their remaining chunks once the token expires; the check
+  // after the last loop makes such a run an error, never a result.
+  // A stopped run may also have failed on its garbage: the cancellation is the cause then.
+  CancelScope scope(cancel_);
+  const Status s = run(mesh, params, out);
+  FQ_RETURN_IF_ERROR(check_cancel());
+  return s;
+}
+
+Status CpuEngine::run(const MeshView& mesh, const Params& params, FrameResult& out) {
   out.timings.clear();
   out.labels.clear();
   out.num_clusters = 0;
@@ -44,24 +54,31 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
   FQ_RETURN_IF_ERROR(validate(params));
   if (needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
   PassClock clock(out.timings, observer_);
+  // Ends a pass: its time, then the cancel check (a stopped pass leaves garbage that the
+  // serial code of the next one must not read).
+  auto pass_done = [&](const char* name) {
+    clock.lap(name);
+    return check_cancel();
+  };
   // A frame far smaller than the largest one so far gives that one's scratch back.
   if (size_t(mesh.num_vertices) * 4 < f_.points.capacity() && f_.points.capacity() > (1u << 16)) f_ = CpuFrame{};
   FQ_RETURN_IF_ERROR(check_mesh(mesh, threads_));
+  FQ_RETURN_IF_ERROR(check_cancel());
   FQ_RETURN_IF_ERROR(compute_normalization(mesh, f_.norm, threads_));
   out.mean_edge = f_.norm.mean_edge;
-  clock.lap("normalize");
+  FQ_RETURN_IF_ERROR(pass_done("normalize"));
   const FilterParams& fp = params.filtering;
   const bool need_quadrics = params.cluster || fp.uses_quadrics();
 
   cpu::sort_into_grid(mesh, fp.sigma_s, f_);
-  clock.lap("grid");
+  FQ_RETURN_IF_ERROR(pass_done("grid"));
   cpu::base_quadrics(f_, threads_);
-  clock.lap("base_quadrics");
+  FQ_RETURN_IF_ERROR(pass_done("base_quadrics"));
   if (need_quadrics) {
     cpu::neighbourhood_quadrics(f_, fp.effective_sigma_b(), threads_);
-    clock.lap("neighbourhood_quadrics");
+    FQ_RETURN_IF_ERROR(pass_done("neighbourhood_quadrics"));
     cpu::diffuse_quadrics(f_, fp, threads_);
-    clock.lap("diffusion");
+    FQ_RETURN_IF_ERROR(pass_done("diffusion"));
   }
   if (params.filter) {
     if (fp.uses_quadrics()) {
@@ -69,23 +86,23 @@ Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResul
     } else {
       cpu::bilateral_filter(f_, fp, threads_);
     }
-    clock.lap(fp.uses_quadrics() ? "update" : "bilateral_filter");
+    FQ_RETURN_IF_ERROR(pass_done(fp.uses_quadrics() ? "update" : "bilateral_filter"));
     if (fp.method == FilterMethod::kQuadricRefined) {
       cpu::refine_positions(f_, fp.refine, threads_);
-      clock.lap("refine");
+      FQ_RETURN_IF_ERROR(pass_done("refine"));
     }
   }
   if (params.cluster) {
     cpu::cluster_scores(f_, params.clustering, threads_);
-    clock.lap("score");
+    FQ_RETURN_IF_ERROR(pass_done("score"));
     cpu::cluster_links(f_, params.clustering, threads_);
-    clock.lap("link");
+    FQ_RETURN_IF_ERROR(pass_done("link"));
     out.num_clusters = cpu::cluster_labels(f_, out.labels, threads_);
     out.theta = params.clustering.theta;
-    clock.lap("modes");
+    FQ_RETURN_IF_ERROR(pass_done("modes"));
     if (params.clustering.keep_links) {
       cpu::export_links(f_, params.clustering, out.link_parent, out.link_p, threads_);
-      clock.lap("export_links");
+      FQ_RETURN_IF_ERROR(pass_done("export_links"));
     }
   }
   const uint32_t n = mesh.num_vertices;

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <string>
+#include <thread>
 
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/device_frame.cuh"
@@ -27,6 +28,7 @@ namespace fq {
 namespace {
 
 std::atomic<uint64_t> g_allocations{0};
+std::atomic<uint64_t> g_device_bytes{0};
 std::atomic<bool> g_fail_next_launch{false};
 
 using Clock = std::chrono::steady_clock;
@@ -50,6 +52,7 @@ class CudaEngine final : public Engine {
   }
   std::string name() const override { return name_; }
   Status process(const MeshView& mesh, const Params& params, FrameResult& out) override;
+  void release_memory() override;
 
  private:
   static constexpr int kMaxMarks = 16;
@@ -57,7 +60,9 @@ class CudaEngine final : public Engine {
   Status run_frame(const MeshView& mesh, const Params& params, FrameResult& out);
   void upload(const MeshView& mesh);
   Status normalize(const MeshView& mesh, float cell, Normalization& norm);
-  void enqueue_passes(const Params& params);
+  Status enqueue_passes(const Params& params);
+  Status mark(const char* pass);
+  Status stop_if_cancelled();
   int team_size() const;
   Status fail(const std::string& what, FrameResult& out);
 
@@ -98,6 +103,16 @@ Status CudaEngine::process(const MeshView& mesh, const Params& params, FrameResu
   }
   if (!st.ok() || !params.cluster) out.labels.clear();
   return st;
+}
+
+void CudaEngine::release_memory() {
+  // The frees must be made on this engine's device; the destructors log a failed free.
+  if (cudaSetDevice(device_.id) != cudaSuccess) {
+    (void)cudaGetLastError();
+    return;
+  }
+  f_ = cuda::DeviceFrame{};
+  refine_ = cuda::RefineBuffers{};
 }
 
 // A bad launch is cleared by reading it; a fault inside a kernel is sticky and leaves the
@@ -147,6 +162,37 @@ Status CudaEngine::normalize(const MeshView& mesh, float cell, Normalization& no
   return {};
 }
 
+// With a cancel token, the host keeps at most one pass queued behind the one running: after
+// enqueuing a pass it waits (checking the token) for the pass before it to end, so the device
+// always has the next pass. A cancelled frame stops within the two passes in flight, which are
+// left to finish (a kernel cannot be interrupted) before the stream is free again. Only after a
+// pass of over 2 ms does the host wait in 1 ms naps, and a following pass shorter than a nap
+// may then leave the device idle until the host wakes.
+Status CudaEngine::mark(const char* pass) {
+  const cudaStream_t s = stream_.get();
+  events_.mark(pass, s);
+  if (cancel_ == nullptr) return {};
+  const cudaEvent_t previous = events_.recent(1);
+  const Clock::time_point spin_until = Clock::now() + std::chrono::milliseconds(2);
+  for (;;) {
+    const cudaError_t q = cudaEventQuery(previous);
+    if (q == cudaSuccess || cancel_->expired()) break;
+    if (q != cudaErrorNotReady) FQ_CUDA_CHECK(q);
+    // Short passes are waited for by spinning (as cudaEventSynchronize does); long ones in
+    // 1 ms naps.
+    if (Clock::now() > spin_until) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return stop_if_cancelled();
+}
+
+// A cancelled frame returns once the device is done with what was queued: the next frame
+// may free or reuse the buffers at once.
+Status CudaEngine::stop_if_cancelled() {
+  Status st = check_cancel();
+  if (!st.ok()) stream_.sync();
+  return st;
+}
+
 // Lanes per vertex in the neighbourhood passes, from vertices per SM. Measured on the H100
 // (docs/BENCHMARKS.md, sweep of the team size): small meshes need lanes to fill the GPU
 // (bunny: 8 lanes 0.31 ms, 1 lane 0.72 ms); up to ~1.6M vertices 4 lanes still win by
@@ -158,62 +204,69 @@ int CudaEngine::team_size() const {
   return per_sm <= 512 ? 8 : (per_sm <= 12288 ? 4 : 1);
 }
 
-void CudaEngine::enqueue_passes(const Params& params) {
+Status CudaEngine::enqueue_passes(const Params& params) {
   const cudaStream_t s = stream_.get();
   const FilterParams& fp = params.filtering;
   const int team = team_size();
   const bool fast_exp = tuning_.fast_exp;
   cuda::sort_into_grid(f_, f_.grid.layout, s);
-  events_.mark("grid", s);
+  FQ_RETURN_IF_ERROR(mark("grid"));
   const bool refine = params.filter && fp.method == FilterMethod::kQuadricRefined;
   cuda::base_quadrics(f_, s);  // also the vertex -> triangle table the refinement reads
-  events_.mark("base_quadrics", s);
+  FQ_RETURN_IF_ERROR(mark("base_quadrics"));
   if (params.cluster || fp.uses_quadrics()) {
     if (team)
       cuda::team_neighbourhood_quadrics(f_, fp.effective_sigma_b(), team, fast_exp, s);
     else
       cuda::neighbourhood_quadrics(f_, fp.effective_sigma_b(), s);
-    events_.mark("neighbourhood_quadrics", s);
+    FQ_RETURN_IF_ERROR(mark("neighbourhood_quadrics"));
     if (team)
       cuda::team_diffuse_quadrics(f_, fp, team, fast_exp, s);
     else
       cuda::diffuse_quadrics(f_, fp, s);
-    events_.mark("diffusion", s);
+    FQ_RETURN_IF_ERROR(mark("diffusion"));
   }
   if (params.filter) {
     if (fp.uses_quadrics())
       cuda::update_positions(f_, fp, s);
     else
       cuda::bilateral_filter(f_, fp, s);
-    events_.mark(fp.uses_quadrics() ? "update" : "bilateral_filter", s);
+    FQ_RETURN_IF_ERROR(mark(fp.uses_quadrics() ? "update" : "bilateral_filter"));
   }
   if (refine) {
     cuda::refine_positions(f_, refine_, fp.refine, s);
-    events_.mark("refine", s);
+    FQ_RETURN_IF_ERROR(mark("refine"));
   }
   if (params.cluster) {
     if (team)
       cuda::team_cluster_scores(f_, params.clustering, team, fast_exp, s);
     else
       cuda::cluster_scores(f_, params.clustering, s);
-    events_.mark("score", s);
+    FQ_RETURN_IF_ERROR(mark("score"));
     if (team)
       cuda::team_cluster_links(f_, params.clustering, team, fast_exp, s);
     else
       cuda::cluster_links(f_, params.clustering, s);
-    events_.mark("link", s);
+    FQ_RETURN_IF_ERROR(mark("link"));
     cuda::cluster_labels(f_, s);
-    events_.mark("modes", s);
+    FQ_RETURN_IF_ERROR(mark("modes"));
     if (params.clustering.keep_links) {
       cuda::export_links(f_, params.clustering, s);  // downloads too
-      events_.mark("export_links", s);
+      FQ_RETURN_IF_ERROR(mark("export_links"));
     }
   }
+  return {};
 }
 
 Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameResult& out) {
   FQ_CUDA_CHECK(cudaSetDevice(device_.id));
   const cudaStream_t s = stream_.get();
+  // A frame far smaller than the largest one so far gives that one's buffers back (the CPU
+  // engine's rule for its scratch).
+  if (size_t(mesh.num_vertices) * 4 < f_.points.capacity() && f_.points.capacity() > (1u << 16)) {
+    f_ = cuda::DeviceFrame{};
+    refine_ = cuda::RefineBuffers{};
+  }
   f_.n = mesh.num_vertices;
   f_.m = mesh.num_triangles;
   const uint32_t n = f_.n;
@@ -224,10 +277,11 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
   Normalization norm;
   if (Status st = normalize(mesh, params.filtering.sigma_s, norm); !st.ok()) return st;
   out.mean_edge = norm.mean_edge;
-  enqueue_passes(params);
+  FQ_RETURN_IF_ERROR(stop_if_cancelled());
+  FQ_RETURN_IF_ERROR(enqueue_passes(params));
   if (params.filter) {
     cuda::positions_to_input(f_, norm, s);
-    events_.mark("output", s);
+    FQ_RETURN_IF_ERROR(mark("output"));
   }
   // Results come down in chunks, each copied out of pinned memory while the next is in flight.
   const int half = downloads_.size() / 2;
@@ -275,7 +329,12 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
 
 namespace cuda {
 
-void note_device_allocation() { g_allocations.fetch_add(1, std::memory_order_relaxed); }
+void note_device_allocation(size_t bytes) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  g_device_bytes.fetch_add(bytes, std::memory_order_relaxed);
+}
+
+void note_device_free(size_t bytes) { g_device_bytes.fetch_sub(bytes, std::memory_order_relaxed); }
 
 unsigned block_size() {
   static const unsigned size = [] {
@@ -297,6 +356,8 @@ void fail_next_launch() { g_fail_next_launch.store(true); }
 }  // namespace cuda
 
 uint64_t cuda_allocation_count() { return g_allocations.load(std::memory_order_relaxed); }
+
+uint64_t cuda_device_bytes_held() { return g_device_bytes.load(std::memory_order_relaxed); }
 
 void cuda_fail_next_launch_for_testing() { cuda::fail_next_launch(); }
 

@@ -18,6 +18,11 @@ std::unique_ptr<Engine> make_cuda_engine(int device, Status* why, const CudaTuni
 /// the first frame of a given size, further frames of that size leave it unchanged.
 uint64_t cuda_allocation_count();
 
+/// Device bytes held right now by the buffers of every CUDA engine of this process. A frame
+/// far smaller than the largest one so far (a quarter of its vertices or fewer) makes the
+/// engine give the larger frame's buffers back, as the CPU engine does with its scratch.
+uint64_t cuda_device_bytes_held();
+
 /// Test hook: the next kernel launch of any CUDA engine fails with a real CUDA error (an
 /// invalid launch configuration), which the engine reports as kInternal for that frame.
 void cuda_fail_next_launch_for_testing();

@@ -10,6 +10,7 @@
 
 #include "common/status.h"
 #include "common/status_or.h"
+#include "kernels/cancel_token.h"
 #include "kernels/mesh_view.h"
 #include "kernels/params.h"
 
@@ -46,14 +47,25 @@ class Engine {
   /// The CPU engine calls `observer` after each pass, on the thread running process(); the
   /// CUDA engine times its passes on the device and does not call it. Empty: none.
   void set_pass_observer(PassObserver observer) { observer_ = std::move(observer); }
+  /// process() checks `token` between passes (the CPU engine also between chunks of its
+  /// loops) and returns kCancelled once it has expired. It must outlive the runs that use
+  /// it; null: none. Frames that finish are computed exactly as without a token.
+  void set_cancel_token(const CancelToken* token) { cancel_ = token; }
   /// "cpu" or "cuda:<device name>".
   virtual std::string name() const = 0;
   /// Processes one frame. Bad parameters or a bad mesh give a non-ok status and leave the
-  /// engine usable for the next frame.
+  /// engine usable for the next frame, as does a run stopped by the cancel token.
   virtual Status process(const MeshView& mesh, const Params& params, FrameResult& out) = 0;
+  /// Gives back the buffers kept for the next frame (an idle engine: fqd calls it after
+  /// caps.pool_idle_s without frames); the next frame allocates them again.
+  virtual void release_memory() {}
 
  protected:
+  /// Ok, or kCancelled once the cancel token has expired.
+  Status check_cancel() const { return cancel_ != nullptr ? cancel_->check() : Status{}; }
+
   PassObserver observer_;
+  const CancelToken* cancel_ = nullptr;
 };
 
 enum class EngineKind { kAuto, kCpu, kCuda };

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "common/thread_pool.h"
+#include "kernels/cancel_token.h"
 
 namespace fq {
 
@@ -13,14 +14,23 @@ namespace fq {
 /// shared host pool (common/thread_pool.h). `grain` items are handed out at a time: 256 suits
 /// per-vertex work; coarse items (whole chunks of a reduction) need 1, or a few hundred of
 /// them all land on one thread.
+/// Under a CancelScope whose token has expired, the chunks not yet started are skipped (the
+/// loop's outputs are then unspecified: the engine checks the token after the loop).
 template <class F>
 void parallel_for(uint32_t n, int threads, F&& f, int grain = 256) {
+  const CancelToken* cancel = current_cancel_token();
+  const size_t chunk = static_cast<size_t>(std::max(grain, 1));
   ThreadPool::shared().run(
       n, threads,
-      [&f](size_t begin, size_t end, size_t) {
-        for (size_t i = begin; i < end; ++i) f(static_cast<uint32_t>(i));
+      [&f, cancel, chunk](size_t begin, size_t end, size_t) {
+        // The pool may hand one thread the whole range: the token is checked every `chunk`.
+        for (size_t i = begin; i < end;) {
+          if (cancel != nullptr && cancel->expired()) return;
+          const size_t stop = cancel != nullptr ? std::min(end, i + chunk) : end;
+          for (; i < stop; ++i) f(static_cast<uint32_t>(i));
+        }
       },
-      static_cast<size_t>(std::max(grain, 1)));
+      chunk);
 }
 
 /// Hardware threads available to the process.

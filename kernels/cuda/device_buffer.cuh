@@ -1,6 +1,8 @@
-// Owning device and pinned host buffers: move-only, grow-only capacity, destructors that
-// log and never throw. Every device allocation goes through DeviceBuffer::reserve and is
-// counted, so a test can check that a steady stream of frames allocates nothing.
+// Owning device and pinned host buffers: move-only, grow-only capacity (the engine drops a
+// whole frame's buffers to shrink them), destructors that log and never throw. Every device
+// allocation goes through DeviceBuffer::reserve and is counted, and so are the bytes held,
+// so a test can check that a steady stream of frames allocates nothing and that memory
+// comes back after a huge frame.
 #pragma once
 
 #include <cuda_runtime.h>
@@ -13,8 +15,10 @@
 
 namespace fq::cuda {
 
-/// Counts cudaMalloc calls made by DeviceBuffer (process-wide).
-void note_device_allocation();
+/// Counts cudaMalloc calls made by DeviceBuffer and the bytes they hold (process-wide).
+void note_device_allocation(size_t bytes);
+/// Notes that a DeviceBuffer gave `bytes` back (cudaFree).
+void note_device_free(size_t bytes);
 
 /// Logs a failed free from a destructor (which must not throw).
 inline void log_free_failure(const char* what, cudaError_t e) {
@@ -37,17 +41,21 @@ class DeviceBuffer {
   ~DeviceBuffer() {
     if (data_) {
       if (const cudaError_t e = cudaFree(data_); e != cudaSuccess) log_free_failure("cudaFree", e);
+      note_device_free(capacity_ * sizeof(T));
     }
   }
 
   /// Makes room for n elements; contents are not kept when it grows (callers rewrite them).
   T* reserve(size_t n) {
     if (n <= capacity_) return data_;
-    if (data_) FQ_CUDA_CHECK(cudaFree(data_));
+    if (data_) {
+      note_device_free(capacity_ * sizeof(T));
+      FQ_CUDA_CHECK(cudaFree(data_));
+    }
     data_ = nullptr;
     capacity_ = 0;
     FQ_CUDA_CHECK(cudaMalloc(reinterpret_cast<void**>(&data_), n * sizeof(T)));
-    note_device_allocation();
+    note_device_allocation(n * sizeof(T));
     capacity_ = n;
     return data_;
   }

@@ -75,6 +75,9 @@ class PassEvents {
     names_.push_back(name);
     FQ_CUDA_CHECK(cudaEventRecord(events_[names_.size()], s));
   }
+  /// The mark `back` marks before the last one (0: the last; the frame's start when there
+  /// are fewer).
+  cudaEvent_t recent(size_t back) const { return events_[names_.size() >= back ? names_.size() - back : 0]; }
   /// Elapsed device time per pass; call after the stream has been synchronized.
   template <class Out>
   void collect(Out&& out) const {

@@ -1,10 +1,14 @@
 // The CUDA engine against the CPU engine on meshes made in code, its allocation
-// behaviour and its error paths. Without a device only the availability tests run.
+// behaviour (and memory returned after a huge frame), cancellation and its error paths.
+// Without a device only the availability tests run.
 #include "kernels/cuda_engine.h"
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -315,6 +319,74 @@ TEST_F(CudaEngineTest, ReportsDeviceTimePerPassAndTransfers) {
                            "score", "link", "modes", "output", "download", "finish"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
   }
+}
+
+
+// The CPU engine's rule for its scratch (cpu_engine.cpp), on the device: a frame under a
+// quarter of the largest one's vertices makes the engine give that one's buffers back, and
+// release_memory (an idle engine) gives everything back.
+TEST_F(CudaEngineTest, DeviceMemoryReturnsWhenASmallFrameFollowsAHugeOne) {
+  const Mesh small = noisy_sphere();  // 10,242 vertices
+  Mesh huge = make_icosphere(8, 10.0f);  // 655,362 vertices
+  add_gaussian_noise(huge, 0.2, 9);
+  const Params params = clustering(5.f, 1.f, 0.9f);
+  FrameResult r;
+  ASSERT_TRUE(gpu_->process(small.view(), params, r).ok());
+  const uint64_t small_bytes = cuda_device_bytes_held();
+  ASSERT_TRUE(gpu_->process(huge.view(), params, r).ok());
+  const uint64_t huge_bytes = cuda_device_bytes_held();
+  EXPECT_GT(huge_bytes, 10 * small_bytes) << "the huge frame should have cost device memory";
+  Parity p;
+  run_both(*cpu_, *gpu_, small.view(), params, p);
+  expect_parity(p, params);  // the small frame on fresh buffers is still right
+  const uint64_t after = cuda_device_bytes_held();
+  std::printf("device bytes held: %llu -> %llu -> %llu\n", static_cast<unsigned long long>(small_bytes),
+              static_cast<unsigned long long>(huge_bytes), static_cast<unsigned long long>(after));
+  EXPECT_LT(after, huge_bytes / 4) << "grow-only buffers kept the huge frame's memory";
+  EXPECT_LE(after, 2 * small_bytes);
+  // What fqd does after caps.pool_idle_s without frames: everything goes back, and the
+  // next frame allocates anew.
+  gpu_->release_memory();
+  EXPECT_EQ(cuda_device_bytes_held(), 0u);
+  run_both(*cpu_, *gpu_, small.view(), params, p);
+  expect_parity(p, params);
+}
+
+// Cancellation (kernels/cancel_token.h) between the device passes: a token that never
+// expires leaves the results as they are, a stopped one ends the frame with kCancelled, a
+// deadline ends a frame with minutes of neighbour work, and the engine goes on.
+TEST_F(CudaEngineTest, CancelTokenStopsFramesAndLeavesFinishedOnesAlone) {
+  const Mesh m = noisy_sphere();
+  const Params params = clustering(5.f, 1.f, 0.9f);
+  const std::atomic<bool> never{false};
+  const CancelToken open(&never, CancelToken::Clock::now() + std::chrono::hours(1));
+  gpu_->set_cancel_token(&open);
+  Parity p;
+  run_both(*cpu_, *gpu_, m.view(), params, p);
+  expect_parity(p, params);
+
+  const std::atomic<bool> stop{true};
+  const CancelToken stopped(&stop);
+  gpu_->set_cancel_token(&stopped);
+  FrameResult r;
+  Status s = gpu_->process(m.view(), params, r);
+  EXPECT_EQ(s.code(), StatusCode::kCancelled) << s.message();
+  EXPECT_TRUE(r.labels.empty());
+
+  Mesh big = make_icosphere(7, 10.0f);  // 163,842 vertices, each visiting all others per pass
+  add_gaussian_noise(big, 0.2, 4);
+  Params wide = params;
+  wide.filtering.sigma_s = 400.f;
+  wide.clustering.sigma_d = 400.f;
+  const CancelToken deadline(nullptr, CancelToken::Clock::now() + std::chrono::milliseconds(50));
+  gpu_->set_cancel_token(&deadline);
+  s = gpu_->process(big.view(), wide, r);
+  EXPECT_EQ(s.code(), StatusCode::kCancelled) << s.message();
+  EXPECT_EQ(s.message(), "time limit exceeded");
+
+  gpu_->set_cancel_token(nullptr);
+  run_both(*cpu_, *gpu_, m.view(), params, p);
+  expect_parity(p, params);
 }
 
 }  // namespace

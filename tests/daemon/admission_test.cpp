@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <string>
 #include <thread>
@@ -18,20 +19,6 @@ namespace fq::test {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-size_t rss_bytes() {
-  std::ifstream in("/proc/self/status");
-  std::string key;
-  while (in >> key) {
-    if (key == "VmRSS:") {
-      size_t kb = 0;
-      in >> kb;
-      return kb * 1024;
-    }
-    std::getline(in, key);
-  }
-  return 0;
-}
 
 client::FrameSpec spec_for(const std::string& stream) {
   client::FrameSpec s;
@@ -219,6 +206,29 @@ TEST(DaemonAdmission, MemoryReturnsWhenSmallFramesFollowAHugeOne) {
   size_t after = 0;
   EXPECT_TRUE(eventually([&] { return (after = rss_bytes()) < base + (peak - base) / 2; }, std::chrono::seconds(15)))
       << "RSS " << base << " -> " << peak << " -> " << after;
+}
+
+
+// Without frames for caps.pool_idle_s, the engine's buffers go back as the pools' do: here
+// no small frame follows the huge one.
+TEST(DaemonAdmission, EngineBuffersReturnWhenIdle) {
+  daemon::DaemonConfig c = test_config();
+  c.defaults.params.cluster = false;
+  c.caps.pool_idle_s = 1.0;
+  DaemonHarness h(c);
+  h.send(noisy_sphere(), spec_for("cam"), 0);
+  ASSERT_EQ(h.receive("cam").header.status(), wire::OK);
+  const size_t base = rss_bytes();
+  Mesh huge = make_icosphere(7, 1.0f);  // 163,842 vertices
+  add_gaussian_noise(huge, 0.2, 3);
+  h.send(huge, spec_for("cam"), 1);
+  ASSERT_EQ(h.receive("cam").header.status(), wire::OK);
+  const size_t peak = rss_bytes();
+  ASSERT_GT(peak, base + (40u << 20)) << "the huge frame should have cost memory: " << base << " -> " << peak;
+  size_t after = 0;
+  EXPECT_TRUE(eventually([&] { return (after = rss_bytes()) < base + (peak - base) / 3; }, std::chrono::seconds(20)))
+      << "RSS " << base << " -> " << peak << " -> " << after;
+  std::printf("RSS %zu -> %zu -> %zu MiB\n", base >> 20, peak >> 20, after >> 20);
 }
 
 }  // namespace

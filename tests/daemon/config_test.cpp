@@ -113,6 +113,20 @@ TEST(DaemonConfig, WrongTypesAndRangesAreRejected) {
   EXPECT_NE(error_of("engine = 3\n").find("engine must be a table"), std::string::npos);
   EXPECT_NE(error_of("[engine]\ngpus = [0, \"one\"]\n").find("engine.gpus"), std::string::npos);
   EXPECT_NE(error_of("log_level = \"loud\"\n").find("log_level"), std::string::npos);
+  EXPECT_NE(error_of("[caps]\nmax_subscriber_results = 1\n").find("caps.max_subscriber_results"), std::string::npos);
+  EXPECT_NE(error_of("[caps]\nengine_time_limit_s = -1\n").find("caps.engine_time_limit_s"), std::string::npos);
+}
+
+TEST(DaemonConfig, TimeLimitGraceAndSubscriberQueueAreRead) {
+  DaemonConfig c;
+  ASSERT_TRUE(parse("", c).ok());
+  EXPECT_DOUBLE_EQ(c.caps.engine_time_limit_s, 10.0);
+  EXPECT_DOUBLE_EQ(c.caps.stop_grace_s, 1.0);
+  EXPECT_EQ(c.caps.max_subscriber_results, 16u);
+  ASSERT_TRUE(parse("[caps]\nengine_time_limit_s = 0.5\nstop_grace_s = 3\nmax_subscriber_results = 4\n", c).ok());
+  EXPECT_DOUBLE_EQ(c.caps.engine_time_limit_s, 0.5);
+  EXPECT_DOUBLE_EQ(c.caps.stop_grace_s, 3.0);
+  EXPECT_EQ(c.caps.max_subscriber_results, 4u);
 }
 
 TEST(DaemonConfig, BadNamesAndParametersAreRejected) {

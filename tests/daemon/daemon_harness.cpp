@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <string>
+
 #include "eval/noise.h"
 #include "tests/support/test_meshes.h"
 
@@ -16,6 +19,20 @@ daemon::DaemonConfig test_config() {
   c.defaults.budget_ms = 60'000.0;
   c.defaults.params.cluster = true;
   return c;
+}
+
+size_t rss_bytes(int pid) {
+  std::ifstream in(pid == 0 ? std::string("/proc/self/status") : "/proc/" + std::to_string(pid) + "/status");
+  std::string key;
+  while (in >> key) {
+    if (key == "VmRSS:") {
+      size_t kb = 0;
+      in >> kb;
+      return kb * 1024;
+    }
+    std::getline(in, key);
+  }
+  return 0;
 }
 
 Mesh noisy_sphere(uint64_t seed, int subdivisions) {

@@ -25,6 +25,9 @@ daemon::DaemonConfig test_config();
 /// Noisy icosphere (642 vertices) used by most daemon tests.
 Mesh noisy_sphere(uint64_t seed = 7, int subdivisions = 3);
 
+/// Resident memory of process `pid` (0: this process) from /proc, in bytes; 0 when unknown.
+size_t rss_bytes(int pid = 0);
+
 class DaemonHarness {
  public:
   /// Starts a daemon in this process and connects to it.

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <thread>
 
 #include "daemon/stage_metrics.h"
@@ -87,6 +88,36 @@ TEST(FrameSlots, CloseHandsOutWhatIsWaitingThenStops) {
   EXPECT_NE(out, nullptr);
   out.reset();
   EXPECT_FALSE(slots.take(out, stale));
+}
+
+// The engine workers wake without frames (to give idle engines' buffers back).
+TEST(FrameSlots, ATakeWithAWaitReturnsEmptyHandedWhenNothingComes) {
+  FrameSlots slots;
+  FramePtr out;
+  std::vector<FramePtr> stale;
+  EXPECT_TRUE(slots.take(out, stale, std::chrono::milliseconds(10)));
+  EXPECT_EQ(out, nullptr);
+  EXPECT_TRUE(stale.empty());
+  slots.offer(frame("a", 0, wall_ns()));
+  EXPECT_TRUE(slots.take(out, stale, std::chrono::milliseconds(10)));
+  EXPECT_NE(out, nullptr);
+  slots.close();
+  out.reset();
+  EXPECT_FALSE(slots.take(out, stale, std::chrono::milliseconds(10)));
+}
+
+// Idle wake-ups of the publisher (to read subscription messages).
+TEST(WorkQueue, PopForTimesOutEmptyHanded) {
+  WorkQueue<int> q;
+  bool timed_out = false;
+  EXPECT_FALSE(q.pop_for(std::chrono::milliseconds(10), timed_out).has_value());
+  EXPECT_TRUE(timed_out);
+  ASSERT_TRUE(q.push(7));
+  EXPECT_EQ(q.pop_for(std::chrono::milliseconds(10), timed_out), 7);
+  EXPECT_FALSE(timed_out);
+  q.close();
+  EXPECT_FALSE(q.pop_for(std::chrono::milliseconds(10), timed_out).has_value());
+  EXPECT_FALSE(timed_out) << "closed and empty is not a time-out";
 }
 
 TEST(WorkQueue, ABoundedQueueNeverHoldsMoreThanItsCapacity) {

@@ -54,7 +54,9 @@ TEST_P(DaemonSignal, ServesFramesThenExitsZeroOnSignal) {
 }
 
 TEST_P(DaemonSignal, FramesReceivedBeforeTheSignalAreFinished) {
-  const std::string config = write_config("fqd_drain_test.toml", kConfig);
+  // Frames are finished within caps.stop_grace_s (then stopped): a grace no loaded machine
+  // runs out of, so that all three must come out as results.
+  const std::string config = write_config("fqd_drain_test.toml", kConfig + "[caps]\nstop_grace_s = 300\n");
   Child child = spawn_fqd({"--config", config, "--print-endpoints"});
   ASSERT_GT(child.pid, 0);
   char line[1024] = {0};

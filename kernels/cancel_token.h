@@ -1,0 +1,56 @@
+// Cooperative cancellation of one engine run: a deadline and/or a stop flag that the engines
+// check between passes (and the CPU engine at the start of every chunk of its parallel
+// loops, see parallel_for.h). Nothing is interrupted mid-item, so a frame that finishes is
+// computed exactly as without a token; a frame that is stopped returns kCancelled and its
+// outputs are left unspecified.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+
+#include "common/status.h"
+
+namespace fq {
+
+class CancelToken {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  /// Expired once `*stop` is true (may be null) or once `deadline` has passed.
+  explicit CancelToken(const std::atomic<bool>* stop = nullptr, Clock::time_point deadline = Clock::time_point::max())
+      : stop_(stop), deadline_(deadline) {}
+
+  bool stopped() const { return stop_ != nullptr && stop_->load(std::memory_order_relaxed); }
+  bool past_deadline() const { return deadline_ != Clock::time_point::max() && Clock::now() >= deadline_; }
+  /// Monotonic: once true it stays true, so a run that checks after its last loop and finds
+  /// it false skipped no work.
+  bool expired() const { return stopped() || past_deadline(); }
+  /// Ok, or kCancelled naming the cause.
+  Status check() const {
+    if (stopped()) return {StatusCode::kCancelled, "cancelled"};
+    if (past_deadline()) return {StatusCode::kCancelled, "time limit exceeded"};
+    return {};
+  }
+
+ private:
+  const std::atomic<bool>* stop_;
+  Clock::time_point deadline_;
+};
+
+/// The token of the engine run on the calling thread (null: none). parallel_for reads it on
+/// the calling thread and hands it to the pool threads that help with the loop.
+const CancelToken* current_cancel_token();
+
+/// Makes `token` the calling thread's current token for this object's lifetime (nests).
+class CancelScope {
+ public:
+  explicit CancelScope(const CancelToken* token);
+  ~CancelScope();
+  CancelScope(const CancelScope&) = delete;
+  CancelScope& operator=(const CancelScope&) = delete;
+
+ private:
+  const CancelToken* previous_;
+};
+
+}  // namespace fq
