@@ -4,6 +4,7 @@
 // (pinned) and the CPU engine's time on the same row. Prints a markdown table.
 // With --codec MESH it times the frame codec against plain Draco instead (codec_bench.h).
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -37,6 +38,7 @@ struct Options {
   int warmup = 3;
   int cpu_repeat = 3;
   int cpu_threads = 0;
+  bool cancel_token = false;
   CudaTuning cuda;
   bool neighbour_stats = false;
   bool stats_only = false;
@@ -164,6 +166,9 @@ int run(int argc, char** argv) {
   add_ranged(app, "--cpu-repeat", o.cpu_repeat, "CPU engine frames per row for comparison (0 = none)", 0,
              1000);
   add_defaulted(app, "--cpu-threads", o.cpu_threads, "CPU engine threads (0 = all)");
+  app.add_flag("--cancel-token", o.cancel_token,
+               "run frames under a cancel token that never fires, as fqd does (its cost: the CUDA engine "
+               "then waits for the passes one by one)");
   add_defaulted(app, "--cuda-team", o.cuda.team,
                 "CUDA lanes per vertex in the neighbourhood passes: -1 by mesh size (default), 0 one "
                 "thread per vertex through the math headers, or 1, 2, 4, 8, 16, 32")
@@ -212,6 +217,9 @@ int run(int argc, char** argv) {
     return 3;
   }
   std::unique_ptr<Engine> engine = std::move(made).value();
+  const std::atomic<bool> never{false};
+  const CancelToken token(&never);
+  if (o.cancel_token) engine->set_cancel_token(&token);
   std::unique_ptr<CpuEngine> cpu;
   if (o.cpu_repeat > 0) cpu = std::make_unique<CpuEngine>(o.cpu_threads);
 

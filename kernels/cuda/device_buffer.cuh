@@ -26,22 +26,41 @@ inline void log_free_failure(const char* what, cudaError_t e) {
                cudaGetErrorString(e));
 }
 
-template <class T>
-class DeviceBuffer {
+/// Device memory (cudaMalloc), counted.
+struct DeviceMemory {
+  static constexpr const char* kFree = "cudaFree";
+  static cudaError_t allocate(void** p, size_t bytes) { return cudaMalloc(p, bytes); }
+  static cudaError_t release(void* p) { return cudaFree(p); }
+  static void allocated(size_t bytes) { note_device_allocation(bytes); }
+  static void freed(size_t bytes) { note_device_free(bytes); }
+};
+
+/// Page-locked host memory (cudaMallocHost) for asynchronous transfers.
+struct PinnedMemory {
+  static constexpr const char* kFree = "cudaFreeHost";
+  static cudaError_t allocate(void** p, size_t bytes) { return cudaMallocHost(p, bytes); }
+  static cudaError_t release(void* p) { return cudaFreeHost(p); }
+  static void allocated(size_t) {}
+  static void freed(size_t) {}
+};
+
+/// n elements of T in `Memory`: move-only, grow-only.
+template <class T, class Memory>
+class OwnedBuffer {
  public:
-  DeviceBuffer() = default;
-  DeviceBuffer(const DeviceBuffer&) = delete;
-  DeviceBuffer& operator=(const DeviceBuffer&) = delete;
-  DeviceBuffer(DeviceBuffer&& o) noexcept { swap(o); }
-  DeviceBuffer& operator=(DeviceBuffer&& o) noexcept {
-    DeviceBuffer tmp(std::move(o));
+  OwnedBuffer() = default;
+  OwnedBuffer(const OwnedBuffer&) = delete;
+  OwnedBuffer& operator=(const OwnedBuffer&) = delete;
+  OwnedBuffer(OwnedBuffer&& o) noexcept { swap(o); }
+  OwnedBuffer& operator=(OwnedBuffer&& o) noexcept {
+    OwnedBuffer tmp(std::move(o));
     swap(tmp);
     return *this;
   }
-  ~DeviceBuffer() {
+  ~OwnedBuffer() {
     if (data_) {
-      if (const cudaError_t e = cudaFree(data_); e != cudaSuccess) log_free_failure("cudaFree", e);
-      note_device_free(capacity_ * sizeof(T));
+      if (const cudaError_t e = Memory::release(data_); e != cudaSuccess) log_free_failure(Memory::kFree, e);
+      Memory::freed(capacity_ * sizeof(T));
     }
   }
 
@@ -49,13 +68,13 @@ class DeviceBuffer {
   T* reserve(size_t n) {
     if (n <= capacity_) return data_;
     if (data_) {
-      note_device_free(capacity_ * sizeof(T));
-      FQ_CUDA_CHECK(cudaFree(data_));
+      Memory::freed(capacity_ * sizeof(T));
+      FQ_CUDA_CHECK(Memory::release(data_));
     }
     data_ = nullptr;
     capacity_ = 0;
-    FQ_CUDA_CHECK(cudaMalloc(reinterpret_cast<void**>(&data_), n * sizeof(T)));
-    note_device_allocation(n * sizeof(T));
+    FQ_CUDA_CHECK(Memory::allocate(reinterpret_cast<void**>(&data_), n * sizeof(T)));
+    Memory::allocated(n * sizeof(T));
     capacity_ = n;
     return data_;
   }
@@ -63,7 +82,7 @@ class DeviceBuffer {
   size_t capacity() const { return capacity_; }
 
  private:
-  void swap(DeviceBuffer& o) noexcept {
+  void swap(OwnedBuffer& o) noexcept {
     std::swap(data_, o.data_);
     std::swap(capacity_, o.capacity_);
   }
@@ -71,43 +90,9 @@ class DeviceBuffer {
   size_t capacity_ = 0;
 };
 
-/// Page-locked host memory for asynchronous transfers (same ownership rules).
 template <class T>
-class PinnedBuffer {
- public:
-  PinnedBuffer() = default;
-  PinnedBuffer(const PinnedBuffer&) = delete;
-  PinnedBuffer& operator=(const PinnedBuffer&) = delete;
-  PinnedBuffer(PinnedBuffer&& o) noexcept { swap(o); }
-  PinnedBuffer& operator=(PinnedBuffer&& o) noexcept {
-    PinnedBuffer tmp(std::move(o));
-    swap(tmp);
-    return *this;
-  }
-  ~PinnedBuffer() {
-    if (data_) {
-      if (const cudaError_t e = cudaFreeHost(data_); e != cudaSuccess) log_free_failure("cudaFreeHost", e);
-    }
-  }
-
-  T* reserve(size_t n) {
-    if (n <= capacity_) return data_;
-    if (data_) FQ_CUDA_CHECK(cudaFreeHost(data_));
-    data_ = nullptr;
-    capacity_ = 0;
-    FQ_CUDA_CHECK(cudaMallocHost(reinterpret_cast<void**>(&data_), n * sizeof(T)));
-    capacity_ = n;
-    return data_;
-  }
-  T* data() const { return data_; }
-
- private:
-  void swap(PinnedBuffer& o) noexcept {
-    std::swap(data_, o.data_);
-    std::swap(capacity_, o.capacity_);
-  }
-  T* data_ = nullptr;
-  size_t capacity_ = 0;
-};
+using DeviceBuffer = OwnedBuffer<T, DeviceMemory>;
+template <class T>
+using PinnedBuffer = OwnedBuffer<T, PinnedMemory>;
 
 }  // namespace fq::cuda
