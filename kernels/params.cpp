@@ -85,8 +85,6 @@ Status validate(const RefineParams& r) {
     return invalid_argument("refine clean_below must be in [0, full_above) (got " + show(r.clean_below) + ")");
   if (!(r.tangential_step >= 0.f && r.tangential_step <= 1.f))
     return invalid_argument("refine tangential_step must be in [0, 1] (got " + show(r.tangential_step) + ")");
-  if (!(r.rough_feature_ratio >= 0.f && r.rough_feature_ratio <= 1.f))
-    return invalid_argument("refine rough_feature_ratio must be in [0, 1] (got " + show(r.rough_feature_ratio) + ")");
   if (!(r.rough_full >= 0.f && r.rough_full <= 3.1416f))
     return invalid_argument("refine rough_full must be in [0, pi] radians (got " + show(r.rough_full) + ")");
   if (r.rough_full > 0.f && !(r.rough_from >= r.full_above && r.rough_from < r.rough_full))

@@ -37,14 +37,13 @@ struct RefineParams {
   float clean_below = 0.1f;
   float full_above = 0.2f;
   /// Rough input, on the same r: from rough_from the refinement also runs on the input itself
-  /// (no QF), with the normal filter's range widened to rough_normal_sigma_r, feature ratio
-  /// rough_feature_ratio and rough_rounds rounds of normal filtering and rough_vertex_iterations
-  /// vertex updates; its result replaces the other linearly up to rough_full. rough_full = 0
-  /// (or no guard) turns it off.
+  /// (no QF, no relaxation), with the normal filter's range widened to rough_normal_sigma_r
+  /// and rough_rounds rounds of normal filtering and rough_vertex_iterations vertex updates;
+  /// its result replaces the other linearly up to rough_full. rough_full = 0 (or no guard)
+  /// turns it off.
   float rough_from = 0.75f;
   float rough_full = 0.85f;
   float rough_normal_sigma_r = 0.7f;
-  float rough_feature_ratio = 0.3f;
   int rough_rounds = 2;
   int rough_vertex_iterations = 10;
 };

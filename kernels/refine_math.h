@@ -13,10 +13,10 @@
 //   4. the clean-input guard: the mean change of the face normals between the input and the
 //      result measures how rough the input was at the filter's scale; below `clean_below`
 //      the input is kept, above `full_above` the result, linearly in between;
-//   5. the rough-input path: above `rough_from` the same steps, with a wider normal filter
-//      and in rounds, run again on the input itself (QF's grid neighbourhood mixes the
-//      sides of thin parts once the noise is that strong) and replace the result, fully
-//      from `rough_full` on (kernels/refine_schedule.h).
+//   5. the rough-input path: above `rough_from` steps 2 and 3, with a wider normal filter
+//      and in rounds, run again on the input itself (at that noise QF's grid neighbourhood
+//      does more harm than good) and replace the result, fully from `rough_full` on
+//      (kernels/refine_schedule.h).
 // Every sum runs over a vertex's triangles in the CSR order (increasing triangle index), so
 // results do not depend on the thread count.
 #pragma once

@@ -24,8 +24,10 @@ inline RefineSchedule fine_schedule(const RefineParams& r) {
           r.tangential_step};
 }
 
+// No relaxation: it opens the folds QF leaves, and this run starts from the input (on the
+// dragon at noise 0.3 it also measured better without: 0.1939 against 0.1942 rad).
 inline RefineSchedule rough_schedule(const RefineParams& r) {
-  return {r.relax_iterations, r.relax_step, r.rough_feature_ratio, r.rough_rounds, r.normal_iterations,
+  return {0, r.relax_step, r.feature_ratio, r.rough_rounds, r.normal_iterations,
           Gaussian::with_sigma(r.normal_sigma_s), Gaussian::with_sigma(r.rough_normal_sigma_r),
           r.rough_vertex_iterations, r.tangential_step};
 }

@@ -57,7 +57,6 @@ void add_refine_options(CLI::App& app, RefineParams& r) {
   app.add_option("--rough-full", r.rough_full,
                  "Mean face-normal change (rad) from which that rough-input result is kept alone; 0 = off");
   app.add_option("--rough-normal-sigma-r", r.rough_normal_sigma_r, "Range extent of the rough-input normal filter");
-  app.add_option("--rough-feature-ratio", r.rough_feature_ratio, "Feature ratio of the rough-input relaxation");
   app.add_option("--rough-rounds", r.rough_rounds, "Rounds of normal filtering and vertex updates on rough input");
   app.add_option("--rough-vertex-iterations", r.rough_vertex_iterations, "Vertex update passes per rough round");
 }

@@ -37,7 +37,6 @@ nlohmann::json refine_json(const RefineParams& r) {
           {"rough_from", as_typed(r.rough_from)},
           {"rough_full", as_typed(r.rough_full)},
           {"rough_normal_sigma_r", as_typed(r.rough_normal_sigma_r)},
-          {"rough_feature_ratio", as_typed(r.rough_feature_ratio)},
           {"rough_rounds", r.rough_rounds},
           {"rough_vertex_iterations", r.rough_vertex_iterations}};
 }
