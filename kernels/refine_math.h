@@ -133,50 +133,61 @@ FQ_HD Vec3 filtered_face_normal(const FanView& m, const TriangleGeom* geom, cons
   return norm2(n) > 0.f ? n : nf;
 }
 
-/// Step 3. One iteration of Sun et al. 2007 (eq. 8), the positions moved onto the planes
-/// of the filtered normals: x_v + 1/|F_v| Σ_{f∋v} n_f (n_f · (c_f − x_v)), c_f the current
-/// centroid. Faces with a zero normal (degenerate) are skipped.
-FQ_HD Vec3 normal_driven_position(const FanView& m, const Vec3* x, const Vec3* normals, uint32_t v) {
-  const Vec3 xv = x[v];
-  Vec3 acc{0.f, 0.f, 0.f};
-  float count = 0.f;
-  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
-    const uint32_t f = m.vf_faces[k];
-    const Vec3 n = normals[f];
-    if (!(norm2(n) > 0.f)) continue;
-    const uint32_t* tri = m.tris + 3 * size_t(f);
-    const Vec3 c = (1.0f / 3.0f) * (x[tri[0]] + x[tri[1]] + x[tri[2]]);
-    acc = acc + dot(n, c - xv) * n;
-    count += 1.f;
-  }
-  return count > 0.f ? xv + (1.0f / count) * acc : xv;
-}
-
 /// Tangential part of the move from x_v to its 1-ring mean, in the plane normal to the sum of
-/// the filtered normals of its faces. Zero on an open fan (boundary, non-manifold).
-FQ_HD Vec3 tangential_ring_move(const FanView& m, const Vec3* x, const Vec3* normals, uint32_t v, bool closed) {
-  const Vec3 xv = x[v];
-  Vec3 ring{0.f, 0.f, 0.f}, nsum{0.f, 0.f, 0.f};
-  float count = 0.f;
-  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
-    const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[k]);
-    ring = ring + (x[tri[0]] + x[tri[1]] + x[tri[2]]) - xv;  // the two other corners
-    count += 2.f;
-    nsum = nsum + normals[m.vf_faces[k]];
-  }
+/// the filtered normals of its faces, from the sums over v's triangles: `ring` of the two other
+/// corners of each (each neighbour twice), `count` = 2 × the triangles, `nsum` of the filtered
+/// normals. Zero on an open fan (boundary, non-manifold).
+FQ_HD Vec3 tangential_from_sums(Vec3 xv, Vec3 ring, float count, Vec3 nsum, bool closed) {
   if (!closed || !(count > 0.f)) return Vec3{0.f, 0.f, 0.f};
   const Vec3 n = normalized_or_zero(nsum);
   const Vec3 d = (1.0f / count) * ring - xv;
   return d - dot(d, n) * n;
 }
 
-/// Step 3: normal_driven_position plus `tangential_step` × tangential_ring_move, both read
-/// from the same iterate. `closed` is closed_fan(m, v).
+/// tangential_from_sums over v's fan at x.
+FQ_HD Vec3 tangential_ring_move(const FanView& m, const Vec3* x, const Vec3* normals, uint32_t v, bool closed) {
+  const Vec3 xv = x[v];
+  Vec3 ring{0.f, 0.f, 0.f}, nsum{0.f, 0.f, 0.f};
+  float count = 0.f;
+  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
+    const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[k]);
+    ring = ring + (x[tri[0]] + x[tri[1]] + x[tri[2]]) - xv;
+    count += 2.f;
+    nsum = nsum + normals[m.vf_faces[k]];
+  }
+  return tangential_from_sums(xv, ring, count, nsum, closed);
+}
+
+/// Step 3. One iteration of Sun et al. 2007 (eq. 8), the positions moved onto the planes
+/// of the filtered normals: x_v + 1/|F_v| Σ_{f∋v} n_f (n_f · (c_f − x_v)), c_f the current
+/// centroid, faces with a zero normal (degenerate) skipped; plus `tangential_step` ×
+/// tangential_ring_move, read from the same iterate in the same walk over v's triangles.
+/// `closed` is closed_fan(m, v).
 FQ_HD Vec3 updated_vertex(const FanView& m, const Vec3* x, const Vec3* normals, uint32_t v, bool closed,
                           float tangential_step) {
-  const Vec3 p = normal_driven_position(m, x, normals, v);
+  const Vec3 xv = x[v];
+  Vec3 acc{0.f, 0.f, 0.f}, ring{0.f, 0.f, 0.f}, nsum{0.f, 0.f, 0.f};
+  float planes = 0.f, count = 0.f;
+  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
+    const uint32_t f = m.vf_faces[k];
+    const uint32_t* tri = m.tris + 3 * size_t(f);
+    const Vec3 sum = x[tri[0]] + x[tri[1]] + x[tri[2]];
+    ring = ring + sum - xv;
+    count += 2.f;
+    const Vec3 n = normals[f];
+    nsum = nsum + n;
+    if (!(norm2(n) > 0.f)) continue;
+    acc = acc + dot(n, (1.0f / 3.0f) * sum - xv) * n;
+    planes += 1.f;
+  }
+  const Vec3 p = planes > 0.f ? xv + (1.0f / planes) * acc : xv;
   if (!(tangential_step > 0.f)) return p;
-  return p + tangential_step * tangential_ring_move(m, x, normals, v, closed);
+  return p + tangential_step * tangential_from_sums(xv, ring, count, nsum, closed);
+}
+
+/// Sun et al.'s update alone (updated_vertex without the tangential share).
+FQ_HD Vec3 normal_driven_position(const FanView& m, const Vec3* x, const Vec3* normals, uint32_t v) {
+  return updated_vertex(m, x, normals, v, false, 0.f);
 }
 
 /// Step 4. Faces per partial sum of the mean normal change: fixed blocks, each summed in
