@@ -32,6 +32,7 @@ struct CpuFrame {
   std::vector<TriangleGeom> refine_geom;
   std::vector<Vec3> refine_n[2];
   std::vector<float> refine_change;  ///< block sums of the clean-input guard
+  std::vector<Vec3> refine_fine;     ///< the fine run's result while the rough-input run goes
   // Bilateral baseline: triangles in centroid-grid order.
   CpuGrid tri_grid;
   std::vector<Point4> tri_points;    ///< centroid, w = area

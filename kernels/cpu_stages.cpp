@@ -10,6 +10,7 @@
 #include "kernels/link_export.h"
 #include "kernels/parallel_for.h"
 #include "kernels/refine_math.h"
+#include "kernels/refine_schedule.h"
 
 namespace fq::cpu {
 
@@ -98,6 +99,47 @@ void update_positions(CpuFrame& f, const FilterParams& p, int threads) {
   });
 }
 
+namespace {
+
+// One refinement run (fine or rough schedule) on f.moved; every pass reads one buffer and
+// writes the other.
+void run_refinement(CpuFrame& f, const FanView& fan, const RefineSchedule& s, int threads) {
+  const uint32_t n = static_cast<uint32_t>(f.moved.size());
+  const uint32_t m = static_cast<uint32_t>(f.tris.size() / 3);
+  auto vertex_pass = [&](auto&& position) {
+    parallel_for(n, threads, [&](uint32_t v) { f.refine_x[v] = position(f.moved.data(), v); });
+    f.moved.swap(f.refine_x);
+  };
+  for (int it = 0; it < s.relax_iterations; ++it) {
+    vertex_pass([&](const Vec3* x, uint32_t v) {
+      return relaxed_position(fan, x, v, f.refine_closed[v] != 0, s.relax_step, s.feature_ratio);
+    });
+  }
+  f.refine_geom.resize(m);
+  f.refine_n[0].resize(m);
+  f.refine_n[1].resize(m);
+  for (int round = 0; round < s.rounds; ++round) {
+    parallel_for(m, threads, [&](uint32_t t) {
+      const uint32_t* tri = &f.tris[3 * size_t(t)];
+      f.refine_geom[t] = triangle_geom(f.moved[tri[0]], f.moved[tri[1]], f.moved[tri[2]]);
+      f.refine_n[0][t] = f.refine_geom[t].normal;
+    });
+    for (int it = 0; it < s.normal_iterations; ++it) {
+      const Vec3* in = f.refine_n[it & 1].data();
+      Vec3* out = f.refine_n[(it + 1) & 1].data();
+      parallel_for(m, threads, [&](uint32_t t) { out[t] = filtered_face_normal(fan, f.refine_geom.data(), in, t, s.gs, s.gr); });
+    }
+    const Vec3* normals = f.refine_n[s.normal_iterations & 1].data();
+    for (int it = 0; it < s.vertex_iterations; ++it) {
+      vertex_pass([&](const Vec3* x, uint32_t v) {
+        return updated_vertex(fan, x, normals, v, f.refine_closed[v] != 0, s.tangential_step);
+      });
+    }
+  }
+}
+
+}  // namespace
+
 void refine_positions(CpuFrame& f, const RefineParams& r, int threads) {
   const uint32_t n = static_cast<uint32_t>(f.moved.size());
   const uint32_t m = static_cast<uint32_t>(f.tris.size() / 3);
@@ -105,40 +147,25 @@ void refine_positions(CpuFrame& f, const RefineParams& r, int threads) {
   f.refine_x.resize(n);
   f.refine_closed.resize(n);
   parallel_for(n, threads, [&](uint32_t v) { f.refine_closed[v] = closed_fan(fan, v) ? 1 : 0; });
-  // Every pass reads one buffer and writes the other; f.moved holds the result.
-  auto vertex_pass = [&](auto&& position) {
-    parallel_for(n, threads, [&](uint32_t v) { f.refine_x[v] = position(f.moved.data(), v); });
-    f.moved.swap(f.refine_x);
-  };
-  for (int it = 0; it < r.relax_iterations; ++it) {
-    vertex_pass([&](const Vec3* x, uint32_t v) { return relaxed_position(fan, x, v, f.refine_closed[v] != 0, r.relax_step, r.feature_ratio);
-    });
-  }
-  f.refine_geom.resize(m);
-  f.refine_n[0].resize(m);
-  f.refine_n[1].resize(m);
-  parallel_for(m, threads, [&](uint32_t t) {
-    const uint32_t* tri = &f.tris[3 * size_t(t)];
-    f.refine_geom[t] = triangle_geom(f.moved[tri[0]], f.moved[tri[1]], f.moved[tri[2]]);
-    f.refine_n[0][t] = f.refine_geom[t].normal;
-  });
-  const Gaussian gs = Gaussian::with_sigma(r.normal_sigma_s), gr = Gaussian::with_sigma(r.normal_sigma_r);
-  for (int it = 0; it < r.normal_iterations; ++it) {
-    const Vec3* in = f.refine_n[it & 1].data();
-    Vec3* out = f.refine_n[(it + 1) & 1].data();
-    parallel_for(m, threads, [&](uint32_t t) { out[t] = filtered_face_normal(fan, f.refine_geom.data(), in, t, gs, gr); });
-  }
-  const Vec3* normals = f.refine_n[r.normal_iterations & 1].data();
-  for (int it = 0; it < r.vertex_iterations; ++it) {
-    vertex_pass([&](const Vec3* x, uint32_t v) { return normal_driven_position(fan, x, normals, v); });
-  }
+  run_refinement(f, fan, fine_schedule(r), threads);
   if (!(r.full_above > 0.f)) return;
   f.refine_change.resize(normal_change_blocks(m));
   parallel_for(uint32_t(f.refine_change.size()), threads, [&](uint32_t b) {
     f.refine_change[b] = normal_change_block(f.tris.data(), m, f.points.data(), f.moved.data(), b);
   });
   const float alpha = refine_strength(f.refine_change.data(), m, r.clean_below, r.full_above);
-  if (alpha < 1.f) vertex_pass([&](const Vec3* x, uint32_t v) { return guarded_position(f.points[v], x[v], alpha); });
+  const float beta = rough_path_on(r) ? rough_weight(f.refine_change.data(), m, r.rough_from, r.rough_full) : 0.f;
+  if (beta > 0.f) {  // rough_from >= full_above: alpha is 1 here
+    f.refine_fine.swap(f.moved);
+    f.moved.resize(n);
+    parallel_for(n, threads, [&](uint32_t v) { f.moved[v] = xyz(f.points[v]); });
+    run_refinement(f, fan, rough_schedule(r), threads);
+    parallel_for(n, threads, [&](uint32_t v) { f.refine_x[v] = blended_position(f.refine_fine[v], f.moved[v], beta); });
+    f.moved.swap(f.refine_x);
+  } else if (alpha < 1.f) {
+    parallel_for(n, threads, [&](uint32_t v) { f.refine_x[v] = guarded_position(f.points[v], f.moved[v], alpha); });
+    f.moved.swap(f.refine_x);
+  }
 }
 
 void bilateral_filter(CpuFrame& f, const FilterParams& p, int threads) {

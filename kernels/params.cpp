@@ -69,7 +69,10 @@ Status validate(const RefineParams& r) {
                    check_iterations("refine normal_iterations", r.normal_iterations),
                    check_iterations("refine vertex_iterations", r.vertex_iterations),
                    check_sigma("refine normal_sigma_s", r.normal_sigma_s, false),
-                   check_sigma("refine normal_sigma_r", r.normal_sigma_r, false)}) {
+                   check_sigma("refine normal_sigma_r", r.normal_sigma_r, false),
+                   check_iterations("refine rough_rounds", r.rough_rounds),
+                   check_iterations("refine rough_vertex_iterations", r.rough_vertex_iterations),
+                   check_sigma("refine rough_normal_sigma_r", r.rough_normal_sigma_r, false)}) {
     if (!s.ok()) return s;
   }
   if (!(r.relax_step > 0.f && r.relax_step <= 1.f))
@@ -80,6 +83,12 @@ Status validate(const RefineParams& r) {
     return invalid_argument("refine full_above must be in [0, pi] radians (got " + show(r.full_above) + ")");
   if (r.full_above > 0.f && !(r.clean_below >= 0.f && r.clean_below < r.full_above))
     return invalid_argument("refine clean_below must be in [0, full_above) (got " + show(r.clean_below) + ")");
+  if (!(r.tangential_step >= 0.f && r.tangential_step <= 1.f))
+    return invalid_argument("refine tangential_step must be in [0, 1] (got " + show(r.tangential_step) + ")");
+  if (!(r.rough_full >= 0.f && r.rough_full <= 3.1416f))
+    return invalid_argument("refine rough_full must be in [0, pi] radians (got " + show(r.rough_full) + ")");
+  if (r.rough_full > 0.f && !(r.rough_from >= r.full_above && r.rough_from < r.rough_full))
+    return invalid_argument("refine rough_from must be in [full_above, rough_full) (got " + show(r.rough_from) + ")");
   return {};
 }
 

@@ -30,11 +30,22 @@ struct RefineParams {
   float normal_sigma_s = 1.0f;   ///< spatial extent (face centroid distance)
   float normal_sigma_r = 0.35f;  ///< range extent (|n_i − n_j|)
   int vertex_iterations = 20;    ///< normal-driven vertex update passes (Sun et al. 2007)
+  float tangential_step = 0.3f;  ///< per vertex update, this share of the tangential move to the 1-ring mean
   /// Clean-input guard, on the mean angle (radians) between input and result face normals:
   /// at or below clean_below the input is kept, at or above full_above the result, linear
   /// between. full_above = 0 turns it off.
   float clean_below = 0.1f;
   float full_above = 0.2f;
+  /// Rough input, on the same r: from rough_from the refinement also runs on the input itself
+  /// (no QF, no relaxation), with the normal filter's range widened to rough_normal_sigma_r
+  /// and rough_rounds rounds of normal filtering and rough_vertex_iterations vertex updates;
+  /// its result replaces the other linearly up to rough_full. rough_full = 0 (or no guard)
+  /// turns it off.
+  float rough_from = 0.75f;
+  float rough_full = 0.85f;
+  float rough_normal_sigma_r = 0.7f;
+  int rough_rounds = 2;
+  int rough_vertex_iterations = 10;
 };
 
 struct FilterParams {

@@ -6,11 +6,17 @@
 //      crossing a crease or a corner;
 //   2. filtered_face_normal: one iteration of bilateral face-normal filtering (Zheng et
 //      al. 2011) over the faces sharing a vertex;
-//   3. normal_driven_position: one iteration of Sun et al. 2007's vertex update, which
-//      moves each vertex onto the planes of its filtered incident faces;
+//   3. updated_vertex: one iteration of Sun et al. 2007's vertex update, which moves each
+//      vertex onto the planes of its filtered incident faces, plus a share of the move to
+//      its 1-ring mean within the filtered tangent plane (keeps triangles from collapsing
+//      into slivers whose normals no longer follow the surface);
 //   4. the clean-input guard: the mean change of the face normals between the input and the
 //      result measures how rough the input was at the filter's scale; below `clean_below`
-//      the input is kept, above `full_above` the result, linearly in between.
+//      the input is kept, above `full_above` the result, linearly in between;
+//   5. the rough-input path: above `rough_from` steps 2 and 3, with a wider normal filter
+//      and in rounds, run again on the input itself (at that noise QF's grid neighbourhood
+//      does more harm than good) and replace the result, fully from `rough_full` on
+//      (kernels/refine_schedule.h).
 // Every sum runs over a vertex's triangles in the CSR order (increasing triangle index), so
 // results do not depend on the thread count.
 #pragma once
@@ -127,23 +133,61 @@ FQ_HD Vec3 filtered_face_normal(const FanView& m, const TriangleGeom* geom, cons
   return norm2(n) > 0.f ? n : nf;
 }
 
-/// Step 3. One iteration of Sun et al. 2007 (eq. 8), the positions moved onto the planes
-/// of the filtered normals: x_v + 1/|F_v| Σ_{f∋v} n_f (n_f · (c_f − x_v)), c_f the current
-/// centroid. Faces with a zero normal (degenerate) are skipped.
-FQ_HD Vec3 normal_driven_position(const FanView& m, const Vec3* x, const Vec3* normals, uint32_t v) {
+/// Tangential part of the move from x_v to its 1-ring mean, in the plane normal to the sum of
+/// the filtered normals of its faces, from the sums over v's triangles: `ring` of the two other
+/// corners of each (each neighbour twice), `count` = 2 × the triangles, `nsum` of the filtered
+/// normals. Zero on an open fan (boundary, non-manifold).
+FQ_HD Vec3 tangential_from_sums(Vec3 xv, Vec3 ring, float count, Vec3 nsum, bool closed) {
+  if (!closed || !(count > 0.f)) return Vec3{0.f, 0.f, 0.f};
+  const Vec3 n = normalized_or_zero(nsum);
+  const Vec3 d = (1.0f / count) * ring - xv;
+  return d - dot(d, n) * n;
+}
+
+/// tangential_from_sums over v's fan at x.
+FQ_HD Vec3 tangential_ring_move(const FanView& m, const Vec3* x, const Vec3* normals, uint32_t v, bool closed) {
   const Vec3 xv = x[v];
-  Vec3 acc{0.f, 0.f, 0.f};
+  Vec3 ring{0.f, 0.f, 0.f}, nsum{0.f, 0.f, 0.f};
   float count = 0.f;
   for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
-    const uint32_t f = m.vf_faces[k];
-    const Vec3 n = normals[f];
-    if (!(norm2(n) > 0.f)) continue;
-    const uint32_t* tri = m.tris + 3 * size_t(f);
-    const Vec3 c = (1.0f / 3.0f) * (x[tri[0]] + x[tri[1]] + x[tri[2]]);
-    acc = acc + dot(n, c - xv) * n;
-    count += 1.f;
+    const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[k]);
+    ring = ring + (x[tri[0]] + x[tri[1]] + x[tri[2]]) - xv;
+    count += 2.f;
+    nsum = nsum + normals[m.vf_faces[k]];
   }
-  return count > 0.f ? xv + (1.0f / count) * acc : xv;
+  return tangential_from_sums(xv, ring, count, nsum, closed);
+}
+
+/// Step 3. One iteration of Sun et al. 2007 (eq. 8), the positions moved onto the planes
+/// of the filtered normals: x_v + 1/|F_v| Σ_{f∋v} n_f (n_f · (c_f − x_v)), c_f the current
+/// centroid, faces with a zero normal (degenerate) skipped; plus `tangential_step` ×
+/// tangential_ring_move, read from the same iterate in the same walk over v's triangles.
+/// `closed` is closed_fan(m, v).
+FQ_HD Vec3 updated_vertex(const FanView& m, const Vec3* x, const Vec3* normals, uint32_t v, bool closed,
+                          float tangential_step) {
+  const Vec3 xv = x[v];
+  Vec3 acc{0.f, 0.f, 0.f}, ring{0.f, 0.f, 0.f}, nsum{0.f, 0.f, 0.f};
+  float planes = 0.f, count = 0.f;
+  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
+    const uint32_t f = m.vf_faces[k];
+    const uint32_t* tri = m.tris + 3 * size_t(f);
+    const Vec3 sum = x[tri[0]] + x[tri[1]] + x[tri[2]];
+    ring = ring + sum - xv;
+    count += 2.f;
+    const Vec3 n = normals[f];
+    nsum = nsum + n;
+    if (!(norm2(n) > 0.f)) continue;
+    acc = acc + dot(n, (1.0f / 3.0f) * sum - xv) * n;
+    planes += 1.f;
+  }
+  const Vec3 p = planes > 0.f ? xv + (1.0f / planes) * acc : xv;
+  if (!(tangential_step > 0.f)) return p;
+  return p + tangential_step * tangential_from_sums(xv, ring, count, nsum, closed);
+}
+
+/// Sun et al.'s update alone (updated_vertex without the tangential share).
+FQ_HD Vec3 normal_driven_position(const FanView& m, const Vec3* x, const Vec3* normals, uint32_t v) {
+  return updated_vertex(m, x, normals, v, false, 0.f);
 }
 
 /// Step 4. Faces per partial sum of the mean normal change: fixed blocks, each summed in
@@ -171,20 +215,39 @@ FQ_HD float normal_change_block(const uint32_t* tris, uint32_t m, const Point4* 
 
 FQ_HD uint32_t normal_change_blocks(uint32_t m) { return (m + kNormalChangeBlock - 1) / kNormalChangeBlock; }
 
+/// Mean of face_normal_change over the m faces, from the block sums, added in block order.
+FQ_HD float mean_normal_change(const float* block_sums, uint32_t m) {
+  float sum = 0.f;
+  for (uint32_t k = 0; k < normal_change_blocks(m); ++k) sum += block_sums[k];
+  return sum / float(m);
+}
+
+/// 0 at or below lo, 1 at or above hi, linear between.
+FQ_HD float ramp(float r, float lo, float hi) {
+  if (r >= hi) return 1.f;
+  if (r <= lo) return 0.f;
+  return (r - lo) / (hi - lo);
+}
+
 /// How much of the result to keep, from the block sums of normal_change_block: the mean
 /// normal change r over the m faces, 0 for r <= clean_below, 1 for r >= full_above, linear
 /// between. full_above <= 0 turns the guard off (1).
 FQ_HD float refine_strength(const float* block_sums, uint32_t m, float clean_below, float full_above) {
   if (!(full_above > 0.f) || m == 0) return 1.f;
-  float sum = 0.f;
-  for (uint32_t k = 0; k < normal_change_blocks(m); ++k) sum += block_sums[k];
-  const float r = sum / float(m);
-  if (r >= full_above) return 1.f;
-  if (r <= clean_below) return 0.f;
-  return (r - clean_below) / (full_above - clean_below);
+  return ramp(mean_normal_change(block_sums, m), clean_below, full_above);
+}
+
+/// Step 5. Share of the rough-input result in the output: 0 for r <= rough_from, 1 for
+/// r >= rough_full, linear between; 0 when rough_full <= 0 (off).
+FQ_HD float rough_weight(const float* block_sums, uint32_t m, float rough_from, float rough_full) {
+  if (!(rough_full > 0.f) || m == 0) return 0.f;
+  return ramp(mean_normal_change(block_sums, m), rough_from, rough_full);
 }
 
 /// The input moved `alpha` of the way to the result.
 FQ_HD Vec3 guarded_position(Point4 in, Vec3 out, float alpha) { return xyz(in) + alpha * (out - xyz(in)); }
+
+/// `a` moved `t` of the way to `b`.
+FQ_HD Vec3 blended_position(Vec3 a, Vec3 b, float t) { return a + t * (b - a); }
 
 }  // namespace fq

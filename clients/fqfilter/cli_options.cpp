@@ -46,10 +46,19 @@ void add_refine_options(CLI::App& app, RefineParams& r) {
   app.add_option("--normal-sigma-r", r.normal_sigma_r, "Range extent of the normal filter (|n_i - n_j|)");
   app.add_option("--vertex-iterations", r.vertex_iterations,
                  "Normal-driven vertex update passes (Sun et al. 2007)");
+  app.add_option("--tangential-step", r.tangential_step,
+                 "Per vertex update, share of the move to the 1-ring mean within the filtered tangent plane");
   app.add_option("--clean-below", r.clean_below,
                  "Mean face-normal change (rad) at or below which the input is kept (a clean input)");
   app.add_option("--full-above", r.full_above,
                  "Mean face-normal change (rad) at or above which the full result is kept; 0 = no guard");
+  app.add_option("--rough-from", r.rough_from,
+                 "Mean face-normal change (rad) from which the refinement also runs on the input itself (rough input)");
+  app.add_option("--rough-full", r.rough_full,
+                 "Mean face-normal change (rad) from which that rough-input result is kept alone; 0 = off");
+  app.add_option("--rough-normal-sigma-r", r.rough_normal_sigma_r, "Range extent of the rough-input normal filter");
+  app.add_option("--rough-rounds", r.rough_rounds, "Rounds of normal filtering and vertex updates on rough input");
+  app.add_option("--rough-vertex-iterations", r.rough_vertex_iterations, "Vertex update passes per rough round");
 }
 
 void add_cluster_control_options(CLI::App& app, Options& o, std::string& geometry) {

@@ -31,8 +31,14 @@ nlohmann::json refine_json(const RefineParams& r) {
           {"normal_sigma_s", as_typed(r.normal_sigma_s)},
           {"normal_sigma_r", as_typed(r.normal_sigma_r)},
           {"vertex_iterations", r.vertex_iterations},
+          {"tangential_step", as_typed(r.tangential_step)},
           {"clean_below", as_typed(r.clean_below)},
-          {"full_above", as_typed(r.full_above)}};
+          {"full_above", as_typed(r.full_above)},
+          {"rough_from", as_typed(r.rough_from)},
+          {"rough_full", as_typed(r.rough_full)},
+          {"rough_normal_sigma_r", as_typed(r.rough_normal_sigma_r)},
+          {"rough_rounds", r.rough_rounds},
+          {"rough_vertex_iterations", r.rough_vertex_iterations}};
 }
 
 nlohmann::json params_json(const Params& p) {

@@ -15,7 +15,9 @@ struct RefineBuffers {
   DeviceBuffer<uint8_t> closed;  ///< closed_fan per vertex
   DeviceBuffer<TriangleGeom> geom;
   DeviceBuffer<Vec3> normals[2];
-  DeviceBuffer<float> change;  ///< clean-input guard: block sums, then the strength in the last slot
+  DeviceBuffer<float> change;  ///< block sums, then the guard's strength and the rough-input weight
+  DeviceBuffer<Vec3> fine;     ///< the fine run's result while the rough-input run goes
+  PinnedBuffer<float> h_rough;  ///< the rough-input weight, read back
 };
 
 /// Refines f.moved in place (sorted order), one launch per pass as the CPU's passes.

@@ -34,11 +34,29 @@ TEST_F(CudaRefineParity, CleanInputGuard) {
   Params partial = refined();
   partial.filtering.refine.clean_below = 0.f;
   partial.filtering.refine.full_above = 3.f;
+  partial.filtering.refine.rough_full = 0.f;  // rough_from must not lie below full_above
   Mesh noisy = make_icosphere(5);
   add_gaussian_noise(noisy, 0.3, 7);
   expect_parity_for_each(*cpu_, noisy.view(), partial, kKernelPaths);
   Mesh shapes[] = {make_cube(16), make_icosphere(5)};
   for (Mesh& m : shapes) expect_parity_for_each(*cpu_, m.view(), refined(), kKernelPaths);
+}
+
+// The rough-input run (step 5): taken in full (over rough_full) and blended with the fine
+// run (r between rough_from and rough_full).
+TEST_F(CudaRefineParity, RoughInputRun) {
+  Params full = refined();
+  full.filtering.refine.rough_from = 0.2f;
+  full.filtering.refine.rough_full = 0.21f;
+  Params blended = refined();
+  blended.filtering.refine.rough_from = 0.2f;
+  blended.filtering.refine.rough_full = 3.f;
+  Mesh shapes[] = {make_cube(16), make_icosphere(5)};
+  for (Mesh& m : shapes) {
+    add_gaussian_noise(m, 0.3, 7);
+    expect_parity_for_each(*cpu_, m.view(), full, kKernelPaths);
+    expect_parity_for_each(*cpu_, m.view(), blended, kKernelPaths);
+  }
 }
 
 TEST_F(CudaRefineParity, RealMeshesWithNoise) {

@@ -146,6 +146,25 @@ TEST(FqfilterCli, CleanInputGuard) {
   EXPECT_GT(mfne_of({*bunny, "--reference", *bunny, "--full-above", "0"}), 0.06);
 }
 
+// The rough-input run: fandisk at noise 0.6 (mean normal change about 1.2 rad, over
+// rough_full) is filtered better with it than without (measured 0.194 against 0.239 rad).
+TEST(FqfilterCli, RoughInputRun) {
+  fq::test::ScratchDir dir;
+  auto run = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = {kFandisk, "--noise", "0.6", "--seed", "7", "--engine", "cpu", "--threads", "2",
+                                     "--json"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const RunResult r = run_fqfilter(args, dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  const nlohmann::json on = run({}), off = run({"--rough-full", "0"});
+  EXPECT_FLOAT_EQ(on.at("params").at("refine").at("rough_full").get<float>(), 0.85f);
+  EXPECT_EQ(off.at("params").at("refine").at("rough_full").get<float>(), 0.f);
+  EXPECT_LT(on.at("metrics").at("output").at("mfne_rad").get<double>(),
+            0.9 * off.at("metrics").at("output").at("mfne_rad").get<double>());
+}
+
 TEST(FqfilterCli, TargetClustersReportsThetaAndSharpEdgeRecall) {
   fq::test::ScratchDir dir;
   const RunResult r = run_fqfilter({kFandisk, "--engine", "cpu", "--threads", "2", "--no-filter", "--target-clusters",

@@ -49,6 +49,23 @@ TEST(KernelParams, FilterSigmasMustBePositiveAndFinite) {
   }
 }
 
+TEST(KernelParams, RefinementTangentialAndRoughBoundsAreChecked) {
+  Params p;
+  p.filtering.refine.tangential_step = 1.5f;
+  expect_rejected(p, "tangential_step");
+  p = Params{};
+  p.filtering.refine.rough_from = 0.1f;  // below full_above (0.2)
+  expect_rejected(p, "rough_from");
+  p.filtering.refine.rough_full = 0.f;  // off: rough_from is not used
+  EXPECT_TRUE(validate(p).ok());
+  p = Params{};
+  p.filtering.refine.rough_rounds = -1;
+  expect_rejected(p, "rough_rounds");
+  p = Params{};
+  p.filtering.refine.rough_normal_sigma_r = kNaN;
+  expect_rejected(p, "rough_normal_sigma_r");
+}
+
 TEST(KernelParams, OptionalSigmasAcceptZeroAsDefault) {
   for (const char* name : {"sigma_b", "sigma_n"}) {
     Params p;

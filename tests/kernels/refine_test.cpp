@@ -166,6 +166,63 @@ TEST(KernelRefine, GuardStrengthIsLinearBetweenItsBounds) {
   EXPECT_EQ(mid.z, -0.5f);
 }
 
+// The rough-input weight: 0 up to rough_from, 1 from rough_full, linear between; off at 0.
+TEST(KernelRefine, RoughWeightIsLinearBetweenItsBounds) {
+  const uint32_t m = kNormalChangeBlock + 10;
+  auto weight = [&](float r, float lo, float hi) {
+    const float sums[2] = {r * kNormalChangeBlock, r * 10};
+    return rough_weight(sums, m, lo, hi);
+  };
+  EXPECT_EQ(weight(0.5f, 0.75f, 0.85f), 0.f);
+  EXPECT_NEAR(weight(0.8f, 0.75f, 0.85f), 0.5f, 1e-4f);
+  EXPECT_EQ(weight(0.9f, 0.75f, 0.85f), 1.f);
+  EXPECT_EQ(weight(0.9f, 0.75f, 0.f), 0.f);
+  const Vec3 q = blended_position(Vec3{1.f, 2.f, 3.f}, Vec3{3.f, 2.f, -1.f}, 0.25f);
+  EXPECT_EQ(q.x, 1.5f);
+  EXPECT_EQ(q.y, 2.f);
+  EXPECT_EQ(q.z, 2.f);
+}
+
+// On a flat grid whose filtered normals are the plane's, the vertex update's tangential
+// move takes a vertex pushed sideways back toward its 1-ring mean and never off the plane;
+// a boundary vertex gets none.
+TEST(KernelRefine, TangentialMoveStaysInTheFilteredPlane) {
+  Fan f = fan_of(test::make_plane_grid(4, 4));
+  const uint32_t centre = 12;  // (2, 2)
+  ASSERT_NEAR(f.x[centre].x, 2.f, 1e-6f);
+  ASSERT_NEAR(f.x[centre].y, 2.f, 1e-6f);
+  f.x[centre] = Vec3{2.3f, 1.8f, 0.f};
+  const std::vector<Vec3> up(f.tris.size() / 3, Vec3{0.f, 0.f, 1.f});
+  const Vec3 d = tangential_ring_move(f.view(), f.x.data(), up.data(), centre, closed_fan(f.view(), centre));
+  EXPECT_EQ(d.z, 0.f);
+  EXPECT_LT(d.x, 0.f);  // back toward x = 2
+  EXPECT_GT(d.y, 0.f);  // and y = 2
+  const Vec3 p = updated_vertex(f.view(), f.x.data(), up.data(), centre, true, 0.5f);
+  EXPECT_EQ(p.z, 0.f);
+  EXPECT_NEAR(p.x, f.x[centre].x + 0.5f * d.x, 1e-6f);
+  const Vec3 none = tangential_ring_move(f.view(), f.x.data(), up.data(), 0, closed_fan(f.view(), 0));
+  EXPECT_EQ(norm2(none), 0.f);
+}
+
+// Very rough input (mean normal change over rough_full) takes the rough-input run, whose
+// result differs from the fine run's and is as deterministic across thread counts.
+TEST(KernelRefine, RoughInputRunsOnTheInputItself) {
+  Mesh m = test::make_icosphere(4);
+  add_gaussian_noise(m, 0.3, 3);
+  Params rough;
+  rough.filtering.refine.rough_from = 0.2f;
+  rough.filtering.refine.rough_full = 0.21f;
+  Params fine = rough;
+  fine.filtering.refine.rough_full = 0.f;
+  FrameResult a, b, c;
+  CpuEngine e1(1), e3(3);
+  ASSERT_TRUE(e1.process(m.view(), rough, a).ok());
+  ASSERT_TRUE(e3.process(m.view(), rough, b).ok());
+  ASSERT_TRUE(e1.process(m.view(), fine, c).ok());
+  EXPECT_EQ(std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(float)), 0);
+  EXPECT_GT(test::max_displacement(a.positions, c.positions), 1e-4);
+}
+
 TEST(KernelRefine, RefinementBeatsThePapersFilterOnANoisyCube) {
   const Mesh clean = test::make_cube(12);
   Mesh noisy = clean;
