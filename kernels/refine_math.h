@@ -157,9 +157,9 @@ FQ_HD Vec3 filtered_face_normal(const FanView& m, const TriangleGeom* geom, cons
 }
 
 /// Eigenvalue ratios λ_k / λ_max of the filtered normals' tensor Σ_f n_f n_fᵀ (v's faces) over
-/// which the vertex update's tangential share fades out along e_k. A crease of dihedral angle
-/// θ with its faces split evenly gives λ_2 / λ_max = tan²(θ/2): the share across it starts to
-/// fade at 42° and is gone from 76° on. Measured on the peer table (docs/QUALITY.md): a lower
+/// which the vertex update's tangential share fades out along e_k. A crease whose two sides'
+/// normals differ by θ, its faces split evenly, gives λ_2 / λ_max = tan²(θ/2): the share across
+/// it starts to fade at θ = 42° and is gone from 76° on. Measured on the peer table (docs/QUALITY.md): a lower
 /// end rounds fewer CAD edges (fandisk) but takes the share from curved scan regions
 /// (max_planck), whose filtered normals spread too.
 constexpr float kCrossingFadeFrom = 0.15f;
