@@ -9,6 +9,7 @@
 #include "kernels/frame_prep.h"
 #include "kernels/grid_build.h"
 #include "kernels/quadric.h"
+#include "kernels/refine_math.h"
 #include "kernels/triangle_math.h"
 #include "kernels/vec3.h"
 
@@ -31,6 +32,7 @@ struct CpuFrame {
   std::vector<uint8_t> refine_closed;  ///< closed_fan per vertex
   std::vector<TriangleGeom> refine_geom;
   std::vector<Vec3> refine_n[2];
+  std::vector<FreeDirections> refine_free;  ///< per vertex, per round of the vertex update
   std::vector<float> refine_change;  ///< block sums of the clean-input guard
   std::vector<Vec3> refine_fine;     ///< the fine run's result while the rough-input run goes
   // Bilateral baseline: triangles in centroid-grid order.

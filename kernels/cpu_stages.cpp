@@ -130,9 +130,13 @@ void run_refinement(CpuFrame& f, const FanView& fan, const RefineSchedule& s, in
       parallel_for(m, threads, [&](uint32_t t) { out[t] = filtered_face_normal(fan, f.refine_geom.data(), in, t, s.gs, s.gr); });
     }
     const Vec3* normals = f.refine_n[s.normal_iterations & 1].data();
+    f.refine_free.resize(n);
+    parallel_for(n, threads, [&](uint32_t v) {
+      f.refine_free[v] = free_directions(fan, normals, v, f.refine_closed[v] != 0);
+    });
     for (int it = 0; it < s.vertex_iterations; ++it) {
       vertex_pass([&](const Vec3* x, uint32_t v) {
-        return updated_vertex(fan, x, normals, v, f.refine_closed[v] != 0, s.tangential_step);
+        return updated_vertex(fan, x, normals, v, f.refine_free[v], s.tangential_step);
       });
     }
   }

@@ -8,8 +8,9 @@
 //      al. 2011) over the faces sharing a vertex;
 //   3. updated_vertex: one iteration of Sun et al. 2007's vertex update, which moves each
 //      vertex onto the planes of its filtered incident faces, plus a share of the move to
-//      its 1-ring mean within the filtered tangent plane (keeps triangles from collapsing
-//      into slivers whose normals no longer follow the surface);
+//      its 1-ring mean in the directions its filtered normals leave free (keeps triangles
+//      from collapsing into slivers whose normals no longer follow the surface, without
+//      rounding creases);
 //   4. the clean-input guard: the mean change of the face normals between the input and the
 //      result measures how rough the input was at the filter's scale; below `clean_below`
 //      the input is kept, above `full_above` the result, linearly in between;
@@ -39,9 +40,36 @@ struct FanView {
   const uint32_t* vf_faces;
 };
 
+/// A sum Σ s n nᵀ (upper triangle): a normal tensor, or a projector on eigen-directions.
+struct OuterSum {
+  float t00 = 0.f, t01 = 0.f, t02 = 0.f, t11 = 0.f, t12 = 0.f, t22 = 0.f;
+  FQ_HD void add(Vec3 n, float s) {
+    t00 += s * n.x * n.x; t01 += s * n.x * n.y; t02 += s * n.x * n.z;
+    t11 += s * n.y * n.y; t12 += s * n.y * n.z; t22 += s * n.z * n.z;
+  }
+  FQ_HD Sym3Eigen eigen() const { return sym3_eigen(t00, t01, t02, t11, t12, t22); }
+  FQ_HD Vec3 apply(Vec3 d) const {
+    return Vec3{t00 * d.x + t01 * d.y + t02 * d.z, t01 * d.x + t11 * d.y + t12 * d.z,
+                t02 * d.x + t12 * d.y + t22 * d.z};
+  }
+};
+
 namespace detail {
 
 FQ_HD bool has_vertex(const uint32_t* tri, uint32_t v) { return tri[0] == v || tri[1] == v || tri[2] == v; }
+
+FQ_HD float largest(const Sym3Eigen& e) {
+  const float l01 = e.values[0] > e.values[1] ? e.values[0] : e.values[1];
+  return l01 > e.values[2] ? l01 : e.values[2];
+}
+
+/// How free a normal tensor leaves the direction of its eigenvalue l (lmax the largest, > 0):
+/// 1 below lo × lmax, 0 from hi × lmax on, linear between (lo = hi: a hard cut).
+FQ_HD float free_weight(float l, float lmax, float lo, float hi) {
+  return l < lo * lmax ? 1.f : l >= hi * lmax ? 0.f : (hi * lmax - l) / ((hi - lo) * lmax);
+}
+
+FQ_HD Vec3 eigenvector(const Sym3Eigen& e, int k) { return Vec3{e.vectors[0][k], e.vectors[1][k], e.vectors[2][k]}; }
 
 }  // namespace detail
 
@@ -73,7 +101,7 @@ FQ_HD Vec3 relaxed_position(const FanView& m, const Vec3* x, uint32_t v, bool cl
                             float feature_ratio) {
   const Vec3 xv = x[v];
   if (!closed) return xv;
-  float t00 = 0.f, t01 = 0.f, t02 = 0.f, t11 = 0.f, t12 = 0.f, t22 = 0.f;
+  OuterSum t;
   Vec3 ring{0.f, 0.f, 0.f};
   float count = 0.f;
   for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
@@ -81,24 +109,19 @@ FQ_HD Vec3 relaxed_position(const FanView& m, const Vec3* x, uint32_t v, bool cl
     const Vec3 a = x[tri[0]], b = x[tri[1]], c = x[tri[2]];
     const Vec3 n2 = cross(b - a, c - a);  // 2 a_f n_f
     const float len = std::sqrt(norm2(n2));
-    if (len > 1e-12f) {
-      const float s = 0.5f / len;  // a_f n nᵀ = n2 n2ᵀ / (2 |n2|)
-      t00 += s * n2.x * n2.x; t01 += s * n2.x * n2.y; t02 += s * n2.x * n2.z;
-      t11 += s * n2.y * n2.y; t12 += s * n2.y * n2.z; t22 += s * n2.z * n2.z;
-    }
+    if (len > 1e-12f) t.add(n2, 0.5f / len);  // a_f n nᵀ = n2 n2ᵀ / (2 |n2|)
     ring = ring + (a + b + c) - xv;  // the two other corners (each neighbour twice)
     count += 2.f;
   }
-  const Sym3Eigen e = sym3_eigen(t00, t01, t02, t11, t12, t22);
-  const float l01 = e.values[0] > e.values[1] ? e.values[0] : e.values[1];
-  const float lmax = l01 > e.values[2] ? l01 : e.values[2];
+  const Sym3Eigen e = t.eigen();
+  const float lmax = detail::largest(e);
   if (!(lmax > 0.f)) return xv;
   const Vec3 d = (1.0f / count) * ring - xv;
   Vec3 move{0.f, 0.f, 0.f};
 FQ_UNROLL
   for (int k = 0; k < 3; ++k) {
-    if (e.values[k] < feature_ratio * lmax) {
-      const Vec3 ek{e.vectors[0][k], e.vectors[1][k], e.vectors[2][k]};
+    if (detail::free_weight(e.values[k], lmax, feature_ratio, feature_ratio) > 0.f) {
+      const Vec3 ek = detail::eigenvector(e, k);
       move = move + dot(ek, d) * ek;
     }
   }
@@ -133,40 +156,64 @@ FQ_HD Vec3 filtered_face_normal(const FanView& m, const TriangleGeom* geom, cons
   return norm2(n) > 0.f ? n : nf;
 }
 
-/// Tangential part of the move from x_v to its 1-ring mean, in the plane normal to the sum of
-/// the filtered normals of its faces, from the sums over v's triangles: `ring` of the two other
-/// corners of each (each neighbour twice), `count` = 2 × the triangles, `nsum` of the filtered
-/// normals. Zero on an open fan (boundary, non-manifold).
-FQ_HD Vec3 tangential_from_sums(Vec3 xv, Vec3 ring, float count, Vec3 nsum, bool closed) {
-  if (!closed || !(count > 0.f)) return Vec3{0.f, 0.f, 0.f};
-  const Vec3 n = normalized_or_zero(nsum);
-  const Vec3 d = (1.0f / count) * ring - xv;
-  return d - dot(d, n) * n;
+/// Eigenvalue ratios λ_k / λ_max of the filtered normals' tensor Σ_f n_f n_fᵀ (v's faces) over
+/// which the vertex update's tangential share fades out along e_k. A crease whose two sides'
+/// normals differ by θ, its faces split evenly, gives λ_2 / λ_max = tan²(θ/2): the share across
+/// it starts to fade at θ = 42° and is gone from 76° on. Measured on the peer table (docs/QUALITY.md): a lower
+/// end rounds fewer CAD edges (fandisk) but takes the share from curved scan regions
+/// (max_planck), whose filtered normals spread too.
+constexpr float kCrossingFadeFrom = 0.15f;
+constexpr float kCrossingGoneAt = 0.6f;
+
+/// The directions in which the vertex update's tangential share may move v: the projector
+/// Σ_k w_k e_k e_kᵀ (upper triangle) over the eigenvectors of its filtered normals' tensor
+/// T = Σ_f n_f n_fᵀ, w_k = detail::free_weight between kCrossingFadeFrom and kCrossingGoneAt:
+/// the tangent plane on a smooth region, the crease line on a crease, nothing at a corner,
+/// never the normal. Moving across a crease toward the 1-ring mean would round it. Zero on
+/// an open fan (boundary, non-manifold). The normals are fixed over a round's vertex
+/// updates, so it is computed once per round.
+using FreeDirections = OuterSum;
+
+/// FreeDirections of v from the filtered normals. `closed` is closed_fan(m, v).
+FQ_HD FreeDirections free_directions(const FanView& m, const Vec3* normals, uint32_t v, bool closed) {
+  FreeDirections p;
+  if (!closed) return p;
+  OuterSum t;
+  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) t.add(normals[m.vf_faces[k]], 1.f);
+  const Sym3Eigen e = t.eigen();
+  const float lmax = detail::largest(e);
+  if (!(lmax > 0.f)) return p;
+FQ_UNROLL
+  for (int k = 0; k < 3; ++k) {
+    const float w = detail::free_weight(e.values[k], lmax, kCrossingFadeFrom, kCrossingGoneAt);
+    p.add(detail::eigenvector(e, k), w);
+  }
+  return p;
 }
 
-/// tangential_from_sums over v's fan at x.
-FQ_HD Vec3 tangential_ring_move(const FanView& m, const Vec3* x, const Vec3* normals, uint32_t v, bool closed) {
+/// The tangential move of the vertex update: from x_v to its 1-ring mean, in v's free
+/// directions (`dirs` = free_directions of v).
+FQ_HD Vec3 tangential_ring_move(const FanView& m, const Vec3* x, uint32_t v, const FreeDirections& dirs) {
   const Vec3 xv = x[v];
-  Vec3 ring{0.f, 0.f, 0.f}, nsum{0.f, 0.f, 0.f};
+  Vec3 ring{0.f, 0.f, 0.f};
   float count = 0.f;
   for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
     const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[k]);
     ring = ring + (x[tri[0]] + x[tri[1]] + x[tri[2]]) - xv;
     count += 2.f;
-    nsum = nsum + normals[m.vf_faces[k]];
   }
-  return tangential_from_sums(xv, ring, count, nsum, closed);
+  return count > 0.f ? dirs.apply((1.0f / count) * ring - xv) : Vec3{0.f, 0.f, 0.f};
 }
 
 /// Step 3. One iteration of Sun et al. 2007 (eq. 8), the positions moved onto the planes
 /// of the filtered normals: x_v + 1/|F_v| Σ_{f∋v} n_f (n_f · (c_f − x_v)), c_f the current
 /// centroid, faces with a zero normal (degenerate) skipped; plus `tangential_step` ×
 /// tangential_ring_move, read from the same iterate in the same walk over v's triangles.
-/// `closed` is closed_fan(m, v).
-FQ_HD Vec3 updated_vertex(const FanView& m, const Vec3* x, const Vec3* normals, uint32_t v, bool closed,
-                          float tangential_step) {
+/// `dirs` is free_directions of v.
+FQ_HD Vec3 updated_vertex(const FanView& m, const Vec3* x, const Vec3* normals, uint32_t v,
+                          const FreeDirections& dirs, float tangential_step) {
   const Vec3 xv = x[v];
-  Vec3 acc{0.f, 0.f, 0.f}, ring{0.f, 0.f, 0.f}, nsum{0.f, 0.f, 0.f};
+  Vec3 acc{0.f, 0.f, 0.f}, ring{0.f, 0.f, 0.f};
   float planes = 0.f, count = 0.f;
   for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
     const uint32_t f = m.vf_faces[k];
@@ -175,19 +222,19 @@ FQ_HD Vec3 updated_vertex(const FanView& m, const Vec3* x, const Vec3* normals, 
     ring = ring + sum - xv;
     count += 2.f;
     const Vec3 n = normals[f];
-    nsum = nsum + n;
     if (!(norm2(n) > 0.f)) continue;
     acc = acc + dot(n, (1.0f / 3.0f) * sum - xv) * n;
     planes += 1.f;
   }
   const Vec3 p = planes > 0.f ? xv + (1.0f / planes) * acc : xv;
   if (!(tangential_step > 0.f)) return p;
-  return p + tangential_step * tangential_from_sums(xv, ring, count, nsum, closed);
+  if (!(count > 0.f)) return p;
+  return p + tangential_step * dirs.apply((1.0f / count) * ring - xv);
 }
 
 /// Sun et al.'s update alone (updated_vertex without the tangential share).
 FQ_HD Vec3 normal_driven_position(const FanView& m, const Vec3* x, const Vec3* normals, uint32_t v) {
-  return updated_vertex(m, x, normals, v, false, 0.f);
+  return updated_vertex(m, x, normals, v, FreeDirections{}, 0.f);
 }
 
 /// Step 4. Faces per partial sum of the mean normal change: fixed blocks, each summed in

@@ -38,10 +38,16 @@ __global__ void normal_filter_kernel(uint32_t m, FanView fan, const TriangleGeom
   if (t < m) out[t] = filtered_face_normal(fan, geom, in, t, gs, gr);
 }
 
-__global__ void vertex_update_kernel(uint32_t n, FanView fan, const Vec3* x, const Vec3* normals,
-                                     const uint8_t* closed, float tangential_step, Vec3* out) {
+__global__ void free_directions_kernel(uint32_t n, FanView fan, const Vec3* normals, const uint8_t* closed,
+                                      FreeDirections* out) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
-  if (v < n) out[v] = updated_vertex(fan, x, normals, v, closed[v] != 0, tangential_step);
+  if (v < n) out[v] = free_directions(fan, normals, v, closed[v] != 0);
+}
+
+__global__ void vertex_update_kernel(uint32_t n, FanView fan, const Vec3* x, const Vec3* normals,
+                                     const FreeDirections* dirs, float tangential_step, Vec3* out) {
+  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  if (v < n) out[v] = updated_vertex(fan, x, normals, v, dirs[v], tangential_step);
 }
 
 __global__ void normal_change_kernel(uint32_t blocks, uint32_t m, const uint32_t* tris, const Point4* in,
@@ -85,6 +91,7 @@ void run_refinement(DeviceFrame& f, RefineBuffers& b, const FanView& fan, const 
   }
   Vec3* normals[2] = {b.normals[0].reserve(m), b.normals[1].reserve(m)};
   TriangleGeom* geom = b.geom.reserve(m);
+  FreeDirections* dirs = b.dirs.reserve(n);
   for (int round = 0; round < r.rounds; ++round) {
     face_geometry_kernel<<<blocks_for(m), block_size(), 0, s>>>(m, f.tris.data(), f.moved.data(), geom, normals[0]);
     FQ_CUDA_CHECK_LAUNCH("face_geometry_kernel");
@@ -94,8 +101,10 @@ void run_refinement(DeviceFrame& f, RefineBuffers& b, const FanView& fan, const 
       FQ_CUDA_CHECK_LAUNCH("normal_filter_kernel");
     }
     const Vec3* filtered = normals[r.normal_iterations & 1];
+    free_directions_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, fan, filtered, b.closed.data(), dirs);
+    FQ_CUDA_CHECK_LAUNCH("free_directions_kernel");
     for (int it = 0; it < r.vertex_iterations; ++it) {
-      vertex_update_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, fan, f.moved.data(), filtered, b.closed.data(),
+      vertex_update_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, fan, f.moved.data(), filtered, dirs,
                                                                   r.tangential_step, b.x.data());
       FQ_CUDA_CHECK_LAUNCH("vertex_update_kernel");
       std::swap(f.moved, b.x);
@@ -109,7 +118,7 @@ void refine_positions(DeviceFrame& f, RefineBuffers& b, const RefineParams& r, c
   const uint32_t n = f.n, m = f.m;
   const FanView fan{f.tris.data(), f.vf_start.data(), f.vf_faces.data()};
   b.x.reserve(n);
-  // The vertex update's tangential move reads it too.
+  // The vertex update's free directions read it too.
   closed_fan_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, fan, b.closed.reserve(n));
   FQ_CUDA_CHECK_LAUNCH("closed_fan_kernel");
   run_refinement(f, b, fan, fine_schedule(r), s);

@@ -6,6 +6,7 @@
 
 #include "kernels/cuda/device_frame.cuh"
 #include "kernels/params.h"
+#include "kernels/refine_math.h"
 
 namespace fq::cuda {
 
@@ -15,6 +16,7 @@ struct RefineBuffers {
   DeviceBuffer<uint8_t> closed;  ///< closed_fan per vertex
   DeviceBuffer<TriangleGeom> geom;
   DeviceBuffer<Vec3> normals[2];
+  DeviceBuffer<FreeDirections> dirs;  ///< free_directions per vertex, per round
   DeviceBuffer<float> change;  ///< block sums, then the guard's strength and the rough-input weight
   DeviceBuffer<Vec3> fine;     ///< the fine run's result while the rough-input run goes
   PinnedBuffer<float> h_rough;  ///< the rough-input weight, read back

@@ -193,15 +193,46 @@ TEST(KernelRefine, TangentialMoveStaysInTheFilteredPlane) {
   ASSERT_NEAR(f.x[centre].y, 2.f, 1e-6f);
   f.x[centre] = Vec3{2.3f, 1.8f, 0.f};
   const std::vector<Vec3> up(f.tris.size() / 3, Vec3{0.f, 0.f, 1.f});
-  const Vec3 d = tangential_ring_move(f.view(), f.x.data(), up.data(), centre, closed_fan(f.view(), centre));
+  const FreeDirections dirs = free_directions(f.view(), up.data(), centre, closed_fan(f.view(), centre));
+  const Vec3 d = tangential_ring_move(f.view(), f.x.data(), centre, dirs);
   EXPECT_EQ(d.z, 0.f);
   EXPECT_LT(d.x, 0.f);  // back toward x = 2
   EXPECT_GT(d.y, 0.f);  // and y = 2
-  const Vec3 p = updated_vertex(f.view(), f.x.data(), up.data(), centre, true, 0.5f);
+  const Vec3 p = updated_vertex(f.view(), f.x.data(), up.data(), centre, dirs, 0.5f);
   EXPECT_EQ(p.z, 0.f);
   EXPECT_NEAR(p.x, f.x[centre].x + 0.5f * d.x, 1e-6f);
-  const Vec3 none = tangential_ring_move(f.view(), f.x.data(), up.data(), 0, closed_fan(f.view(), 0));
+  const Vec3 none =
+      tangential_ring_move(f.view(), f.x.data(), 0, free_directions(f.view(), up.data(), 0, closed_fan(f.view(), 0)));
   EXPECT_EQ(norm2(none), 0.f);
+}
+
+// On a cube edge whose filtered normals are the two faces', the tangential move keeps only
+// its part along the edge: moving across toward the 1-ring mean would round the crease (the
+// move within the plane normal to the faces' mean normal did). At a corner it is zero.
+TEST(KernelRefine, TangentialMoveRunsAlongACreaseOnly) {
+  Fan f = fan_of(test::make_cube(4));
+  std::vector<Vec3> faces(f.tris.size() / 3);
+  for (uint32_t t = 0; t < faces.size(); ++t) faces[t] = normal_of(f, t);
+  uint32_t v = 0;
+  for (; v < f.x.size(); ++v) {
+    const Vec3 p = f.x[v];
+    if (p.x == 1.f && p.y == 1.f && std::fabs(p.z) < 0.9f) break;
+  }
+  ASSERT_LT(v, f.x.size());
+  ASSERT_TRUE(closed_fan(f.view(), v));
+  f.x[v] = f.x[v] + Vec3{-0.1f, 0.f, 0.2f};  // off the edge into the face y = 1, and along it
+  const Vec3 d = tangential_ring_move(f.view(), f.x.data(), v, free_directions(f.view(), faces.data(), v, true));
+  EXPECT_NEAR(d.x, 0.f, 1e-6f);
+  EXPECT_NEAR(d.y, 0.f, 1e-6f);
+  EXPECT_LT(d.z, -0.05f);  // back toward the middle of its ring along the edge
+  uint32_t corner = 0;
+  for (; corner < f.x.size(); ++corner) {
+    const Vec3 p = f.x[corner];
+    if (std::fabs(p.x) == 1.f && std::fabs(p.y) == 1.f && std::fabs(p.z) == 1.f) break;
+  }
+  ASSERT_LT(corner, f.x.size());
+  const FreeDirections none = free_directions(f.view(), faces.data(), corner, closed_fan(f.view(), corner));
+  EXPECT_EQ(norm2(tangential_ring_move(f.view(), f.x.data(), corner, none)), 0.f);
 }
 
 // Very rough input (mean normal change over rough_full) takes the rough-input run, whose
