@@ -184,9 +184,9 @@ void add_options(CLI::App& app, Args& a) {
   app.add_option("--gpus", a.gpus, "GPUs of the in-process fqd, one engine each (e.g. 0,1)")->delimiter(',');
   app.add_option("--cpu-threads", a.cpu_threads, "CPU engine threads (0 = all)");
   fq::client::add_defaulted(app, "--decode-threads", a.decode_threads,
-                            "fqd decode pool (0 = half the hardware threads, at least 2)");
+                            "fqd decode workers, frames decoded at once (0 = half the hardware threads, at least 2)");
   fq::client::add_defaulted(app, "--encode-threads", a.encode_threads,
-                            "fqd encode pool (0 = half the hardware threads, at least 2)");
+                            "fqd encode workers, results encoded at once (0 = half the hardware threads, at least 2)");
   app.add_option("--config", a.config, "in-process fqd from this config file (its endpoints are replaced; no HTTP, no stats lines)");
   app.add_flag("--connect", a.connect, "benchmark a running fqd at --ingest, --publish, --control");
   app.add_option("--ingest", a.ingest, "running fqd's ingest endpoint");
