@@ -5,32 +5,20 @@
 
 #include <atomic>
 #include <chrono>
-#include <cstring>
 #include <string>
 
-#include "eval/noise.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/parallel_for.h"
+#include "tests/kernels/frame_result_checks.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
 namespace {
 
+using test::expect_identical;
+using test::noisy;
+
 using Clock = CancelToken::Clock;
-
-Mesh noisy(Mesh m, uint64_t seed) {
-  add_gaussian_noise(m, 0.25, seed);
-  return m;
-}
-
-void expect_identical(const FrameResult& a, const FrameResult& b, const std::string& what) {
-  ASSERT_EQ(a.positions.size(), b.positions.size()) << what;
-  EXPECT_EQ(std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(float)), 0)
-      << what << ": positions differ";
-  EXPECT_EQ(a.labels, b.labels) << what;
-  EXPECT_EQ(a.num_clusters, b.num_clusters) << what;
-  EXPECT_EQ(a.link_parent, b.link_parent) << what;
-}
 
 std::vector<std::pair<std::string, Params>> modes() {
   Params qf;

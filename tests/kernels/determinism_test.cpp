@@ -5,33 +5,22 @@
 
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <string>
 
-#include "eval/noise.h"
+#include "tests/kernels/frame_result_checks.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
 namespace {
 
-Mesh noisy(Mesh m, uint64_t seed) {
-  add_gaussian_noise(m, 0.25, seed);
-  return m;
-}
+using test::expect_identical;
+using test::noisy;
 
 FrameResult run(CpuEngine& engine, const Mesh& mesh, const Params& p) {
   FrameResult out;
   const Status s = engine.process(mesh.view(), p, out);
   EXPECT_TRUE(s.ok()) << s.message();
   return out;
-}
-
-void expect_identical(const FrameResult& a, const FrameResult& b, const std::string& what) {
-  ASSERT_EQ(a.positions.size(), b.positions.size()) << what;
-  EXPECT_EQ(std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(float)), 0)
-      << what << ": positions differ";
-  EXPECT_EQ(a.labels, b.labels) << what;
-  EXPECT_EQ(a.num_clusters, b.num_clusters) << what;
 }
 
 std::vector<std::pair<std::string, Params>> modes() {
