@@ -50,11 +50,19 @@ __global__ void vertex_update_kernel(uint32_t n, FanView fan, const Vec3* x, con
   if (v < n) out[v] = updated_vertex(fan, x, normals, v, dirs[v], tangential_step);
 }
 
-__global__ void normal_change_kernel(uint32_t blocks, uint32_t m, const uint32_t* tris, const Point4* in,
-                                     const Vec3* out, float* sums) {
-  const uint32_t b = blockIdx.x * blockDim.x + threadIdx.x;
-  if (b < blocks) sums[b] = normal_change_block(tris, m, in, out, b);
+// One warp per block of faces: the lanes' sums added by a shuffle tree, in the order of
+// refine_math.h's normal_change_block. Launched with whole warps (kChangeThreads).
+__global__ void change_block_kernel(uint32_t blocks, uint32_t m, const uint32_t* tris, const Point4* in,
+                                    const Vec3* out, float* sums) {
+  const uint32_t block = (blockIdx.x * blockDim.x + threadIdx.x) / kChangeLanes;
+  const uint32_t lane = threadIdx.x % kChangeLanes;
+  if (block >= blocks) return;  // the same for every lane of a warp
+  float sum = normal_change_lane(tris, m, in, out, block, lane);
+  for (uint32_t apart = kChangeLanes / 2; apart > 0; apart /= 2) sum = sum + __shfl_down_sync(~0u, sum, apart);
+  if (lane == 0) sums[block] = sum;
 }
+
+constexpr uint32_t kChangeThreads = 4 * kChangeLanes;
 
 // One thread: the block sums in block order, as the CPU adds them; the guard's strength
 // goes to slot `blocks`, the rough-input weight to `blocks + 1`.
@@ -125,9 +133,9 @@ void refine_positions(DeviceFrame& f, RefineBuffers& b, const RefineParams& r, c
   if (!(r.full_above > 0.f)) return;
   const uint32_t blocks = normal_change_blocks(m);
   float* change = b.change.reserve(blocks + 2);
-  normal_change_kernel<<<blocks_for(blocks), block_size(), 0, s>>>(blocks, m, f.tris.data(), f.points.data(),
-                                                                   f.moved.data(), change);
-  FQ_CUDA_CHECK_LAUNCH("normal_change_kernel");
+  change_block_kernel<<<(blocks + kChangeThreads / kChangeLanes - 1) / (kChangeThreads / kChangeLanes),
+                        kChangeThreads, 0, s>>>(blocks, m, f.tris.data(), f.points.data(), f.moved.data(), change);
+  FQ_CUDA_CHECK_LAUNCH("change_block_kernel");
   const bool rough_on = rough_path_on(r);
   strength_kernel<<<1, 1, 0, s>>>(blocks, m, r.clean_below, r.full_above, rough_on ? r.rough_from : 0.f,
                                   rough_on ? r.rough_full : 0.f, change);
