@@ -5,7 +5,7 @@
 
 #include "clients/common/defaulted_option.h"
 #include "clients/common/member_options.h"
-#include "common/version.h"
+#include "clients/common/tool_app.h"
 
 namespace fq::cli {
 
@@ -138,9 +138,9 @@ std::string check_params(const Options& o) { return validate(o.params).message()
 }  // namespace
 
 ParseOutcome parse_options(int argc, char** argv, Options& o) {
-  CLI::App app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
-               "fqfilter"};
-  app.set_version_flag("--version", fq::version_line("fqfilter"));
+  client::ToolApp app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
+                      "fqfilter"};
+  app.name("fqfilter");  // "Usage: fqfilter", whatever path it was started by
   std::string mode = method_name(o.params.filtering.method), method = method_name(o.params.clustering.method), engine = "auto",
               geometry = "auto";
   bool no_filter = false;
