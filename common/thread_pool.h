@@ -23,15 +23,15 @@
 #include <thread>
 #include <vector>
 
+#include "common/non_copyable.h"
+
 namespace fq {
 
-class ThreadPool {
+class ThreadPool : NonCopyable {
  public:
   /// A pool of `workers` threads (0: every loop runs on its caller).
   explicit ThreadPool(int workers);
   ~ThreadPool();
-  ThreadPool(const ThreadPool&) = delete;
-  ThreadPool& operator=(const ThreadPool&) = delete;
 
   /// The process-wide pool: hardware threads - 1 workers (the caller is the last core).
   /// Started on first use; its threads end with the process.

@@ -10,6 +10,7 @@
 #include <zmq.hpp>
 
 #include "common/curve_keys.h"
+#include "common/non_copyable.h"
 #include "common/status.h"
 #include "daemon/stream_admission.h"
 
@@ -36,12 +37,10 @@ bool is_local_endpoint(const std::string& endpoint);
 
 /// Answers ZAP requests on one context: 200 for an allow-listed client key, 400 (counted as
 /// a refusal) for anything else.
-class ZapHandler {
+class ZapHandler : NonCopyable {
  public:
   ZapHandler(zmq::context_t& context, std::set<std::string> allowed, RefusalCounters& refusals);
   ~ZapHandler();
-  ZapHandler(const ZapHandler&) = delete;
-  ZapHandler& operator=(const ZapHandler&) = delete;
   /// Joins the thread; call after the context was shut down or closed.
   void join();
 

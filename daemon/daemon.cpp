@@ -6,6 +6,7 @@
 #include <condition_variable>
 #include <mutex>
 
+#include "common/non_copyable.h"
 #include "daemon/control_server.h"
 #include "daemon/ingest.h"
 #include "daemon/publisher.h"
@@ -20,7 +21,7 @@ constexpr int kPublishLingerMs = 2000;
 
 // Sets `flag` after `delay` on a thread of its own unless disarmed first (destruction
 // disarms and joins).
-class Alarm {
+class Alarm : NonCopyable {
  public:
   Alarm(std::chrono::duration<double> delay, std::atomic<bool>& flag)
       : thread_([this, delay, &flag] {
@@ -35,8 +36,6 @@ class Alarm {
     disarmed_cv_.notify_all();
     thread_.join();
   }
-  Alarm(const Alarm&) = delete;
-  Alarm& operator=(const Alarm&) = delete;
 
  private:
   std::mutex mutex_;

@@ -9,6 +9,7 @@
 #include <vector>
 #include <zmq.hpp>
 
+#include "common/non_copyable.h"
 #include "daemon/config.h"
 #include "kernels/engine.h"
 #include "daemon/http_server.h"
@@ -28,12 +29,10 @@ struct BoundEndpoints {
 /// kUnavailable when an explicitly requested CUDA engine cannot be made.
 Status make_engines(const EngineConfig& config, std::vector<std::unique_ptr<Engine>>& out);
 
-class Daemon {
+class Daemon : NonCopyable {
  public:
   explicit Daemon(DaemonConfig config);
   ~Daemon();
-  Daemon(const Daemon&) = delete;
-  Daemon& operator=(const Daemon&) = delete;
 
   /// Makes the engines, binds the three sockets and starts every thread.
   Status start();

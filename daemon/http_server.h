@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/non_copyable.h"
 #include "common/status.h"
 #include "daemon/config.h"
 #include "daemon/latest_results.h"
@@ -21,14 +22,12 @@ class Server;
 
 namespace fq::daemon {
 
-class HttpServer {
+class HttpServer : NonCopyable {
  public:
   /// `healthy` is the daemon's own view (engines made, sockets bound, threads running).
   HttpServer(const DaemonConfig& config, StreamRegistry& registry, LatestResults& latest,
              std::vector<std::string> engines, const std::atomic<bool>& healthy);
   ~HttpServer();
-  HttpServer(const HttpServer&) = delete;
-  HttpServer& operator=(const HttpServer&) = delete;
 
   /// Binds http.listen (port 0: any free port) and serves on a thread of its own.
   Status start();

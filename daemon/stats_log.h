@@ -11,16 +11,15 @@
 #include <string>
 #include <thread>
 
+#include "common/non_copyable.h"
 #include "daemon/stream_registry.h"
 
 namespace fq::daemon {
 
-class StatsLog {
+class StatsLog : NonCopyable {
  public:
   StatsLog(StreamRegistry& registry, double interval_s);
   ~StatsLog();
-  StatsLog(const StatsLog&) = delete;
-  StatsLog& operator=(const StatsLog&) = delete;
 
   /// Stops the thread (no final line); idempotent.
   void stop();

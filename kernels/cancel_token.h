@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 
+#include "common/non_copyable.h"
 #include "common/status.h"
 
 namespace fq {
@@ -42,12 +43,10 @@ class CancelToken {
 const CancelToken* current_cancel_token();
 
 /// Makes `token` the calling thread's current token for this object's lifetime (nests).
-class CancelScope {
+class CancelScope : NonCopyable {
  public:
   explicit CancelScope(const CancelToken* token);
   ~CancelScope();
-  CancelScope(const CancelScope&) = delete;
-  CancelScope& operator=(const CancelScope&) = delete;
 
  private:
   const CancelToken* previous_;

@@ -13,12 +13,12 @@
 #include <string>
 
 #include "clients/common/defaulted_option.h"
+#include "clients/common/tool_app.h"
 #include "clients/fqbench/bench_rows.h"
 #include "clients/fqbench/bench_stats.h"
 #include "clients/fqbench/codec_bench.h"
 #include "clients/fqbench/neighbour_stats.h"
 #include "common/tool_main.h"
-#include "common/version.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/engine.h"
 #include "proto/mesh_io.h"
@@ -154,8 +154,7 @@ void print_passes(const std::vector<RowResult>& results) {
 int run(int argc, char** argv) {
   Options o;
   o.mesh_dir = default_mesh_dir();
-  CLI::App app{"fqbench: device time per pass for the paper's Table 2 and 3 rows"};
-  app.set_version_flag("--version", fq::version_line("fqbench"));
+  fq::client::ToolApp app{"fqbench: device time per pass for the paper's Table 2 and 3 rows", "fqbench"};
   app.add_option("--mesh-dir", o.mesh_dir,
                  "folder of the shared meshes (default: $FQ_MESH_DIR or ../shared/meshes)");
   add_defaulted(app, "--rows", o.rows, "comma-separated row ids, or all");

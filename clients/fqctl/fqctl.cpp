@@ -14,10 +14,10 @@
 
 #include "clients/common/curve_client.h"
 #include "clients/common/control_client.h"
+#include "clients/common/tool_app.h"
 #include "clients/fqctl/counters_table.h"
 #include "clients/fqctl/param_assign.h"
 #include "common/tool_main.h"
-#include "common/version.h"
 #include "daemon/counters_json.h"
 
 namespace {
@@ -135,8 +135,7 @@ int cmd_watch(const Args& a) {
 }
 
 int run(int argc, char** argv) {
-  CLI::App app{"fqctl: inspect and steer a running fqd through its control socket"};
-  app.set_version_flag("--version", fq::version_line("fqctl"));
+  fq::client::ToolApp app{"fqctl: inspect and steer a running fqd through its control socket", "fqctl"};
   Args a;
   app.add_option("-c,--control", a.control, "fqd's control endpoint")->capture_default_str();
   fq::client::add_curve_options(app, a.curve);

@@ -4,14 +4,53 @@
 #include <iostream>
 
 #include "clients/common/defaulted_option.h"
-#include "common/version.h"
+#include "clients/common/member_options.h"
+#include "clients/common/tool_app.h"
 
 namespace fq::cli {
 
 namespace {
 
 using client::add_defaulted;
+using client::add_member_options;
 using client::add_ranged;
+using client::MemberOption;
+
+// Every member of RefineParams, in --help's order: one option a row, its help under its flag.
+// clang-format off
+const MemberOption<RefineParams> kRefineOptions[] = {
+    {"--relax-iterations", &RefineParams::relax_iterations,
+     "Tangential relaxation passes (un-fold triangles)"},
+    {"--relax-step", &RefineParams::relax_step,
+     "Fraction of the way to the 1-ring mean per relaxation pass"},
+    {"--feature-ratio", &RefineParams::feature_ratio,
+     "Normal-tensor eigenvalues below this times the largest are free to relax along"},
+    {"--normal-iterations", &RefineParams::normal_iterations,
+     "Bilateral face-normal filtering passes"},
+    {"--normal-sigma-s", &RefineParams::normal_sigma_s,
+     "Spatial extent of the normal filter, in mean edge lengths"},
+    {"--normal-sigma-r", &RefineParams::normal_sigma_r,
+     "Range extent of the normal filter (|n_i - n_j|)"},
+    {"--vertex-iterations", &RefineParams::vertex_iterations,
+     "Normal-driven vertex update passes (Sun et al. 2007)"},
+    {"--tangential-step", &RefineParams::tangential_step,
+     "Per vertex update, share of the move to the 1-ring mean within the filtered tangent plane"},
+    {"--clean-below", &RefineParams::clean_below,
+     "Mean face-normal change (rad) at or below which the input is kept (a clean input)"},
+    {"--full-above", &RefineParams::full_above,
+     "Mean face-normal change (rad) at or above which the full result is kept; 0 = no guard"},
+    {"--rough-from", &RefineParams::rough_from,
+     "Mean face-normal change (rad) from which the refinement also runs on the input itself (rough input)"},
+    {"--rough-full", &RefineParams::rough_full,
+     "Mean face-normal change (rad) from which that rough-input result is kept alone; 0 = off"},
+    {"--rough-normal-sigma-r", &RefineParams::rough_normal_sigma_r,
+     "Range extent of the rough-input normal filter"},
+    {"--rough-rounds", &RefineParams::rough_rounds,
+     "Rounds of normal filtering and vertex updates on rough input"},
+    {"--rough-vertex-iterations", &RefineParams::rough_vertex_iterations,
+     "Vertex update passes per rough round"},
+};
+// clang-format on
 
 // The groups below are added after app.option_defaults()->always_capture_default(): every
 // option of theirs shows its default in --help; option_defaults()->group() names the group.
@@ -35,30 +74,7 @@ void add_filter_options(CLI::App& app, Options& o, std::string& mode) {
 
 void add_refine_options(CLI::App& app, RefineParams& r) {
   app.option_defaults()->group("Refinement (--mode qf+)");
-  app.add_option("--relax-iterations", r.relax_iterations,
-                 "Tangential relaxation passes (un-fold triangles)");
-  app.add_option("--relax-step", r.relax_step, "Fraction of the way to the 1-ring mean per relaxation pass");
-  app.add_option("--feature-ratio", r.feature_ratio,
-                 "Normal-tensor eigenvalues below this times the largest are free to relax along");
-  app.add_option("--normal-iterations", r.normal_iterations, "Bilateral face-normal filtering passes");
-  app.add_option("--normal-sigma-s", r.normal_sigma_s,
-                 "Spatial extent of the normal filter, in mean edge lengths");
-  app.add_option("--normal-sigma-r", r.normal_sigma_r, "Range extent of the normal filter (|n_i - n_j|)");
-  app.add_option("--vertex-iterations", r.vertex_iterations,
-                 "Normal-driven vertex update passes (Sun et al. 2007)");
-  app.add_option("--tangential-step", r.tangential_step,
-                 "Per vertex update, share of the move to the 1-ring mean within the filtered tangent plane");
-  app.add_option("--clean-below", r.clean_below,
-                 "Mean face-normal change (rad) at or below which the input is kept (a clean input)");
-  app.add_option("--full-above", r.full_above,
-                 "Mean face-normal change (rad) at or above which the full result is kept; 0 = no guard");
-  app.add_option("--rough-from", r.rough_from,
-                 "Mean face-normal change (rad) from which the refinement also runs on the input itself (rough input)");
-  app.add_option("--rough-full", r.rough_full,
-                 "Mean face-normal change (rad) from which that rough-input result is kept alone; 0 = off");
-  app.add_option("--rough-normal-sigma-r", r.rough_normal_sigma_r, "Range extent of the rough-input normal filter");
-  app.add_option("--rough-rounds", r.rough_rounds, "Rounds of normal filtering and vertex updates on rough input");
-  app.add_option("--rough-vertex-iterations", r.rough_vertex_iterations, "Vertex update passes per rough round");
+  add_member_options(app, r, kRefineOptions);
 }
 
 void add_cluster_control_options(CLI::App& app, Options& o, std::string& geometry) {
@@ -122,9 +138,9 @@ std::string check_params(const Options& o) { return validate(o.params).message()
 }  // namespace
 
 ParseOutcome parse_options(int argc, char** argv, Options& o) {
-  CLI::App app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
-               "fqfilter"};
-  app.set_version_flag("--version", fq::version_line("fqfilter"));
+  client::ToolApp app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
+                      "fqfilter"};
+  app.name("fqfilter");  // "Usage: fqfilter", whatever path it was started by
   std::string mode = method_name(o.params.filtering.method), method = method_name(o.params.clustering.method), engine = "auto",
               geometry = "auto";
   bool no_filter = false;

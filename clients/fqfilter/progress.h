@@ -5,17 +5,16 @@
 
 #include <string>
 
+#include "common/non_copyable.h"
 #include "kernels/engine.h"
 
 namespace fq::cli {
 
-class Progress {
+class Progress : NonCopyable {
  public:
   /// Enabled when `wanted` and stderr is a terminal.
   Progress(bool wanted, std::string file);
   ~Progress();  ///< clears the line
-  Progress(const Progress&) = delete;
-  Progress& operator=(const Progress&) = delete;
 
   bool enabled() const { return enabled_; }
   /// Shows "<file>: <what>".

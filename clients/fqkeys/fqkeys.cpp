@@ -5,15 +5,14 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "clients/common/tool_app.h"
 #include "common/curve_keys.h"
 #include "common/tool_main.h"
-#include "common/version.h"
 
 namespace {
 
 int run(int argc, char** argv) {
-  CLI::App app{"fqkeys: make a CURVE key pair (NAME.key with the secret, NAME.pub without)"};
-  app.set_version_flag("--version", fq::version_line("fqkeys"));
+  fq::client::ToolApp app{"fqkeys: make a CURVE key pair (NAME.key with the secret, NAME.pub without)", "fqkeys"};
   std::string name;
   bool force = false;
   app.add_option("name", name, "path prefix of the two files")->required();

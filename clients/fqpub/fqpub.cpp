@@ -13,8 +13,7 @@
 #include "clients/common/frame_sender.h"
 #include "clients/common/mesh_source.h"
 #include "clients/common/override_options.h"
-#include "common/tool_main.h"
-#include "common/version.h"
+#include "clients/common/tool_app.h"
 
 namespace {
 
@@ -101,12 +100,8 @@ void add_options(CLI::App& app, Args& a) {
   fq::client::add_override_options(app, a.overrides);
 }
 
-int run(int argc, char** argv) {
-  CLI::App app{"fqpub: publish mesh frames to fqd (a file, or a folder as a looped sequence)"};
-  app.set_version_flag("--version", fq::version_line("fqpub"));
-  Args a;
-  add_options(app, a);
-  CLI11_PARSE(app, argc, argv);
+// The tool, once the command line has filled `a`.
+int run(Args& a) {
   a.spec.decode_speed = a.spec.encode_speed;
   if (fq::Status s = fq::client::to_wire(a.overrides, a.spec.overrides, a.spec.compute); !s.ok()) {
     std::fprintf(stderr, "fqpub: %s\n", s.message().c_str());
@@ -161,4 +156,8 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) { return fq::tool_main("fqpub", run, argc, argv); }
+int main(int argc, char** argv) {
+  return fq::client::args_main("fqpub",
+                               "fqpub: publish mesh frames to fqd (a file, or a folder as a looped sequence)",
+                               add_options, run, argc, argv);
+}

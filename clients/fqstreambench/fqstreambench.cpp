@@ -15,11 +15,10 @@
 #include "clients/common/control_client.h"
 #include "clients/common/defaulted_option.h"
 #include "clients/common/override_options.h"
+#include "clients/common/tool_app.h"
 #include "clients/fqstreambench/collector.h"
 #include "clients/fqstreambench/producer.h"
 #include "clients/fqstreambench/report.h"
-#include "common/tool_main.h"
-#include "common/version.h"
 #include "daemon/daemon.h"
 #include "proto/header_codec.h"
 #include "proto/mesh_io.h"
@@ -200,12 +199,8 @@ void add_options(CLI::App& app, Args& a) {
   fq::client::add_override_options(app, a.overrides);
 }
 
-int run(int argc, char** argv) {
-  CLI::App app{"fqstreambench: latency and throughput of fqd at a sustained frame rate"};
-  app.set_version_flag("--version", fq::version_line("fqstreambench"));
-  Args a;
-  add_options(app, a);
-  CLI11_PARSE(app, argc, argv);
+// The tool, once the command line has filled `a`.
+int run(Args& a) {
   spdlog::set_default_logger(spdlog::stderr_color_mt("fqd"));  // stdout carries the report
   spdlog::set_level(spdlog::level::warn);
   auto fail = [](const fq::Status& s) {
@@ -247,4 +242,8 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) { return fq::tool_main("fqstreambench", run, argc, argv); }
+int main(int argc, char** argv) {
+  return fq::client::args_main("fqstreambench",
+                               "fqstreambench: latency and throughput of fqd at a sustained frame rate",
+                               add_options, run, argc, argv);
+}

@@ -14,8 +14,8 @@
 #include "clients/common/curve_client.h"
 #include "clients/common/result_receiver.h"
 #include "clients/common/stream_stats.h"
+#include "clients/common/tool_app.h"
 #include "common/tool_main.h"
-#include "common/version.h"
 #include "proto/mesh_io.h"
 
 namespace {
@@ -118,8 +118,7 @@ std::string receive_loop(const Args& a, zmq::socket_t& sub, fq::client::StreamSt
 }
 
 int run(int argc, char** argv) {
-  CLI::App app{"fqsub: receive, check and save fqd results"};
-  app.set_version_flag("--version", fq::version_line("fqsub"));
+  fq::client::ToolApp app{"fqsub: receive, check and save fqd results", "fqsub"};
   Args a;
   app.add_option("-e,--endpoint", a.endpoint, "fqd publish endpoint (SUB connects)")->capture_default_str();
   app.add_option("-s,--stream", a.streams, "stream id to subscribe to (repeatable; none = all streams)");

@@ -9,8 +9,8 @@
 #include <cstdio>
 #include <iostream>
 
+#include "clients/common/tool_app.h"
 #include "common/tool_main.h"
-#include "common/version.h"
 #include "eval/capture_sequence.h"
 #include "eval/label_persistence.h"
 #include "eval/sharp_edge_recall.h"
@@ -38,8 +38,7 @@ std::string tracking_label(bool ids_only, int rings, int vote_frames) {
 int run(int argc, char** argv) {
   fq::TrackingOptions defaults;
   int to_rings = defaults.sticky_rings, vote_frames = defaults.vote_frames;
-  CLI::App app{"fqtrackbench: cluster id persistence over synthetic capture frames"};
-  app.set_version_flag("--version", fq::version_line("fqtrackbench"));
+  fq::client::ToolApp app{"fqtrackbench: cluster id persistence over synthetic capture frames", "fqtrackbench"};
   std::string mesh_path;
   int frames = 10, threads = 0;
   double noise = 0.2, degrees = 0.0;

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "common/non_copyable.h"
 #include "kernels/cuda/cuda_check.cuh"
 
 namespace fq::cuda {
@@ -46,11 +47,9 @@ struct PinnedMemory {
 
 /// n elements of T in `Memory`: move-only, grow-only.
 template <class T, class Memory>
-class OwnedBuffer {
+class OwnedBuffer : NonCopyable {
  public:
   OwnedBuffer() = default;
-  OwnedBuffer(const OwnedBuffer&) = delete;
-  OwnedBuffer& operator=(const OwnedBuffer&) = delete;
   OwnedBuffer(OwnedBuffer&& o) noexcept { swap(o); }
   OwnedBuffer& operator=(OwnedBuffer&& o) noexcept {
     OwnedBuffer tmp(std::move(o));

@@ -7,16 +7,15 @@
 #include <utility>
 #include <vector>
 
+#include "common/non_copyable.h"
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/device_buffer.cuh"
 
 namespace fq::cuda {
 
-class Stream {
+class Stream : NonCopyable {
  public:
   Stream() { FQ_CUDA_CHECK(cudaStreamCreateWithFlags(&s_, cudaStreamNonBlocking)); }
-  Stream(const Stream&) = delete;
-  Stream& operator=(const Stream&) = delete;
   ~Stream() {
     if (const cudaError_t e = cudaStreamDestroy(s_); e != cudaSuccess)
       log_free_failure("cudaStreamDestroy", e);
@@ -29,13 +28,11 @@ class Stream {
 };
 
 /// Events without timing, for the host to wait on parts of a frame (chunks of a download).
-class SyncEvents {
+class SyncEvents : NonCopyable {
  public:
   explicit SyncEvents(int count) : events_(count) {
     for (cudaEvent_t& e : events_) FQ_CUDA_CHECK(cudaEventCreateWithFlags(&e, cudaEventDisableTiming));
   }
-  SyncEvents(const SyncEvents&) = delete;
-  SyncEvents& operator=(const SyncEvents&) = delete;
   ~SyncEvents() {
     for (cudaEvent_t e : events_) {
       if (const cudaError_t r = cudaEventDestroy(e); r != cudaSuccess) log_free_failure("cudaEventDestroy", r);
@@ -50,13 +47,11 @@ class SyncEvents {
 
 /// A fixed pool of events recorded between passes; after the frame's synchronization the
 /// elapsed time between consecutive marks is each pass's device time.
-class PassEvents {
+class PassEvents : NonCopyable {
  public:
   explicit PassEvents(int capacity) : events_(capacity) {
     for (cudaEvent_t& e : events_) FQ_CUDA_CHECK(cudaEventCreate(&e));
   }
-  PassEvents(const PassEvents&) = delete;
-  PassEvents& operator=(const PassEvents&) = delete;
   ~PassEvents() {
     for (cudaEvent_t e : events_) {
       if (const cudaError_t r = cudaEventDestroy(e); r != cudaSuccess)

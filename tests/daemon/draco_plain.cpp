@@ -4,6 +4,9 @@
 #include <draco/mesh/mesh.h>
 #include <gtest/gtest.h>
 
+#include <string>
+#include <type_traits>
+
 namespace fq::test {
 namespace {
 
@@ -17,7 +20,22 @@ void fill_points(const Mesh& m, draco::PointCloud& pc) {
     att->SetAttributeValue(draco::AttributeValueIndex(i), &m.positions[3 * size_t(i)]);
 }
 
-std::string to_string(const draco::EncoderBuffer& b) { return std::string(b.data(), b.size()); }
+/// `geometry` (a mesh or a point cloud) in Draco's sequential encoding of its kind.
+template <class Geometry>
+std::string encode_sequential(const Geometry& geometry) {
+  draco::Encoder enc;
+  draco::EncoderBuffer buf;
+  draco::Status s;
+  if constexpr (std::is_same_v<Geometry, draco::Mesh>) {
+    enc.SetEncodingMethod(draco::MESH_SEQUENTIAL_ENCODING);
+    s = enc.EncodeMeshToBuffer(geometry, &buf);
+  } else {
+    enc.SetEncodingMethod(draco::POINT_CLOUD_SEQUENTIAL_ENCODING);
+    s = enc.EncodePointCloudToBuffer(geometry, &buf);
+  }
+  EXPECT_TRUE(s.ok()) << s.error_msg_string();
+  return std::string(buf.data(), buf.size());
+}
 
 }  // namespace
 
@@ -28,23 +46,13 @@ std::string draco_plain_mesh(const Mesh& m) {
     const uint32_t* t = &m.triangles[3 * size_t(f)];
     mesh.AddFace({draco::PointIndex(t[0]), draco::PointIndex(t[1]), draco::PointIndex(t[2])});
   }
-  draco::Encoder enc;
-  enc.SetEncodingMethod(draco::MESH_SEQUENTIAL_ENCODING);
-  draco::EncoderBuffer buf;
-  const draco::Status s = enc.EncodeMeshToBuffer(mesh, &buf);
-  EXPECT_TRUE(s.ok()) << s.error_msg_string();
-  return to_string(buf);
+  return encode_sequential(mesh);
 }
 
 std::string draco_point_cloud(const Mesh& m) {
   draco::PointCloud pc;
   fill_points(m, pc);
-  draco::Encoder enc;
-  enc.SetEncodingMethod(draco::POINT_CLOUD_SEQUENTIAL_ENCODING);
-  draco::EncoderBuffer buf;
-  const draco::Status s = enc.EncodePointCloudToBuffer(pc, &buf);
-  EXPECT_TRUE(s.ok()) << s.error_msg_string();
-  return to_string(buf);
+  return encode_sequential(pc);
 }
 
 }  // namespace fq::test

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/non_copyable.h"
 #include "tests/daemon/child_process.h"
 
 namespace fq::test {
@@ -17,7 +18,7 @@ std::string ops_config(const std::string& extra = "");
 /// Writes `text` into the test's temporary folder as `name`; returns the path.
 std::string write_temp_file(const std::string& name, const std::string& text);
 
-class FqdProcess {
+class FqdProcess : NonCopyable {
  public:
   /// Starts fqd with `args` plus --print-endpoints and reads the endpoints line
   /// (endpoints() is empty when fqd printed none, e.g. when it failed to start). With a
@@ -27,8 +28,6 @@ class FqdProcess {
                       const std::string& suffix = "");
   /// SIGTERM, then waits (exit status in stop()).
   ~FqdProcess();
-  FqdProcess(const FqdProcess&) = delete;
-  FqdProcess& operator=(const FqdProcess&) = delete;
 
   const nlohmann::json& endpoints() const { return endpoints_; }
   std::string endpoint(const char* role) const { return endpoints_.value(role, ""); }

@@ -9,11 +9,13 @@
 #include <iterator>
 #include <string>
 
+#include "common/non_copyable.h"
+
 namespace fq::test {
 
 /// Fresh empty folder under the system temp dir, named after the running test and the
 /// process id (ctest runs tests in parallel), removed again by the destructor.
-class ScratchDir {
+class ScratchDir : NonCopyable {
  public:
   ScratchDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
@@ -26,8 +28,6 @@ class ScratchDir {
     std::error_code ec;
     std::filesystem::remove_all(path_, ec);
   }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
 
   std::string file(const std::string& name) const { return (path_ / name).string(); }
   const std::filesystem::path& path() const { return path_; }
