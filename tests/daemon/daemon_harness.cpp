@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
 #include <string>
 
@@ -125,6 +126,30 @@ client::ReceivedResult DaemonHarness::receive(const std::string& stream) {
     if (r.topic == stream) return r;
     if (r.topic != "__probe") pending_[r.topic].push_back(std::move(r));
   }
+}
+
+void DaemonHarness::sync_results() {
+  client::FrameSpec spec;
+  spec.stream_id = "__probe";
+  spec.compute = wire::FILTER;
+  const Mesh probe = make_icosphere(0, 1.0f);
+  // A probe's result can itself be dropped for this subscriber when it follows a burst that
+  // filled fqd's queue for it: then the next probe goes.
+  sub_.set(zmq::sockopt::rcvtimeo, 100);
+  for (int attempt = 0; attempt < 60; ++attempt) {
+    send(probe, spec, ++probe_sequence_);
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+    while (std::chrono::steady_clock::now() < end) {
+      client::ReceivedResult r;
+      if (client::timed_out(client::receive_result(sub_, r))) continue;
+      if (r.topic == "__probe" && r.header.sequence() == probe_sequence_) {
+        sub_.set(zmq::sockopt::rcvtimeo, 60'000);
+        return;
+      }
+    }
+  }
+  sub_.set(zmq::sockopt::rcvtimeo, 60'000);
+  ADD_FAILURE() << "no probe result within 60 s";
 }
 
 client::ReceivedResult DaemonHarness::receive_decoded(const std::string& stream, const Mesh* input) {

@@ -45,6 +45,10 @@ class DaemonHarness {
   /// The next result on `stream`; results of other streams that come first are kept for
   /// their own receive() (probe results are dropped). Fails the test after 60 s.
   client::ReceivedResult receive(const std::string& stream);
+  /// Sends a probe frame and reads every result up to the probe's own, dropping them: fqd
+  /// publishes in admission order, so every result of a frame sent before has then been
+  /// published (or dropped for this subscriber). Fails the test after 60 s.
+  void sync_results();
   /// receive() plus decode and consumer checks (the test fails when they fail). A
   /// POSITIONS result gets the faces of `input` when given (none otherwise).
   client::ReceivedResult receive_decoded(const std::string& stream, const Mesh* input = nullptr);
@@ -63,6 +67,7 @@ class DaemonHarness {
   zmq::context_t ctx_{1};
   zmq::socket_t push_, sub_, req_;
   std::map<std::string, std::deque<client::ReceivedResult>> pending_;
+  uint64_t probe_sequence_ = 1000;  ///< sync_results() probes (wait_for_subscription numbers from 0)
 };
 
 }  // namespace fq::test
