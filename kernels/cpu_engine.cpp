@@ -61,7 +61,7 @@ Status CpuEngine::run(const MeshView& mesh, const Params& params, FrameResult& o
     return check_cancel();
   };
   // A frame far smaller than the largest one so far gives that one's scratch back.
-  if (size_t(mesh.num_vertices) * 4 < f_.points.capacity() && f_.points.capacity() > (1u << 16)) f_ = CpuFrame{};
+  if (far_smaller(mesh.num_vertices, f_.points.capacity())) release_memory();
   FQ_RETURN_IF_ERROR(check_mesh(mesh, threads_));
   FQ_RETURN_IF_ERROR(check_cancel());
   FQ_RETURN_IF_ERROR(compute_normalization(mesh, f_.norm, threads_));

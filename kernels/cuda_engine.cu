@@ -262,12 +262,8 @@ Status CudaEngine::enqueue_passes(const Params& params) {
 Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameResult& out) {
   FQ_CUDA_CHECK(cudaSetDevice(device_.id));
   const cudaStream_t s = stream_.get();
-  // A frame far smaller than the largest one so far gives that one's buffers back (the CPU
-  // engine's rule for its scratch).
-  if (size_t(mesh.num_vertices) * 4 < f_.points.capacity() && f_.points.capacity() > (1u << 16)) {
-    f_ = cuda::DeviceFrame{};
-    refine_ = cuda::RefineBuffers{};
-  }
+  // A frame far smaller than the largest one so far gives that one's buffers back.
+  if (far_smaller(mesh.num_vertices, f_.points.capacity())) release_memory();
   f_.n = mesh.num_vertices;
   f_.m = mesh.num_triangles;
   const uint32_t n = f_.n;

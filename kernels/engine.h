@@ -2,6 +2,7 @@
 // Implementations: the CPU engine (threads) and the CUDA engine (persistent device buffers).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -63,6 +64,11 @@ class Engine {
  protected:
   /// Ok, or kCancelled once the cancel token has expired.
   Status check_cancel() const { return cancel_ != nullptr ? cancel_->check() : Status{}; }
+  /// Whether a frame of `vertices` should first give back scratch sized for `capacity`
+  /// vertices: it is far smaller than the largest frame so far (both engines' rule).
+  static bool far_smaller(uint32_t vertices, size_t capacity) {
+    return size_t(vertices) * 4 < capacity && capacity > (size_t(1) << 16);
+  }
 
   PassObserver observer_;
   const CancelToken* cancel_ = nullptr;
