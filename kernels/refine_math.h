@@ -191,25 +191,11 @@ FQ_UNROLL
   return p;
 }
 
-/// The tangential move of the vertex update: from x_v to its 1-ring mean, in v's free
-/// directions (`dirs` = free_directions of v).
-FQ_HD Vec3 tangential_ring_move(const FanView& m, const Vec3* x, uint32_t v, const FreeDirections& dirs) {
-  const Vec3 xv = x[v];
-  Vec3 ring{0.f, 0.f, 0.f};
-  float count = 0.f;
-  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
-    const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[k]);
-    ring = ring + (x[tri[0]] + x[tri[1]] + x[tri[2]]) - xv;
-    count += 2.f;
-  }
-  return count > 0.f ? dirs.apply((1.0f / count) * ring - xv) : Vec3{0.f, 0.f, 0.f};
-}
-
 /// Step 3. One iteration of Sun et al. 2007 (eq. 8), the positions moved onto the planes
 /// of the filtered normals: x_v + 1/|F_v| Σ_{f∋v} n_f (n_f · (c_f − x_v)), c_f the current
-/// centroid, faces with a zero normal (degenerate) skipped; plus `tangential_step` ×
-/// tangential_ring_move, read from the same iterate in the same walk over v's triangles.
-/// `dirs` is free_directions of v.
+/// centroid, faces with a zero normal (degenerate) skipped; plus `tangential_step` × the move
+/// from x_v to its 1-ring mean within `dirs` (free_directions of v), read from the same
+/// iterate in the same walk over v's triangles.
 FQ_HD Vec3 updated_vertex(const FanView& m, const Vec3* x, const Vec3* normals, uint32_t v,
                           const FreeDirections& dirs, float tangential_step) {
   const Vec3 xv = x[v];
