@@ -78,26 +78,35 @@ DaemonHarness::~DaemonHarness() {
   req_.close();
 }
 
-// A SUB socket only sees messages published after its subscription reached the PUB side:
-// send probe frames until one comes back, then every later result is seen.
-void DaemonHarness::wait_for_subscription() {
+// Sends probe frames, one per `window`, until the result of one of them comes back (at most
+// `attempts` of them); the socket's receive timeout is 60 s again afterwards.
+bool DaemonHarness::probe(int attempts, std::chrono::milliseconds window) {
   const Mesh probe = make_icosphere(0, 1.0f);
   client::FrameSpec spec;
   spec.stream_id = "__probe";
   spec.compute = wire::FILTER;
+  const uint64_t first = probe_sequence_ + 1;
   sub_.set(zmq::sockopt::rcvtimeo, 100);
-  for (int attempt = 0; attempt < 600; ++attempt) {
-    send(probe, spec, static_cast<uint64_t>(attempt));
-    client::ReceivedResult r;
-    while (!client::timed_out(client::receive_result(sub_, r))) {
-      if (r.topic == "__probe") {
-        // Later probe results may still come; receive() skips other streams.
-        sub_.set(zmq::sockopt::rcvtimeo, 60'000);
-        return;
-      }
+  bool answered = false;
+  for (int attempt = 0; attempt < attempts && !answered; ++attempt) {
+    send(probe, spec, ++probe_sequence_);
+    const auto end = std::chrono::steady_clock::now() + window;
+    while (!answered && std::chrono::steady_clock::now() < end) {
+      client::ReceivedResult r;
+      if (client::timed_out(client::receive_result(sub_, r))) continue;
+      answered = r.topic == "__probe" && r.header.sequence() >= first;
     }
   }
-  ADD_FAILURE() << "no probe result came back: the subscription never became active";
+  sub_.set(zmq::sockopt::rcvtimeo, 60'000);
+  return answered;
+}
+
+// A SUB socket only sees messages published after its subscription reached the PUB side:
+// once a probe comes back, every later result is seen (later probe results may still come;
+// receive() skips them).
+void DaemonHarness::wait_for_subscription() {
+  if (!probe(600, std::chrono::milliseconds(100)))
+    ADD_FAILURE() << "no probe result came back: the subscription never became active";
 }
 
 void DaemonHarness::send_parts(const std::vector<std::string>& parts) { client::send_parts(push_, parts); }
@@ -128,28 +137,10 @@ client::ReceivedResult DaemonHarness::receive(const std::string& stream) {
   }
 }
 
+// A probe's result can itself be dropped for this subscriber when it follows a burst that
+// filled fqd's queue for it: then the next probe goes.
 void DaemonHarness::sync_results() {
-  client::FrameSpec spec;
-  spec.stream_id = "__probe";
-  spec.compute = wire::FILTER;
-  const Mesh probe = make_icosphere(0, 1.0f);
-  // A probe's result can itself be dropped for this subscriber when it follows a burst that
-  // filled fqd's queue for it: then the next probe goes.
-  sub_.set(zmq::sockopt::rcvtimeo, 100);
-  for (int attempt = 0; attempt < 60; ++attempt) {
-    send(probe, spec, ++probe_sequence_);
-    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(1);
-    while (std::chrono::steady_clock::now() < end) {
-      client::ReceivedResult r;
-      if (client::timed_out(client::receive_result(sub_, r))) continue;
-      if (r.topic == "__probe" && r.header.sequence() == probe_sequence_) {
-        sub_.set(zmq::sockopt::rcvtimeo, 60'000);
-        return;
-      }
-    }
-  }
-  sub_.set(zmq::sockopt::rcvtimeo, 60'000);
-  ADD_FAILURE() << "no probe result within 60 s";
+  if (!probe(60, std::chrono::seconds(1))) ADD_FAILURE() << "no probe result within 60 s";
 }
 
 client::ReceivedResult DaemonHarness::receive_decoded(const std::string& stream, const Mesh* input) {

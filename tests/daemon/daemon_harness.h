@@ -2,6 +2,7 @@
 // three client sockets a test talks to it with (PUSH frames, SUB results, REQ control).
 #pragma once
 
+#include <chrono>
 #include <deque>
 #include <map>
 #include <memory>
@@ -61,13 +62,14 @@ class DaemonHarness {
  private:
   void connect(const daemon::BoundEndpoints& e);
   void wait_for_subscription();
+  bool probe(int attempts, std::chrono::milliseconds window);
 
   std::unique_ptr<daemon::Daemon> daemon_;
   client::CurveClientOptions curve_;
   zmq::context_t ctx_{1};
   zmq::socket_t push_, sub_, req_;
   std::map<std::string, std::deque<client::ReceivedResult>> pending_;
-  uint64_t probe_sequence_ = 1000;  ///< sync_results() probes (wait_for_subscription numbers from 0)
+  uint64_t probe_sequence_ = 0;  ///< the last probe frame's sequence number
 };
 
 }  // namespace fq::test
