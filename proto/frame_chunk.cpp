@@ -30,38 +30,55 @@ void add_uint_attribute(draco::Mesh& m, const char* name, const std::vector<uint
   m.AddAttributeMetadata(id, std::move(md));
 }
 
-/// The chunk's vertices in ascending global id, with scratch.local[g] = their index. Ascending
-/// ids keep the input's vertex order, usually spatially coherent, for Draco's sequential coder,
-/// and make the ids a few long runs. A bitmap of the frame's vertices (V / 8 bytes, cache
-/// resident) marks the chunk's ones; reading it back in order sorts them without a sort.
-std::vector<uint32_t> chunk_vertices(const fq::MeshView& mesh, std::span<const uint32_t> corners,
-                                     ChunkScratch& scratch) {
-  const size_t words = (size_t(mesh.num_vertices) + 63) / 64;
-  scratch.seen.resize(words, 0);
-  if (scratch.local_size < mesh.num_vertices) {
-    scratch.local.reset(new uint32_t[mesh.num_vertices]);
-    scratch.local_size = mesh.num_vertices;
-  }
-  uint64_t* seen = scratch.seen.data();
-  // Four interleaved streams over the corners: neighbouring corners hit the same word, and one
-  // stream's read-modify-writes would wait on each other.
-  const size_t q = corners.size() / 4;
-  const uint32_t* c = corners.data();
+/// Marks the vertices of `size` corners in `seen` (one bit per frame vertex). Four interleaved
+/// streams over the corners: neighbouring corners hit the same word, and one stream's
+/// read-modify-writes would wait on each other.
+void mark_corners(uint64_t* seen, const uint32_t* c, size_t size) {
+  const size_t q = size / 4;
   for (size_t i = 0; i < q; ++i) {
     seen[c[i] >> 6] |= uint64_t{1} << (c[i] & 63);
     seen[c[q + i] >> 6] |= uint64_t{1} << (c[q + i] & 63);
     seen[c[2 * q + i] >> 6] |= uint64_t{1} << (c[2 * q + i] & 63);
     seen[c[3 * q + i] >> 6] |= uint64_t{1} << (c[3 * q + i] & 63);
   }
-  for (size_t i = 4 * q; i < corners.size(); ++i) seen[c[i] >> 6] |= uint64_t{1} << (c[i] & 63);
+  for (size_t i = 4 * q; i < size; ++i) seen[c[i] >> 6] |= uint64_t{1} << (c[i] & 63);
+}
+
+/// Marks the vertices of `part` in scratch.seen; returns how many vertices the chunk has.
+uint32_t mark_part(const fq::MeshView& mesh, const Part& part, ChunkScratch& scratch) {
+  const size_t words = (size_t(mesh.num_vertices) + 63) / 64;
+  scratch.seen.resize(words, 0);
+  uint64_t* seen = scratch.seen.data();
+  for (const TriangleRun& r : part.runs) mark_corners(seen, mesh.triangles + 3 * size_t(r.first), 3 * size_t(r.count));
+  size_t n = 0;
+  for (size_t w = 0; w < words; ++w) n += size_t(std::popcount(seen[w]));
+  return static_cast<uint32_t>(n);
+}
+
+/// The chunk's points: its vertices in ascending global id (the marked bits in order). Ascending
+/// ids keep the input's vertex order, usually spatially coherent, for Draco's sequential coder,
+/// and make the ids a few long runs. One pass over the bitmap sets scratch.local, gathers the
+/// `n` positions into `xyz`, codes the ids as runs (`runs`, when not null) and clears the bitmap
+/// for the next chunk (ORing it into scratch.used first). Returns point -> global vertex id.
+std::vector<uint32_t> gather_points(const fq::MeshView& mesh, uint32_t n, ChunkScratch& scratch, float* xyz,
+                                    IdRunWriter* runs) {
+  if (scratch.local_size < mesh.num_vertices) {
+    scratch.local.reset(new uint32_t[mesh.num_vertices]);
+    scratch.local_size = mesh.num_vertices;
+  }
+  uint64_t* seen = scratch.seen.data();
+  uint32_t* local = scratch.local.get();
   std::vector<uint32_t> global;
-  global.reserve(corners.size() / 6 + 16);
-  for (size_t w = 0; w < words; ++w) {
+  global.reserve(n);
+  uint32_t i = 0;
+  for (size_t w = 0; w < scratch.seen.size(); ++w) {
     if (seen[w] == 0) continue;
-    for (uint64_t bits = seen[w]; bits != 0; bits &= bits - 1) {
+    for (uint64_t bits = seen[w]; bits != 0; bits &= bits - 1, ++i) {
       const auto g = static_cast<uint32_t>(w * 64 + size_t(std::countr_zero(bits)));
-      scratch.local[g] = static_cast<uint32_t>(global.size());
+      local[g] = i;
       global.push_back(g);
+      std::memcpy(xyz + 3 * size_t(i), mesh.positions + 3 * size_t(g), 3 * sizeof(float));
+      if (runs != nullptr) runs->add(g);
     }
     if (scratch.used != nullptr) scratch.used[w].fetch_or(seen[w], std::memory_order_relaxed);
     seen[w] = 0;  // all zero again for the next chunk
@@ -69,36 +86,45 @@ std::vector<uint32_t> chunk_vertices(const fq::MeshView& mesh, std::span<const u
   return global;
 }
 
+/// Whether a triangle of `part` repeats a vertex.
+bool repeats_a_vertex(const fq::MeshView& mesh, const Part& part) {
+  for (const TriangleRun& r : part.runs) {
+    const uint32_t* f = mesh.triangles + 3 * size_t(r.first);
+    for (uint32_t k = 0; k < r.count; ++k, f += 3)
+      if (f[0] == f[1] || f[1] == f[2] || f[2] == f[0]) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids, const CodecOptions& o,
-                 std::span<const uint32_t> corners, ChunkScratch& scratch, draco::Mesh& m) {
-  const std::vector<uint32_t> global = chunk_vertices(mesh, corners, scratch);
-  const uint32_t* local = scratch.local.get();
-  const size_t faces = corners.size() / 3;
-  m.SetNumFaces(faces);
-  bool repeated_index = false;
-  for (size_t t = 0; t < faces; ++t) {
-    const uint32_t* f = corners.data() + 3 * t;
-    repeated_index |= f[0] == f[1] || f[1] == f[2] || f[2] == f[0];
-    m.SetFace(
-        draco::FaceIndex(static_cast<uint32_t>(t)),
-        {draco::PointIndex(local[f[0]]), draco::PointIndex(local[f[1]]), draco::PointIndex(local[f[2]])});
-  }
-  const auto n = static_cast<uint32_t>(global.size());
+                 const Part& part, ChunkScratch& scratch, draco::Mesh& m) {
+  // Draco's sequential coder at speed 10, or when a face repeats a vertex (edgebreaker would
+  // drop it); only then does it keep point order, which the id runs rely on.
+  const bool sequential = o.encode_speed == 10 || repeats_a_vertex(mesh, part);
+  const uint32_t n = mesh.num_triangles == 0 ? 0 : mark_part(mesh, part, scratch);
   m.set_num_points(n);
   draco::GeometryAttribute ga;
   ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 3 * sizeof(float), 0);
   draco::PointAttribute* pos = m.attribute(m.AddAttribute(ga, true, n));
   auto* xyz = reinterpret_cast<float*>(pos->buffer()->data());  // n packed triples (identity mapping)
-  for (uint32_t i = 0; i < n; ++i) std::memcpy(xyz + 3 * size_t(i), mesh.positions + 3 * size_t(global[i]), 3 * sizeof(float));
-  const bool sequential = repeated_index || o.encode_speed == 10;
+  IdRunWriter runs;
+  const std::vector<uint32_t> global = gather_points(mesh, n, scratch, xyz, with_ids && sequential ? &runs : nullptr);
+  const uint32_t* local = scratch.local.get();
+  const auto point_of = [local](uint32_t g) { return draco::PointIndex(local[g]); };
+  m.SetNumFaces(part.triangles);
+  uint32_t face = 0;
+  for (const TriangleRun& r : part.runs) {
+    const uint32_t* f = mesh.triangles + 3 * size_t(r.first);
+    for (uint32_t k = 0; k < r.count; ++k, f += 3) {
+      m.SetFace(draco::FaceIndex(face++), {point_of(f[0]), point_of(f[1]), point_of(f[2])});
+    }
+  }
   // Geometry metadata first: AddAttributeMetadata creates (and AddMetadata would replace) it.
   if (with_ids && sequential) {
-    std::vector<uint8_t> runs;
-    encode_id_runs(global, runs);
     auto md = std::make_unique<draco::GeometryMetadata>();
-    md->AddEntryBinary(kVertexIdRunsEntry, runs);
+    md->AddEntryBinary(kVertexIdRunsEntry, runs.finish());
     m.AddMetadata(std::move(md));
   }
   if (with_ids && !sequential) add_uint_attribute(m, kVertexIdAttribute, global, nullptr);

@@ -5,7 +5,6 @@
 #include <atomic>
 #include <memory>
 #include <cstdint>
-#include <span>
 #include <string>
 #include <vector>
 
@@ -23,9 +22,9 @@ namespace fq::wire::detail {
 
 /// Per-worker scratch space of build_chunk, reused from chunk to chunk and frame to frame.
 struct ChunkScratch {
-  std::vector<uint64_t> seen;     ///< one bit per frame vertex; all zero between chunks
-  /// global -> local point index of the current chunk; only its vertices' entries are ever read,
-  /// so it is never initialized (a memset of the whole frame per worker and frame saved).
+  std::vector<uint64_t> seen;  ///< one bit per frame vertex: the chunk's; all zero between chunks
+  /// global -> point index of the current chunk; only its vertices' entries are ever read, so
+  /// it is never initialized (a memset of the whole frame per worker and frame saved).
   std::unique_ptr<uint32_t[]> local;
   size_t local_size = 0;
   /// When set, build_chunk ORs the chunk's vertices into this frame-wide bitmap (shared by the
@@ -33,14 +32,14 @@ struct ChunkScratch {
   std::atomic<uint64_t>* used = nullptr;
 };
 
-/// The triangles `corners` (3 vertex ids of `mesh` each; see split_corners) as a draco::Mesh:
+/// The triangles of `part` (see split_parts) as a draco::Mesh:
 /// points = the chunk's vertices in ascending global id, POSITION, then (when `with_ids`) the global ids, and "fq_label" (when `labels`).
 /// Built directly (not with a mesh builder) so that no deduplication can merge two vertices.
 /// `scratch` is the calling worker's. Returns whether the chunk must be coded with Draco's sequential coder: at speed
 /// 10, or when a face repeats a vertex (edgebreaker would drop it). A sequential chunk carries
 /// its ids as kVertexIdRunsEntry (the coder keeps point order), any other as "fq_vid".
 bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids, const CodecOptions& o,
-                 std::span<const uint32_t> corners, ChunkScratch& scratch, draco::Mesh& m);
+                 const Part& part, ChunkScratch& scratch, draco::Mesh& m);
 
 /// Encodes `m` or `pc` at `o`'s speeds with Draco's coder `method`, positions quantized to
 /// o.position_bits on one explicit grid over `box`: every chunk of a frame uses the same grid,

@@ -86,7 +86,7 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
   }
 
   const detail::Box box = detail::bounding_box(mesh, options.threads);
-  const auto parts = detail::split_corners(mesh, box, std::min(chunks, mesh.num_triangles), options.threads);
+  const auto parts = detail::split_parts(mesh, box, std::min(chunks, mesh.num_triangles), options.threads);
   std::vector<std::string> encoded(parts.size());
   std::vector<fq::Status> status(parts.size());
   // Every vertex must be used: the chunks mark theirs while they are built (no extra pass).
@@ -96,7 +96,7 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
   detail::for_each_chunk(parts.size(), options.threads, [&](size_t i, size_t w) {
     try {
       draco::Mesh m;
-      const bool sequential = detail::build_chunk(mesh, labels, true, options, parts[i].span(), scratch[w], m);
+      const bool sequential = detail::build_chunk(mesh, labels, true, options, parts[i], scratch[w], m);
       status[i] = detail::encode_chunk(m, sequential, options, box, encoded[i]);
     } catch (const std::exception& e) {  // bad_alloc: a fault of this frame, not of the process
       status[i] = {fq::StatusCode::kInternal, std::string("encoding failed: ") + e.what()};

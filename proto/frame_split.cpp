@@ -27,17 +27,25 @@ constexpr std::array<uint32_t, 1024> kSpread = [] {
   return t;
 }();
 
-uint32_t morton_of_centroid(const fq::MeshView& mesh, uint32_t t, const Box& box, float scale) {
-  const uint32_t* tri = mesh.triangles + 3 * size_t(t);
-  const float* p[3] = {mesh.positions + 3 * size_t(tri[0]), mesh.positions + 3 * size_t(tri[1]),
-                       mesh.positions + 3 * size_t(tri[2])};
-  uint32_t code = 0;
-  for (int a = 0; a < 3; ++a) {
-    const float c = (p[0][a] + p[1][a]) + p[2][a];
-    const float u = (c / 3.f - box.lo[a]) * scale;  // finite: check_mesh ran
-    code |= kSpread[static_cast<uint32_t>(std::min(std::max(u, 0.f), 1023.f))] << a;
-  }
-  return code;
+/// Morton code (10 bits per axis) of the cell of each vertex on the grid over `box`.
+std::vector<uint32_t> vertex_codes(const fq::MeshView& mesh, const Box& box, int threads) {
+  const float extent = box.max_extent();
+  const float scale = extent > 0.f ? 1023.f / extent : 0.f;
+  const float lo[3] = {box.lo[0], box.lo[1], box.lo[2]};
+  std::vector<uint32_t> codes(mesh.num_vertices);
+  uint32_t* out = codes.data();
+  const float* positions = mesh.positions;
+  fq::ThreadPool::shared().run(mesh.num_vertices, threads, [=](size_t begin, size_t end, size_t) {
+    for (size_t v = begin; v < end; ++v) {
+      uint32_t code = 0;
+      for (int a = 0; a < 3; ++a) {
+        const float u = (positions[3 * v + size_t(a)] - lo[a]) * scale;  // finite: check_mesh ran
+        code |= kSpread[static_cast<uint32_t>(std::min(std::max(u, 0.f), 1023.f))] << a;
+      }
+      out[v] = code;
+    }
+  }, size_t(1) << 14);
+  return codes;
 }
 
 }  // namespace
@@ -51,14 +59,27 @@ Box bounding_box(const fq::MeshView& mesh, int threads) {
   constexpr uint32_t kBlock = 1u << 14;
   std::vector<Box> boxes((mesh.num_vertices + kBlock - 1) / kBlock);
   fq::parallel_for(static_cast<uint32_t>(boxes.size()), threads, [&](uint32_t k) {
-    Box& bk = boxes[k];
     const uint32_t first = k * kBlock, end = std::min(mesh.num_vertices, first + kBlock);
-    for (int a = 0; a < 3; ++a) bk.lo[a] = bk.hi[a] = mesh.positions[3 * size_t(first) + a];
-    for (uint32_t v = first + 1; v < end; ++v) {
-      for (int a = 0; a < 3; ++a) {
-        bk.lo[a] = std::min(bk.lo[a], mesh.positions[3 * size_t(v) + a]);
-        bk.hi[a] = std::max(bk.hi[a], mesh.positions[3 * size_t(v) + a]);
+    // Twelve lanes (four vertices) at a time, so that the compiler vectorizes the min and max;
+    // lane j holds axis j % 3. The block's first vertex seeds every lane of its axis.
+    float lo[12], hi[12];
+    for (int j = 0; j < 12; ++j) lo[j] = hi[j] = mesh.positions[3 * size_t(first) + j % 3];
+    const float* p = mesh.positions + 3 * size_t(first);
+    const size_t floats = 3 * size_t(end - first), whole = floats / 12 * 12;
+    for (size_t i = 0; i < whole; i += 12) {
+      for (int j = 0; j < 12; ++j) {
+        lo[j] = std::min(lo[j], p[i + j]);
+        hi[j] = std::max(hi[j], p[i + j]);
       }
+    }
+    for (size_t i = whole; i < floats; ++i) {
+      lo[i % 3] = std::min(lo[i % 3], p[i]);
+      hi[i % 3] = std::max(hi[i % 3], p[i]);
+    }
+    Box& bk = boxes[k];
+    for (int a = 0; a < 3; ++a) {
+      bk.lo[a] = std::min({lo[a], lo[a + 3], lo[a + 6], lo[a + 9]});
+      bk.hi[a] = std::max({hi[a], hi[a + 3], hi[a + 6], hi[a + 9]});
     }
   }, 1);
   b = boxes[0];
@@ -84,23 +105,54 @@ uint64_t key_of(const std::vector<uint32_t>& codes, uint32_t t) { return (uint64
 /// Triangles handed to a worker at a time by the split's passes.
 constexpr size_t kSplitGrain = size_t(1) << 14;
 
-/// first[c] for c in [1, chunks): the key of rank n c / chunks (keys are unique). A histogram of
-/// the buckets locates each rank's bucket; only the keys of those buckets are sorted. Both
-/// passes over the codes run on the codec threads (per-worker histograms and key lists); the
-/// result does not depend on the thread count.
-std::vector<uint64_t> chunk_starts(const std::vector<uint32_t>& codes, uint32_t chunks, int threads) {
-  const auto n = static_cast<uint32_t>(codes.size());
+/// The key code of every triangle, the smallest Morton code of its three vertices, and the
+/// histogram of their buckets. A triangle goes with its lowest vertex along the Morton curve:
+/// that cuts fewer triangles' vertices apart than their centroids do (on the dragon, 1.5% of
+/// the vertices repeated in two chunks against 1.7%; on igea 2.5% against 3.0%), and costs
+/// three lookups of a per-vertex code instead of three positions and a quantization.
+/// Per-worker histograms on the codec threads, added after. A coherent input puts runs of
+/// triangles in one bucket: counting runs, not triangles, keeps the increments from waiting
+/// on each other.
+std::vector<uint32_t> triangle_codes(const fq::MeshView& mesh, const Box& box, int threads,
+                                     std::vector<uint32_t>& histogram) {
+  const std::vector<uint32_t> vcode = vertex_codes(mesh, box, threads);
+  const uint32_t n = mesh.num_triangles;
+  std::vector<uint32_t> codes(n);
   const size_t workers = size_t(std::max(threads, 1));
   std::vector<std::vector<uint32_t>> hist(workers, std::vector<uint32_t>(kBuckets, 0));
   fq::ThreadPool::shared().run(n, static_cast<int>(workers), [&](size_t begin, size_t end, size_t w) {
     uint32_t* h = hist[w].data();
-    for (size_t t = begin; t < end; ++t) ++h[bucket_of(codes[t])];
+    uint32_t run_bucket = 0, run = 0;
+    for (size_t t = begin; t < end; ++t) {
+      const uint32_t* tri = mesh.triangles + 3 * t;
+      const uint32_t code = std::min({vcode[tri[0]], vcode[tri[1]], vcode[tri[2]]});
+      codes[t] = code;
+      const uint32_t b = bucket_of(code);
+      if (b == run_bucket) {
+        ++run;
+        continue;
+      }
+      h[run_bucket] += run;
+      run_bucket = b;
+      run = 1;
+    }
+    h[run_bucket] += run;
   }, kSplitGrain);
+  histogram.assign(kBuckets, 0);
+  for (const auto& hw : hist)
+    for (uint32_t b = 0; b < kBuckets; ++b) histogram[b] += hw[b];
+  return codes;
+}
+
+/// first[c] for c in [1, chunks): the key of rank n c / chunks (keys are unique). The bucket
+/// histogram locates each rank's bucket; only the keys of those buckets are gathered (on the
+/// codec threads, per-worker lists) and sorted. The result does not depend on the thread count.
+std::vector<uint64_t> chunk_starts(const std::vector<uint32_t>& codes, const std::vector<uint32_t>& histogram,
+                                   uint32_t chunks, int threads) {
+  const auto n = static_cast<uint32_t>(codes.size());
+  const size_t workers = size_t(std::max(threads, 1));
   std::vector<uint32_t> start(kBuckets + 1, 0);
-  for (uint32_t b = 0; b < kBuckets; ++b) {
-    start[b + 1] = start[b];
-    for (const auto& h : hist) start[b + 1] += h[b];
-  }
+  for (uint32_t b = 0; b < kBuckets; ++b) start[b + 1] = start[b] + histogram[b];
   // The buckets holding a cut, each with the keys it holds.
   std::vector<int32_t> slot(kBuckets, -1);
   std::vector<uint32_t> cut_bucket(chunks, 0);
@@ -150,100 +202,80 @@ std::vector<uint16_t> bucket_chunks(const std::vector<uint64_t>& first) {
   return out;
 }
 
-/// Where each triangle goes: its chunk, and for each block of kBlock triangles the first slot
-/// of its triangles in every chunk, so that blocks fill the chunks in parallel and triangles
-/// keep the input order within a chunk (usually coherent: good for Draco's sequential coder,
-/// which stores indices in face order).
-struct SplitPlan {
-  static constexpr uint32_t kBlock = 1u << 14;  // igea: 17 blocks, enough for 16 threads
-  uint32_t chunks = 0, blocks = 0;
-  std::vector<uint8_t> chunk_of;  ///< per triangle
-  std::vector<uint32_t> at;       ///< blocks x chunks first slots
-  std::vector<uint32_t> sizes;    ///< triangles per chunk
+/// A run of triangles of one chunk, as found by one block of the runs pass.
+struct ChunkRun {
+  uint32_t chunk, first, count;
 };
 
-SplitPlan plan_split(const fq::MeshView& mesh, const Box& box, uint32_t chunks, int threads) {
-  const uint32_t n = mesh.num_triangles;
-  SplitPlan p;
-  p.chunks = chunks;
-  p.blocks = (n + SplitPlan::kBlock - 1) / SplitPlan::kBlock;
-  p.chunk_of.assign(n, 0);
-  p.at.assign(size_t(p.blocks) * chunks, 0);
-  p.sizes.assign(chunks, 0);
-  if (chunks <= 1) {
-    p.sizes[0] = n;
-    for (uint32_t b = 0; b < p.blocks; ++b) p.at[b] = b * SplitPlan::kBlock;
-    return p;
-  }
-  const float extent = box.max_extent();
-  const float scale = extent > 0.f ? 1023.f / extent : 0.f;
-  // Key of triangle t = (code, t) in one integer: keys are unique, so equal counts per chunk
-  // are exact and the split is deterministic. This runs before the chunks can be encoded in
-  // parallel, so it is on every frame's critical path: all codec threads work on it.
-  std::vector<uint32_t> codes(n);
-  fq::parallel_for(n, threads, [&](uint32_t t) { codes[t] = morton_of_centroid(mesh, t, box, scale); }, 4096);
-  const std::vector<uint64_t> first = chunk_starts(codes, chunks, threads);
-  const std::vector<uint16_t> bucket_chunk = bucket_chunks(first);
-  fq::parallel_for(p.blocks, threads, [&](uint32_t b) {
-    uint32_t* count = &p.at[size_t(b) * chunks];
-    for (uint32_t t = b * SplitPlan::kBlock; t < std::min(n, (b + 1) * SplitPlan::kBlock); ++t) {
-      uint32_t c = bucket_chunk[bucket_of(codes[t])];
-      if (c == kMixed)
-        c = static_cast<uint32_t>(std::upper_bound(first.begin() + 1, first.end(), key_of(codes, t)) - first.begin()) - 1;
-      p.chunk_of[t] = static_cast<uint8_t>(c);
-      ++count[c];
-    }
-  }, 1);
-  for (uint32_t c = 0; c < chunks; ++c) {
-    uint32_t offset = 0;  // counts become each block's first slot in chunk c
-    for (uint32_t b = 0; b < p.blocks; ++b) {
-      uint32_t& count = p.at[size_t(b) * chunks + c];
-      const uint32_t own = count;
-      count = offset;
-      offset += own;
-    }
-    p.sizes[c] = offset;
-  }
-  return p;
-}
+/// Triangles handed to a worker at a time by the runs pass; igea has 17 such blocks, enough
+/// for 16 threads.
+constexpr uint32_t kRunBlock = 1u << 14;
 
-/// Calls put(c, slot, t) for every triangle t: its chunk and its place there. Consumes p.at.
-template <class Put>
-void fill_split(const fq::MeshView& mesh, SplitPlan& p, int threads, Put put) {
-  fq::parallel_for(p.blocks, threads, [&](uint32_t b) {
-    uint32_t* at = &p.at[size_t(b) * p.chunks];
-    for (uint32_t t = b * SplitPlan::kBlock; t < std::min(mesh.num_triangles, (b + 1) * SplitPlan::kBlock); ++t)
-      put(p.chunk_of[t], at[p.chunk_of[t]]++, t);
-  }, 1);
+/// Appends [first, first + count) to `part`, extending its last run when they touch.
+void append_run(Part& part, uint32_t first, uint32_t count) {
+  part.triangles += count;
+  if (!part.runs.empty() && part.runs.back().first + part.runs.back().count == first) {
+    part.runs.back().count += count;
+    return;
+  }
+  part.runs.push_back({first, count});
 }
 
 }  // namespace
 
-std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box, uint32_t chunks,
-                                                   int threads) {
-  SplitPlan p = plan_split(mesh, box, chunks, threads);
-  std::vector<std::vector<uint32_t>> parts(chunks);
-  for (uint32_t c = 0; c < chunks; ++c) parts[c].resize(p.sizes[c]);
-  fill_split(mesh, p, threads, [&](uint32_t c, uint32_t slot, uint32_t t) { parts[c][slot] = t; });
+std::vector<Part> split_parts(const fq::MeshView& mesh, const Box& box, uint32_t chunks, int threads) {
+  const uint32_t n = mesh.num_triangles;
+  std::vector<Part> parts(std::max(chunks, 1u));
+  if (chunks <= 1 || n == 0) {
+    if (n > 0) append_run(parts[0], 0, n);
+    return parts;
+  }
+  // Key of triangle t = (code, t) in one integer: keys are unique, so equal counts per chunk
+  // are exact and the split is deterministic. This runs before the chunks can be encoded in
+  // parallel, so it is on every frame's critical path: all codec threads work on it.
+  std::vector<uint32_t> histogram;
+  const std::vector<uint32_t> codes = triangle_codes(mesh, box, threads, histogram);
+  const std::vector<uint64_t> first = chunk_starts(codes, histogram, chunks, threads);
+  const std::vector<uint16_t> bucket_chunk = bucket_chunks(first);
+  const auto chunk_of = [&](uint32_t t) -> uint32_t {
+    const uint32_t c = bucket_chunk[bucket_of(codes[t])];
+    if (c != kMixed) return c;
+    return static_cast<uint32_t>(std::upper_bound(first.begin() + 1, first.end(), key_of(codes, t)) - first.begin()) - 1;
+  };
+  // Each block's triangles as runs of one chunk (a coherent input has long runs), then the
+  // blocks' runs handed to their chunks in block order: triangles keep the input order within
+  // a chunk (usually coherent: good for Draco's sequential coder, which stores indices in face
+  // order), and a chunk is built straight from the frame's triangle array, with no copy.
+  const uint32_t blocks = (n + kRunBlock - 1) / kRunBlock;
+  std::vector<std::vector<ChunkRun>> block_runs(blocks);
+  fq::parallel_for(blocks, threads, [&](uint32_t b) {
+    std::vector<ChunkRun>& out = block_runs[b];
+    const uint32_t begin = b * kRunBlock, end = std::min(n, begin + kRunBlock);
+    uint32_t current = chunk_of(begin), run_first = begin;
+    for (uint32_t t = begin + 1; t < end; ++t) {
+      const uint32_t c = chunk_of(t);
+      if (c == current) continue;
+      out.push_back({current, run_first, t - run_first});
+      current = c;
+      run_first = t;
+    }
+    out.push_back({current, run_first, end - run_first});
+  }, 1);
+  for (const auto& runs : block_runs)
+    for (const ChunkRun& r : runs) append_run(parts[r.chunk], r.first, r.count);
   return parts;
 }
 
-std::vector<PartCorners> split_corners(const fq::MeshView& mesh, const Box& box, uint32_t chunks, int threads) {
-  SplitPlan p = plan_split(mesh, box, chunks, threads);
-  std::vector<PartCorners> parts(chunks);
-  for (uint32_t c = 0; c < chunks; ++c) {
-    parts[c].size = 3 * size_t(p.sizes[c]);
-    parts[c].data.reset(new uint32_t[parts[c].size]);  // every slot is written by fill_split
+std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box, uint32_t chunks,
+                                                   int threads) {
+  std::vector<std::vector<uint32_t>> out;
+  for (const Part& part : split_parts(mesh, box, chunks, threads)) {
+    std::vector<uint32_t>& ids = out.emplace_back();
+    ids.reserve(part.triangles);
+    for (const TriangleRun& r : part.runs)
+      for (uint32_t k = 0; k < r.count; ++k) ids.push_back(r.first + k);
   }
-  // The frame's triangles are read in order here, so building a chunk reads only its own.
-  fill_split(mesh, p, threads, [&](uint32_t c, uint32_t slot, uint32_t t) {
-    const uint32_t* in = mesh.triangles + 3 * size_t(t);
-    uint32_t* out = parts[c].data.get() + 3 * size_t(slot);
-    out[0] = in[0];  // three stores, not a memmove call per triangle
-    out[1] = in[1];
-    out[2] = in[2];
-  });
-  return parts;
+  return out;
 }
 
 size_t chunk_workers(size_t count, int threads) {

@@ -4,8 +4,6 @@
 
 #include <cstdint>
 #include <functional>
-#include <memory>
-#include <span>
 #include <vector>
 
 #include "kernels/mesh_view.h"
@@ -22,24 +20,27 @@ struct Box {
 
 Box bounding_box(const fq::MeshView& mesh, int threads = 1);
 
-/// Triangle ids of each of `chunks` parts: triangles ranked by the Morton code of their
-/// centroid (10 bits per axis on `box`; ties broken by triangle id, so the split is
-/// deterministic) and cut into equal counts, so each part is a spatially coherent patch.
-/// Within a part, triangles keep their input order. Runs on `threads` threads.
-std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box, uint32_t chunks,
-                                                   int threads = 1);
-
-/// The corners (3 vertex ids per triangle) of one part's triangles. Not zero-filled before
-/// the split writes them: that would be a serial pass over the whole frame.
-struct PartCorners {
-  std::unique_ptr<uint32_t[]> data;
-  size_t size = 0;
-  std::span<const uint32_t> span() const { return {data.get(), size}; }
+/// Consecutive triangles [first, first + count) of a frame.
+struct TriangleRun {
+  uint32_t first = 0, count = 0;
 };
 
-/// The same split as split_triangles, as the corners of each part's triangles: what a chunk
-/// is built from.
-std::vector<PartCorners> split_corners(const fq::MeshView& mesh, const Box& box, uint32_t chunks, int threads = 1);
+/// One part of the split: its triangles as runs in ascending order (the input order kept).
+/// A chunk is built from its runs straight out of the frame's triangle array.
+struct Part {
+  std::vector<TriangleRun> runs;
+  uint32_t triangles = 0;
+};
+
+/// The triangles of each of `chunks` parts: triangles ranked by the smallest Morton code of
+/// their vertices (10 bits per axis on `box`; ties broken by triangle id, so the split is
+/// deterministic) and cut into equal counts, so each part is a spatially coherent patch.
+/// Within a part, triangles keep their input order. Runs on `threads` threads.
+std::vector<Part> split_parts(const fq::MeshView& mesh, const Box& box, uint32_t chunks, int threads = 1);
+
+/// The same split as triangle ids per part (for tests and tools).
+std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box, uint32_t chunks,
+                                                   int threads = 1);
 
 /// Number of workers for_each_chunk uses: min(threads, count), at least 1.
 size_t chunk_workers(size_t count, int threads);

@@ -28,21 +28,26 @@ bool get_varint(const uint8_t* data, size_t size, size_t& pos, uint32_t& v) {
 
 }  // namespace
 
+void IdRunWriter::flush() {
+  if (length_ == 0) return;
+  uint8_t buf[10];  // two varints of at most 5 bytes
+  uint8_t* at = put_varint(first_ - end_, buf);
+  at = put_varint(length_, at);
+  bytes_.insert(bytes_.end(), buf, at);
+  end_ = first_ + length_;
+}
+
+std::vector<uint8_t> IdRunWriter::finish() {
+  flush();
+  std::vector<uint8_t> out = std::move(bytes_);
+  *this = {};
+  return out;
+}
+
 void encode_id_runs(const std::vector<uint32_t>& ids, std::vector<uint8_t>& out) {
-  size_t runs = ids.empty() ? 0 : 1;
-  for (size_t i = 1; i < ids.size(); ++i) runs += ids[i] != ids[i - 1] + 1;
-  out.resize(runs * 10);  // two varints of at most 5 bytes per run
-  uint8_t* at = out.data();
-  uint32_t end = 0;  // one past the previous run
-  for (size_t i = 0; i < ids.size();) {
-    size_t j = i + 1;
-    while (j < ids.size() && ids[j] == ids[j - 1] + 1) ++j;
-    at = put_varint(ids[i] - end, at);
-    at = put_varint(static_cast<uint32_t>(j - i), at);
-    end = ids[j - 1] + 1;
-    i = j;
-  }
-  out.resize(static_cast<size_t>(at - out.data()));
+  IdRunWriter w;
+  for (uint32_t id : ids) w.add(id);
+  out = w.finish();
 }
 
 bool decode_id_runs(const uint8_t* data, size_t size, size_t count, uint32_t limit, std::vector<uint32_t>& ids) {

@@ -15,6 +15,30 @@
 
 namespace fq::wire::detail {
 
+/// Writes ascending ids as runs one id at a time, so that a chunk's ids are coded while its
+/// points are gathered (no pass of their own).
+class IdRunWriter {
+ public:
+  /// Appends `id` (greater than every id before it).
+  void add(uint32_t id) {
+    if (length_ != 0 && id == first_ + length_) {
+      ++length_;
+      return;
+    }
+    flush();
+    first_ = id;
+    length_ = 1;
+  }
+  /// The runs of every id added; the writer is empty again.
+  std::vector<uint8_t> finish();
+
+ private:
+  void flush();
+  std::vector<uint8_t> bytes_;
+  uint32_t end_ = 0;  ///< one past the last id of the previous run
+  uint32_t first_ = 0, length_ = 0;
+};
+
 /// `ids` (strictly ascending) as runs, replacing `out`.
 void encode_id_runs(const std::vector<uint32_t>& ids, std::vector<uint8_t>& out);
 

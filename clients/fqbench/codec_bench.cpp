@@ -63,11 +63,11 @@ struct FloorChunks {
 FloorChunks floor_chunks(const MeshView& mesh, uint32_t chunks, const wire::CodecOptions& opt) {
   FloorChunks f;
   f.box = wd::bounding_box(mesh, opt.threads);
-  const auto parts = wd::split_corners(mesh, f.box, std::min(chunks, mesh.num_triangles), opt.threads);
+  const auto parts = wd::split_parts(mesh, f.box, std::min(chunks, mesh.num_triangles), opt.threads);
   wd::ChunkScratch scratch;
   for (const auto& part : parts) {
     f.meshes.push_back(std::make_unique<draco::Mesh>());
-    f.sequential.push_back(wd::build_chunk(mesh, nullptr, false, opt, part.span(), scratch, *f.meshes.back()));
+    f.sequential.push_back(wd::build_chunk(mesh, nullptr, false, opt, part, scratch, *f.meshes.back()));
   }
   return f;
 }
