@@ -79,13 +79,19 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
     return invalid_argument("chunk count " + std::to_string(chunks) + " outside [1, " +
                             std::to_string(kMaxChunks) + "]");
   }
-  if (auto s = fq::check_mesh(mesh, options.threads); !s.ok()) return s;
+  FQ_RETURN_IF_ERROR(fq::check_mesh_counts(mesh));
+  // The box's pass checks the coordinates and indices too; check_mesh runs only to name a fault.
+  bool valid = false;
+  const detail::Box box = detail::bounding_box(mesh, options.threads, &valid);
+  if (!valid) {
+    fq::Status fault = fq::check_mesh(mesh, options.threads);
+    return fault.ok() ? fq::Status{fq::StatusCode::kInternal, "mesh check disagrees with the box pass"} : fault;
+  }
   if (auto s = check_ranges(mesh, labels); !s.ok()) {
     if (auto u = check_all_used(mesh); !u.ok()) return u;  // the error reported first, as ever
     return s;
   }
 
-  const detail::Box box = detail::bounding_box(mesh, options.threads);
   const auto parts = detail::split_parts(mesh, box, std::min(chunks, mesh.num_triangles), options.threads);
   std::vector<std::string> encoded(parts.size());
   std::vector<fq::Status> status(parts.size());

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstring>
 
 #include "common/thread_pool.h"
 #include "kernels/parallel_for.h"
@@ -52,36 +54,89 @@ std::vector<uint32_t> vertex_codes(const fq::MeshView& mesh, const Box& box, int
 
 float Box::max_extent() const { return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}); }
 
-Box bounding_box(const fq::MeshView& mesh, int threads) {
+namespace {
+
+/// Four floats or ints as one value (GCC and Clang vector extensions, on any target): the
+/// compiler does not vectorize the three interleaved axes of a min/max loop by itself.
+using Float4 = float __attribute__((vector_size(16)));
+using Int4 = int32_t __attribute__((vector_size(16)));
+
+/// Box of vertices [first, end); sets `bad` when a coordinate is Inf or NaN. Twelve floats (four
+/// vertices) at a time as three Float4, so lane j of vector k holds axis (4 k + j) % 3. The
+/// block's first vertex seeds every lane of its axis.
+Box block_box(const float* positions, uint32_t first, uint32_t end, bool& bad) {
+  const float* p = positions + 3 * size_t(first);
+  float seed[12];
+  for (int j = 0; j < 12; ++j) seed[j] = p[j % 3];
+  Float4 lo[3], hi[3];
+  std::memcpy(lo, seed, sizeof(seed));
+  std::memcpy(hi, seed, sizeof(seed));
+  Int4 exponent_ones = {0, 0, 0, 0};
+  const Int4 mask = {0x7f800000, 0x7f800000, 0x7f800000, 0x7f800000};
+  const size_t floats = 3 * size_t(end - first), whole = floats / 12 * 12;
+  for (size_t i = 0; i < whole; i += 12) {
+    for (int k = 0; k < 3; ++k) {
+      Float4 x;
+      std::memcpy(&x, p + i + 4 * size_t(k), sizeof(x));
+      lo[k] = x < lo[k] ? x : lo[k];
+      hi[k] = x > hi[k] ? x : hi[k];
+      Int4 bits;
+      std::memcpy(&bits, &x, sizeof(bits));
+      exponent_ones |= (bits & mask) == mask;  // -1 where Inf or NaN
+    }
+  }
+  float lo_lanes[12], hi_lanes[12];
+  std::memcpy(lo_lanes, lo, sizeof(lo_lanes));
+  std::memcpy(hi_lanes, hi, sizeof(hi_lanes));
+  bool non_finite = exponent_ones[0] != 0 || exponent_ones[1] != 0 || exponent_ones[2] != 0 || exponent_ones[3] != 0;
+  for (size_t i = whole; i < floats; ++i) {
+    lo_lanes[i % 3] = std::min(lo_lanes[i % 3], p[i]);
+    hi_lanes[i % 3] = std::max(hi_lanes[i % 3], p[i]);
+    non_finite |= !std::isfinite(p[i]);
+  }
+  bad = non_finite;
+  Box box;
+  for (int a = 0; a < 3; ++a) {
+    box.lo[a] = std::min({lo_lanes[a], lo_lanes[a + 3], lo_lanes[a + 6], lo_lanes[a + 9]});
+    box.hi[a] = std::max({hi_lanes[a], hi_lanes[a + 3], hi_lanes[a + 6], hi_lanes[a + 9]});
+  }
+  return box;
+}
+
+/// Whether a corner in [first, end) names a vertex at or past `n` (branch-free: it vectorizes).
+bool bad_corner(const uint32_t* corners, size_t first, size_t end, uint32_t n) {
+  uint32_t bad = 0;
+  for (size_t i = first; i < end; ++i) bad |= static_cast<uint32_t>(corners[i] >= n);
+  return bad != 0;
+}
+
+}  // namespace
+
+Box bounding_box(const fq::MeshView& mesh, int threads, bool* valid) {
   Box b;
+  if (valid != nullptr) *valid = mesh.num_vertices > 0;
   if (mesh.num_vertices == 0) return b;
-  // Per block of vertices, on the codec threads; min and max do not depend on the order.
+  // One dispatch on the codec threads: blocks of vertices (box, finite coordinates) and, when
+  // checking, blocks of corners (indices); min and max do not depend on the order.
   constexpr uint32_t kBlock = 1u << 14;
-  std::vector<Box> boxes((mesh.num_vertices + kBlock - 1) / kBlock);
-  fq::parallel_for(static_cast<uint32_t>(boxes.size()), threads, [&](uint32_t k) {
-    const uint32_t first = k * kBlock, end = std::min(mesh.num_vertices, first + kBlock);
-    // Twelve lanes (four vertices) at a time, so that the compiler vectorizes the min and max;
-    // lane j holds axis j % 3. The block's first vertex seeds every lane of its axis.
-    float lo[12], hi[12];
-    for (int j = 0; j < 12; ++j) lo[j] = hi[j] = mesh.positions[3 * size_t(first) + j % 3];
-    const float* p = mesh.positions + 3 * size_t(first);
-    const size_t floats = 3 * size_t(end - first), whole = floats / 12 * 12;
-    for (size_t i = 0; i < whole; i += 12) {
-      for (int j = 0; j < 12; ++j) {
-        lo[j] = std::min(lo[j], p[i + j]);
-        hi[j] = std::max(hi[j], p[i + j]);
+  const size_t vertex_blocks = (size_t(mesh.num_vertices) + kBlock - 1) / kBlock;
+  const size_t corners = valid != nullptr ? 3 * size_t(mesh.num_triangles) : 0;
+  const size_t corner_blocks = (corners + 4 * kBlock - 1) / (4 * kBlock);
+  std::vector<Box> boxes(vertex_blocks);
+  std::vector<uint8_t> bad(vertex_blocks + corner_blocks, 0);
+  fq::ThreadPool::shared().run(vertex_blocks + corner_blocks, threads, [&](size_t begin, size_t end, size_t) {
+    for (size_t k = begin; k < end; ++k) {
+      if (k < vertex_blocks) {
+        const auto first = static_cast<uint32_t>(k * kBlock);
+        bool b_bad = false;
+        boxes[k] = block_box(mesh.positions, first, std::min(mesh.num_vertices, first + kBlock), b_bad);
+        bad[k] = b_bad;
+      } else {
+        const size_t first = (k - vertex_blocks) * 4 * kBlock;
+        bad[k] = bad_corner(mesh.triangles, first, std::min(corners, first + 4 * kBlock), mesh.num_vertices);
       }
     }
-    for (size_t i = whole; i < floats; ++i) {
-      lo[i % 3] = std::min(lo[i % 3], p[i]);
-      hi[i % 3] = std::max(hi[i % 3], p[i]);
-    }
-    Box& bk = boxes[k];
-    for (int a = 0; a < 3; ++a) {
-      bk.lo[a] = std::min({lo[a], lo[a + 3], lo[a + 6], lo[a + 9]});
-      bk.hi[a] = std::max({hi[a], hi[a + 3], hi[a + 6], hi[a + 9]});
-    }
-  }, 1);
+  });
   b = boxes[0];
   for (const Box& bk : boxes) {
     for (int a = 0; a < 3; ++a) {
@@ -89,6 +144,7 @@ Box bounding_box(const fq::MeshView& mesh, int threads) {
       b.hi[a] = std::max(b.hi[a], bk.hi[a]);
     }
   }
+  if (valid != nullptr) *valid = std::find(bad.begin(), bad.end(), uint8_t{1}) == bad.end();
   return b;
 }
 

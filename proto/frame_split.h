@@ -18,7 +18,10 @@ struct Box {
   float max_extent() const;
 };
 
-Box bounding_box(const fq::MeshView& mesh, int threads = 1);
+/// Axis-aligned bounding box of the vertices. With `valid`, the same pass also checks that
+/// every coordinate is finite and every triangle's indices are below num_vertices, and sets
+/// *valid to whether all are (the box means nothing when not; check_mesh then names the fault).
+Box bounding_box(const fq::MeshView& mesh, int threads = 1, bool* valid = nullptr);
 
 /// Consecutive triangles [first, first + count) of a frame.
 struct TriangleRun {

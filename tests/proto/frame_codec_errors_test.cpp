@@ -8,6 +8,7 @@
 
 #include <map>
 #include <memory>
+#include <limits>
 #include <string>
 
 #include "proto/frame_codec.h"
@@ -260,6 +261,33 @@ TEST(FrameCodecErrors, BadEncodeInputRejected) {
   broken.triangles[4] = 1000;
   EXPECT_EQ(encode_frame(broken.view(), nullptr, 2, CodecOptions{}, out).code(), StatusCode::kInvalidInput);
   EXPECT_TRUE(out.empty());
+}
+
+TEST(FrameCodecErrors, NonFiniteCoordinateOrBadIndexIsNamed) {
+  // 20,301 vertices: two blocks of the box pass, and vertices in its four-at-a-time part and in
+  // its remainder; the message names the first fault, as check_mesh does.
+  const Mesh m = test_proto::make_bumpy_grid(200, 100);
+  std::vector<std::string> out;
+  const uint32_t last = m.num_vertices() - 1;
+  for (uint32_t v : {0u, 5u, 16384u, 20000u, last}) {
+    for (float bad : {std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::infinity()}) {
+      Mesh broken = m;
+      broken.positions[3 * size_t(v) + v % 3] = bad;
+      const Status s = encode_frame(broken.view(), nullptr, 4, CodecOptions{}, out);
+      EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+      EXPECT_NE(s.message().find("vertex " + std::to_string(v) + " has a non-finite coordinate"), std::string::npos)
+          << s.message();
+      EXPECT_TRUE(out.empty());
+    }
+  }
+  for (uint32_t t : {0u, 7000u, m.num_triangles() - 1}) {
+    Mesh broken = m;
+    broken.triangles[3 * size_t(t) + 2] = m.num_vertices();
+    const Status s = encode_frame(broken.view(), nullptr, 4, CodecOptions{}, out);
+    EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
+    EXPECT_NE(s.message().find("triangle " + std::to_string(t) + " references vertex"), std::string::npos)
+        << s.message();
+  }
 }
 
 }  // namespace
