@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <memory>
 
 #include "common/thread_pool.h"
 #include "kernels/parallel_for.h"
@@ -30,12 +31,16 @@ constexpr std::array<uint32_t, 1024> kSpread = [] {
 }();
 
 /// Morton code (10 bits per axis) of the cell of each vertex on the grid over `box`.
-std::vector<uint32_t> vertex_codes(const fq::MeshView& mesh, const Box& box, int threads) {
+/// n codes, not zero-filled: the pass that makes them writes every entry on the codec threads,
+/// where a std::vector would first zero them all on one thread.
+using Codes = std::unique_ptr<uint32_t[]>;
+
+Codes vertex_codes(const fq::MeshView& mesh, const Box& box, int threads) {
   const float extent = box.max_extent();
   const float scale = extent > 0.f ? 1023.f / extent : 0.f;
   const float lo[3] = {box.lo[0], box.lo[1], box.lo[2]};
-  std::vector<uint32_t> codes(mesh.num_vertices);
-  uint32_t* out = codes.data();
+  Codes codes(new uint32_t[mesh.num_vertices]);
+  uint32_t* out = codes.get();
   const float* positions = mesh.positions;
   fq::ThreadPool::shared().run(mesh.num_vertices, threads, [=](size_t begin, size_t end, size_t) {
     for (size_t v = begin; v < end; ++v) {
@@ -156,7 +161,7 @@ namespace {
 constexpr int kBucketBits = 12;
 constexpr uint32_t kBuckets = 1u << kBucketBits;
 uint32_t bucket_of(uint32_t code) { return code >> (30 - kBucketBits); }
-uint64_t key_of(const std::vector<uint32_t>& codes, uint32_t t) { return (uint64_t(codes[t]) << 32) | t; }
+uint64_t key_of(const uint32_t* codes, uint32_t t) { return (uint64_t(codes[t]) << 32) | t; }
 
 /// Triangles handed to a worker at a time by the split's passes.
 constexpr size_t kSplitGrain = size_t(1) << 14;
@@ -169,11 +174,11 @@ constexpr size_t kSplitGrain = size_t(1) << 14;
 /// Per-worker histograms on the codec threads, added after. A coherent input puts runs of
 /// triangles in one bucket: counting runs, not triangles, keeps the increments from waiting
 /// on each other.
-std::vector<uint32_t> triangle_codes(const fq::MeshView& mesh, const Box& box, int threads,
-                                     std::vector<uint32_t>& histogram) {
-  const std::vector<uint32_t> vcode = vertex_codes(mesh, box, threads);
+Codes triangle_codes(const fq::MeshView& mesh, const Box& box, int threads, std::vector<uint32_t>& histogram) {
+  const Codes vertex_code = vertex_codes(mesh, box, threads);
+  const uint32_t* vcode = vertex_code.get();
   const uint32_t n = mesh.num_triangles;
-  std::vector<uint32_t> codes(n);
+  Codes codes(new uint32_t[n]);
   const size_t workers = size_t(std::max(threads, 1));
   std::vector<std::vector<uint32_t>> hist(workers, std::vector<uint32_t>(kBuckets, 0));
   fq::ThreadPool::shared().run(n, static_cast<int>(workers), [&](size_t begin, size_t end, size_t w) {
@@ -203,9 +208,8 @@ std::vector<uint32_t> triangle_codes(const fq::MeshView& mesh, const Box& box, i
 /// first[c] for c in [1, chunks): the key of rank n c / chunks (keys are unique). The bucket
 /// histogram locates each rank's bucket; only the keys of those buckets are gathered (on the
 /// codec threads, per-worker lists) and sorted. The result does not depend on the thread count.
-std::vector<uint64_t> chunk_starts(const std::vector<uint32_t>& codes, const std::vector<uint32_t>& histogram,
+std::vector<uint64_t> chunk_starts(const uint32_t* codes, uint32_t n, const std::vector<uint32_t>& histogram,
                                    uint32_t chunks, int threads) {
-  const auto n = static_cast<uint32_t>(codes.size());
   const size_t workers = size_t(std::max(threads, 1));
   std::vector<uint32_t> start(kBuckets + 1, 0);
   for (uint32_t b = 0; b < kBuckets; ++b) start[b + 1] = start[b] + histogram[b];
@@ -226,16 +230,21 @@ std::vector<uint64_t> chunk_starts(const std::vector<uint32_t>& codes, const std
         found[w][size_t(s)].push_back(key_of(codes, static_cast<uint32_t>(t)));
     }
   }, kSplitGrain);
-  std::vector<std::vector<uint64_t>> cut_keys(slots);
-  for (size_t k = 0; k < slots; ++k) {
-    for (auto& f : found) cut_keys[k].insert(cut_keys[k].end(), f[k].begin(), f[k].end());
-    std::sort(cut_keys[k].begin(), cut_keys[k].end());
-  }
+  // Each cut's key by selection (nth_element) among its bucket's keys, the buckets on the codec
+  // threads: a bucket holds thousands of keys, and sorting them one after the other was the
+  // longest serial step of the split on 16 threads.
   std::vector<uint64_t> first(chunks, 0);
-  for (uint32_t c = 1; c < chunks; ++c) {
-    const uint32_t b = cut_bucket[c];
-    first[c] = cut_keys[size_t(slot[b])][uint64_t(n) * c / chunks - start[b]];
-  }
+  for_each_chunk(slots, threads, [&](size_t k, size_t) {
+    std::vector<uint64_t> keys;
+    for (const auto& f : found) keys.insert(keys.end(), f[k].begin(), f[k].end());
+    for (uint32_t c = 1; c < chunks; ++c) {
+      const uint32_t b = cut_bucket[c];
+      if (size_t(slot[b]) != k) continue;
+      const auto nth = keys.begin() + std::ptrdiff_t(uint64_t(n) * c / chunks - start[b]);
+      std::nth_element(keys.begin(), nth, keys.end());
+      first[c] = *nth;
+    }
+  });
   return first;
 }
 
@@ -290,8 +299,9 @@ std::vector<Part> split_parts(const fq::MeshView& mesh, const Box& box, uint32_t
   // are exact and the split is deterministic. This runs before the chunks can be encoded in
   // parallel, so it is on every frame's critical path: all codec threads work on it.
   std::vector<uint32_t> histogram;
-  const std::vector<uint32_t> codes = triangle_codes(mesh, box, threads, histogram);
-  const std::vector<uint64_t> first = chunk_starts(codes, histogram, chunks, threads);
+  const Codes code_array = triangle_codes(mesh, box, threads, histogram);
+  const uint32_t* codes = code_array.get();
+  const std::vector<uint64_t> first = chunk_starts(codes, n, histogram, chunks, threads);
   const std::vector<uint16_t> bucket_chunk = bucket_chunks(first);
   const auto chunk_of = [&](uint32_t t) -> uint32_t {
     const uint32_t c = bucket_chunk[bucket_of(codes[t])];
