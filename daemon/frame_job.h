@@ -40,6 +40,9 @@ struct FrameJob {
 
   StreamSettings settings;              ///< the stream's settings with the frame's overrides applied
   Mesh mesh;                            ///< decoded input
+  /// Triangles of each input chunk, as decode laid them out in `mesh`: a MESH result with the
+  /// input's chunk count is cut the same way (wire::encode_frame_as), without a split.
+  std::vector<uint32_t> chunk_triangles;
   FrameResult result;                   ///< engine output
   uint32_t distinct_clusters = 0;       ///< clusters found (result.num_clusters bounds tracked ids)
   std::string engine;                   ///< engine that processed it

@@ -1,6 +1,7 @@
 // The three CPU/engine stages of the pipeline (see pipeline.h).
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <exception>
 
@@ -39,6 +40,13 @@ int frame_threads(size_t chunks) {
   return std::max(1, std::min<int>(hardware_threads(), static_cast<int>(chunks)));
 }
 
+// Whether a MESH result of `chunks` chunks can be cut as its input was: same count, and every
+// input chunk held triangles (a plain Draco mesh or fq's own chunks always do).
+bool same_cut(const std::vector<uint32_t>& chunk_triangles, uint32_t chunks) {
+  return chunk_triangles.size() == chunks &&
+         std::find(chunk_triangles.begin(), chunk_triangles.end(), 0u) == chunk_triangles.end();
+}
+
 // The stream's settings with the frame's own overrides and compute mode applied.
 Status resolve_settings(FrameJob& f) {
   FQ_RETURN_IF_ERROR(wire::apply_overrides(f.header.params(), f.settings.params));
@@ -58,7 +66,7 @@ Status decode(FrameJob& f, const DaemonConfig& c) {
       return invalid_input("chunk " + std::to_string(i) + ": " + s.message());
   wire::CodecOptions opt;
   opt.threads = frame_threads(views.size());
-  FQ_RETURN_IF_ERROR(wire::decode_frame(views, f.header.vertex_count(), opt, f.mesh, nullptr));
+  FQ_RETURN_IF_ERROR(wire::decode_frame(views, f.header.vertex_count(), opt, f.mesh, nullptr, &f.chunk_triangles));
   f.chunks.clear();
   if (f.mesh.num_vertices() > c.caps.max_vertices)
     return invalid_input("frame has " + std::to_string(f.mesh.num_vertices()) +
@@ -216,8 +224,13 @@ void run_encode_worker(Pipeline& p) {
           continue;
         }
         s = guarded("encode", [&] {
-          if (f->settings.output.form == ResultForm::kMesh)
+          if (f->settings.output.form == ResultForm::kMesh) {
+            // Cut as the input was when the chunk counts agree: the result keeps the input's
+            // connectivity, and decode laid its triangles out chunk after chunk.
+            if (same_cut(f->chunk_triangles, chunks))
+              return wire::encode_frame_as(view, nullptr, f->chunk_triangles, opt, f->out_chunks);
             return wire::encode_frame(view, nullptr, std::max(1u, chunks), opt, f->out_chunks);
+          }
           return wire::encode_positions(view.positions, view.num_vertices, std::max(1u, chunks), opt,
                                         f->out_chunks);
         });

@@ -46,13 +46,26 @@ struct CodecOptions {
 fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32_t chunks,
                         const CodecOptions& options, std::vector<std::string>& out);
 
+/// Encodes `mesh` as the chunks `chunk_triangles` describes, without a split: chunk i holds the
+/// next chunk_triangles[i] triangles, in order. That is how decode_frame lays out a frame's
+/// chunks, so a result that keeps its input's connectivity (fqd's MESH results) is cut exactly
+/// as its input was: the same chunk meshes, no Morton split. Otherwise as encode_frame.
+/// kInvalidArgument when the counts are empty, zero, more than kMaxChunks or do not add up to
+/// the mesh's triangles.
+fq::Status encode_frame_as(const fq::MeshView& mesh, const uint32_t* labels,
+                           const std::vector<uint32_t>& chunk_triangles, const CodecOptions& options,
+                           std::vector<std::string>& out);
+
 /// Decodes `chunks` and merges them by "fq_vid" into `vertex_count` vertices (0 = infer:
 /// the largest id + 1, or the point count of a plain mesh). A single chunk without
 /// "fq_vid" (a plain Draco mesh) is taken in Draco point order. `labels` (nullable) is filled
-/// when every chunk has "fq_label", cleared otherwise. kInvalidInput for any malformed input;
-/// `out` is then empty. `out`'s buffers keep their capacity, so a reused mesh stops allocating.
+/// when every chunk has "fq_label", cleared otherwise. The triangles come out chunk after
+/// chunk; `chunk_triangles` (nullable) gets each chunk's count (see encode_frame_as).
+/// kInvalidInput for any malformed input; `out` is then empty. `out`'s buffers keep their
+/// capacity, so a reused mesh stops allocating.
 fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t vertex_count,
-                        const CodecOptions& options, fq::Mesh& out, std::vector<uint32_t>* labels);
+                        const CodecOptions& options, fq::Mesh& out, std::vector<uint32_t>* labels,
+                        std::vector<uint32_t>* chunk_triangles = nullptr);
 
 /// Positions only (the POSITIONS result form): the frame's `num_vertices` positions cut into
 /// `chunks` contiguous ranges of vertex ids, chunk i holding vertices

@@ -214,7 +214,8 @@ void empty(fq::Mesh& out, std::vector<uint32_t>* labels) {
 }
 
 fq::Status decode_into(const std::vector<std::string_view>& chunks, uint32_t vertex_count,
-                       const CodecOptions& options, fq::Mesh& out, std::vector<uint32_t>* labels) {
+                       const CodecOptions& options, fq::Mesh& out, std::vector<uint32_t>* labels,
+                       std::vector<uint32_t>* chunk_triangles) {
   if (labels) labels->clear();
   if (chunks.empty()) return invalid_input("frame has no Draco chunks");
   if (chunks.size() > kMaxChunks)
@@ -232,6 +233,9 @@ fq::Status decode_into(const std::vector<std::string_view>& chunks, uint32_t ver
     if (!cs[i].status.ok())
       return invalid_input("chunk " + std::to_string(i) + ": " + cs[i].status.message());
   }
+  if (chunk_triangles) {
+    for (const Chunk& c : cs) chunk_triangles->push_back(static_cast<uint32_t>(c.triangles.size() / 3));
+  }
   if (cs.size() == 1 && cs[0].ids.empty()) return take_plain(cs[0], vertex_count, out, labels);
   for (size_t i = 0; i < cs.size(); ++i) {
     if (cs[i].ids.empty()) {
@@ -247,9 +251,14 @@ fq::Status decode_into(const std::vector<std::string_view>& chunks, uint32_t ver
 }  // namespace
 
 fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t vertex_count,
-                        const CodecOptions& options, fq::Mesh& out, std::vector<uint32_t>* labels) {
-  fq::Status s = decode_into(chunks, vertex_count, options, out, labels);
-  if (!s.ok()) empty(out, labels);
+                        const CodecOptions& options, fq::Mesh& out, std::vector<uint32_t>* labels,
+                        std::vector<uint32_t>* chunk_triangles) {
+  if (chunk_triangles) chunk_triangles->clear();
+  fq::Status s = decode_into(chunks, vertex_count, options, out, labels, chunk_triangles);
+  if (!s.ok()) {
+    empty(out, labels);
+    if (chunk_triangles) chunk_triangles->clear();
+  }
   return s;
 }
 

@@ -69,20 +69,15 @@ fq::Status check_ranges(const fq::MeshView& mesh, const uint32_t* labels) {
   return {};
 }
 
-}  // namespace
-
-fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32_t chunks,
-                        const CodecOptions& options, std::vector<std::string>& out) {
-  out.clear();
-  if (auto s = check_options(options); !s.ok()) return s;
-  if (chunks == 0 || chunks > kMaxChunks) {
-    return invalid_argument("chunk count " + std::to_string(chunks) + " outside [1, " +
-                            std::to_string(kMaxChunks) + "]");
-  }
+/// The checks every encode makes: options, counts, finite coordinates and valid indices (in the
+/// box's pass), label and id ranges. Sets `box`.
+fq::Status check_frame(const fq::MeshView& mesh, const uint32_t* labels, const CodecOptions& options,
+                       detail::Box& box) {
+  FQ_RETURN_IF_ERROR(check_options(options));
   FQ_RETURN_IF_ERROR(fq::check_mesh_counts(mesh));
   // The box's pass checks the coordinates and indices too; check_mesh runs only to name a fault.
   bool valid = false;
-  const detail::Box box = detail::bounding_box(mesh, options.threads, &valid);
+  box = detail::bounding_box(mesh, options.threads, &valid);
   if (!valid) {
     fq::Status fault = fq::check_mesh(mesh, options.threads);
     return fault.ok() ? fq::Status{fq::StatusCode::kInternal, "mesh check disagrees with the box pass"} : fault;
@@ -91,8 +86,12 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
     if (auto u = check_all_used(mesh); !u.ok()) return u;  // the error reported first, as ever
     return s;
   }
+  return {};
+}
 
-  const auto parts = detail::split_parts(mesh, box, std::min(chunks, mesh.num_triangles), options.threads);
+/// Builds and encodes the chunks `parts` of a checked frame, concurrently.
+fq::Status encode_parts(const fq::MeshView& mesh, const uint32_t* labels, const std::vector<detail::Part>& parts,
+                        const CodecOptions& options, const detail::Box& box, std::vector<std::string>& out) {
   std::vector<std::string> encoded(parts.size());
   std::vector<fq::Status> status(parts.size());
   // Every vertex must be used: the chunks mark theirs while they are built (no extra pass).
@@ -114,6 +113,48 @@ fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32
   if (const uint32_t v = first_unused(used, mesh.num_vertices); v < mesh.num_vertices) return unused_vertex(v);
   out = std::move(encoded);
   return {};
+}
+
+}  // namespace
+
+fq::Status encode_frame(const fq::MeshView& mesh, const uint32_t* labels, uint32_t chunks,
+                        const CodecOptions& options, std::vector<std::string>& out) {
+  out.clear();
+  if (chunks == 0 || chunks > kMaxChunks) {
+    FQ_RETURN_IF_ERROR(check_options(options));
+    return invalid_argument("chunk count " + std::to_string(chunks) + " outside [1, " +
+                            std::to_string(kMaxChunks) + "]");
+  }
+  detail::Box box;
+  FQ_RETURN_IF_ERROR(check_frame(mesh, labels, options, box));
+  const auto parts = detail::split_parts(mesh, box, std::min(chunks, mesh.num_triangles), options.threads);
+  return encode_parts(mesh, labels, parts, options, box, out);
+}
+
+fq::Status encode_frame_as(const fq::MeshView& mesh, const uint32_t* labels,
+                           const std::vector<uint32_t>& chunk_triangles, const CodecOptions& options,
+                           std::vector<std::string>& out) {
+  out.clear();
+  FQ_RETURN_IF_ERROR(check_options(options));
+  if (chunk_triangles.empty() || chunk_triangles.size() > kMaxChunks) {
+    return invalid_argument(std::to_string(chunk_triangles.size()) + " chunks: outside [1, " +
+                            std::to_string(kMaxChunks) + "]");
+  }
+  uint64_t total = 0;
+  std::vector<detail::Part> parts(chunk_triangles.size());
+  for (size_t i = 0; i < chunk_triangles.size(); ++i) {
+    if (chunk_triangles[i] == 0) return invalid_argument("chunk " + std::to_string(i) + " has no triangles");
+    parts[i].runs.push_back({static_cast<uint32_t>(total), chunk_triangles[i]});
+    parts[i].triangles = chunk_triangles[i];
+    total += chunk_triangles[i];
+  }
+  if (total != mesh.num_triangles) {
+    return invalid_argument("the chunks hold " + std::to_string(total) + " triangles, the mesh has " +
+                            std::to_string(mesh.num_triangles));
+  }
+  detail::Box box;
+  FQ_RETURN_IF_ERROR(check_frame(mesh, labels, options, box));
+  return encode_parts(mesh, labels, parts, options, box, out);
 }
 
 }  // namespace fq::wire

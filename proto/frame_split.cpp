@@ -126,7 +126,8 @@ Box bounding_box(const fq::MeshView& mesh, int threads, bool* valid) {
   constexpr uint32_t kBlock = 1u << 14;
   const size_t vertex_blocks = (size_t(mesh.num_vertices) + kBlock - 1) / kBlock;
   const size_t corners = valid != nullptr ? 3 * size_t(mesh.num_triangles) : 0;
-  const size_t corner_blocks = (corners + 4 * kBlock - 1) / (4 * kBlock);
+  constexpr size_t kCornerBlock = 4 * size_t(kBlock);
+  const size_t corner_blocks = (corners + kCornerBlock - 1) / kCornerBlock;
   std::vector<Box> boxes(vertex_blocks);
   std::vector<uint8_t> bad(vertex_blocks + corner_blocks, 0);
   fq::ThreadPool::shared().run(vertex_blocks + corner_blocks, threads, [&](size_t begin, size_t end, size_t) {
@@ -137,8 +138,8 @@ Box bounding_box(const fq::MeshView& mesh, int threads, bool* valid) {
         boxes[k] = block_box(mesh.positions, first, std::min(mesh.num_vertices, first + kBlock), b_bad);
         bad[k] = b_bad;
       } else {
-        const size_t first = (k - vertex_blocks) * 4 * kBlock;
-        bad[k] = bad_corner(mesh.triangles, first, std::min(corners, first + 4 * kBlock), mesh.num_vertices);
+        const size_t first = (k - vertex_blocks) * kCornerBlock;
+        bad[k] = bad_corner(mesh.triangles, first, std::min(corners, first + kCornerBlock), mesh.num_vertices);
       }
     }
   });

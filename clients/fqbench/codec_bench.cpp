@@ -93,23 +93,27 @@ bool floor_decode(const std::vector<std::string>& encoded, int threads) {
 }
 
 struct Samples {
-  std::vector<double> encode, decode, floor_encode, floor_decode;  // wall ms
-  std::vector<double> encode_cpu, decode_cpu, floor_encode_cpu, floor_decode_cpu;
+  std::vector<double> encode, decode, result_encode, floor_encode, floor_decode;  // wall ms
+  std::vector<double> encode_cpu, decode_cpu, result_encode_cpu, floor_encode_cpu, floor_decode_cpu;
   size_t bytes = 0, floor_bytes = 0, chunks = 0;
 };
 
-/// One round: ours (encode, then decode of what we encoded), then the floor on the same chunks.
+/// One round: ours (encode, decode of what we encoded, and fqd's MESH result of the decoded
+/// frame: encode_frame_as on the input's chunks), then the floor on the same chunks.
 /// `back` lives across rounds, as fqd's pooled meshes do: decode_frame reuses its buffers.
 bool one_round(const Mesh& mesh, const FloorChunks& f, uint32_t chunks, const wire::CodecOptions& opt, Mesh& back,
                Samples& s) {
   bool ok = true;
-  std::vector<std::string> ours, floor;
+  std::vector<std::string> ours, result, floor;
+  std::vector<uint32_t> counts;
   time_step([&] { return wire::encode_frame(mesh.view(), nullptr, chunks, opt, ours).ok(); }, ok, s.encode,
             s.encode_cpu);
   const std::vector<std::string_view> views(ours.begin(), ours.end());
-  time_step([&] { return wire::decode_frame(views, mesh.num_vertices(), opt, back, nullptr).ok(); }, ok, s.decode,
-            s.decode_cpu);
+  time_step([&] { return wire::decode_frame(views, mesh.num_vertices(), opt, back, nullptr, &counts).ok(); }, ok,
+            s.decode, s.decode_cpu);
   ok = ok && back.num_vertices() == mesh.num_vertices() && back.num_triangles() == mesh.num_triangles();
+  time_step([&] { return ok && wire::encode_frame_as(back.view(), nullptr, counts, opt, result).ok(); }, ok,
+            s.result_encode, s.result_encode_cpu);
   time_step([&] { return floor_encode(f, opt, floor); }, ok, s.floor_encode, s.floor_encode_cpu);
   time_step([&] { return floor_decode(floor, opt.threads); }, ok, s.floor_decode, s.floor_decode_cpu);
   s.bytes = total_bytes(ours);
@@ -134,12 +138,15 @@ struct Compared {
 };
 
 void print(const CodecBenchOptions& o, const Mesh& m, const Samples& s) {
-  const Compared rows[] = {{"encode", "encode wall ms", median(s.encode), median(s.floor_encode)},
-                           {"decode", "decode wall ms", median(s.decode), median(s.floor_decode)},
-                           {"encode_p90", "encode wall ms, p90", p90(s.encode), p90(s.floor_encode)},
-                           {"decode_p90", "decode wall ms, p90", p90(s.decode), p90(s.floor_decode)},
-                           {"encode_cpu", "encode CPU ms", median(s.encode_cpu), median(s.floor_encode_cpu)},
-                           {"decode_cpu", "decode CPU ms", median(s.decode_cpu), median(s.floor_decode_cpu)}};
+  const Compared rows[] = {
+      {"encode", "encode wall ms", median(s.encode), median(s.floor_encode)},
+      {"decode", "decode wall ms", median(s.decode), median(s.floor_decode)},
+      {"result_encode", "result encode wall ms (input's chunks)", median(s.result_encode), median(s.floor_encode)},
+      {"encode_p90", "encode wall ms, p90", p90(s.encode), p90(s.floor_encode)},
+      {"decode_p90", "decode wall ms, p90", p90(s.decode), p90(s.floor_decode)},
+      {"encode_cpu", "encode CPU ms", median(s.encode_cpu), median(s.floor_encode_cpu)},
+      {"decode_cpu", "decode CPU ms", median(s.decode_cpu), median(s.floor_decode_cpu)},
+      {"result_encode_cpu", "result encode CPU ms", median(s.result_encode_cpu), median(s.floor_encode_cpu)}};
   if (o.json) {
     nlohmann::json j = {{"mesh", o.mesh},
                         {"vertices", m.num_vertices()},

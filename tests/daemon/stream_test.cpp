@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 
+#include "clients/common/frame_sender.h"
 #include "kernels/cpu_engine.h"
 #include "tests/daemon/daemon_harness.h"
 #include "proto/frame_codec.h"
@@ -186,6 +187,32 @@ TEST(DaemonStream, ChunkedAndUnchunkedFramesGiveTheSameResult) {
   // Chunking may reorder the triangles (and rotate their corners), not change them.
   EXPECT_EQ(canonical_triangles(one.mesh), canonical_triangles(four.mesh));
   EXPECT_EQ(one.header.cluster_count(), four.header.cluster_count());
+}
+
+TEST(DaemonStream, AMeshResultIsCutAsItsInputWas) {
+  daemon::DaemonConfig c = test_config();
+  c.defaults.output.form = daemon::ResultForm::kMesh;
+  DaemonHarness h(c);
+  const Mesh mesh = noisy_sphere(7);
+  // Uneven input chunks, which no split of fqd's own would make (its chunks are equal).
+  const uint32_t f = mesh.num_triangles();
+  const std::vector<uint32_t> counts{f / 10, f / 3, f - f / 10 - f / 3};
+  std::vector<std::string> parts;
+  ASSERT_TRUE(client::build_frame(mesh.view(), spec_for("uneven", 3), 0, parts).ok());
+  std::vector<std::string> chunks;
+  ASSERT_TRUE(wire::encode_frame_as(mesh.view(), nullptr, counts, wire::CodecOptions{}, chunks).ok());
+  ASSERT_EQ(parts.size(), 2 + chunks.size());
+  std::copy(chunks.begin(), chunks.end(), parts.begin() + 2);
+  h.send_parts(parts);
+  const client::ReceivedResult r = h.receive_decoded("uneven");
+  ASSERT_EQ(r.header.form(), wire::MESH);
+  std::vector<std::string_view> views;
+  for (const zmq::message_t& m : r.chunks) views.emplace_back(m.data<char>(), m.size());
+  Mesh back;
+  std::vector<uint32_t> result_counts;
+  ASSERT_TRUE(wire::decode_frame(views, mesh.num_vertices(), wire::CodecOptions{}, back, nullptr, &result_counts).ok());
+  EXPECT_EQ(result_counts, counts);
+  EXPECT_EQ(canonical_triangles(back), canonical_triangles(mesh));
 }
 
 TEST(DaemonStream, BothResultFormsCarryTheSamePositionsAndLabels) {

@@ -41,7 +41,8 @@ TEST(FqbenchCodec, JsonHasOursAndTheFloorWithSaneValues) {
   EXPECT_EQ(j.at("threads"), 2);
   EXPECT_EQ(j.at("speed"), 10);
   for (const char* key : {"encode_ms", "decode_ms", "floor_encode_ms", "floor_decode_ms", "encode_cpu_ms",
-                          "decode_cpu_ms", "floor_encode_cpu_ms", "floor_decode_cpu_ms"}) {
+                          "decode_cpu_ms", "floor_encode_cpu_ms", "floor_decode_cpu_ms", "result_encode_ms",
+                          "result_encode_cpu_ms"}) {
     const double ms = j.at(key).get<double>();
     EXPECT_TRUE(std::isfinite(ms) && ms > 0.0 && ms < 60000.0) << key << " = " << ms;
   }
@@ -49,6 +50,10 @@ TEST(FqbenchCodec, JsonHasOursAndTheFloorWithSaneValues) {
                    j.at("encode_ms").get<double>() / j.at("floor_encode_ms").get<double>());
   EXPECT_DOUBLE_EQ(j.at("decode_ratio").get<double>(),
                    j.at("decode_ms").get<double>() / j.at("floor_decode_ms").get<double>());
+  // fqd's MESH result of the decoded frame, on the input's chunks, against the same floor.
+  EXPECT_DOUBLE_EQ(j.at("floor_result_encode_ms").get<double>(), j.at("floor_encode_ms").get<double>());
+  EXPECT_DOUBLE_EQ(j.at("result_encode_ratio").get<double>(),
+                   j.at("result_encode_ms").get<double>() / j.at("floor_encode_ms").get<double>());
   // Ours carries the vertex ids on top of the same chunks: a little more, never less.
   EXPECT_GE(j.at("bytes").get<double>(), j.at("floor_bytes").get<double>());
   EXPECT_LT(j.at("bytes").get<double>(), 1.2 * j.at("floor_bytes").get<double>());
@@ -61,6 +66,7 @@ TEST(FqbenchCodec, TableByDefaultAndAClearErrorForAMissingMesh) {
   EXPECT_EQ(code, 0);
   EXPECT_NE(table.find("| encode wall ms |"), std::string::npos) << table;
   EXPECT_NE(table.find("| decode wall ms |"), std::string::npos) << table;
+  EXPECT_NE(table.find("| result encode wall ms (input's chunks) |"), std::string::npos) << table;
   const std::string missing = run(fqbench("--codec no-such-mesh.ply --mesh-dir /nonexistent 2>&1"), code);
   EXPECT_EQ(code, 1);
   EXPECT_NE(missing.find("no-such-mesh.ply"), std::string::npos) << missing;

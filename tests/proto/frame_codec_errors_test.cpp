@@ -95,6 +95,9 @@ TEST(FrameCodecErrors, PlainDracoMeshIsASingleChunkFrame) {
     mapped.push_back(it->second);
   }
   EXPECT_EQ(triangle_set(mapped), triangle_set(m.triangles));
+  std::vector<uint32_t> counts;  // one chunk of every triangle
+  ASSERT_TRUE(decode_frame({chunks[0]}, 0, CodecOptions{}, out, nullptr, &counts).ok());
+  EXPECT_EQ(counts, std::vector<uint32_t>{m.num_triangles()});
   EXPECT_TRUE(decode(chunks, m.num_vertices(), out).ok());
   EXPECT_EQ(decode(chunks, m.num_vertices() + 1, out).code(), StatusCode::kInvalidInput);
 }

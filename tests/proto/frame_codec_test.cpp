@@ -162,6 +162,64 @@ TEST(FrameCodec, ChunksAreSpatiallyCoherent) {
   EXPECT_LE(vertices, m.num_vertices() + 3 * 2 * 9);
 }
 
+TEST(FrameCodec, AResultIsCutAsItsInputWas) {
+  // decode_frame lays the chunks' triangles out one chunk after the other and says how many
+  // each had; encode_frame_as cuts a mesh with that connectivity the same way, without a split.
+  const Mesh m = test_proto::make_bumpy_grid(30, 20);
+  for (int speed : {10, 5}) {
+    CodecOptions o;
+    o.threads = 2;
+    o.encode_speed = o.decode_speed = speed;
+    std::vector<std::string> encoded;
+    ASSERT_TRUE(encode_frame(m.view(), nullptr, 4, o, encoded).ok());
+    Mesh input;
+    std::vector<uint32_t> counts;
+    ASSERT_TRUE(decode_frame(views(encoded), m.num_vertices(), o, input, nullptr, &counts).ok());
+    ASSERT_EQ(counts.size(), 4u);
+    uint32_t total = 0;
+    for (uint32_t c : counts) total += c;
+    EXPECT_EQ(total, input.num_triangles());
+    Mesh moved = input;  // a filtered result: new positions, the input's faces
+    for (size_t i = 0; i < moved.positions.size(); ++i) moved.positions[i] += 0.01f * float(i % 7);
+    std::vector<uint32_t> labels(moved.num_vertices());
+    for (uint32_t v = 0; v < labels.size(); ++v) labels[v] = v % 5;
+    std::vector<std::string> result;
+    const Status es = encode_frame_as(moved.view(), labels.data(), counts, o, result);
+    ASSERT_TRUE(es.ok()) << es.message();
+    ASSERT_EQ(result.size(), counts.size());
+    Mesh back;
+    std::vector<uint32_t> back_counts, back_labels;
+    ASSERT_TRUE(decode_frame(views(result), moved.num_vertices(), o, back, &back_labels, &back_counts).ok());
+    EXPECT_EQ(back_counts, counts) << "speed " << speed;
+    EXPECT_EQ(back_labels, labels);
+    expect_same_mesh(moved, back);
+    // The sequential coder keeps face and point order: the very same chunk meshes come back.
+    if (speed == 10) EXPECT_EQ(back.triangles, input.triangles);
+  }
+}
+
+TEST(FrameCodec, ChunkCountsMustDescribeTheMesh) {
+  const Mesh m = test_proto::make_bumpy_grid(6, 5);  // 60 triangles
+  std::vector<std::string> out;
+  const CodecOptions o;
+  for (const std::vector<uint32_t>& counts : std::vector<std::vector<uint32_t>>{
+           {}, {30, 0, 30}, {30, 20}, {30, 40}, std::vector<uint32_t>(kMaxChunks + 1, 1)}) {
+    const Status s = encode_frame_as(m.view(), nullptr, counts, o, out);
+    EXPECT_EQ(s.code(), StatusCode::kInvalidArgument) << counts.size() << " chunks: " << s.message();
+    EXPECT_TRUE(out.empty());
+  }
+  Mesh broken = m;
+  broken.positions[4] = std::nanf("");
+  EXPECT_EQ(encode_frame_as(broken.view(), nullptr, {20, 40}, o, out).code(), StatusCode::kInvalidInput);
+  EXPECT_TRUE(encode_frame_as(m.view(), nullptr, {20, 40}, o, out).ok());
+  EXPECT_EQ(out.size(), 2u);
+  // A failed decode leaves no counts behind.
+  Mesh back;
+  std::vector<uint32_t> counts{7, 7};
+  EXPECT_FALSE(decode_frame(views({out[0]}), m.num_vertices(), o, back, nullptr, &counts).ok());
+  EXPECT_TRUE(counts.empty());
+}
+
 TEST(FrameCodec, LabelsRoundTrip) {
   const Mesh m = test_proto::make_bumpy_grid(20, 20);
   std::vector<uint32_t> labels(m.num_vertices());
