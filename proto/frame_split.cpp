@@ -30,11 +30,11 @@ constexpr std::array<uint32_t, 1024> kSpread = [] {
   return t;
 }();
 
-/// Morton code (10 bits per axis) of the cell of each vertex on the grid over `box`.
 /// n codes, not zero-filled: the pass that makes them writes every entry on the codec threads,
 /// where a std::vector would first zero them all on one thread.
 using Codes = std::unique_ptr<uint32_t[]>;
 
+/// Morton code (10 bits per axis) of the cell of each vertex on the grid over `box`.
 Codes vertex_codes(const fq::MeshView& mesh, const Box& box, int threads) {
   const float extent = box.max_extent();
   const float scale = extent > 0.f ? 1023.f / extent : 0.f;
@@ -46,7 +46,7 @@ Codes vertex_codes(const fq::MeshView& mesh, const Box& box, int threads) {
     for (size_t v = begin; v < end; ++v) {
       uint32_t code = 0;
       for (int a = 0; a < 3; ++a) {
-        const float u = (positions[3 * v + size_t(a)] - lo[a]) * scale;  // finite: check_mesh ran
+        const float u = (positions[3 * v + size_t(a)] - lo[a]) * scale;  // finite: checked by the box pass
         code |= kSpread[static_cast<uint32_t>(std::min(std::max(u, 0.f), 1023.f))] << a;
       }
       out[v] = code;
