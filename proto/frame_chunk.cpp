@@ -103,7 +103,7 @@ bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids
   // Draco's sequential coder at speed 10, or when a face repeats a vertex (edgebreaker would
   // drop it); only then does it keep point order, which the id runs rely on.
   const bool sequential = o.encode_speed == 10 || repeats_a_vertex(mesh, part);
-  const uint32_t n = mesh.num_triangles == 0 ? 0 : mark_part(mesh, part, scratch);
+  const uint32_t n = mark_part(mesh, part, scratch);
   m.set_num_points(n);
   draco::GeometryAttribute ga;
   ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 3 * sizeof(float), 0);

@@ -333,18 +333,6 @@ std::vector<Part> split_parts(const fq::MeshView& mesh, const Box& box, uint32_t
   return parts;
 }
 
-std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box, uint32_t chunks,
-                                                   int threads) {
-  std::vector<std::vector<uint32_t>> out;
-  for (const Part& part : split_parts(mesh, box, chunks, threads)) {
-    std::vector<uint32_t>& ids = out.emplace_back();
-    ids.reserve(part.triangles);
-    for (const TriangleRun& r : part.runs)
-      for (uint32_t k = 0; k < r.count; ++k) ids.push_back(r.first + k);
-  }
-  return out;
-}
-
 size_t chunk_workers(size_t count, int threads) {
   return std::max<size_t>(1, std::min<size_t>(count, size_t(std::max(threads, 1))));
 }

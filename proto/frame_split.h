@@ -41,10 +41,6 @@ struct Part {
 /// Within a part, triangles keep their input order. Runs on `threads` threads.
 std::vector<Part> split_parts(const fq::MeshView& mesh, const Box& box, uint32_t chunks, int threads = 1);
 
-/// The same split as triangle ids per part (for tests and tools).
-std::vector<std::vector<uint32_t>> split_triangles(const fq::MeshView& mesh, const Box& box, uint32_t chunks,
-                                                   int threads = 1);
-
 /// Number of workers for_each_chunk uses: min(threads, count), at least 1.
 size_t chunk_workers(size_t count, int threads);
 

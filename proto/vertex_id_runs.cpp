@@ -44,12 +44,6 @@ std::vector<uint8_t> IdRunWriter::finish() {
   return out;
 }
 
-void encode_id_runs(const std::vector<uint32_t>& ids, std::vector<uint8_t>& out) {
-  IdRunWriter w;
-  for (uint32_t id : ids) w.add(id);
-  out = w.finish();
-}
-
 bool decode_id_runs(const uint8_t* data, size_t size, size_t count, uint32_t limit, std::vector<uint32_t>& ids) {
   ids.resize(count);
   size_t filled = 0;

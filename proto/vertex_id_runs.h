@@ -39,8 +39,6 @@ class IdRunWriter {
   uint32_t first_ = 0, length_ = 0;
 };
 
-/// `ids` (strictly ascending) as runs, replacing `out`.
-void encode_id_runs(const std::vector<uint32_t>& ids, std::vector<uint8_t>& out);
 
 /// The ids of `size` bytes of runs into `ids`: false when the bytes are malformed, when the
 /// ids are not exactly `count`, or when an id reaches `limit`. Never allocates beyond `count`.

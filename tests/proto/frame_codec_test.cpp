@@ -147,19 +147,49 @@ TEST(FrameCodec, ChunksAreSpatiallyCoherent) {
   // triangle goes with its lowest vertex and a cut may step by one column), a scattered one
   // would repeat most vertices.
   const Mesh m = test_proto::make_bumpy_grid(64, 8);
-  const auto parts = detail::split_triangles(m.view(), detail::bounding_box(m.view()), 4);
+  const auto parts = detail::split_parts(m.view(), detail::bounding_box(m.view()), 4);
   ASSERT_EQ(parts.size(), 4u);
-  size_t triangles = 0, vertices = 0;
-  for (const auto& part : parts) {
-    EXPECT_EQ(part.size(), m.num_triangles() / 4);
-    triangles += part.size();
+  size_t vertices = 0;
+  std::vector<int> owner(m.num_triangles(), -1);
+  for (size_t c = 0; c < parts.size(); ++c) {
+    EXPECT_EQ(parts[c].triangles, m.num_triangles() / 4);
+    uint32_t in_runs = 0, next = 0;
     std::vector<uint32_t> used;
-    for (uint32_t t : part) used.insert(used.end(), &m.triangles[3 * t], &m.triangles[3 * t] + 3);
+    for (const detail::TriangleRun& r : parts[c].runs) {
+      EXPECT_GE(r.first, next);  // ascending, apart: the input order is kept
+      EXPECT_GT(r.count, 0u);
+      next = r.first + r.count + 1;
+      in_runs += r.count;
+      for (uint32_t t = r.first; t < r.first + r.count; ++t) {
+        EXPECT_EQ(owner[t], -1) << "triangle " << t << " in two parts";
+        owner[t] = int(c);
+        used.insert(used.end(), &m.triangles[3 * size_t(t)], &m.triangles[3 * size_t(t)] + 3);
+      }
+    }
+    EXPECT_EQ(in_runs, parts[c].triangles);
     std::sort(used.begin(), used.end());
-    vertices += std::unique(used.begin(), used.end()) - used.begin();
+    vertices += size_t(std::unique(used.begin(), used.end()) - used.begin());
   }
-  EXPECT_EQ(triangles, m.num_triangles());
+  EXPECT_EQ(std::count(owner.begin(), owner.end(), -1), 0);
   EXPECT_LE(vertices, m.num_vertices() + 3 * 2 * 9);
+}
+
+TEST(FrameCodec, TheSplitDoesNotDependOnTheThreads) {
+  const Mesh m = test_proto::make_bumpy_grid(150, 120);  // 36,000 triangles: several blocks
+  const detail::Box box = detail::bounding_box(m.view());
+  const auto one = detail::split_parts(m.view(), box, 7, 1);
+  for (int threads : {2, 3}) {
+    const auto more = detail::split_parts(m.view(), box, 7, threads);
+    ASSERT_EQ(more.size(), one.size());
+    for (size_t c = 0; c < one.size(); ++c) {
+      EXPECT_EQ(more[c].triangles, one[c].triangles);
+      ASSERT_EQ(more[c].runs.size(), one[c].runs.size()) << threads << " threads, part " << c;
+      for (size_t k = 0; k < one[c].runs.size(); ++k) {
+        EXPECT_EQ(more[c].runs[k].first, one[c].runs[k].first);
+        EXPECT_EQ(more[c].runs[k].count, one[c].runs[k].count);
+      }
+    }
+  }
 }
 
 TEST(FrameCodec, AResultIsCutAsItsInputWas) {
