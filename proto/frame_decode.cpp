@@ -25,8 +25,13 @@ struct Chunk {
   std::vector<float> positions;     ///< only when Draco's positions needed converting
   std::vector<uint32_t> ids;        ///< fq_vid per point; empty when the chunk has none
   std::vector<uint32_t> labels;     ///< fq_label per point; empty when the chunk has none
-  std::vector<uint32_t> triangles;  ///< point indices
+  uint32_t faces = 0;               ///< read from mesh's faces where they are used (no copy)
 };
+
+/// Point index of corner k of face f of a decoded chunk.
+uint32_t corner(const Chunk& c, uint32_t f, int k) { return c.mesh->face(draco::FaceIndex(f))[k].value(); }
+
+fq::Status face_out_of_range(uint32_t f) { return invalid_input("face " + std::to_string(f) + " out of range"); }
 
 /// Values of the single-component integer attribute named `name` (false when it is malformed).
 bool read_uint_attribute(const draco::Mesh& m, const char* name, bool& present, std::vector<uint32_t>& out) {
@@ -89,15 +94,9 @@ fq::Status read_mesh(const draco::Mesh& m, bool sequential, Chunk& c) {
   if (!read_uint_attribute(m, kLabelAttribute, has, c.labels)) {
     return invalid_input(std::string(kLabelAttribute) + " is not a single uint32 per point");
   }
-  c.triangles.resize(3 * size_t(m.num_faces()));
-  for (uint32_t f = 0; f < m.num_faces(); ++f) {
-    const auto& face = m.face(draco::FaceIndex(f));
-    for (int k = 0; k < 3; ++k) {
-      if (face[k].value() >= m.num_points())
-        return invalid_input("face " + std::to_string(f) + " out of range");
-      c.triangles[3 * size_t(f) + k] = face[k].value();
-    }
-  }
+  // The faces are read (and their indices checked) where they are mapped to global ids: a
+  // copy here was a pass of its own over 12 bytes a triangle.
+  c.faces = m.num_faces();
   return {};
 }
 
@@ -133,7 +132,14 @@ fq::Status take_plain(Chunk& c, uint32_t vertex_count, fq::Mesh& out, std::vecto
                          " vertices, the Draco mesh has " + std::to_string(n));
   }
   out.positions.assign(c.xyz, c.xyz + 3 * size_t(n));
-  out.triangles = std::move(c.triangles);
+  out.triangles.resize(3 * size_t(c.faces));
+  for (uint32_t f = 0; f < c.faces; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t p = corner(c, f, k);
+      if (p >= n) return face_out_of_range(f);
+      out.triangles[3 * size_t(f) + size_t(k)] = p;
+    }
+  }
   if (labels) *labels = std::move(c.labels);
   return {};
 }
@@ -156,22 +162,31 @@ fq::Status merged_count(const std::vector<Chunk>& cs, uint32_t vertex_count, uin
 }
 
 /// Writes chunk c's points to their global slots and maps its triangles to global ids, at
-/// `triangles`. Returns the index of its first point with an id >= n, or c.ids.size().
-/// Chunks run concurrently: a vertex on a cut is in several chunks, which write the same
-/// position (one quantization grid), label and coverage, through relaxed atomic stores (plain
-/// stores on x86) so that the concurrent writes are well defined.
-size_t scatter_chunk(const Chunk& c, uint32_t n, bool with_labels, float* positions, uint32_t* labels,
-                     uint8_t* covered, uint32_t* triangles) {
+/// `triangles`. The first fault: a point with an id >= n, or a face naming a point the chunk
+/// does not have. Chunks run concurrently: a vertex on a cut is in several chunks, which write
+/// the same position (one quantization grid), label and coverage, through relaxed atomic
+/// stores (plain stores on x86) so that the concurrent writes are well defined.
+fq::Status scatter_chunk(const Chunk& c, uint32_t n, bool with_labels, float* positions, uint32_t* labels,
+                         uint8_t* covered, uint32_t* triangles) {
   for (size_t p = 0; p < c.ids.size(); ++p) {
     const uint32_t g = c.ids[p];
-    if (g >= n) return p;
+    if (g >= n) {
+      return invalid_input("vertex id " + std::to_string(g) + " out of range (frame has " + std::to_string(n) +
+                           " vertices)");
+    }
     for (int k = 0; k < 3; ++k)
       std::atomic_ref<float>(positions[3 * size_t(g) + k]).store(c.xyz[3 * p + k], std::memory_order_relaxed);
     if (with_labels) std::atomic_ref<uint32_t>(labels[g]).store(c.labels[p], std::memory_order_relaxed);
     std::atomic_ref<uint8_t>(covered[g]).store(1, std::memory_order_relaxed);
   }
-  for (size_t k = 0; k < c.triangles.size(); ++k) triangles[k] = c.ids[c.triangles[k]];
-  return c.ids.size();
+  for (uint32_t f = 0; f < c.faces; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t p = corner(c, f, k);
+      if (p >= c.points) return face_out_of_range(f);
+      triangles[3 * size_t(f) + size_t(k)] = c.ids[p];
+    }
+  }
+  return {};
 }
 
 fq::Status merge(std::vector<Chunk>& cs, uint32_t n, int threads, fq::Mesh& out, std::vector<uint32_t>* labels) {
@@ -185,18 +200,15 @@ fq::Status merge(std::vector<Chunk>& cs, uint32_t n, int threads, fq::Mesh& out,
   std::vector<uint8_t> covered(n, 0);
   // Triangles come out chunk after chunk, each chunk's at its own offset.
   std::vector<size_t> first(cs.size() + 1, 0);
-  for (size_t i = 0; i < cs.size(); ++i) first[i + 1] = first[i] + cs[i].triangles.size();
+  for (size_t i = 0; i < cs.size(); ++i) first[i + 1] = first[i] + 3 * size_t(cs[i].faces);
   out.triangles.resize(first.back());
-  std::vector<size_t> bad(cs.size());
+  std::vector<fq::Status> fault(cs.size());
   detail::for_each_chunk(cs.size(), threads, [&](size_t i, size_t) {
-    bad[i] = scatter_chunk(cs[i], n, with_labels, out.positions.data(), with_labels ? labels->data() : nullptr,
-                           covered.data(), out.triangles.data() + first[i]);
+    fault[i] = scatter_chunk(cs[i], n, with_labels, out.positions.data(), with_labels ? labels->data() : nullptr,
+                             covered.data(), out.triangles.data() + first[i]);
   });
-  for (size_t i = 0; i < cs.size(); ++i) {  // the first bad id in chunk order, whatever the threads did
-    if (bad[i] < cs[i].ids.size()) {
-      return invalid_input("chunk " + std::to_string(i) + ": vertex id " + std::to_string(cs[i].ids[bad[i]]) +
-                           " out of range (frame has " + std::to_string(n) + " vertices)");
-    }
+  for (size_t i = 0; i < cs.size(); ++i) {  // the first fault in chunk order, whatever the threads did
+    if (!fault[i].ok()) return invalid_input("chunk " + std::to_string(i) + ": " + fault[i].message());
   }
   const auto hole = std::find(covered.begin(), covered.end(), uint8_t{0});
   if (hole != covered.end()) {
@@ -234,7 +246,7 @@ fq::Status decode_into(const std::vector<std::string_view>& chunks, uint32_t ver
       return invalid_input("chunk " + std::to_string(i) + ": " + cs[i].status.message());
   }
   if (chunk_triangles) {
-    for (const Chunk& c : cs) chunk_triangles->push_back(static_cast<uint32_t>(c.triangles.size() / 3));
+    for (const Chunk& c : cs) chunk_triangles->push_back(c.faces);
   }
   if (cs.size() == 1 && cs[0].ids.empty()) return take_plain(cs[0], vertex_count, out, labels);
   for (size_t i = 0; i < cs.size(); ++i) {
