@@ -49,6 +49,11 @@ fq::Status decode_range(std::string_view bytes, std::vector<float>& out) {
   if (pos == nullptr || pos->num_components() != 3) return invalid_input("no 3D position attribute");
   const uint32_t n = pc.value()->num_points();
   out.resize(3 * size_t(n));
+  if (pos->is_mapping_identity() && pos->data_type() == draco::DT_FLOAT32 && pos->byte_stride() == 3 * 4 &&
+      pos->size() >= n && n > 0) {  // what encode_positions gives: one copy, not a conversion per point
+    std::memcpy(out.data(), pos->GetAddress(draco::AttributeValueIndex(0)), 3 * sizeof(float) * size_t(n));
+    return {};
+  }
   for (uint32_t p = 0; p < n; ++p) {
     if (!pos->ConvertValue<float>(pos->mapped_index(draco::PointIndex(p)), 3, &out[3 * size_t(p)]))
       return invalid_input("unreadable position of point " + std::to_string(p));
@@ -68,11 +73,17 @@ fq::Status encode_positions(const float* positions, uint32_t num_vertices, uint3
     return invalid_argument("chunk count " + std::to_string(chunks) + " outside [1, " +
                             std::to_string(kMaxChunks) + "]");
   if (num_vertices == 0) return invalid_input("no vertices");
-  // Both on the codec threads: on a 4M-vertex frame a serial pass cost as much as a chunk's encode.
-  const uint64_t floats = 3 * uint64_t(num_vertices);
-  if (const uint64_t k = first_non_finite(positions, floats, options.threads); k != floats)
+  // One pass on the codec threads gives the box and checks the coordinates (on a 4M-vertex
+  // frame a serial pass cost as much as a chunk's encode); a second names a fault.
+  bool finite = false;
+  const detail::Box box =
+      detail::bounding_box(fq::MeshView{positions, num_vertices, nullptr, 0}, options.threads, &finite);
+  if (!finite) {
+    const uint64_t floats = 3 * uint64_t(num_vertices);
+    const uint64_t k = first_non_finite(positions, floats, options.threads);
+    if (k == floats) return {fq::StatusCode::kInternal, "finiteness check disagrees with the box pass"};
     return invalid_input("vertex " + std::to_string(k / 3) + " has a non-finite coordinate");
-  const detail::Box box = detail::bounding_box(fq::MeshView{positions, num_vertices, nullptr, 0}, options.threads);
+  }
   const uint32_t parts = std::min(chunks, num_vertices);
   std::vector<std::string> encoded(parts);
   std::vector<fq::Status> status(parts);
