@@ -49,8 +49,10 @@ fq::Status decode_range(std::string_view bytes, std::vector<float>& out) {
   if (pos == nullptr || pos->num_components() != 3) return invalid_input("no 3D position attribute");
   const uint32_t n = pc.value()->num_points();
   out.resize(3 * size_t(n));
-  if (pos->is_mapping_identity() && pos->data_type() == draco::DT_FLOAT32 && pos->byte_stride() == 3 * 4 &&
-      pos->size() >= n && n > 0) {  // what encode_positions gives: one copy, not a conversion per point
+  constexpr int64_t kPackedTriple = 3 * int64_t(sizeof(float));
+  // What encode_positions gives: one copy, not a conversion per point.
+  if (pos->is_mapping_identity() && pos->data_type() == draco::DT_FLOAT32 && pos->byte_stride() == kPackedTriple &&
+      pos->size() >= n && n > 0) {
     std::memcpy(out.data(), pos->GetAddress(draco::AttributeValueIndex(0)), 3 * sizeof(float) * size_t(n));
     return {};
   }
