@@ -156,7 +156,7 @@ Box bounding_box(const fq::MeshView& mesh, int threads, bool* valid) {
 
 namespace {
 
-/// Morton codes are bucketed by their top kBucketBits bits to find the cut keys without sorting.
+/// Keys are bucketed by their codes' top kBucketBits bits to find the cut keys without sorting.
 /// 4096 buckets: few enough for a histogram per worker, while a cut's bucket holds a small share
 /// of the triangles (a surface occupies a few hundred of the 16^3 cells).
 constexpr int kBucketBits = 12;
@@ -208,7 +208,7 @@ Codes triangle_codes(const fq::MeshView& mesh, const Box& box, int threads, std:
 
 /// first[c] for c in [1, chunks): the key of rank n c / chunks (keys are unique). The bucket
 /// histogram locates each rank's bucket; only the keys of those buckets are gathered (on the
-/// codec threads, per-worker lists) and sorted. The result does not depend on the thread count.
+/// codec threads, per-worker lists) and searched. The result does not depend on the thread count.
 std::vector<uint64_t> chunk_starts(const uint32_t* codes, uint32_t n, const std::vector<uint32_t>& histogram,
                                    uint32_t chunks, int threads) {
   const size_t workers = size_t(std::max(threads, 1));
