@@ -71,7 +71,12 @@ Status decode(FrameJob& f, const DaemonConfig& c) {
   if (f.mesh.num_vertices() > c.caps.max_vertices)
     return invalid_input("frame has " + std::to_string(f.mesh.num_vertices()) +
                          " vertices, over the cap of " + std::to_string(c.caps.max_vertices));
-  return check_mesh(f.mesh.view());
+  // decode_frame checked every index; Draco's positions may still be Inf or NaN (a forged
+  // chunk's quantization, a plain mesh's raw floats), so only they are scanned again.
+  FQ_RETURN_IF_ERROR(check_mesh_counts(f.mesh.view()));
+  const uint64_t coordinates = 3 * uint64_t(f.mesh.num_vertices());
+  const uint64_t bad = first_non_finite(f.mesh.positions.data(), coordinates);
+  return mesh_faults(f.mesh.view(), bad == coordinates ? kNone : bad, kNone);
 }
 
 // One frame on `engine` under the time limit and the stop flag; a stopped frame's error
