@@ -37,8 +37,9 @@ struct CodecOptions {
 };
 
 /// Encodes `mesh` (and per-vertex `labels`, nullable) as `chunks` Draco meshes into `out`.
-/// Triangles are sorted by the Morton code of their centroid and cut into equal counts; every
-/// chunk carries "fq_vid" (and "fq_label") and is quantized on the whole frame's bounding box,
+/// Triangles are ranked by the smallest Morton code of their vertices and cut into equal
+/// counts (detail::split_parts); every chunk carries its vertex ids (and "fq_label") and is
+/// quantized on the whole frame's bounding box,
 /// so vertices shared by chunks decode identically. Every vertex must be used by a triangle.
 /// `chunks` is clamped to the triangle count: out.size() is the number of chunks written.
 /// At most kMaxAttributeValue vertices; labels below kMaxAttributeValue.
