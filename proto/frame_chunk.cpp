@@ -4,6 +4,7 @@
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
 #include <draco/metadata/geometry_metadata.h>
+#include <draco/metadata/metadata_encoder.h>
 
 #include <algorithm>
 #include <bit>
@@ -11,6 +12,7 @@
 #include <memory>
 #include <type_traits>
 
+#include "proto/draco_sequential.h"
 #include "proto/vertex_id_runs.h"
 
 namespace fq::wire::detail {
@@ -55,35 +57,39 @@ uint32_t mark_part(const fq::MeshView& mesh, const Part& part, ChunkScratch& scr
   return static_cast<uint32_t>(n);
 }
 
-/// The chunk's points: its vertices in ascending global id (the marked bits in order). Ascending
-/// ids keep the input's vertex order, usually spatially coherent, for Draco's sequential coder,
-/// and make the ids a few long runs. One pass over the bitmap sets scratch.local, gathers the
-/// `n` positions into `xyz`, codes the ids as runs (`runs`, when not null) and clears the bitmap
-/// for the next chunk (ORing it into scratch.used first). Returns point -> global vertex id.
-std::vector<uint32_t> gather_points(const fq::MeshView& mesh, uint32_t n, ChunkScratch& scratch, float* xyz,
-                                    IdRunWriter* runs) {
+/// Walks the chunk's points: its vertices in ascending global id (the marked bits in order),
+/// calling fn(i, g) for point i = vertex g and setting scratch.local[g] = i. Ascending ids keep
+/// the input's vertex order, usually spatially coherent, for Draco's sequential coder, and make
+/// the ids a few long runs. Clears the bitmap for the next chunk (ORing it into scratch.used
+/// first). One pass: the points' data is gathered by `fn` as they are numbered.
+template <class Fn>
+void for_each_point(const fq::MeshView& mesh, ChunkScratch& scratch, Fn&& fn) {
   if (scratch.local_size < mesh.num_vertices) {
     scratch.local.reset(new uint32_t[mesh.num_vertices]);
     scratch.local_size = mesh.num_vertices;
   }
   uint64_t* seen = scratch.seen.data();
   uint32_t* local = scratch.local.get();
-  std::vector<uint32_t> global;
-  global.reserve(n);
   uint32_t i = 0;
   for (size_t w = 0; w < scratch.seen.size(); ++w) {
     if (seen[w] == 0) continue;
     for (uint64_t bits = seen[w]; bits != 0; bits &= bits - 1, ++i) {
       const auto g = static_cast<uint32_t>(w * 64 + size_t(std::countr_zero(bits)));
       local[g] = i;
-      global.push_back(g);
-      std::memcpy(xyz + 3 * size_t(i), mesh.positions + 3 * size_t(g), 3 * sizeof(float));
-      if (runs != nullptr) runs->add(g);
+      fn(i, g);
     }
     if (scratch.used != nullptr) scratch.used[w].fetch_or(seen[w], std::memory_order_relaxed);
     seen[w] = 0;  // all zero again for the next chunk
   }
-  return global;
+}
+
+/// Calls fn(first corner) for each triangle of `part`, in order.
+template <class Fn>
+void for_each_triangle(const fq::MeshView& mesh, const Part& part, Fn&& fn) {
+  for (const TriangleRun& r : part.runs) {
+    const uint32_t* f = mesh.triangles + 3 * size_t(r.first);
+    for (uint32_t k = 0; k < r.count; ++k, f += 3) fn(f);
+  }
 }
 
 /// Whether a triangle of `part` repeats a vertex.
@@ -98,11 +104,15 @@ bool repeats_a_vertex(const fq::MeshView& mesh, const Part& part) {
 
 }  // namespace
 
-bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids, const CodecOptions& o,
-                 const Part& part, ChunkScratch& scratch, draco::Mesh& m) {
+bool sequential_chunk(const fq::MeshView& mesh, const CodecOptions& o, const Part& part) {
   // Draco's sequential coder at speed 10, or when a face repeats a vertex (edgebreaker would
   // drop it); only then does it keep point order, which the id runs rely on.
-  const bool sequential = o.encode_speed == 10 || repeats_a_vertex(mesh, part);
+  return o.encode_speed == 10 || repeats_a_vertex(mesh, part);
+}
+
+bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids, const CodecOptions& o,
+                 const Part& part, ChunkScratch& scratch, draco::Mesh& m) {
+  const bool sequential = sequential_chunk(mesh, o, part);
   const uint32_t n = mark_part(mesh, part, scratch);
   m.set_num_points(n);
   draco::GeometryAttribute ga;
@@ -110,19 +120,23 @@ bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids
   draco::PointAttribute* pos = m.attribute(m.AddAttribute(ga, true, n));
   auto* xyz = reinterpret_cast<float*>(pos->buffer()->data());  // n packed triples (identity mapping)
   IdRunWriter runs;
-  const std::vector<uint32_t> global = gather_points(mesh, n, scratch, xyz, with_ids && sequential ? &runs : nullptr);
+  std::vector<uint32_t> global;
+  global.reserve(n);
+  const bool write_runs = with_ids && sequential;
+  for_each_point(mesh, scratch, [&](uint32_t i, uint32_t g) {
+    global.push_back(g);
+    std::memcpy(xyz + 3 * size_t(i), mesh.positions + 3 * size_t(g), 3 * sizeof(float));
+    if (write_runs) runs.add(g);
+  });
   const uint32_t* local = scratch.local.get();
   const auto point_of = [local](uint32_t g) { return draco::PointIndex(local[g]); };
   m.SetNumFaces(part.triangles);
   uint32_t face = 0;
-  for (const TriangleRun& r : part.runs) {
-    const uint32_t* f = mesh.triangles + 3 * size_t(r.first);
-    for (uint32_t k = 0; k < r.count; ++k, f += 3) {
-      m.SetFace(draco::FaceIndex(face++), {point_of(f[0]), point_of(f[1]), point_of(f[2])});
-    }
-  }
+  for_each_triangle(mesh, part, [&](const uint32_t* f) {
+    m.SetFace(draco::FaceIndex(face++), {point_of(f[0]), point_of(f[1]), point_of(f[2])});
+  });
   // Geometry metadata first: AddAttributeMetadata creates (and AddMetadata would replace) it.
-  if (with_ids && sequential) {
+  if (write_runs) {
     auto md = std::make_unique<draco::GeometryMetadata>();
     md->AddEntryBinary(kVertexIdRunsEntry, runs.finish());
     m.AddMetadata(std::move(md));
@@ -130,6 +144,66 @@ bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids
   if (with_ids && !sequential) add_uint_attribute(m, kVertexIdAttribute, global, nullptr);
   if (labels) add_uint_attribute(m, kLabelAttribute, global, labels);
   return sequential;
+}
+
+fq::Status write_sequential_chunk(const fq::MeshView& mesh, const uint32_t* labels, const Part& part,
+                                  const CodecOptions& o, const Box& box, ChunkScratch& scratch, std::string& out) {
+  const uint32_t n = mark_part(mesh, part, scratch);
+  const PositionQuantizer quantize(box, o.position_bits);
+  scratch.quantized.resize(3 * size_t(n));
+  scratch.label_values.resize(labels != nullptr ? n : 0);
+  int32_t* q = scratch.quantized.data();
+  int32_t* l = scratch.label_values.data();
+  ValueBounds position_bounds, label_bounds;
+  IdRunWriter runs;
+  // One pass numbers the points, quantizes their positions (what Draco's quantization
+  // transform would compute from a gathered copy), finds the wrap bounds and codes the ids.
+  for_each_point(mesh, scratch, [&](uint32_t i, uint32_t g) {
+    const float* p = mesh.positions + 3 * size_t(g);
+    for (int a = 0; a < 3; ++a) {
+      const int32_t v = quantize(p[a], a);
+      q[3 * size_t(i) + size_t(a)] = v;
+      position_bounds.add(v);
+    }
+    runs.add(g);
+    if (labels != nullptr) {
+      l[i] = static_cast<int32_t>(labels[g]);  // below kMaxAttributeValue: checked by the caller
+      label_bounds.add(l[i]);
+    }
+  });
+  draco::GeometryMetadata metadata;
+  metadata.AddEntryBinary(kVertexIdRunsEntry, runs.finish());
+  if (labels != nullptr) {
+    auto label_metadata = std::make_unique<draco::AttributeMetadata>();
+    label_metadata->AddEntryString("name", kLabelAttribute);
+    label_metadata->set_att_unique_id(1);  // the second attribute
+    metadata.AddAttributeMetadata(std::move(label_metadata));
+  }
+  draco::EncoderBuffer buf;
+  buf.buffer()->reserve(256 + 6 * size_t(part.triangles) + 8 * size_t(n));
+  write_header(buf, true, true);
+  if (!draco::MetadataEncoder().EncodeGeometryMetadata(&buf, &metadata))
+    return {fq::StatusCode::kInternal, "Draco could not encode the chunk's metadata"};
+  const uint32_t* local = scratch.local.get();
+  write_connectivity(buf, part.triangles, n, [&](auto&& put) {
+    for_each_triangle(mesh, part, [&](const uint32_t* f) {
+      put(local[f[0]]);
+      put(local[f[1]]);
+      put(local[f[2]]);
+    });
+  });
+  std::vector<AttributeSpec> specs = {{draco::GeometryAttribute::POSITION, draco::DT_FLOAT32, 3,
+                                       draco::SEQUENTIAL_ATTRIBUTE_ENCODER_QUANTIZATION}};
+  if (labels != nullptr)
+    specs.push_back({draco::GeometryAttribute::GENERIC, draco::DT_UINT32, 1, draco::SEQUENTIAL_ATTRIBUTE_ENCODER_INTEGER});
+  write_attribute_specs(buf, specs);
+  const int level = symbol_compression_level(o);
+  if (!write_delta_values(q, n, 3, position_bounds, level, scratch.symbols, buf) ||
+      (labels != nullptr && !write_delta_values(l, n, 1, label_bounds, level, scratch.symbols, buf)))
+    return {fq::StatusCode::kInternal, "Draco's symbol coder failed"};
+  quantize.write_parameters(buf);  // the labels' integer coder has no parameters
+  out.assign(buf.data(), buf.size());
+  return {};
 }
 
 namespace {
@@ -140,9 +214,8 @@ fq::Status encode_with_grid(const Geometry& g, int method, const CodecOptions& o
   draco::Encoder enc;
   enc.SetSpeedOptions(o.encode_speed, o.decode_speed);
   enc.SetEncodingMethod(method);
-  const float extent = box.max_extent();
   enc.SetAttributeExplicitQuantization(draco::GeometryAttribute::POSITION, o.position_bits, 3, box.lo,
-                                       extent > 0.f ? extent : 1.f);
+                                       grid_range(box));
   draco::EncoderBuffer buf;
   draco::Status s;
   if constexpr (std::is_same_v<Geometry, draco::Mesh>)

@@ -1,5 +1,7 @@
-// Internals of the frame codec: one chunk of a frame as a draco::Mesh, and its encoding.
-// Shared by encode_frame and by fqbench's codec floor (the same chunks, positions only).
+// Internals of the frame codec: one chunk of a frame, encoded. A sequentially coded chunk (the
+// codec's default, Draco speed 10) is written straight from the frame (write_sequential_chunk);
+// any other is built as a draco::Mesh and encoded by Draco (build_chunk, encode_chunk), which is
+// also how fqbench builds its floor (the same chunks, positions only, through Draco).
 #pragma once
 
 #include <atomic>
@@ -27,16 +29,31 @@ struct ChunkScratch {
   /// it is never initialized (a memset of the whole frame per worker and frame saved).
   std::unique_ptr<uint32_t[]> local;
   size_t local_size = 0;
-  /// When set, build_chunk ORs the chunk's vertices into this frame-wide bitmap (shared by the
-  /// workers), so that "every vertex is used" needs no pass of its own.
+  /// When set, build_chunk and write_sequential_chunk OR the chunk's vertices into this
+  /// frame-wide bitmap (shared by the workers), so that "every vertex is used" needs no pass of
+  /// its own.
   std::atomic<uint64_t>* used = nullptr;
+  std::vector<int32_t> quantized;     ///< write_sequential_chunk: 3 quantized coordinates a point
+  std::vector<int32_t> label_values;  ///< write_sequential_chunk: a label a point
+  std::vector<uint32_t> symbols;      ///< write_sequential_chunk: Draco symbols of one attribute
 };
+
+/// Whether the chunk `part` is coded with Draco's sequential coder: at speed 10, or when a
+/// face repeats a vertex (edgebreaker would drop it). Only that coder keeps point order, which
+/// the id runs (kVertexIdRunsEntry) rely on.
+bool sequential_chunk(const fq::MeshView& mesh, const CodecOptions& o, const Part& part);
+
+/// The triangles of `part` as one Draco mesh in `out`, coded sequentially (see
+/// sequential_chunk), written directly (proto/draco_sequential.h): the bytes draco::Encoder
+/// writes for build_chunk's mesh of the same part at the same options (with ids, and with
+/// `labels` when not null). kInternal when Draco's symbol or metadata coder fails.
+fq::Status write_sequential_chunk(const fq::MeshView& mesh, const uint32_t* labels, const Part& part,
+                                  const CodecOptions& o, const Box& box, ChunkScratch& scratch, std::string& out);
 
 /// The triangles of `part` (see split_parts) as a draco::Mesh:
 /// points = the chunk's vertices in ascending global id, POSITION, then (when `with_ids`) the global ids, and "fq_label" (when `labels`).
 /// Built directly (not with a mesh builder) so that no deduplication can merge two vertices.
-/// `scratch` is the calling worker's. Returns whether the chunk must be coded with Draco's sequential coder: at speed
-/// 10, or when a face repeats a vertex (edgebreaker would drop it). A sequential chunk carries
+/// `scratch` is the calling worker's. Returns sequential_chunk(): a sequential chunk carries
 /// its ids as kVertexIdRunsEntry (the coder keeps point order), any other as "fq_vid".
 bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids, const CodecOptions& o,
                  const Part& part, ChunkScratch& scratch, draco::Mesh& m);

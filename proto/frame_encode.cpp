@@ -1,5 +1,6 @@
-// encode_frame: split, build one draco::Mesh per chunk (positions + fq_vid [+ fq_label]),
-// encode the chunks concurrently on one shared quantization grid.
+// encode_frame: split, encode the chunks concurrently on one shared quantization grid:
+// sequential chunks (Draco speed 10) written straight from the frame, others built as a
+// draco::Mesh (positions + fq_vid [+ fq_label]) and encoded by Draco.
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
 #include <draco/metadata/geometry_metadata.h>
@@ -100,9 +101,13 @@ fq::Status encode_parts(const fq::MeshView& mesh, const uint32_t* labels, const 
   for (auto& s : scratch) s.used = used.data();
   detail::for_each_chunk(parts.size(), options.threads, [&](size_t i, size_t w) {
     try {
+      if (detail::sequential_chunk(mesh, options, parts[i])) {
+        status[i] = detail::write_sequential_chunk(mesh, labels, parts[i], options, box, scratch[w], encoded[i]);
+        return;
+      }
       draco::Mesh m;
-      const bool sequential = detail::build_chunk(mesh, labels, true, options, parts[i], scratch[w], m);
-      status[i] = detail::encode_chunk(m, sequential, options, box, encoded[i]);
+      detail::build_chunk(mesh, labels, true, options, parts[i], scratch[w], m);
+      status[i] = detail::encode_chunk(m, false, options, box, encoded[i]);
     } catch (const std::exception& e) {  // bad_alloc: a fault of this frame, not of the process
       status[i] = {fq::StatusCode::kInternal, std::string("encoding failed: ") + e.what()};
     }

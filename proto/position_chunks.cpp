@@ -1,7 +1,6 @@
 // encode_positions / decode_positions: a frame's positions as Draco point clouds over
 // contiguous vertex ranges (the POSITIONS result form; see docs/PROTOCOL.md).
 #include <draco/compression/decode.h>
-#include <draco/compression/encode.h>
 #include <draco/point_cloud/point_cloud.h>
 
 #include <algorithm>
@@ -10,30 +9,13 @@
 #include <exception>
 #include <string>
 
-#include "proto/frame_chunk.h"
+#include "proto/draco_sequential.h"
 #include "proto/frame_codec.h"
 #include "proto/frame_split.h"
 #include "kernels/frame_prep.h"
 
 namespace fq::wire {
 namespace {
-
-/// Vertices [first, last) as a point cloud, POSITION only, points in vertex order.
-fq::Status encode_range(const float* positions, uint32_t first, uint32_t last, const CodecOptions& o,
-                        const detail::Box& box, std::string& out) {
-  draco::PointCloud pc;
-  const uint32_t n = last - first;
-  pc.set_num_points(n);
-  draco::GeometryAttribute ga;
-  ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 3 * sizeof(float), 0);
-  draco::PointAttribute* pos = pc.attribute(pc.AddAttribute(ga, true, n));
-  // Identity mapping and a tightly packed float32 buffer: one copy instead of n calls.
-  std::memcpy(pos->GetAddress(draco::AttributeValueIndex(0)), positions + 3 * size_t(first),
-              3 * sizeof(float) * n);
-  // The k-d tree coder (chosen for quantized point clouds below speed 10) reorders points;
-  // the sequential coder keeps them in vertex order, which is what the consumer relies on.
-  return detail::encode_on_grid(pc, draco::POINT_CLOUD_SEQUENTIAL_ENCODING, o, box, out);
-}
 
 fq::Status decode_range(std::string_view bytes, std::vector<float>& out) {
   draco::DecoderBuffer buf;
@@ -89,11 +71,20 @@ fq::Status encode_positions(const float* positions, uint32_t num_vertices, uint3
   const uint32_t parts = std::min(chunks, num_vertices);
   std::vector<std::string> encoded(parts);
   std::vector<fq::Status> status(parts);
-  detail::for_each_chunk(parts, options.threads, [&](size_t i, size_t) {
+  struct Scratch {
+    std::vector<int32_t> quantized;
+    std::vector<uint32_t> symbols;
+  };
+  std::vector<Scratch> scratch(detail::chunk_workers(parts, options.threads));
+  detail::for_each_chunk(parts, options.threads, [&](size_t i, size_t w) {
     const auto first = static_cast<uint32_t>(uint64_t(num_vertices) * i / parts);
     const auto last = static_cast<uint32_t>(uint64_t(num_vertices) * (i + 1) / parts);
     try {
-      status[i] = encode_range(positions, first, last, options, box, encoded[i]);
+      // Vertices [first, last) as a point cloud, POSITION only: Draco's sequential point cloud
+      // coder keeps them in vertex order (its k-d tree coder, which Draco picks for quantized
+      // clouds below speed 10, would reorder them), written directly (draco_sequential.h).
+      status[i] = detail::write_point_cloud(positions + 3 * size_t(first), last - first, options, box,
+                                            scratch[w].quantized, scratch[w].symbols, encoded[i]);
     } catch (const std::exception& e) {  // bad_alloc: a fault of this frame, not of the process
       status[i] = {fq::StatusCode::kInternal, std::string("encoding failed: ") + e.what()};
     }

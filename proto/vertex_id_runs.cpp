@@ -1,17 +1,9 @@
 #include "proto/vertex_id_runs.h"
 
+#include "proto/varint.h"
+
 namespace fq::wire::detail {
 namespace {
-
-/// Writes v as a LEB128 varint at `at`; returns the end.
-inline uint8_t* put_varint(uint32_t v, uint8_t* at) {
-  while (v >= 0x80) {
-    *at++ = static_cast<uint8_t>(v | 0x80);
-    v >>= 7;
-  }
-  *at++ = static_cast<uint8_t>(v);
-  return at;
-}
 
 /// Reads one varint of at most 32 bits at data[pos]; false at the end or on an overlong one.
 bool get_varint(const uint8_t* data, size_t size, size_t& pos, uint32_t& v) {
