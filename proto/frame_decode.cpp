@@ -1,4 +1,5 @@
-// decode_frame: decode the chunks concurrently, then merge them by global vertex id.
+// decode_frame: decode the chunks concurrently (the codec's own sequential chunks directly,
+// any other Draco mesh through Draco's decoder), then merge them by global vertex id.
 #include <draco/compression/decode.h>
 #include <draco/mesh/mesh.h>
 
@@ -9,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "proto/draco_sequential_read.h"
 #include "proto/frame_codec.h"
 #include "proto/frame_split.h"
 #include "proto/vertex_id_runs.h"
@@ -16,11 +18,13 @@
 namespace fq::wire {
 namespace {
 
-/// One decoded chunk, per Draco point.
+/// One decoded chunk, per Draco point: read by Draco into `mesh`, or (the codec's own
+/// sequential chunks) directly into `direct`.
 struct Chunk {
   fq::Status status;
   std::unique_ptr<draco::Mesh> mesh;  ///< kept: xyz may point into its position buffer
-  const float* xyz = nullptr;         ///< 3 per point, in mesh or in positions
+  detail::SequentialChunk direct;     ///< when read without Draco's decoder (mesh is null)
+  const float* xyz = nullptr;         ///< 3 per point, in mesh, direct or positions
   uint32_t points = 0;
   std::vector<float> positions;     ///< only when Draco's positions needed converting
   std::vector<uint32_t> ids;        ///< fq_vid per point; empty when the chunk has none
@@ -28,8 +32,21 @@ struct Chunk {
   uint32_t faces = 0;               ///< read from mesh's faces where they are used (no copy)
 };
 
-/// Point index of corner k of face f of a decoded chunk.
-uint32_t corner(const Chunk& c, uint32_t f, int k) { return c.mesh->face(draco::FaceIndex(f))[k].value(); }
+/// Calls fn(f, k, point index) for every corner k of every face f of a decoded chunk.
+template <class Fn>
+void for_each_corner(const Chunk& c, Fn&& fn) {
+  if (c.mesh == nullptr) {
+    const uint32_t* p = c.direct.corners.data();
+    for (uint32_t f = 0; f < c.faces; ++f, p += 3) {
+      for (int k = 0; k < 3; ++k) fn(f, k, p[k]);
+    }
+    return;
+  }
+  for (uint32_t f = 0; f < c.faces; ++f) {
+    const auto& face = c.mesh->face(draco::FaceIndex(f));
+    for (int k = 0; k < 3; ++k) fn(f, k, face[k].value());
+  }
+}
 
 fq::Status face_out_of_range(uint32_t f) { return invalid_input("face " + std::to_string(f) + " out of range"); }
 
@@ -101,6 +118,16 @@ fq::Status read_mesh(const draco::Mesh& m, bool sequential, Chunk& c) {
 }
 
 void decode_chunk(std::string_view bytes, Chunk& c) {
+  // The codec's own sequential chunks without a draco::Mesh; any other (and any this reader
+  // does not take) through Draco's decoder.
+  if (detail::read_sequential_chunk(bytes, kMaxAttributeValue, c.direct)) {
+    c.points = c.direct.points;
+    c.faces = c.direct.faces;
+    c.xyz = c.direct.positions.data();
+    c.ids.swap(c.direct.ids);
+    c.labels.swap(c.direct.labels);
+    return;
+  }
   draco::DecoderBuffer buf;
   buf.Init(bytes.data(), bytes.size());
   auto type = draco::Decoder::GetEncodedGeometryType(&buf);
@@ -133,13 +160,12 @@ fq::Status take_plain(Chunk& c, uint32_t vertex_count, fq::Mesh& out, std::vecto
   }
   out.positions.assign(c.xyz, c.xyz + 3 * size_t(n));
   out.triangles.resize(3 * size_t(c.faces));
-  for (uint32_t f = 0; f < c.faces; ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t p = corner(c, f, k);
-      if (p >= n) return face_out_of_range(f);
-      out.triangles[3 * size_t(f) + size_t(k)] = p;
-    }
-  }
+  uint32_t bad_face = c.faces;
+  for_each_corner(c, [&](uint32_t f, int k, uint32_t p) {
+    if (p >= n) bad_face = std::min(bad_face, f);
+    out.triangles[3 * size_t(f) + size_t(k)] = p;
+  });
+  if (bad_face < c.faces) return face_out_of_range(bad_face);
   if (labels) *labels = std::move(c.labels);
   return {};
 }
@@ -179,14 +205,15 @@ fq::Status scatter_chunk(const Chunk& c, uint32_t n, bool with_labels, float* po
     if (with_labels) std::atomic_ref<uint32_t>(labels[g]).store(c.labels[p], std::memory_order_relaxed);
     std::atomic_ref<uint8_t>(covered[g]).store(1, std::memory_order_relaxed);
   }
-  for (uint32_t f = 0; f < c.faces; ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t p = corner(c, f, k);
-      if (p >= c.points) return face_out_of_range(f);
-      triangles[3 * size_t(f) + size_t(k)] = c.ids[p];
+  uint32_t bad_face = c.faces;
+  for_each_corner(c, [&](uint32_t f, int k, uint32_t p) {
+    if (p >= c.points) {
+      bad_face = std::min(bad_face, f);
+      return;
     }
-  }
-  return {};
+    triangles[3 * size_t(f) + size_t(k)] = c.ids[p];
+  });
+  return bad_face < c.faces ? face_out_of_range(bad_face) : fq::Status{};
 }
 
 fq::Status merge(std::vector<Chunk>& cs, uint32_t n, int threads, fq::Mesh& out, std::vector<uint32_t>* labels) {

@@ -10,16 +10,18 @@ add_library(fq_proto STATIC
   ${CMAKE_CURRENT_LIST_DIR}/frame_split.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frame_chunk.cpp
   ${CMAKE_CURRENT_LIST_DIR}/draco_sequential.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/draco_sequential_read.cpp
   ${CMAKE_CURRENT_LIST_DIR}/vertex_id_runs.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frame_encode.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frame_decode.cpp
   ${CMAKE_CURRENT_LIST_DIR}/draco_budget.cpp
   ${CMAKE_CURRENT_LIST_DIR}/position_chunks.cpp)
 
-# The quantizer must round as Draco's does (a multiply, then an add): no fused multiply-add,
-# whatever -march a build adds. Quantization is inlined where chunks are written.
+# The quantizer and the dequantizer must round as Draco's do (a multiply, then an add): no
+# fused multiply-add, whatever -march a build adds. Quantization is inlined where chunks are written.
 set_source_files_properties(
   ${CMAKE_CURRENT_LIST_DIR}/frame_chunk.cpp ${CMAKE_CURRENT_LIST_DIR}/draco_sequential.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/draco_sequential_read.cpp
   PROPERTIES COMPILE_OPTIONS "-ffp-contract=off")
 
 # Generated fq.pb.h / fq.pb.cc land in <build>/generated/proto (never in the source tree).
