@@ -109,29 +109,34 @@ bool write_delta_values(const int32_t* values, uint32_t points, int components, 
 }
 
 fq::Status write_point_cloud(const float* positions, uint32_t n, const CodecOptions& o, const Box& box,
-                             std::vector<int32_t>& quantized, std::vector<uint32_t>& symbols, std::string& out) {
+                             SequentialScratch& scratch, std::string& out) {
   const PositionQuantizer quantize(box, o.position_bits);
-  quantized.resize(3 * size_t(n));
+  std::vector<int32_t>& q = scratch.quantized;
+  q.resize(3 * size_t(n));
   ValueBounds bounds;
   for (size_t i = 0; i < 3 * size_t(n); i += 3) {
     for (int a = 0; a < 3; ++a) {
-      quantized[i + size_t(a)] = quantize(positions[i + size_t(a)], a);
-      bounds.add(quantized[i + size_t(a)]);
+      q[i + size_t(a)] = quantize(positions[i + size_t(a)], a);
+      bounds.add(q[i + size_t(a)]);
     }
   }
-  draco::EncoderBuffer buf;
-  buf.buffer()->reserve(64 + 6 * size_t(n));
+  draco::EncoderBuffer& buf = scratch.buffer;
+  buf.Clear();  // keeps its capacity
   write_header(buf, false, false);
   buf.Encode(static_cast<int32_t>(n));
   write_attribute_specs(buf, {{draco::GeometryAttribute::POSITION, draco::DT_FLOAT32, 3,
                                draco::SEQUENTIAL_ATTRIBUTE_ENCODER_QUANTIZATION}});
-  if (n > 0 &&
-      !write_delta_values(quantized.data(), n, 3, bounds, symbol_compression_level(o), symbols, buf)) {
+  if (n > 0 && !write_delta_values(q.data(), n, 3, bounds, symbol_compression_level(o), scratch.symbols, buf)) {
     return {fq::StatusCode::kInternal, "Draco's symbol coder failed"};
   }
   quantize.write_parameters(buf);
   out.assign(buf.data(), buf.size());
   return {};
+}
+
+SequentialScratch& thread_sequential_scratch() {
+  thread_local SequentialScratch scratch;
+  return scratch;
 }
 
 }  // namespace fq::wire::detail

@@ -62,6 +62,16 @@ struct ValueBounds {
   }
 };
 
+/// Buffers of one thread's sequential chunks, reused from chunk to chunk and frame to frame:
+/// a stream's next frame of about the same size allocates nothing (on a virtual machine the
+/// first touch of each fresh page is a fault, which cost more than the coding itself).
+struct SequentialScratch {
+  std::vector<int32_t> quantized;     ///< 3 quantized coordinates a point
+  std::vector<int32_t> label_values;  ///< a label a point
+  std::vector<uint32_t> symbols;      ///< Draco symbols of one attribute
+  draco::EncoderBuffer buffer;        ///< the chunk being written
+};
+
 /// Draco's symbol coder's compression level for the codec's speeds: 10 minus the larger speed.
 int symbol_compression_level(const CodecOptions& o);
 
@@ -123,9 +133,13 @@ void write_connectivity(draco::EncoderBuffer& out, uint32_t faces, uint32_t poin
 }
 
 /// The positions of `n` points as a Draco point cloud (sequential coder, POSITION only,
-/// quantized on `box`'s grid), the bytes draco::Encoder writes for it. `quantized` and
-/// `symbols` are scratch. kInternal when Draco's symbol coder fails.
+/// quantized on `box`'s grid), the bytes draco::Encoder writes for it. kInternal when Draco's
+/// symbol coder fails.
 fq::Status write_point_cloud(const float* positions, uint32_t n, const CodecOptions& o, const Box& box,
-                             std::vector<int32_t>& quantized, std::vector<uint32_t>& symbols, std::string& out);
+                             SequentialScratch& scratch, std::string& out);
+
+/// The calling thread's scratch, kept for the thread's life (it holds what the largest
+/// chunk so far needed).
+SequentialScratch& thread_sequential_scratch();
 
 }  // namespace fq::wire::detail

@@ -26,16 +26,22 @@ bool expect(draco::DecoderBuffer& in, T want) {
   return in.Decode(&v) && v == want;
 }
 
-bool read_header(draco::DecoderBuffer& in) {
+/// Draco's header as write_header writes it: a mesh with metadata, or a point cloud without.
+bool read_header(draco::DecoderBuffer& in, bool mesh) {
   char magic[5];
   uint16_t flags = 0;
   if (!in.Decode(magic, 5) || std::memcmp(magic, "DRACO", 5) != 0) return false;
-  if (!expect<uint8_t>(in, draco::kDracoMeshBitstreamVersionMajor) ||
-      !expect<uint8_t>(in, draco::kDracoMeshBitstreamVersionMinor) ||
-      !expect<uint8_t>(in, draco::TRIANGULAR_MESH) || !expect<uint8_t>(in, draco::MESH_SEQUENTIAL_ENCODING) ||
-      !in.Decode(&flags) || (flags & METADATA_FLAG_MASK) == 0)
-    return false;
-  in.set_bitstream_version(draco::kDracoMeshBitstreamVersion);  // as Draco's decoder, for its symbol coder
+  const bool version = mesh ? expect<uint8_t>(in, draco::kDracoMeshBitstreamVersionMajor) &&
+                                  expect<uint8_t>(in, draco::kDracoMeshBitstreamVersionMinor)
+                            : expect<uint8_t>(in, draco::kDracoPointCloudBitstreamVersionMajor) &&
+                                  expect<uint8_t>(in, draco::kDracoPointCloudBitstreamVersionMinor);
+  const bool kind = mesh ? expect<uint8_t>(in, draco::TRIANGULAR_MESH) &&
+                               expect<uint8_t>(in, draco::MESH_SEQUENTIAL_ENCODING)
+                         : expect<uint8_t>(in, draco::POINT_CLOUD) &&
+                               expect<uint8_t>(in, draco::POINT_CLOUD_SEQUENTIAL_ENCODING);
+  if (!version || !kind || !in.Decode(&flags) || ((flags & METADATA_FLAG_MASK) != 0) != mesh) return false;
+  // As Draco's decoder does, for its symbol coder.
+  in.set_bitstream_version(mesh ? draco::kDracoMeshBitstreamVersion : draco::kDracoPointCloudBitstreamVersion);
   return true;
 }
 
@@ -153,17 +159,15 @@ bool read_delta_values(draco::DecoderBuffer& in, uint32_t points, int components
   return true;
 }
 
-/// Draco's quantization parameters, then its dequantization of every position.
-bool dequantize(draco::DecoderBuffer& in, SequentialChunk& c, const std::vector<int32_t>& q) {
+/// Draco's quantization parameters, then its dequantization of `points` positions into `out`.
+bool dequantize(draco::DecoderBuffer& in, uint32_t points, const int32_t* q, float* out) {
   float origin[3], range = 0.f;
   uint8_t bits = 0;
   if (!in.Decode(origin, sizeof(origin)) || !in.Decode(&range) || !in.Decode(&bits) || bits < 1 || bits > 30)
     return false;
   const auto max_quantized = static_cast<int32_t>((1u << bits) - 1);
   const float delta = range / static_cast<float>(max_quantized);  // Draco's Dequantizer
-  c.positions.resize(3 * size_t(c.points));
-  float* out = c.positions.data();
-  for (size_t i = 0; i < 3 * size_t(c.points); i += 3) {
+  for (size_t i = 0; i < 3 * size_t(points); i += 3) {
     for (size_t a = 0; a < 3; ++a) {
       float v = static_cast<float>(q[i + a]) * delta;  // two roundings, as Draco (built without FMA contraction)
       out[i + a] = v + origin[a];
@@ -179,7 +183,7 @@ bool read_sequential_chunk(std::string_view bytes, uint32_t id_limit, Sequential
   in.Init(bytes.data(), bytes.size());
   std::vector<uint8_t> runs;
   bool labelled = false;
-  if (!read_header(in) || !read_metadata(in, runs, labelled) || !read_connectivity(in, c) ||
+  if (!read_header(in, true) || !read_metadata(in, runs, labelled) || !read_connectivity(in, c) ||
       !read_attribute_specs(in, labelled))
     return false;
   if (!detail::decode_id_runs(runs.data(), runs.size(), c.points, id_limit, c.ids)) return false;
@@ -188,7 +192,39 @@ bool read_sequential_chunk(std::string_view bytes, uint32_t id_limit, Sequential
   // Draco stores the label values (int32) into the uint32 attribute as they are.
   c.labels.resize(labelled ? c.points : 0);
   if (labelled && !read_delta_values(in, c.points, 1, reinterpret_cast<int32_t*>(c.labels.data()))) return false;
-  return dequantize(in, c, c.values);
+  c.positions.resize(3 * size_t(c.points));
+  return dequantize(in, c.points, c.values.data(), c.positions.data());
+}
+
+namespace {
+
+/// The point cloud's header and point count, as write_point_cloud writes them.
+bool read_point_cloud_head(draco::DecoderBuffer& in, uint32_t& n) {
+  int32_t points = 0;
+  if (!read_header(in, false) || !in.Decode(&points) || points < 0) return false;
+  // Draco reads the count as it is; a count no genuine chunk of this size could carry (a
+  // forged one) is left to Draco's decoder and the caller's limits instead of sizing buffers.
+  if (uint64_t(points) > 1024 * uint64_t(in.remaining_size())) return false;
+  n = static_cast<uint32_t>(points);
+  return true;
+}
+
+}  // namespace
+
+bool sequential_point_count(std::string_view bytes, uint32_t& n) {
+  draco::DecoderBuffer in;
+  in.Init(bytes.data(), bytes.size());
+  return read_point_cloud_head(in, n);
+}
+
+bool read_sequential_point_cloud(std::string_view bytes, uint32_t n, float* out, std::vector<int32_t>& values) {
+  draco::DecoderBuffer in;
+  in.Init(bytes.data(), bytes.size());
+  uint32_t declared = 0;
+  if (n == 0 || !read_point_cloud_head(in, declared) || declared != n || !read_attribute_specs(in, false))
+    return false;
+  values.resize(3 * size_t(n));
+  return read_delta_values(in, n, 3, values.data()) && dequantize(in, n, values.data(), out);
 }
 
 }  // namespace fq::wire::detail

@@ -1,4 +1,5 @@
-// Reading the frame codec's own sequential chunks without a draco::Mesh.
+// Reading the frame codec's own sequential chunks (and POSITIONS point clouds) without a
+// draco::Mesh or draco::PointCloud.
 //
 // decode_frame gets chunks from anyone: any Draco mesh is accepted and decoded by Draco. The
 // chunks fq itself writes (write_sequential_chunk: Draco's sequential coder, quantized
@@ -34,5 +35,14 @@ struct SequentialChunk {
 /// must be below `id_limit` and faces must name existing points, as decode_frame requires.
 /// `out`'s buffers keep their capacity across calls.
 bool read_sequential_chunk(std::string_view bytes, uint32_t id_limit, SequentialChunk& out);
+
+/// The point count of a POSITIONS point cloud as write_point_cloud writes it (Draco's sequential
+/// point cloud header), or false when `bytes` do not start that way.
+bool sequential_point_count(std::string_view bytes, uint32_t& n);
+
+/// Reads such a point cloud of `n` points (sequential_point_count) into out[0, 3 n), as
+/// Draco's decoder dequantizes them; false when the bytes are not exactly that layout or fail
+/// a check (hand them to Draco's decoder then). `values` is scratch.
+bool read_sequential_point_cloud(std::string_view bytes, uint32_t n, float* out, std::vector<int32_t>& values);
 
 }  // namespace fq::wire::detail

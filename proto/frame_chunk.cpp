@@ -150,10 +150,11 @@ fq::Status write_sequential_chunk(const fq::MeshView& mesh, const uint32_t* labe
                                   const CodecOptions& o, const Box& box, ChunkScratch& scratch, std::string& out) {
   const uint32_t n = mark_part(mesh, part, scratch);
   const PositionQuantizer quantize(box, o.position_bits);
-  scratch.quantized.resize(3 * size_t(n));
-  scratch.label_values.resize(labels != nullptr ? n : 0);
-  int32_t* q = scratch.quantized.data();
-  int32_t* l = scratch.label_values.data();
+  SequentialScratch& coder = scratch.coder;
+  coder.quantized.resize(3 * size_t(n));
+  coder.label_values.resize(labels != nullptr ? n : 0);
+  int32_t* q = coder.quantized.data();
+  int32_t* l = coder.label_values.data();
   ValueBounds position_bounds, label_bounds;
   IdRunWriter runs;
   // One pass numbers the points, quantizes their positions (what Draco's quantization
@@ -179,7 +180,8 @@ fq::Status write_sequential_chunk(const fq::MeshView& mesh, const uint32_t* labe
     label_metadata->set_att_unique_id(1);  // the second attribute
     metadata.AddAttributeMetadata(std::move(label_metadata));
   }
-  draco::EncoderBuffer buf;
+  draco::EncoderBuffer& buf = coder.buffer;
+  buf.Clear();  // keeps its capacity
   buf.buffer()->reserve(256 + 6 * size_t(part.triangles) + 8 * size_t(n));
   write_header(buf, true, true);
   if (!draco::MetadataEncoder().EncodeGeometryMetadata(&buf, &metadata))
@@ -198,12 +200,17 @@ fq::Status write_sequential_chunk(const fq::MeshView& mesh, const uint32_t* labe
     specs.push_back({draco::GeometryAttribute::GENERIC, draco::DT_UINT32, 1, draco::SEQUENTIAL_ATTRIBUTE_ENCODER_INTEGER});
   write_attribute_specs(buf, specs);
   const int level = symbol_compression_level(o);
-  if (!write_delta_values(q, n, 3, position_bounds, level, scratch.symbols, buf) ||
-      (labels != nullptr && !write_delta_values(l, n, 1, label_bounds, level, scratch.symbols, buf)))
+  if (!write_delta_values(q, n, 3, position_bounds, level, coder.symbols, buf) ||
+      (labels != nullptr && !write_delta_values(l, n, 1, label_bounds, level, coder.symbols, buf)))
     return {fq::StatusCode::kInternal, "Draco's symbol coder failed"};
   quantize.write_parameters(buf);  // the labels' integer coder has no parameters
   out.assign(buf.data(), buf.size());
   return {};
+}
+
+ChunkScratch& thread_chunk_scratch() {
+  thread_local ChunkScratch scratch;
+  return scratch;
 }
 
 namespace {

@@ -12,6 +12,7 @@
 
 #include "common/status.h"
 #include "kernels/mesh_view.h"
+#include "proto/draco_sequential.h"
 #include "proto/frame_codec.h"
 #include "proto/frame_split.h"
 
@@ -22,7 +23,8 @@ class PointCloud;
 
 namespace fq::wire::detail {
 
-/// Per-worker scratch space of build_chunk, reused from chunk to chunk and frame to frame.
+/// Per-thread scratch space of build_chunk and write_sequential_chunk, reused from chunk to
+/// chunk and frame to frame.
 struct ChunkScratch {
   std::vector<uint64_t> seen;  ///< one bit per frame vertex: the chunk's; all zero between chunks
   /// global -> point index of the current chunk; only its vertices' entries are ever read, so
@@ -33,10 +35,13 @@ struct ChunkScratch {
   /// frame-wide bitmap (shared by the workers), so that "every vertex is used" needs no pass of
   /// its own.
   std::atomic<uint64_t>* used = nullptr;
-  std::vector<int32_t> quantized;     ///< write_sequential_chunk: 3 quantized coordinates a point
-  std::vector<int32_t> label_values;  ///< write_sequential_chunk: a label a point
-  std::vector<uint32_t> symbols;      ///< write_sequential_chunk: Draco symbols of one attribute
+  SequentialScratch coder;  ///< write_sequential_chunk's buffers
 };
+
+/// The calling thread's scratch, kept for the thread's life so that frames after the first
+/// allocate nothing (it holds what the largest frame so far needed). Reset it (assign {})
+/// when a chunk fails half-way: the bitmap must be all zero between chunks.
+ChunkScratch& thread_chunk_scratch();
 
 /// Whether the chunk `part` is coded with Draco's sequential coder: at speed 10, or when a
 /// face repeats a vertex (edgebreaker would drop it). Only that coder keeps point order, which

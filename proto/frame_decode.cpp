@@ -8,6 +8,7 @@
 #include <cstring>
 #include <exception>
 #include <memory>
+#include <span>
 #include <string>
 
 #include "proto/draco_sequential_read.h"
@@ -30,7 +31,30 @@ struct Chunk {
   std::vector<uint32_t> ids;        ///< fq_vid per point; empty when the chunk has none
   std::vector<uint32_t> labels;     ///< fq_label per point; empty when the chunk has none
   uint32_t faces = 0;               ///< read from mesh's faces where they are used (no copy)
+
+  /// Empty for the next frame; the vectors keep their capacity.
+  void reset() {
+    status = {};
+    mesh.reset();
+    xyz = nullptr;
+    points = faces = 0;
+    positions.clear();
+    ids.clear();
+    labels.clear();
+  }
 };
+
+/// The calling thread's chunks, reused from frame to frame: a stream's next frame of about the
+/// same size decodes without allocating (on a virtual machine the first touch of each fresh
+/// page is a fault, which cost more than the decoding itself). Holds what the calling thread's
+/// largest frame so far needed, up to kKeptChunkBytes.
+constexpr size_t kKeptChunkBytes = size_t(256) << 20;
+std::vector<Chunk>& thread_chunks(size_t count) {
+  thread_local std::vector<Chunk> chunks;
+  if (chunks.size() < count) chunks.resize(count);
+  for (size_t i = 0; i < count; ++i) chunks[i].reset();
+  return chunks;
+}
 
 /// Calls fn(f, k, point index) for every corner k of every face f of a decoded chunk.
 template <class Fn>
@@ -172,7 +196,7 @@ fq::Status take_plain(Chunk& c, uint32_t vertex_count, fq::Mesh& out, std::vecto
 
 /// Number of vertices of the merged frame: `vertex_count`, or inferred from the largest id.
 /// Bounded by the points the chunks carry, so a forged count cannot trigger a huge allocation.
-fq::Status merged_count(const std::vector<Chunk>& cs, uint32_t vertex_count, uint32_t& n) {
+fq::Status merged_count(std::span<const Chunk> cs, uint32_t vertex_count, uint32_t& n) {
   size_t points = 0;
   uint32_t max_id = 0;
   for (const auto& c : cs) {
@@ -216,7 +240,7 @@ fq::Status scatter_chunk(const Chunk& c, uint32_t n, bool with_labels, float* po
   return bad_face < c.faces ? face_out_of_range(bad_face) : fq::Status{};
 }
 
-fq::Status merge(std::vector<Chunk>& cs, uint32_t n, int threads, fq::Mesh& out, std::vector<uint32_t>* labels) {
+fq::Status merge(std::span<Chunk> cs, uint32_t n, int threads, fq::Mesh& out, std::vector<uint32_t>* labels) {
   const bool with_labels =
       labels && std::all_of(cs.begin(), cs.end(), [](const Chunk& c) { return !c.labels.empty(); });
   // Sized, not cleared: every slot is written by a chunk or the frame is refused below (a
@@ -253,14 +277,13 @@ void empty(fq::Mesh& out, std::vector<uint32_t>* labels) {
 }
 
 fq::Status decode_into(const std::vector<std::string_view>& chunks, uint32_t vertex_count,
-                       const CodecOptions& options, fq::Mesh& out, std::vector<uint32_t>* labels,
-                       std::vector<uint32_t>* chunk_triangles) {
+                       const CodecOptions& options, std::span<Chunk> cs, fq::Mesh& out,
+                       std::vector<uint32_t>* labels, std::vector<uint32_t>* chunk_triangles) {
   if (labels) labels->clear();
   if (chunks.empty()) return invalid_input("frame has no Draco chunks");
   if (chunks.size() > kMaxChunks)
     return invalid_input("frame has more than " + std::to_string(kMaxChunks) + " chunks");
 
-  std::vector<Chunk> cs(chunks.size());
   detail::for_each_chunk(chunks.size(), options.threads, [&](size_t i, size_t) {
     try {
       decode_chunk(chunks[i], cs[i]);
@@ -293,7 +316,20 @@ fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t ve
                         const CodecOptions& options, fq::Mesh& out, std::vector<uint32_t>* labels,
                         std::vector<uint32_t>* chunk_triangles) {
   if (chunk_triangles) chunk_triangles->clear();
-  fq::Status s = decode_into(chunks, vertex_count, options, out, labels, chunk_triangles);
+  const size_t count = std::min(chunks.size(), size_t(kMaxChunks));
+  std::vector<Chunk>& kept = thread_chunks(count);
+  fq::Status s = decode_into(chunks, vertex_count, options, std::span<Chunk>(kept.data(), count), out, labels,
+                             chunk_triangles);
+  size_t held = 0;
+  for (size_t i = 0; i < count; ++i) {
+    kept[i].mesh.reset();  // Draco's meshes are not reused
+    const detail::SequentialChunk& d = kept[i].direct;
+    held += 4 * (d.corners.capacity() + d.positions.capacity() + d.values.capacity() + d.ids.capacity() +
+                 d.labels.capacity() + kept[i].ids.capacity() + kept[i].labels.capacity());
+  }
+  // A frame far beyond what a capture stream sends (a hostile one, say) does not leave its
+  // buffers behind in every thread that decoded one.
+  if (held > kKeptChunkBytes) std::vector<Chunk>().swap(kept);
   if (!s.ok()) {
     empty(out, labels);
     if (chunk_triangles) chunk_triangles->clear();

@@ -97,20 +97,22 @@ fq::Status encode_parts(const fq::MeshView& mesh, const uint32_t* labels, const 
   std::vector<fq::Status> status(parts.size());
   // Every vertex must be used: the chunks mark theirs while they are built (no extra pass).
   std::vector<std::atomic<uint64_t>> used((size_t(mesh.num_vertices) + 63) / 64);
-  std::vector<detail::ChunkScratch> scratch(detail::chunk_workers(parts.size(), options.threads));
-  for (auto& s : scratch) s.used = used.data();
-  detail::for_each_chunk(parts.size(), options.threads, [&](size_t i, size_t w) {
+  detail::for_each_chunk(parts.size(), options.threads, [&](size_t i, size_t) {
+    detail::ChunkScratch& scratch = detail::thread_chunk_scratch();
+    scratch.used = used.data();
     try {
       if (detail::sequential_chunk(mesh, options, parts[i])) {
-        status[i] = detail::write_sequential_chunk(mesh, labels, parts[i], options, box, scratch[w], encoded[i]);
-        return;
+        status[i] = detail::write_sequential_chunk(mesh, labels, parts[i], options, box, scratch, encoded[i]);
+      } else {
+        draco::Mesh m;
+        detail::build_chunk(mesh, labels, true, options, parts[i], scratch, m);
+        status[i] = detail::encode_chunk(m, false, options, box, encoded[i]);
       }
-      draco::Mesh m;
-      detail::build_chunk(mesh, labels, true, options, parts[i], scratch[w], m);
-      status[i] = detail::encode_chunk(m, false, options, box, encoded[i]);
     } catch (const std::exception& e) {  // bad_alloc: a fault of this frame, not of the process
       status[i] = {fq::StatusCode::kInternal, std::string("encoding failed: ") + e.what()};
+      scratch = {};  // its bitmap may hold half a chunk
     }
+    scratch.used = nullptr;  // this frame's bitmap dies with the call
   });
   for (size_t i = 0; i < parts.size(); ++i) {  // first: a failed chunk may not have marked its vertices
     if (!status[i].ok()) return {status[i].code(), "chunk " + std::to_string(i) + ": " + status[i].message()};

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "proto/draco_sequential.h"
+#include "proto/draco_sequential_read.h"
 #include "proto/frame_codec.h"
 #include "proto/frame_split.h"
 #include "kernels/frame_prep.h"
@@ -45,6 +46,34 @@ fq::Status decode_range(std::string_view bytes, std::vector<float>& out) {
   return {};
 }
 
+/// The chunks when every one is a point cloud as encode_positions writes it: each read
+/// directly into its place in `out` (no draco::PointCloud, no copy to concatenate). False, with
+/// `out` empty, when any is not; Draco's decoder then reads them all.
+bool read_own(const std::vector<std::string_view>& chunks, uint32_t vertex_count, const CodecOptions& options,
+              std::vector<float>& out) {
+  std::vector<size_t> first(chunks.size() + 1, 0);
+  for (size_t i = 0; i < chunks.size(); ++i) {
+    uint32_t n = 0;
+    if (!detail::sequential_point_count(chunks[i], n)) return false;
+    first[i + 1] = first[i] + n;
+  }
+  if (first.back() == 0 || (vertex_count != 0 && first.back() != vertex_count)) return false;
+  out.resize(3 * first.back());
+  std::vector<uint8_t> ok(chunks.size(), 0);
+  detail::for_each_chunk(chunks.size(), options.threads, [&](size_t i, size_t) {
+    const auto n = static_cast<uint32_t>(first[i + 1] - first[i]);
+    try {
+      ok[i] = detail::read_sequential_point_cloud(chunks[i], n, out.data() + 3 * first[i],
+                                                  detail::thread_sequential_scratch().quantized);
+    } catch (const std::exception&) {  // bad_alloc: Draco's decoder gets the chunks instead
+      ok[i] = 0;
+    }
+  });
+  if (std::find(ok.begin(), ok.end(), uint8_t{0}) == ok.end()) return true;
+  out.clear();
+  return false;
+}
+
 }  // namespace
 
 fq::Status encode_positions(const float* positions, uint32_t num_vertices, uint32_t chunks,
@@ -71,12 +100,7 @@ fq::Status encode_positions(const float* positions, uint32_t num_vertices, uint3
   const uint32_t parts = std::min(chunks, num_vertices);
   std::vector<std::string> encoded(parts);
   std::vector<fq::Status> status(parts);
-  struct Scratch {
-    std::vector<int32_t> quantized;
-    std::vector<uint32_t> symbols;
-  };
-  std::vector<Scratch> scratch(detail::chunk_workers(parts, options.threads));
-  detail::for_each_chunk(parts, options.threads, [&](size_t i, size_t w) {
+  detail::for_each_chunk(parts, options.threads, [&](size_t i, size_t) {
     const auto first = static_cast<uint32_t>(uint64_t(num_vertices) * i / parts);
     const auto last = static_cast<uint32_t>(uint64_t(num_vertices) * (i + 1) / parts);
     try {
@@ -84,7 +108,7 @@ fq::Status encode_positions(const float* positions, uint32_t num_vertices, uint3
       // coder keeps them in vertex order (its k-d tree coder, which Draco picks for quantized
       // clouds below speed 10, would reorder them), written directly (draco_sequential.h).
       status[i] = detail::write_point_cloud(positions + 3 * size_t(first), last - first, options, box,
-                                            scratch[w].quantized, scratch[w].symbols, encoded[i]);
+                                            detail::thread_sequential_scratch(), encoded[i]);
     } catch (const std::exception& e) {  // bad_alloc: a fault of this frame, not of the process
       status[i] = {fq::StatusCode::kInternal, std::string("encoding failed: ") + e.what()};
     }
@@ -102,6 +126,7 @@ fq::Status decode_positions(const std::vector<std::string_view>& chunks, uint32_
   if (chunks.empty()) return invalid_input("frame has no Draco chunks");
   if (chunks.size() > kMaxChunks)
     return invalid_input("frame has more than " + std::to_string(kMaxChunks) + " chunks");
+  if (read_own(chunks, vertex_count, options, out)) return {};
   std::vector<std::vector<float>> parts(chunks.size());
   std::vector<fq::Status> status(chunks.size());
   detail::for_each_chunk(chunks.size(), options.threads, [&](size_t i, size_t) {

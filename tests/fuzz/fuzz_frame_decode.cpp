@@ -1,6 +1,7 @@
 // libFuzzer target: one ingest chunk through what fqd does with it — the decoded-size
-// budget read from the Draco header, then the frame decoder and the mesh checks. The first
-// byte picks the vertex count the frame header claims (0 = infer, else a small count).
+// budget read from the Draco header, then the frame decoder and the mesh checks — and through
+// what a consumer does with a POSITIONS result (decode_positions). The first byte picks the
+// vertex count the frame header claims (0 = infer, else a small count).
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -22,5 +23,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   fq::Mesh mesh;
   std::vector<uint32_t> labels;
   if (fq::wire::decode_frame({chunk}, vertex_count, o, mesh, &labels).ok()) (void)fq::check_mesh(mesh.view());
+  // The same bytes as a POSITIONS result, as a consumer decodes one.
+  std::vector<float> positions;
+  (void)fq::wire::decode_positions({chunk}, vertex_count, o, positions);
   return 0;
 }

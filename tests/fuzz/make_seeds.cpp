@@ -37,6 +37,14 @@ int main(int argc, char** argv) {
       ++n;
     }
   }
+  for (uint32_t chunks : {1u, 3u}) {  // POSITIONS results, as fqd publishes them
+    std::vector<std::string> parts;
+    if (!fq::wire::encode_positions(m.positions.data(), m.num_vertices(), chunks, fq::wire::CodecOptions{}, parts).ok())
+      return 1;
+    for (size_t i = 0; i < parts.size(); ++i)
+      put(out / "frame_decode" / ("positions" + std::to_string(chunks) + "_" + std::to_string(i)),
+          std::string(1, '\0') + parts[i]);
+  }
   fq::wire::ResultHeader r;
   r.set_version(fq::wire::kWireVersion);
   r.set_stream_id("seed");

@@ -1,16 +1,20 @@
-// read_sequential_chunk against Draco's decoder: on the codec's own chunks it must give what
-// Draco gives, and on anything else (other layouts, damaged bytes) it must either give what
-// Draco gives or leave the chunk to Draco. Never a different reading, never a chunk Draco refuses.
+// read_sequential_chunk and read_sequential_point_cloud against Draco's decoder: on the
+// codec's own chunks they must give what Draco gives, and on anything else (other layouts,
+// damaged bytes) either give what Draco gives or leave the chunk to Draco. Never a different
+// reading, never a chunk Draco refuses.
 #include <draco/compression/decode.h>
 #include <draco/mesh/mesh.h>
+#include <draco/point_cloud/point_cloud.h>
 #include <draco/metadata/geometry_metadata.h>
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "proto/draco_sequential.h"
 #include "proto/draco_sequential_read.h"
 #include "proto/frame_chunk.h"
 #include "proto/frame_split.h"
@@ -145,6 +149,69 @@ TEST(DracoSequentialRead, DamagedChunksReadAsDracoReadsThemOrNotAtAll) {
   }
   // Some damage falls where it changes values, not the layout: those chunks are still read.
   EXPECT_GT(taken, 0);
+}
+
+/// A point cloud as Draco's decoder reads it: its positions, or nothing when it refuses it.
+std::optional<std::vector<float>> cloud_with_draco(const std::string& bytes) {
+  draco::DecoderBuffer buf;
+  buf.Init(bytes.data(), bytes.size());
+  draco::Decoder dec;
+  auto decoded = dec.DecodePointCloudFromBuffer(&buf);
+  if (!decoded.ok()) return std::nullopt;
+  const draco::PointCloud& pc = *decoded.value();
+  const draco::PointAttribute* pos = pc.GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  if (pos == nullptr || pos->num_components() != 3) return std::nullopt;
+  std::vector<float> xyz(3 * size_t(pc.num_points()));
+  for (uint32_t p = 0; p < pc.num_points(); ++p)
+    pos->ConvertValue<float>(pos->mapped_index(draco::PointIndex(p)), 3, &xyz[3 * size_t(p)]);
+  return xyz;
+}
+
+/// Reads a point cloud both ways; when the direct reader takes it, Draco must read the same.
+bool expect_same_cloud(const std::string& bytes) {
+  uint32_t n = 0;
+  if (!sequential_point_count(bytes, n) || n > 1'000'000) return false;
+  std::vector<float> ours(3 * size_t(n));
+  std::vector<int32_t> values;
+  if (!read_sequential_point_cloud(bytes, n, ours.data(), values)) return false;
+  const auto by_draco = cloud_with_draco(bytes);
+  EXPECT_TRUE(by_draco.has_value()) << "the direct reader took a point cloud Draco refuses";
+  if (by_draco) {
+    EXPECT_EQ(by_draco->size(), ours.size());
+    EXPECT_EQ(0, std::memcmp(ours.data(), by_draco->data(), std::min(ours.size(), by_draco->size()) * sizeof(float)));
+  }
+  return true;
+}
+
+TEST(DracoSequentialRead, PointCloudsReadAsDracoReadsThem) {
+  const Mesh grid = test_proto::make_bumpy_grid(80, 60);
+  const Box box = bounding_box(grid.view());
+  SequentialScratch scratch;
+  std::mt19937 rng(11);
+  for (int speed : {5, 10}) {
+    CodecOptions o;
+    o.encode_speed = o.decode_speed = speed;
+    std::string bytes;
+    ASSERT_TRUE(write_point_cloud(grid.positions.data(), grid.num_vertices(), o, box, scratch, bytes).ok());
+    EXPECT_TRUE(expect_same_cloud(bytes));
+    uint32_t n = 0;
+    EXPECT_FALSE(sequential_point_count(bytes.substr(0, 12), n));  // cut short in the header
+    std::vector<float> out(3 * size_t(grid.num_vertices()));
+    std::vector<int32_t> values;
+    EXPECT_FALSE(read_sequential_point_cloud(bytes, grid.num_vertices() - 1, out.data(), values));
+    EXPECT_FALSE(read_sequential_point_cloud(bytes.substr(0, bytes.size() - 1), grid.num_vertices(), out.data(), values));
+    int taken = 0;
+    for (int trial = 0; trial < 1000; ++trial) {
+      std::string damaged = bytes;
+      const size_t at = rng() % damaged.size();
+      damaged[at] = static_cast<char>(damaged[at] ^ (1 << (rng() % 8)));
+      taken += expect_same_cloud(damaged) ? 1 : 0;
+    }
+    EXPECT_GT(taken, 0);
+  }
+  // A mesh chunk is not a point cloud.
+  uint32_t n = 0;
+  EXPECT_FALSE(sequential_point_count(own_chunks(grid, 1, false)[0], n));
 }
 
 }  // namespace

@@ -106,9 +106,8 @@ TEST(DracoSequential, PointCloudsAreDracos) {
       std::memcpy(pos->GetAddress(draco::AttributeValueIndex(0)), grid.positions.data(), 3 * sizeof(float) * n);
       std::string by_draco, ours;
       ASSERT_TRUE(encode_on_grid(pc, draco::POINT_CLOUD_SEQUENTIAL_ENCODING, o, box, by_draco).ok());
-      std::vector<int32_t> quantized;
-      std::vector<uint32_t> symbols;
-      ASSERT_TRUE(write_point_cloud(grid.positions.data(), n, o, box, quantized, symbols, ours).ok());
+      SequentialScratch scratch;
+      ASSERT_TRUE(write_point_cloud(grid.positions.data(), n, o, box, scratch, ours).ok());
       EXPECT_TRUE(ours == by_draco);
     }
   }
