@@ -7,6 +7,7 @@
 
 #include "clients/common/frame_sender.h"
 #include "kernels/cpu_engine.h"
+#include "kernels/parallel_for.h"
 #include "tests/daemon/daemon_harness.h"
 #include "proto/frame_codec.h"
 #include "tests/support/test_meshes.h"
@@ -213,6 +214,24 @@ TEST(DaemonStream, AMeshResultIsCutAsItsInputWas) {
   ASSERT_TRUE(wire::decode_frame(views, mesh.num_vertices(), wire::CodecOptions{}, back, nullptr, &result_counts).ok());
   EXPECT_EQ(result_counts, counts);
   EXPECT_EQ(canonical_triangles(back), canonical_triangles(mesh));
+}
+
+TEST(DaemonStream, ALargePositionsResultIsCutForMoreCores) {
+  daemon::DaemonConfig c = test_config();
+  c.streams["big"] = c.defaults;  // output chunks "same": POSITIONS may take more
+  c.streams["one"] = c.defaults;
+  c.streams["one"].output.chunks = 1;
+  DaemonHarness h(c);
+  const Mesh mesh = noisy_sphere(9, 6);  // 40,962 vertices: two chunks of at least 16,384
+  h.send(mesh, spec_for("big", 1), 0);
+  h.send(mesh, spec_for("one", 1), 0);
+  const client::ReceivedResult big = h.receive_decoded("big", &mesh);
+  const client::ReceivedResult one = h.receive_decoded("one", &mesh);
+  ASSERT_EQ(big.header.form(), wire::POSITIONS);
+  const uint32_t cores = static_cast<uint32_t>(hardware_threads());
+  EXPECT_EQ(big.header.chunk_count(), std::max(1u, std::min(cores, mesh.num_vertices() / 16384)));
+  EXPECT_EQ(one.header.chunk_count(), 1u);
+  EXPECT_EQ(big.mesh.positions, one.mesh.positions);  // vertex ranges of one grid, concatenated
 }
 
 TEST(DaemonStream, BothResultFormsCarryTheSamePositionsAndLabels) {
