@@ -169,7 +169,7 @@ bool dequantize(draco::DecoderBuffer& in, uint32_t points, const int32_t* q, flo
   const float delta = range / static_cast<float>(max_quantized);  // Draco's Dequantizer
   for (size_t i = 0; i < 3 * size_t(points); i += 3) {
     for (size_t a = 0; a < 3; ++a) {
-      float v = static_cast<float>(q[i + a]) * delta;  // two roundings, as Draco (built without FMA contraction)
+      float v = static_cast<float>(q[i + a]) * delta;  // two roundings, as Draco (wire.cmake: no FMA contraction)
       out[i + a] = v + origin[a];
     }
   }

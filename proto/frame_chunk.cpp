@@ -102,6 +102,29 @@ bool repeats_a_vertex(const fq::MeshView& mesh, const Part& part) {
   return false;
 }
 
+/// A sequential chunk's geometry metadata: its id runs and, with labels, the label
+/// attribute's name (what build_chunk gives draco::Encoder).
+draco::GeometryMetadata chunk_metadata(std::vector<uint8_t> runs, bool labelled) {
+  draco::GeometryMetadata metadata;
+  metadata.AddEntryBinary(kVertexIdRunsEntry, runs);
+  if (labelled) {
+    auto label_metadata = std::make_unique<draco::AttributeMetadata>();
+    label_metadata->AddEntryString("name", kLabelAttribute);
+    label_metadata->set_att_unique_id(1);  // the second attribute
+    metadata.AddAttributeMetadata(std::move(label_metadata));
+  }
+  return metadata;
+}
+
+/// A sequential chunk's attributes, in build_chunk's order: positions, then the labels.
+std::vector<AttributeSpec> chunk_attributes(bool labelled) {
+  std::vector<AttributeSpec> specs = {
+      {draco::GeometryAttribute::POSITION, draco::DT_FLOAT32, 3, draco::SEQUENTIAL_ATTRIBUTE_ENCODER_QUANTIZATION}};
+  if (labelled)
+    specs.push_back({draco::GeometryAttribute::GENERIC, draco::DT_UINT32, 1, draco::SEQUENTIAL_ATTRIBUTE_ENCODER_INTEGER});
+  return specs;
+}
+
 }  // namespace
 
 bool sequential_chunk(const fq::MeshView& mesh, const CodecOptions& o, const Part& part) {
@@ -172,14 +195,7 @@ fq::Status write_sequential_chunk(const fq::MeshView& mesh, const uint32_t* labe
       label_bounds.add(l[i]);
     }
   });
-  draco::GeometryMetadata metadata;
-  metadata.AddEntryBinary(kVertexIdRunsEntry, runs.finish());
-  if (labels != nullptr) {
-    auto label_metadata = std::make_unique<draco::AttributeMetadata>();
-    label_metadata->AddEntryString("name", kLabelAttribute);
-    label_metadata->set_att_unique_id(1);  // the second attribute
-    metadata.AddAttributeMetadata(std::move(label_metadata));
-  }
+  const draco::GeometryMetadata metadata = chunk_metadata(runs.finish(), labels != nullptr);
   draco::EncoderBuffer& buf = coder.buffer;
   buf.Clear();  // keeps its capacity
   buf.buffer()->reserve(256 + 6 * size_t(part.triangles) + 8 * size_t(n));
@@ -194,11 +210,7 @@ fq::Status write_sequential_chunk(const fq::MeshView& mesh, const uint32_t* labe
       put(local[f[2]]);
     });
   });
-  std::vector<AttributeSpec> specs = {{draco::GeometryAttribute::POSITION, draco::DT_FLOAT32, 3,
-                                       draco::SEQUENTIAL_ATTRIBUTE_ENCODER_QUANTIZATION}};
-  if (labels != nullptr)
-    specs.push_back({draco::GeometryAttribute::GENERIC, draco::DT_UINT32, 1, draco::SEQUENTIAL_ATTRIBUTE_ENCODER_INTEGER});
-  write_attribute_specs(buf, specs);
+  write_attribute_specs(buf, chunk_attributes(labels != nullptr));
   const int level = symbol_compression_level(o);
   if (!write_delta_values(q, n, 3, position_bounds, level, coder.symbols, buf) ||
       (labels != nullptr && !write_delta_values(l, n, 1, label_bounds, level, coder.symbols, buf)))

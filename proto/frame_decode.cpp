@@ -320,12 +320,12 @@ fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t ve
   std::vector<Chunk>& kept = thread_chunks(count);
   fq::Status s = decode_into(chunks, vertex_count, options, std::span<Chunk>(kept.data(), count), out, labels,
                              chunk_triangles);
-  size_t held = 0;
-  for (size_t i = 0; i < count; ++i) {
-    kept[i].mesh.reset();  // Draco's meshes are not reused
-    const detail::SequentialChunk& d = kept[i].direct;
+  size_t held = 0;  // every slot's, also those a larger earlier frame left
+  for (Chunk& c : kept) {
+    c.mesh.reset();  // Draco's meshes are not reused
+    const detail::SequentialChunk& d = c.direct;
     held += 4 * (d.corners.capacity() + d.positions.capacity() + d.values.capacity() + d.ids.capacity() +
-                 d.labels.capacity() + kept[i].ids.capacity() + kept[i].labels.capacity());
+                 d.labels.capacity() + c.positions.capacity() + c.ids.capacity() + c.labels.capacity());
   }
   // A frame far beyond what a capture stream sends (a hostile one, say) does not leave its
   // buffers behind in every thread that decoded one.
