@@ -104,7 +104,7 @@ bool repeats_a_vertex(const fq::MeshView& mesh, const Part& part) {
 
 /// A sequential chunk's geometry metadata: its id runs and, with labels, the label
 /// attribute's name (what build_chunk gives draco::Encoder).
-draco::GeometryMetadata chunk_metadata(std::vector<uint8_t> runs, bool labelled) {
+draco::GeometryMetadata chunk_metadata(const std::vector<uint8_t>& runs, bool labelled) {
   draco::GeometryMetadata metadata;
   metadata.AddEntryBinary(kVertexIdRunsEntry, runs);
   if (labelled) {
