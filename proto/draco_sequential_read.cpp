@@ -15,6 +15,7 @@
 #include <string>
 
 #include "proto/frame_codec.h"
+#include "proto/varint.h"
 #include "proto/vertex_id_runs.h"
 
 namespace fq::wire::detail {
@@ -89,21 +90,13 @@ bool read_connectivity(draco::DecoderBuffer& in, SequentialChunk& c) {
     ok = fixed(uint16_t{});
   } else if (c.points < (1u << 21)) {
     ok = true;
-    for (size_t k = 0; k < corners && ok; ++k) {  // canonical varints of at most 3 bytes; else Draco
-      uint32_t v = 0;
-      int shift = 0;
-      for (;; shift += 7) {
-        if (p == end || shift > 14) {
-          ok = false;
-          break;
-        }
-        const uint8_t b = *p++;
-        v |= uint32_t(b & 0x7f) << shift;
-        if ((b & 0x80) == 0) break;
-      }
-      out[k] = v;
-      bad |= static_cast<uint32_t>(v >= c.points);
+    const auto size = size_t(end - p);
+    size_t pos = 0;
+    for (size_t k = 0; k < corners && ok; ++k) {  // varints of at most 3 bytes (below 2^21); else Draco
+      ok = get_varint(p, size, pos, out[k], 3);
+      bad |= static_cast<uint32_t>(out[k] >= c.points);
     }
+    p += pos;
   } else {
     ok = fixed(uint32_t{});
   }
@@ -176,6 +169,17 @@ bool dequantize(draco::DecoderBuffer& in, uint32_t points, const int32_t* q, flo
   return true;
 }
 
+/// The point cloud's header and point count, as write_point_cloud writes them.
+bool read_point_cloud_head(draco::DecoderBuffer& in, uint32_t& n) {
+  int32_t points = 0;
+  if (!read_header(in, false) || !in.Decode(&points) || points < 0) return false;
+  // Draco reads the count as it is; a count no genuine chunk of this size could carry (a
+  // forged one) is left to Draco's decoder and the caller's limits instead of sizing buffers.
+  if (uint64_t(points) > 1024 * uint64_t(in.remaining_size())) return false;
+  n = static_cast<uint32_t>(points);
+  return true;
+}
+
 }  // namespace
 
 bool read_sequential_chunk(std::string_view bytes, uint32_t id_limit, SequentialChunk& c) {
@@ -195,21 +199,6 @@ bool read_sequential_chunk(std::string_view bytes, uint32_t id_limit, Sequential
   c.positions.resize(3 * size_t(c.points));
   return dequantize(in, c.points, c.values.data(), c.positions.data());
 }
-
-namespace {
-
-/// The point cloud's header and point count, as write_point_cloud writes them.
-bool read_point_cloud_head(draco::DecoderBuffer& in, uint32_t& n) {
-  int32_t points = 0;
-  if (!read_header(in, false) || !in.Decode(&points) || points < 0) return false;
-  // Draco reads the count as it is; a count no genuine chunk of this size could carry (a
-  // forged one) is left to Draco's decoder and the caller's limits instead of sizing buffers.
-  if (uint64_t(points) > 1024 * uint64_t(in.remaining_size())) return false;
-  n = static_cast<uint32_t>(points);
-  return true;
-}
-
-}  // namespace
 
 bool sequential_point_count(std::string_view bytes, uint32_t& n) {
   draco::DecoderBuffer in;

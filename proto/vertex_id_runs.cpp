@@ -3,23 +3,6 @@
 #include "proto/varint.h"
 
 namespace fq::wire::detail {
-namespace {
-
-/// Reads one varint of at most 32 bits at data[pos]; false at the end or on an overlong one.
-bool get_varint(const uint8_t* data, size_t size, size_t& pos, uint32_t& v) {
-  v = 0;
-  for (int shift = 0; shift < 35; shift += 7) {
-    if (pos >= size) return false;
-    const uint8_t b = data[pos++];
-    if (shift == 28 && (b & 0xf0) != 0) return false;
-    v |= uint32_t(b & 0x7f) << shift;
-    if ((b & 0x80) == 0) return true;
-  }
-  return false;
-}
-
-}  // namespace
-
 void IdRunWriter::flush() {
   if (length_ == 0) return;
   uint8_t buf[10];  // two varints of at most 5 bytes
