@@ -1,5 +1,5 @@
 # Install rules: the tools, the libraries with their headers, a CMake package (find_package(fq)
-# gives fq::kernels, fq::meshio, fq::eval, fq::proto, with fq::common under them) and a pkg-config file (fq.pc).
+# gives fq::kernels, fq::meshio, fq::eval, fq::proto, with fq::core and fq::common under them) and a pkg-config file (fq.pc).
 #
 # Headers go to <prefix>/include/fq/<folder>/, so the installed targets carry include/fq (the
 # root-relative "kernels/engine.h" of the source tree keeps working) and include (for
@@ -14,7 +14,7 @@ target_include_directories(fq_options INTERFACE
   "$<INSTALL_INTERFACE:${FQ_INSTALL_INCLUDEDIR}>"
   "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
 
-set(fq_installed_libraries fq_common fq_kernels fq_eval fq_meshio fq_proto)
+set(fq_installed_libraries fq_common fq_core fq_kernels fq_eval fq_meshio fq_proto)
 foreach(lib ${fq_installed_libraries})
   string(REPLACE "fq_" "" short "${lib}")
   set_target_properties(${lib} PROPERTIES EXPORT_NAME ${short})
@@ -27,7 +27,7 @@ install(TARGETS fq_options ${fq_installed_libraries} EXPORT fqTargets
 install(TARGETS ${FQ_TOOLS} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
 # Public headers, folder by folder (kernels/cuda/ holds device code only and stays private).
-foreach(folder common kernels eval proto)
+foreach(folder common core kernels eval proto)
   install(DIRECTORY "${PROJECT_SOURCE_DIR}/${folder}/" DESTINATION "${FQ_INSTALL_INCLUDEDIR}/${folder}"
     FILES_MATCHING PATTERN "*.h" PATTERN "cuda" EXCLUDE)
 endforeach()

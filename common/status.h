@@ -13,7 +13,7 @@ enum class StatusCode {
   kUnavailable,      ///< a requested engine or device is not present
   kInternal,         ///< a fault caught at the frame boundary (e.g. a CUDA error)
   kIoError,          ///< a file that cannot be found, opened, read or written
-  kCancelled,        ///< work stopped by its time limit or a shutdown (kernels/cancel_token.h)
+  kCancelled,        ///< work stopped by its time limit or a shutdown (core/cancel_token.h)
 };
 
 class Status {

@@ -13,7 +13,7 @@ namespace {
 
 constexpr int64_t kMaxThreads = 256;
 
-// "method" by its name (kernels/params.h), FilterMethod or ClusterMethod.
+// "method" by its name (core/params.h), FilterMethod or ClusterMethod.
 template <typename Method>
 void read_method(TomlReader& r, Method& m) {
   std::string name = method_name(m);

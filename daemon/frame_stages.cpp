@@ -7,11 +7,11 @@
 
 #include "proto/draco_budget.h"
 #include "proto/frame_codec.h"
-#include "kernels/frame_prep.h"
+#include "core/mesh_checks.h"
 #include "proto/header_codec.h"
 #include "daemon/pipeline.h"
 #include "daemon/work_budget.h"
-#include "kernels/parallel_for.h"
+#include "core/parallel_for.h"
 #include "common/thread_pool.h"
 
 namespace fq::daemon {

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "kernels/params.h"
+#include "core/params.h"
 #include "proto/fq.pb.h"
 #include "common/status.h"
 

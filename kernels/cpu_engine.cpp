@@ -5,7 +5,7 @@
 
 #include "kernels/cluster_control.h"
 #include "kernels/cpu_stages.h"
-#include "kernels/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace fq {
 

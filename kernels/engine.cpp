@@ -1,10 +1,7 @@
 #include "kernels/engine.h"
 
-#include <thread>
-
 #include "kernels/cpu_engine.h"
 #include "kernels/fq_features.h"
-#include "kernels/parallel_for.h"
 
 #if FQ_WITH_CUDA
 #include "kernels/cuda_engine.h"
@@ -16,11 +13,6 @@ double FrameResult::total_ms() const {
   double t = 0.0;
   for (const PassTiming& p : timings) t += p.ms;
   return t;
-}
-
-int hardware_threads() {
-  const unsigned n = std::thread::hardware_concurrency();
-  return n > 0 ? static_cast<int>(n) : 1;
 }
 
 bool valid_cuda_team(int team) {

@@ -11,9 +11,9 @@
 
 #include "common/status.h"
 #include "common/status_or.h"
-#include "kernels/cancel_token.h"
-#include "kernels/mesh_view.h"
-#include "kernels/params.h"
+#include "core/cancel_token.h"
+#include "core/mesh_view.h"
+#include "core/params.h"
 
 namespace fq {
 

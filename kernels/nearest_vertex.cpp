@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "kernels/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace fq {
 

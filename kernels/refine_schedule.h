@@ -3,7 +3,7 @@
 #pragma once
 
 #include "kernels/gaussian.h"
-#include "kernels/params.h"
+#include "core/params.h"
 
 namespace fq {
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 #include "common/status.h"
 
 namespace fq::io {

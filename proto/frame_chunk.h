@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "common/status.h"
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 #include "proto/draco_sequential.h"
 #include "proto/frame_codec.h"
 #include "proto/frame_split.h"

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 #include "common/status.h"
 
 namespace fq::wire {

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "proto/frame_codec.h"
-#include "kernels/frame_prep.h"
+#include "core/mesh_checks.h"
 #include "proto/frame_chunk.h"
 #include "proto/frame_split.h"
 

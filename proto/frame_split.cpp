@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "common/thread_pool.h"
-#include "kernels/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace fq::wire::detail {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "proto/fq.pb.h"
 #include "proto/frame_codec.h"
-#include "kernels/params.h"
+#include "core/params.h"
 #include "common/status.h"
 
 namespace fq::wire {

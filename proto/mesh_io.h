@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "common/status.h"
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 #include "proto/mesh_attributes.h"
 
 namespace fq::io {

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "common/status.h"
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 #include "proto/mesh_attributes.h"
 
 namespace fq::io {

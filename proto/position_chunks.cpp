@@ -13,7 +13,7 @@
 #include "proto/draco_sequential_read.h"
 #include "proto/frame_codec.h"
 #include "proto/frame_split.h"
-#include "kernels/frame_prep.h"
+#include "core/mesh_checks.h"
 
 namespace fq::wire {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "kernels/params.h"
+#include "core/params.h"
 #include "python/bindings.h"
 #include "python/engine_cache.h"
 #include "python/numpy_mesh.h"

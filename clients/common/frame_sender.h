@@ -9,7 +9,7 @@
 
 #include "proto/fq.pb.h"
 #include "proto/frame_codec.h"
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 #include "common/status.h"
 
 namespace fq::client {

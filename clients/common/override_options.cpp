@@ -2,7 +2,7 @@
 
 #include <optional>
 
-#include "kernels/params.h"
+#include "core/params.h"
 #include "proto/header_codec.h"
 
 namespace fq::client {

@@ -9,7 +9,7 @@
 
 #include "common/status.h"
 #include "common/status_or.h"
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 #include "proto/fq.pb.h"
 
 namespace fq::client {

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "kernels/engine.h"
-#include "kernels/params.h"
+#include "core/params.h"
 
 namespace fq::cli {
 

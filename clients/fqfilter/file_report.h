@@ -10,7 +10,7 @@
 
 #include "kernels/engine.h"
 #include "eval/error_metrics.h"
-#include "kernels/params.h"
+#include "core/params.h"
 #include "eval/sharp_edge_recall.h"
 #include "eval/surface_distance.h"
 

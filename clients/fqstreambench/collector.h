@@ -9,7 +9,7 @@
 #include <string>
 #include <zmq.hpp>
 
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 #include "common/status.h"
 #include "clients/common/stream_stats.h"
 

@@ -9,7 +9,7 @@
 #include <zmq.hpp>
 
 #include "clients/common/frame_sender.h"
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 #include "common/status.h"
 
 namespace fq::bench {

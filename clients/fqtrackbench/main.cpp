@@ -17,7 +17,7 @@
 #include "kernels/engine.h"
 #include "kernels/frame_prep.h"
 #include "kernels/label_tracking.h"
-#include "kernels/parallel_for.h"
+#include "core/parallel_for.h"
 #include "proto/mesh_io.h"
 
 namespace {

@@ -7,7 +7,7 @@
 
 #include "clients/common/frame_sender.h"
 #include "kernels/cpu_engine.h"
-#include "kernels/parallel_for.h"
+#include "core/parallel_for.h"
 #include "tests/daemon/daemon_harness.h"
 #include "proto/frame_codec.h"
 #include "tests/support/test_meshes.h"

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "kernels/frame_prep.h"
+#include "core/mesh_checks.h"
 #include "proto/draco_budget.h"
 #include "proto/frame_codec.h"
 

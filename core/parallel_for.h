@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "common/thread_pool.h"
-#include "kernels/cancel_token.h"
+#include "core/cancel_token.h"
 
 namespace fq {
 
@@ -35,5 +35,16 @@ void parallel_for(uint32_t n, int threads, F&& f, int grain = 256) {
 
 /// Hardware threads available to the process.
 int hardware_threads();
+
+/// `threads`, or every hardware thread when it is 0 or less (the convention of every
+/// `threads` argument).
+inline int threads_or_all(int threads) { return threads > 0 ? threads : hardware_threads(); }
+
+/// Reductions run over fixed chunks of kFixedChunk items whose partial results are combined
+/// in chunk order, so every sum is bit-identical for any thread count. Each chunk is one
+/// work item of parallel_for (grain kOneChunkAtATime).
+inline constexpr uint32_t kFixedChunk = 1u << 15;
+inline constexpr int kOneChunkAtATime = 1;
+inline uint32_t fixed_chunks(uint64_t n) { return static_cast<uint32_t>((n + kFixedChunk - 1) / kFixedChunk); }
 
 }  // namespace fq

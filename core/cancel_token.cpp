@@ -1,4 +1,4 @@
-#include "kernels/cancel_token.h"
+#include "core/cancel_token.h"
 
 namespace fq {
 namespace {

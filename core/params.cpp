@@ -1,4 +1,4 @@
-#include "kernels/params.h"
+#include "core/params.h"
 
 #include <cmath>
 #include <sstream>
