@@ -1,6 +1,6 @@
 # Interface target carrying the language standard, warnings and the include roots for every
 # fq target. Every include names its folder from the repository root ("kernels/engine.h",
-# "proto/fq.pb.h"); generated headers mirror that layout under <build>/generated.
+# "wire/fq.pb.h"); generated headers mirror that layout under <build>/generated.
 add_library(fq_options INTERFACE)
 target_include_directories(fq_options INTERFACE
   "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>"

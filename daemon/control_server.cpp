@@ -2,7 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "proto/header_codec.h"
+#include "wire/header_codec.h"
 
 namespace fq::daemon {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "proto/fq.pb.h"
+#include "wire/fq.pb.h"
 
 namespace fq::daemon {
 

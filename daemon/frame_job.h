@@ -10,7 +10,7 @@
 #include <zmq.hpp>
 
 #include "kernels/engine.h"
-#include "proto/fq.pb.h"
+#include "wire/fq.pb.h"
 #include "common/status.h"
 #include "daemon/stream_settings.h"
 

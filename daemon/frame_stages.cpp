@@ -5,10 +5,10 @@
 #include <chrono>
 #include <exception>
 
-#include "proto/draco_budget.h"
-#include "proto/frame_codec.h"
+#include "wire/draco_budget.h"
+#include "wire/frame_codec.h"
 #include "core/mesh_checks.h"
-#include "proto/header_codec.h"
+#include "wire/header_codec.h"
 #include "daemon/pipeline.h"
 #include "daemon/work_budget.h"
 #include "core/parallel_for.h"

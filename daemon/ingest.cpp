@@ -5,8 +5,8 @@
 
 #include <zmq_addon.hpp>
 
-#include "proto/frame_codec.h"
-#include "proto/header_codec.h"
+#include "wire/frame_codec.h"
+#include "wire/header_codec.h"
 
 namespace fq::daemon {
 namespace {

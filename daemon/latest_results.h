@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "proto/fq.pb.h"
+#include "wire/fq.pb.h"
 
 namespace fq::daemon {
 

@@ -4,7 +4,7 @@
 
 #include <chrono>
 
-#include "proto/header_codec.h"
+#include "wire/header_codec.h"
 
 namespace fq::daemon {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/params.h"
-#include "proto/fq.pb.h"
+#include "wire/fq.pb.h"
 #include "common/status.h"
 
 namespace fq::daemon {

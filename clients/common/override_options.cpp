@@ -3,7 +3,7 @@
 #include <optional>
 
 #include "core/params.h"
-#include "proto/header_codec.h"
+#include "wire/header_codec.h"
 
 namespace fq::client {
 

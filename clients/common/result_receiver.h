@@ -10,7 +10,7 @@
 #include "common/status.h"
 #include "common/status_or.h"
 #include "core/mesh_view.h"
-#include "proto/fq.pb.h"
+#include "wire/fq.pb.h"
 
 namespace fq::client {
 

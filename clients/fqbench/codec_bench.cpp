@@ -2,7 +2,7 @@
 // draco::Decoder on the frame's chunks as draco::Mesh objects, positions only, one task per
 // chunk on the same threads. It leaves out what fq adds around Draco: input checks, the split,
 // the ids, reading the decoded meshes back and merging them. The floor's chunk meshes are built
-// once, untimed. fq writes its sequentially coded chunks itself (proto/draco_sequential.h: the
+// once, untimed. fq writes its sequentially coded chunks itself (wire/draco_sequential.h: the
 // same bytes draco::Encoder writes, without a draco::Mesh copy), so its encode can come in
 // under this floor; the bytes column shows what the ids add.
 #include "clients/fqbench/codec_bench.h"
@@ -23,10 +23,10 @@
 #include <vector>
 
 #include "clients/fqbench/bench_stats.h"
-#include "proto/frame_chunk.h"
-#include "proto/frame_codec.h"
-#include "proto/frame_split.h"
-#include "proto/mesh_io.h"
+#include "wire/frame_chunk.h"
+#include "wire/frame_codec.h"
+#include "wire/frame_split.h"
+#include "io/mesh_io.h"
 
 namespace fq::bench {
 namespace {

@@ -12,7 +12,7 @@
 #include "eval/sharp_edge_recall.h"
 #include "eval/surface_distance.h"
 #include "kernels/cpu_engine.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 
 namespace fq::cli {
 

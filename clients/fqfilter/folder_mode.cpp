@@ -6,7 +6,7 @@
 #include <map>
 
 #include "clients/fqfilter/file_job.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 
 namespace fq::cli {
 

@@ -20,8 +20,8 @@
 #include "clients/fqstreambench/producer.h"
 #include "clients/fqstreambench/report.h"
 #include "daemon/daemon.h"
-#include "proto/header_codec.h"
-#include "proto/mesh_io.h"
+#include "wire/header_codec.h"
+#include "io/mesh_io.h"
 
 namespace {
 

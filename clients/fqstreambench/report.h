@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "proto/fq.pb.h"
+#include "wire/fq.pb.h"
 #include "clients/common/stream_stats.h"
 
 namespace fq::bench {

@@ -18,7 +18,7 @@
 #include "kernels/frame_prep.h"
 #include "kernels/label_tracking.h"
 #include "core/parallel_for.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "eval/noise.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 #include "tests/cuda/parity.h"
 #include "tests/support/mesh_dir.h"
 #include "tests/support/test_meshes.h"

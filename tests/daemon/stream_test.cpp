@@ -9,7 +9,7 @@
 #include "kernels/cpu_engine.h"
 #include "core/parallel_for.h"
 #include "tests/daemon/daemon_harness.h"
-#include "proto/frame_codec.h"
+#include "wire/frame_codec.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq::test {

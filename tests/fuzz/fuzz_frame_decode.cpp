@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/mesh_checks.h"
-#include "proto/draco_budget.h"
-#include "proto/frame_codec.h"
+#include "wire/draco_budget.h"
+#include "wire/frame_codec.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 #include "tests/io/fqfilter_run.h"
 #include "tests/io/io_test_util.h"
 #include "tests/support/mesh_dir.h"

@@ -11,7 +11,7 @@
 #include "kernels/cluster_control.h"
 #include "kernels/cluster_forest.h"
 #include "kernels/cpu_engine.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
