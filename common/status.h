@@ -16,7 +16,9 @@ enum class StatusCode {
   kCancelled,        ///< work stopped by its time limit or a shutdown (core/cancel_token.h)
 };
 
-class Status {
+/// [[nodiscard]]: a dropped Status is a dropped error, so the compiler names every call that
+/// ignores one; `(void)` marks the few that mean to (a fuzzer that only looks for crashes).
+class [[nodiscard]] Status {
  public:
   Status() = default;
   Status(StatusCode code, std::string message) : code_(code), message_(std::move(message)) {}
