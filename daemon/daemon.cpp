@@ -63,15 +63,15 @@ Status bind_one(zmq::socket_t& s, const std::string& endpoint, const char* role,
 
 }  // namespace
 
-Status make_engines(const EngineConfig& c, std::vector<std::unique_ptr<Engine>>& out) {
-  out.clear();
+StatusOr<std::vector<std::unique_ptr<Engine>>> make_engines(const EngineConfig& c) {
+  std::vector<std::unique_ptr<Engine>> out;
   if (c.kind != EngineKind::kCpu) {
     for (int gpu : c.gpus) {
       StatusOr<std::unique_ptr<Engine>> e = make_engine({EngineKind::kCuda, c.cpu_threads, gpu, {}});
       if (e.ok())
         out.push_back(std::move(e).value());
       else if (c.kind == EngineKind::kCuda)
-        return {StatusCode::kUnavailable, "GPU " + std::to_string(gpu) + ": " + e.status().message()};
+        return Status{StatusCode::kUnavailable, "GPU " + std::to_string(gpu) + ": " + e.status().message()};
       else
         spdlog::info("engine auto: no CUDA engine on GPU {} ({})", gpu, e.status().message());
     }
@@ -81,7 +81,7 @@ Status make_engines(const EngineConfig& c, std::vector<std::unique_ptr<Engine>>&
     for (int i = 0; i < c.cpu_engines; ++i)
       out.push_back(make_engine({EngineKind::kCpu, c.cpu_threads, 0, {}}).value());
   }
-  return {};
+  return out;
 }
 
 Daemon::Daemon(DaemonConfig config)
@@ -137,7 +137,7 @@ Status Daemon::bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::
 
 Status Daemon::start() {
   if (running_) return {};
-  FQ_RETURN_IF_ERROR(make_engines(config_.engine, engines_));
+  FQ_ASSIGN_OR_RETURN(engines_, make_engines(config_.engine));
   zmq::socket_t ingest, publish, control;
   FQ_RETURN_IF_ERROR(bind_sockets(ingest, publish, control));
   zmq::socket_t sub;  // stays empty without [ingest] connect

@@ -27,7 +27,7 @@ struct BoundEndpoints {
 
 /// One engine per listed GPU (CUDA), plus or else `cpu_engines` CPU engines, as the config says.
 /// kUnavailable when an explicitly requested CUDA engine cannot be made.
-Status make_engines(const EngineConfig& config, std::vector<std::unique_ptr<Engine>>& out);
+StatusOr<std::vector<std::unique_ptr<Engine>>> make_engines(const EngineConfig& config);
 
 class Daemon : NonCopyable {
  public:

@@ -87,8 +87,9 @@ Status cut_short(const char* what) {
 
 }  // namespace
 
-Status read_chunk_counts(std::string_view chunk, ChunkCounts& out) {
+StatusOr<ChunkCounts> read_chunk_counts(std::string_view chunk) {
   Reader r(chunk);
+  ChunkCounts out;
   if (chunk.size() < 5 || chunk.substr(0, 5) != "DRACO") return invalid_input("not Draco data (no DRACO magic)");
   r.skip(5);
   uint8_t major, minor, type, method;
@@ -101,7 +102,7 @@ Status read_chunk_counts(std::string_view chunk, ChunkCounts& out) {
   if ((flags & kMetadataFlag) && !skip_metadata(r)) return cut_short("metadata");
   if (method == kSequential) {
     if (!r.varint(out.faces) || !r.varint(out.points)) return cut_short("connectivity counts");
-    return {};
+    return out;
   }
   if (method == kEdgebreaker) {
     uint8_t traversal, attribute_data;
@@ -111,14 +112,13 @@ Status read_chunk_counts(std::string_view chunk, ChunkCounts& out) {
       return cut_short("connectivity counts");
     // Vertex ids the edgebreaker decoder allocates for: encoded vertices plus one per split.
     out.points = vertices + splits;
-    return {};
+    return out;
   }
   return invalid_input("unknown Draco mesh encoding method " + std::to_string(method));
 }
 
 Status check_chunk_budget(std::string_view chunk, const ChunkBudget& budget) {
-  ChunkCounts c;
-  if (Status s = read_chunk_counts(chunk, c); !s.ok()) return s;
+  FQ_ASSIGN_OR_RETURN(const ChunkCounts c, read_chunk_counts(chunk));
   const uint64_t carry = budget.max_items_per_byte * chunk.size();
   const uint64_t max_faces = 2 * budget.max_points + 16;  // a closed mesh has about 2 faces per vertex
   auto refuse = [&](const char* what, uint64_t n, const std::string& limit) {

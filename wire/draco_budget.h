@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "common/status.h"
+#include "common/status_or.h"
 
 namespace fq::wire {
 
@@ -31,7 +32,7 @@ struct ChunkCounts {
 
 /// Reads the counts a Draco mesh chunk declares. kInvalidInput for data that is not a
 /// Draco 2.2 triangle mesh or whose header is cut short.
-Status read_chunk_counts(std::string_view chunk, ChunkCounts& out);
+StatusOr<ChunkCounts> read_chunk_counts(std::string_view chunk);
 
 /// read_chunk_counts plus the budget: kInvalidInput naming the count and the limit.
 Status check_chunk_budget(std::string_view chunk, const ChunkBudget& budget);

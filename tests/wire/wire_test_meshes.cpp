@@ -108,15 +108,15 @@ std::string varint(uint64_t v) {
 }  // namespace
 
 std::string forge_face_count(const std::string& chunk, uint64_t faces) {
-  wire::ChunkCounts c;
-  if (!wire::read_chunk_counts(chunk, c).ok()) return chunk;
+  const StatusOr<wire::ChunkCounts> c = wire::read_chunk_counts(chunk);
+  if (!c.ok()) return chunk;
   // Rewrite each place that holds the face count as a varint until the header reads back
   // the forged count: that place is the field, whichever coder wrote the chunk.
-  const std::string old = varint(c.faces);
+  const std::string old = varint(c->faces);
   for (size_t at = chunk.find(old, 11); at != std::string::npos; at = chunk.find(old, at + 1)) {
     std::string forged = chunk.substr(0, at) + varint(faces) + chunk.substr(at + old.size());
-    wire::ChunkCounts f;
-    if (wire::read_chunk_counts(forged, f).ok() && f.faces == faces && f.points == c.points) return forged;
+    const StatusOr<wire::ChunkCounts> f = wire::read_chunk_counts(forged);
+    if (f.ok() && f->faces == faces && f->points == c->points) return forged;
   }
   return chunk;
 }
