@@ -70,6 +70,9 @@ void expire_idle_streams(Pipeline& p) {
   p.results.trim(now, idle_ns);
   p.meshes.trim(now, idle_ns);
   hand_back_free_pages(p, now);
+  // The codec's buffers (kept per use, not per thread) go back once frames have stopped as
+  // long; their pages at the next trim.
+  if (now - p.arrival_seen_ns >= idle_ns) wire::release_memory();
   for (const std::string& id : p.registry.expire_idle(now, p.config.caps.stream_idle_s)) {
     p.forget(id);
     spdlog::info("stream '{}' expired after {} s without frames", id, p.config.caps.stream_idle_s);

@@ -61,7 +61,7 @@ Status CpuEngine::run(const MeshView& mesh, const Params& params, FrameResult& o
     return check_cancel();
   };
   // A frame far smaller than the largest one so far gives that one's scratch back.
-  if (far_smaller(mesh.num_vertices, f_.points.capacity())) release_memory();
+  if (far_smaller(mesh.num_vertices, f_.points.capacity())) release_scratch();
   FQ_RETURN_IF_ERROR(check_mesh(mesh, threads_));
   FQ_RETURN_IF_ERROR(check_cancel());
   FQ_RETURN_IF_ERROR(compute_normalization(mesh, f_.norm, threads_));

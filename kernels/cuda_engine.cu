@@ -52,7 +52,7 @@ class CudaEngine final : public Engine {
   }
   std::string name() const override { return name_; }
   Status process(const MeshView& mesh, const Params& params, FrameResult& out) override;
-  void release_memory() override;
+  void release_scratch() override;
 
  private:
   static constexpr int kMaxMarks = 16;
@@ -105,7 +105,7 @@ Status CudaEngine::process(const MeshView& mesh, const Params& params, FrameResu
   return st;
 }
 
-void CudaEngine::release_memory() {
+void CudaEngine::release_scratch() {
   // The frees must be made on this engine's device; the destructors log a failed free.
   if (cudaSetDevice(device_.id) != cudaSuccess) {
     (void)cudaGetLastError();
@@ -263,7 +263,7 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
   FQ_CUDA_CHECK(cudaSetDevice(device_.id));
   const cudaStream_t s = stream_.get();
   // A frame far smaller than the largest one so far gives that one's buffers back.
-  if (far_smaller(mesh.num_vertices, f_.points.capacity())) release_memory();
+  if (far_smaller(mesh.num_vertices, f_.points.capacity())) release_scratch();
   f_.n = mesh.num_vertices;
   f_.m = mesh.num_triangles;
   const uint32_t n = f_.n;

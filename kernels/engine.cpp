@@ -9,6 +9,15 @@
 
 namespace fq {
 
+size_t ClusterRuns::bytes() const {
+  size_t n = 0;
+  for (const FrameResult* r : {&geometry, &clusters}) {
+    n += r->positions.capacity() * sizeof(float) + r->labels.capacity() * sizeof(uint32_t) +
+         r->link_parent.capacity() * sizeof(uint32_t) + r->link_p.capacity() * sizeof(float);
+  }
+  return n;
+}
+
 double FrameResult::total_ms() const {
   double t = 0.0;
   for (const PassTiming& p : timings) t += p.ms;

@@ -39,6 +39,16 @@ struct FrameResult {
   double total_ms() const;
 };
 
+/// Buffers of the extra engine runs that cluster control makes (kernels/cluster_control.h): the
+/// clustering geometry and the clustering pass on it. Kept by the engine for its next frame,
+/// like its own scratch, and given back by Engine::release_memory().
+struct ClusterRuns {
+  FrameResult geometry, clusters;
+
+  /// Bytes their buffers hold.
+  size_t bytes() const;
+};
+
 /// Told about each pass as it ends (progress displays).
 using PassObserver = std::function<void(const PassTiming&)>;
 
@@ -58,10 +68,21 @@ class Engine {
   /// engine usable for the next frame, as does a run stopped by the cancel token.
   virtual Status process(const MeshView& mesh, const Params& params, FrameResult& out) = 0;
   /// Gives back the buffers kept for the next frame (an idle engine: fqd calls it after
-  /// caps.pool_idle_s without frames); the next frame allocates them again.
-  virtual void release_memory() {}
+  /// caps.pool_idle_s without frames): the engine's own scratch and cluster control's runs;
+  /// the next frame allocates them again.
+  void release_memory() {
+    cluster_runs_ = {};
+    release_scratch();
+  }
+  /// The extra runs' buffers kept for the next frame (what release_memory() gives back besides
+  /// the engine's own scratch).
+  const ClusterRuns& cluster_runs() const { return cluster_runs_; }
 
  protected:
+  /// The engine's own scratch (host or device), given back by release_memory() and when a
+  /// frame is far smaller than the largest so far (far_smaller). Not cluster_runs(): a frame
+  /// may be one of those runs.
+  virtual void release_scratch() {}
   /// Ok, or kCancelled once the cancel token has expired.
   Status check_cancel() const { return cancel_ != nullptr ? cancel_->check() : Status{}; }
   /// Whether a frame of `vertices` should first give back scratch sized for `capacity`
@@ -72,6 +93,12 @@ class Engine {
 
   PassObserver observer_;
   const CancelToken* cancel_ = nullptr;
+
+ private:
+  // Cluster control runs the engine again with these as outputs.
+  friend Status process_with_cluster_control(Engine& engine, const MeshView& mesh, const Params& p,
+                                             FrameResult& out);
+  ClusterRuns cluster_runs_;
 };
 
 enum class EngineKind { kAuto, kCpu, kCuda };

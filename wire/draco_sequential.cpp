@@ -134,9 +134,9 @@ fq::Status write_point_cloud(const float* positions, uint32_t n, const CodecOpti
   return {};
 }
 
-SequentialScratch& thread_sequential_scratch() {
-  thread_local SequentialScratch scratch;
-  return scratch;
+ScratchPool<SequentialScratch>& sequential_scratch() {
+  static ScratchPool<SequentialScratch> pool;
+  return pool;
 }
 
 }  // namespace fq::wire::detail

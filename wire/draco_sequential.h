@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "common/scratch_pool.h"
 #include "wire/frame_codec.h"
 #include "wire/frame_split.h"
 #include "wire/varint.h"
@@ -138,8 +139,8 @@ void write_connectivity(draco::EncoderBuffer& out, uint32_t faces, uint32_t poin
 fq::Status write_point_cloud(const float* positions, uint32_t n, const CodecOptions& o, const Box& box,
                              SequentialScratch& scratch, std::string& out);
 
-/// The calling thread's scratch, kept for the thread's life (it holds what the largest
-/// chunk so far needed).
-SequentialScratch& thread_sequential_scratch();
+/// The sequential coder's scratch, borrowed for a chunk and kept for the next ones (each holds
+/// what the largest chunk so far needed); wire::release_memory() frees it.
+ScratchPool<SequentialScratch>& sequential_scratch();
 
 }  // namespace fq::wire::detail

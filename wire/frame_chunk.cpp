@@ -220,9 +220,9 @@ fq::Status write_sequential_chunk(const fq::MeshView& mesh, const uint32_t* labe
   return {};
 }
 
-ChunkScratch& thread_chunk_scratch() {
-  thread_local ChunkScratch scratch;
-  return scratch;
+ScratchPool<ChunkScratch>& chunk_scratch() {
+  static ScratchPool<ChunkScratch> pool;
+  return pool;
 }
 
 namespace {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/scratch_pool.h"
 #include "common/status.h"
 #include "core/mesh_view.h"
 #include "wire/draco_sequential.h"
@@ -38,10 +39,11 @@ struct ChunkScratch {
   SequentialScratch coder;  ///< write_sequential_chunk's buffers
 };
 
-/// The calling thread's scratch, kept for the thread's life so that frames after the first
-/// allocate nothing (it holds what the largest frame so far needed). Reset it (assign {})
-/// when a chunk fails half-way: the bitmap must be all zero between chunks.
-ChunkScratch& thread_chunk_scratch();
+/// The chunk writers' scratch, borrowed for a chunk and kept for the next ones so that frames
+/// after the first allocate nothing (each holds what the largest frame so far needed);
+/// wire::release_memory() frees it. Reset a scratch (assign {}) when a chunk fails half-way:
+/// the bitmap must be all zero between chunks.
+ScratchPool<ChunkScratch>& chunk_scratch();
 
 /// Whether the chunk `part` is coded with Draco's sequential coder: at speed 10, or when a
 /// face repeats a vertex (edgebreaker would drop it). Only that coder keeps point order, which

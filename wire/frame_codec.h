@@ -2,6 +2,7 @@
 // decoded in parallel and merged back by global vertex id (see docs/PROTOCOL.md).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -84,5 +85,11 @@ fq::Status encode_positions(const float* positions, uint32_t num_vertices, uint3
 /// point count other than `vertex_count` (0 = any).
 fq::Status decode_positions(const std::vector<std::string_view>& chunks, uint32_t vertex_count,
                             const CodecOptions& options, std::vector<float>& out);
+
+/// Frees the buffers the codec keeps for the next frames (the chunk writers', the sequential
+/// coder's, the decoded chunks') that no call is using now; returns how many it freed. They
+/// are kept per use, not per thread, so this reaches all of them: fqd calls it once frames
+/// have stopped for caps.pool_idle_s.
+size_t release_memory();
 
 }  // namespace fq::wire

@@ -11,7 +11,10 @@
 #include <span>
 #include <string>
 
+#include "common/scratch_pool.h"
+#include "wire/draco_sequential.h"
 #include "wire/draco_sequential_read.h"
+#include "wire/frame_chunk.h"
 #include "wire/frame_codec.h"
 #include "wire/frame_split.h"
 #include "wire/vertex_id_runs.h"
@@ -44,16 +47,14 @@ struct Chunk {
   }
 };
 
-/// The calling thread's chunks, reused from frame to frame: a stream's next frame of about the
-/// same size decodes without allocating (on a virtual machine the first touch of each fresh
-/// page is a fault, which cost more than the decoding itself). Holds what the calling thread's
-/// largest frame so far needed, up to kKeptChunkBytes.
+/// A frame's decoded chunks, borrowed for the frame and kept for the next: a stream's next
+/// frame of about the same size decodes without allocating (on a virtual machine the first
+/// touch of each fresh page is a fault, which cost more than the decoding itself). Each holds
+/// what the largest frame it decoded needed, up to kKeptChunkBytes; release_memory() frees them.
 constexpr size_t kKeptChunkBytes = size_t(256) << 20;
-std::vector<Chunk>& thread_chunks(size_t count) {
-  thread_local std::vector<Chunk> chunks;
-  if (chunks.size() < count) chunks.resize(count);
-  for (size_t i = 0; i < count; ++i) chunks[i].reset();
-  return chunks;
+ScratchPool<std::vector<Chunk>>& decoded_chunks() {
+  static ScratchPool<std::vector<Chunk>> pool;
+  return pool;
 }
 
 /// Calls fn(f, k, point index) for every corner k of every face f of a decoded chunk.
@@ -318,7 +319,10 @@ fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t ve
                         std::vector<uint32_t>* chunk_triangles) {
   if (chunk_triangles) chunk_triangles->clear();
   const size_t count = std::min(chunks.size(), size_t(kMaxChunks));
-  std::vector<Chunk>& kept = thread_chunks(count);
+  const auto lease = decoded_chunks().borrow();
+  std::vector<Chunk>& kept = *lease;
+  if (kept.size() < count) kept.resize(count);
+  for (size_t i = 0; i < count; ++i) kept[i].reset();
   fq::Status s = decode_into(chunks, vertex_count, options, std::span<Chunk>(kept.data(), count), out, labels,
                              chunk_triangles);
   size_t held = 0;  // every slot's, also those a larger earlier frame left
@@ -336,6 +340,10 @@ fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t ve
     if (chunk_triangles) chunk_triangles->clear();
   }
   return s;
+}
+
+size_t release_memory() {
+  return decoded_chunks().release() + detail::chunk_scratch().release() + detail::sequential_scratch().release();
 }
 
 }  // namespace fq::wire

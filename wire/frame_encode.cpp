@@ -98,7 +98,8 @@ fq::Status encode_parts(const fq::MeshView& mesh, const uint32_t* labels, const 
   // Every vertex must be used: the chunks mark theirs while they are built (no extra pass).
   std::vector<std::atomic<uint64_t>> used((size_t(mesh.num_vertices) + 63) / 64);
   detail::for_each_chunk(parts.size(), options.threads, [&](size_t i, size_t) {
-    detail::ChunkScratch& scratch = detail::thread_chunk_scratch();
+    const auto lease = detail::chunk_scratch().borrow();
+    detail::ChunkScratch& scratch = *lease;
     scratch.used = used.data();
     try {
       if (detail::sequential_chunk(mesh, options, parts[i])) {

@@ -63,8 +63,8 @@ bool read_own(const std::vector<std::string_view>& chunks, uint32_t vertex_count
   detail::for_each_chunk(chunks.size(), options.threads, [&](size_t i, size_t) {
     const auto n = static_cast<uint32_t>(first[i + 1] - first[i]);
     try {
-      ok[i] = detail::read_sequential_point_cloud(chunks[i], n, out.data() + 3 * first[i],
-                                                  detail::thread_sequential_scratch().quantized);
+      const auto scratch = detail::sequential_scratch().borrow();
+      ok[i] = detail::read_sequential_point_cloud(chunks[i], n, out.data() + 3 * first[i], scratch->quantized);
     } catch (const std::exception&) {  // bad_alloc: Draco's decoder gets the chunks instead
       ok[i] = 0;
     }
@@ -107,8 +107,9 @@ fq::Status encode_positions(const float* positions, uint32_t num_vertices, uint3
       // Vertices [first, last) as a point cloud, POSITION only: Draco's sequential point cloud
       // coder keeps them in vertex order (its k-d tree coder, which Draco picks for quantized
       // clouds below speed 10, would reorder them), written directly (draco_sequential.h).
-      status[i] = detail::write_point_cloud(positions + 3 * size_t(first), last - first, options, box,
-                                            detail::thread_sequential_scratch(), encoded[i]);
+      const auto scratch = detail::sequential_scratch().borrow();
+      status[i] = detail::write_point_cloud(positions + 3 * size_t(first), last - first, options, box, *scratch,
+                                            encoded[i]);
     } catch (const std::exception& e) {  // bad_alloc: a fault of this frame, not of the process
       status[i] = {fq::StatusCode::kInternal, std::string("encoding failed: ") + e.what()};
     }

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <thread>
 
 #include "wire/frame_split.h"
 #include "tests/wire/wire_test_meshes.h"
@@ -110,6 +111,32 @@ TEST(FrameCodec, ThreadCountDoesNotChangeTheResult) {
   const Mesh b = round_trip(m, 5, 3);
   EXPECT_EQ(a.positions, b.positions);
   EXPECT_EQ(a.triangles, b.triangles);
+}
+
+// The codec keeps its buffers per use, not per thread (they were thread_local: one set for
+// every thread that ever encoded or decoded, out of reach of anyone who wanted the memory
+// back). Frames from threads that come and go share one set, which release_memory frees.
+TEST(FrameCodec, ReleaseMemoryReachesTheBuffersOfEveryThread) {
+  const Mesh m = test_wire::make_bumpy_grid(40, 30);
+  CodecOptions o;
+  o.threads = 1;
+  o.encode_speed = o.decode_speed = 10;
+  release_memory();  // what earlier tests of this process kept
+  for (int t = 0; t < 4; ++t) {
+    std::thread([&] {
+      std::vector<std::string> chunks, points;
+      ASSERT_TRUE(encode_frame(m.view(), nullptr, 2, o, chunks).ok());
+      Mesh out;
+      ASSERT_TRUE(decode_frame(views(chunks), 0, o, out, nullptr).ok());
+      ASSERT_TRUE(encode_positions(m.positions.data(), m.num_vertices(), 2, o, points).ok());
+      std::vector<float> positions;
+      ASSERT_TRUE(decode_positions(views(points), m.num_vertices(), o, positions).ok());
+    }).join();
+  }
+  // One at a time, so one of each: a chunk writer's, a sequential coder's, a frame's decoded chunks.
+  EXPECT_EQ(release_memory(), 3u);
+  EXPECT_EQ(release_memory(), 0u);
+  EXPECT_EQ(round_trip(m, 3).positions.size(), m.positions.size()) << "the codec works after a release";
 }
 
 // fqd decodes every frame of a stream into a pooled mesh: a reused mesh must come out exactly
