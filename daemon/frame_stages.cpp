@@ -9,7 +9,9 @@
 #include "wire/frame_codec.h"
 #include "core/mesh_checks.h"
 #include "wire/header_codec.h"
+#include "daemon/label_tracks.h"
 #include "daemon/pipeline.h"
+#include "daemon/stream.h"
 #include "daemon/work_budget.h"
 #include "core/parallel_for.h"
 #include "common/thread_pool.h"
@@ -107,7 +109,7 @@ Status run_engine(Pipeline& p, Engine& engine, FrameJob& f) {
   if (s.code() != StatusCode::kCancelled) return s;
   if (token.stopped())
     return {StatusCode::kCancelled, "cancelled: fqd is stopping (caps.stop_grace_s passed before the frame finished)"};
-  p.registry.count(f.stream_id, Counter::kTimeLimited);
+  f.stream->count(Counter::kTimeLimited);
   return {StatusCode::kCancelled, fmt::format("time_limit: the engine stopped the frame after caps.engine_time_limit_s "
                                               "= {} s (its parameters fit max_neighbour_work but it ran too long)",
                                               limit_s)};
@@ -126,33 +128,21 @@ void Pipeline::recycle(FrameJob& f) {
   meshes.release(std::move(f.mesh));
 }
 
-void Pipeline::note_queued(const FrameJob& f) {
-  std::lock_guard<std::mutex> lock(newest_mutex_);
-  newest_queued_[f.stream_id] = f.arrival;
-}
+void note_queued(const FrameJob& f) { f.stream->newest_queued.store(f.arrival, std::memory_order_relaxed); }
 
-bool Pipeline::newer_queued(const FrameJob& f) {
-  std::lock_guard<std::mutex> lock(newest_mutex_);
-  auto it = newest_queued_.find(f.stream_id);
-  return it != newest_queued_.end() && it->second > f.arrival;
-}
-
-void Pipeline::forget(const std::string& stream_id) {
-  std::lock_guard<std::mutex> lock(newest_mutex_);
-  newest_queued_.erase(stream_id);
-}
+bool newer_queued(const FrameJob& f) { return f.stream->newest_queued.load(std::memory_order_relaxed) > f.arrival; }
 
 void run_decode_worker(Pipeline& p) {
   while (auto item = p.decode_queue.pop()) {
     FramePtr f = std::move(*item);
     // Decoding a frame that is already too old would be wasted work under overload.
     if (is_stale(f->receive_ns, wall_ns(), f->settings.budget_ms)) {
-      p.registry.count(f->stream_id, Counter::kDroppedStale);
+      f->stream->count(Counter::kDroppedStale);
       spdlog::debug("stream '{}' frame {}: stale before decode", f->stream_id, f->header.sequence());
       continue;
     }
-    if (p.newer_queued(*f)) {
-      p.registry.count(f->stream_id, Counter::kSuperseded);
+    if (newer_queued(*f)) {
+      f->stream->count(Counter::kSuperseded);
       spdlog::debug("stream '{}' frame {}: superseded before decode", f->stream_id, f->header.sequence());
       continue;
     }
@@ -168,7 +158,7 @@ void run_decode_worker(Pipeline& p) {
     }
     f->decoded_ns = wall_ns();
     if (FramePtr loser = p.slots.offer(std::move(f))) {
-      p.registry.count(loser->stream_id, Counter::kSuperseded);
+      loser->stream->count(Counter::kSuperseded);
       p.recycle(*loser);
       spdlog::debug("stream '{}' frame {}: superseded", loser->stream_id, loser->header.sequence());
     }
@@ -188,7 +178,7 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
       holding = false;
     }
     for (FramePtr& s : stale) {
-      p.registry.count(s->stream_id, Counter::kDroppedStale);
+      s->stream->count(Counter::kDroppedStale);
       p.recycle(*s);
       spdlog::debug("stream '{}' frame {}: dropped stale", s->stream_id, s->header.sequence());
     }
@@ -235,7 +225,7 @@ void run_encode_worker(Pipeline& p) {
         const auto t0 = std::chrono::steady_clock::now();
         if (job == 0) {
           tracked = guarded("track_ids", [&] {
-            p.label_tracks.apply(*f, hardware_threads());
+            track_labels(*f, hardware_threads());
             return Status{};
           });
           track_ms = ms_since(t0);

@@ -73,8 +73,9 @@ void expire_idle_streams(Pipeline& p) {
   // The codec's buffers (kept per use, not per thread) go back once frames have stopped as
   // long; their pages at the next trim.
   if (now - p.arrival_seen_ns >= idle_ns) wire::release_memory();
+  // One erase each: what the pipeline keeps for a stream lives in its Stream, freed with the
+  // last of its frames still in flight.
   for (const std::string& id : p.registry.expire_idle(now, p.config.caps.stream_idle_s)) {
-    p.forget(id);
     spdlog::info("stream '{}' expired after {} s without frames", id, p.config.caps.stream_idle_s);
   }
 }
@@ -112,8 +113,9 @@ FramePtr admit_message(std::vector<zmq::message_t>& parts, Pipeline& p) {
   if (s.ok()) s = check_header(f->header, f->stream_id, parts.size() - 2, caps);
   if (!s.ok()) {
     // A stream that exists already gets the error counted as its own.
-    if (p.registry.find(topic, f->settings)) {
-      p.registry.count(topic, Counter::kIn);
+    if ((f->stream = p.registry.find(topic))) {
+      f->settings = f->stream->settings();
+      f->stream->count(Counter::kIn);
       f->arrival = p.next_arrival++;
       f->error = std::move(s);
       return f;
@@ -122,11 +124,13 @@ FramePtr admit_message(std::vector<zmq::message_t>& parts, Pipeline& p) {
   }
   if (!stream_allowed(topic, caps.allowed_streams))
     return refuse(std::move(f), Refusal::kNotAllowed, invalid_input("stream '" + topic + "' is not in caps.allowed_streams"), p);
-  if (!p.registry.settings(topic, f->settings, f->receive_ns))
+  f->stream = p.registry.admit(topic, f->receive_ns);
+  if (!f->stream)
     return refuse(std::move(f), Refusal::kTooManyStreams,
                   invalid_input("too many streams (caps.max_streams = " + std::to_string(caps.max_streams) + ")"), p);
+  f->settings = f->stream->settings();
   f->arrival = p.next_arrival++;
-  p.registry.count(f->stream_id, Counter::kIn);
+  f->stream->count(Counter::kIn);
   for (size_t i = 2; i < parts.size(); ++i) f->chunks.push_back(std::move(parts[i]));
   return f;
 }
@@ -155,7 +159,7 @@ void queue_admitted(FramePtr f, Pipeline& p) {
     const Status why = f->error;
     p.fail(std::move(f), why);
   } else {
-    p.note_queued(*f);
+    note_queued(*f);
     p.decode_queue.push(std::move(f));
   }
 }

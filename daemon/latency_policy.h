@@ -2,18 +2,18 @@
 // A newer frame replaces a waiting older one (superseded); a frame already older than its
 // stream's budget when a worker is free is dropped (stale). Every frame that leaves the
 // slots gets a per-stream ticket so results publish in arrival order even with several
-// engines. Thread-safe.
+// engines. Thread-safe. A stream's slot and ticket counter live in its Stream (stream.h),
+// under this object's lock; only the streams with a frame waiting are listed here.
 #pragma once
 
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
-#include <map>
 #include <mutex>
-#include <string>
 #include <vector>
 
 #include "daemon/frame_job.h"
+#include "daemon/stream.h"
 
 namespace fq::daemon {
 
@@ -24,7 +24,7 @@ inline bool is_stale(int64_t receive_ns, int64_t now_ns, double budget_ms) {
 
 class FrameSlots {
  public:
-  /// Puts a decoded frame in its stream's slot. Returns the frame that lost: the older
+  /// Puts a decoded frame (one with a stream) in its stream's slot. Returns the frame that lost: the older
   /// frame it replaced, or the frame itself when a newer one of its stream is already
   /// waiting or taken (decode finished out of order); null when nothing was replaced.
   FramePtr offer(FramePtr frame);
@@ -40,18 +40,10 @@ class FrameSlots {
   void close();
 
  private:
-  struct Stream {
-    FramePtr waiting;
-    uint64_t last_taken_arrival = 0;
-    bool taken_any = false;
-    uint64_t next_ticket = 0;
-    uint64_t served = 0;  ///< when it was last handed out (served_ at the time); 0 = never
-  };
-
   std::mutex mutex_;
   std::condition_variable ready_;
-  std::map<std::string, Stream> streams_;
-  size_t waiting_ = 0;
+  /// The streams whose slot holds a frame; that frame keeps its stream alive.
+  std::vector<Stream*> waiting_;
   uint64_t served_ = 0;
   bool closed_ = false;
 };

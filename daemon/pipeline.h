@@ -6,13 +6,9 @@
 #pragma once
 
 #include <atomic>
-#include <map>
-#include <mutex>
-#include <string>
 
 #include "daemon/config.h"
 #include "daemon/frame_job.h"
-#include "daemon/label_tracks.h"
 #include "daemon/latency_policy.h"
 #include "daemon/latest_results.h"
 #include "daemon/object_pool.h"
@@ -38,7 +34,8 @@ struct Pipeline {
         results(8, [](const FrameResult& x) { return bytes_held(x.positions) + bytes_held(x.labels); },
                 [](const FrameResult& x) { return bytes_used(x.positions) + bytes_used(x.labels); }),
         meshes(8, [](const Mesh& m) { return bytes_held(m.positions) + bytes_held(m.triangles); },
-               [](const Mesh& m) { return bytes_used(m.positions) + bytes_used(m.triangles); }) {}
+               [](const Mesh& m) { return bytes_used(m.positions) + bytes_used(m.triangles); }),
+        latest(r) {}
 
   const DaemonConfig& config;
   StreamRegistry& registry;
@@ -61,8 +58,7 @@ struct Pipeline {
   /// Decoded input meshes, reused: decode_frame keeps their capacity, so a steady stream
   /// stops allocating (and faulting in) tens of MB per frame for 4M-triangle frames.
   ObjectPool<Mesh> meshes;
-  LatestResults latest;                      ///< each watched stream's last result (HTTP viewer)
-  LabelTracks label_tracks;                  ///< stable cluster ids per stream
+  LatestResults latest;  ///< each watched stream's last result (HTTP viewer)
   /// Set when a stopping daemon's grace (caps.stop_grace_s) has passed: every engine run
   /// ends at its next check, and frames still waiting get an error result at once.
   std::atomic<bool> cancel_engines{false};
@@ -72,19 +68,14 @@ struct Pipeline {
   /// Returns the frame's mesh and result buffers to their pools once it is published or dropped.
   void recycle(FrameJob& frame);
 
-  /// Notes that `frame` is being queued for decode (ingest thread).
-  void note_queued(const FrameJob& frame);
-  /// True when a newer frame of the same stream is already queued: a decoder that pops an
-  /// older one skips it (superseded), as the newer one would take its slot anyway. This
-  /// keeps a backlog from building up in front of the decoders.
-  bool newer_queued(const FrameJob& frame);
-  /// Drops what the pipeline keeps for a stream that expired (ingest thread).
-  void forget(const std::string& stream_id);
-
- private:
-  std::mutex newest_mutex_;
-  std::map<std::string, uint64_t> newest_queued_;  ///< per stream, the last arrival queued
 };
+
+/// Notes that `frame` is being queued for decode (ingest thread).
+void note_queued(const FrameJob& frame);
+/// True when a newer frame of the same stream is already queued: a decoder that pops an
+/// older one skips it (superseded), as the newer one would take its slot anyway. This
+/// keeps a backlog from building up in front of the decoders.
+bool newer_queued(const FrameJob& frame);
 
 /// Decode pool worker: decode, check the mesh and the parameters, offer to the slots.
 void run_decode_worker(Pipeline& p);

@@ -4,28 +4,40 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <map>
+#include <memory>
 #include <thread>
 
 #include "daemon/stage_metrics.h"
+#include "daemon/stream.h"
 #include "daemon/work_queue.h"
 
 namespace fq::daemon {
 namespace {
 
-FramePtr frame(const std::string& stream, uint64_t arrival, int64_t receive_ns, double budget_ms = 1e6) {
-  auto f = std::make_unique<FrameJob>();
-  f->stream_id = stream;
-  f->arrival = arrival;
-  f->receive_ns = receive_ns;
-  f->settings.budget_ms = budget_ms;
-  return f;
-}
+// One test's streams: a frame goes to the slots with its stream (the slot lives in it).
+struct Streams {
+  std::map<std::string, StreamPtr> by_id;
+
+  FramePtr frame(const std::string& stream, uint64_t arrival, int64_t receive_ns, double budget_ms = 1e6) {
+    StreamPtr& s = by_id[stream];
+    if (!s) s = std::make_shared<Stream>(stream, StreamSettings{}, receive_ns);
+    auto f = std::make_unique<FrameJob>();
+    f->stream_id = stream;
+    f->stream = s;
+    f->arrival = arrival;
+    f->receive_ns = receive_ns;
+    f->settings.budget_ms = budget_ms;
+    return f;
+  }
+};
 
 TEST(FrameSlots, NewerFrameReplacesTheWaitingOne) {
+  Streams streams;
   FrameSlots slots;
   const int64_t now = wall_ns();
-  EXPECT_EQ(slots.offer(frame("a", 0, now)), nullptr);
-  FramePtr loser = slots.offer(frame("a", 1, now));
+  EXPECT_EQ(slots.offer(streams.frame("a", 0, now)), nullptr);
+  FramePtr loser = slots.offer(streams.frame("a", 1, now));
   ASSERT_NE(loser, nullptr);
   EXPECT_EQ(loser->arrival, 0u);
   FramePtr out;
@@ -38,10 +50,11 @@ TEST(FrameSlots, NewerFrameReplacesTheWaitingOne) {
 }
 
 TEST(FrameSlots, AnOlderFrameDecodedLateLosesToTheNewerOne) {
+  Streams streams;
   FrameSlots slots;
   const int64_t now = wall_ns();
-  EXPECT_EQ(slots.offer(frame("a", 5, now)), nullptr);
-  FramePtr loser = slots.offer(frame("a", 4, now));
+  EXPECT_EQ(slots.offer(streams.frame("a", 5, now)), nullptr);
+  FramePtr loser = slots.offer(streams.frame("a", 4, now));
   ASSERT_NE(loser, nullptr);
   EXPECT_EQ(loser->arrival, 4u);
   FramePtr out;
@@ -49,17 +62,18 @@ TEST(FrameSlots, AnOlderFrameDecodedLateLosesToTheNewerOne) {
   ASSERT_TRUE(slots.take(out, stale));
   EXPECT_EQ(out->arrival, 5u);
   // Once 5 was taken, 3 is behind it as well.
-  FramePtr late = slots.offer(frame("a", 3, now));
+  FramePtr late = slots.offer(streams.frame("a", 3, now));
   ASSERT_NE(late, nullptr);
   EXPECT_EQ(late->arrival, 3u);
 }
 
 TEST(FrameSlots, StaleFramesAreSetAsideAndOldestStreamGoesFirstWithTickets) {
+  Streams streams;
   FrameSlots slots;
   const int64_t now = wall_ns();
-  slots.offer(frame("old", 0, now - 50'000'000, 10.0));  // 50 ms old, 10 ms budget
-  slots.offer(frame("b", 0, now - 2'000'000));
-  slots.offer(frame("c", 0, now - 1'000'000));
+  slots.offer(streams.frame("old", 0, now - 50'000'000, 10.0));  // 50 ms old, 10 ms budget
+  slots.offer(streams.frame("b", 0, now - 2'000'000));
+  slots.offer(streams.frame("c", 0, now - 1'000'000));
   FramePtr out;
   std::vector<FramePtr> stale;
   ASSERT_TRUE(slots.take(out, stale));
@@ -68,7 +82,7 @@ TEST(FrameSlots, StaleFramesAreSetAsideAndOldestStreamGoesFirstWithTickets) {
   ASSERT_NE(out, nullptr);
   EXPECT_EQ(out->stream_id, "b");
   EXPECT_TRUE(out->ticketed);
-  slots.offer(frame("b", 1, now));
+  slots.offer(streams.frame("b", 1, now));
   FramePtr next;
   stale.clear();
   ASSERT_TRUE(slots.take(next, stale));
@@ -79,8 +93,9 @@ TEST(FrameSlots, StaleFramesAreSetAsideAndOldestStreamGoesFirstWithTickets) {
 }
 
 TEST(FrameSlots, CloseHandsOutWhatIsWaitingThenStops) {
+  Streams streams;
   FrameSlots slots;
-  slots.offer(frame("a", 0, wall_ns()));
+  slots.offer(streams.frame("a", 0, wall_ns()));
   slots.close();
   FramePtr out;
   std::vector<FramePtr> stale;
@@ -92,13 +107,14 @@ TEST(FrameSlots, CloseHandsOutWhatIsWaitingThenStops) {
 
 // The engine workers wake without frames (to give idle engines' buffers back).
 TEST(FrameSlots, ATakeWithAWaitReturnsEmptyHandedWhenNothingComes) {
+  Streams streams;
   FrameSlots slots;
   FramePtr out;
   std::vector<FramePtr> stale;
   EXPECT_TRUE(slots.take(out, stale, std::chrono::milliseconds(10)));
   EXPECT_EQ(out, nullptr);
   EXPECT_TRUE(stale.empty());
-  slots.offer(frame("a", 0, wall_ns()));
+  slots.offer(streams.frame("a", 0, wall_ns()));
   EXPECT_TRUE(slots.take(out, stale, std::chrono::milliseconds(10)));
   EXPECT_NE(out, nullptr);
   slots.close();
