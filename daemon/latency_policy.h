@@ -24,9 +24,9 @@ inline bool is_stale(int64_t receive_ns, int64_t now_ns, double budget_ms) {
 
 class FrameSlots {
  public:
-  /// Puts a decoded frame (one with a stream) in its stream's slot. Returns the frame that lost: the older
-  /// frame it replaced, or the frame itself when a newer one of its stream is already
-  /// waiting or taken (decode finished out of order); null when nothing was replaced.
+  /// Puts a decoded frame (one with a stream) in its stream's slot. Returns the frame that
+  /// lost: the older frame it replaced, or the frame itself when a newer one of its stream is
+  /// already waiting or taken (decode finished out of order); null when nothing was replaced.
   FramePtr offer(FramePtr frame);
 
   /// Blocks until a frame is waiting, then hands one out round robin across streams (the stream

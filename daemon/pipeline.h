@@ -67,7 +67,6 @@ struct Pipeline {
   void fail(FramePtr frame, Status why);
   /// Returns the frame's mesh and result buffers to their pools once it is published or dropped.
   void recycle(FrameJob& frame);
-
 };
 
 /// Notes that `frame` is being queued for decode (ingest thread).

@@ -32,7 +32,7 @@ class PassClock {
 
 }  // namespace
 
-CpuEngine::CpuEngine(int threads) : threads_(threads > 0 ? threads : hardware_threads()) {}
+CpuEngine::CpuEngine(int threads) : threads_(threads_or_all(threads)) {}
 
 Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResult& out) {
   // The loops of this run skip their remaining chunks once the token expires; the check
