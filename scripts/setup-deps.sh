@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages fq builds against, skipping those already present.
 # Safe to run repeatedly; needs root (or sudo) only when something is missing.
-# --peers also installs the other smoothers scripts/peer_quality.py compares with (Open3D,
-# MeshLab run headless under Xvfb); neither the build nor the tests need them.
+# --peers also installs the other smoothers scripts/peer_quality.py and scripts/quality_matrix.py
+# compare with (Open3D, MeshLab run headless under Xvfb) and matplotlib for the matrix's pictures;
+# neither the build nor the tests need them.
 # Then installs the live viewer's npm packages (scripts/web-deps.sh).
 # FQ_SETUP_BROWSER=0 leaves out Chromium and yamllint (only tests use them; the Docker image
 # sets it, Ubuntu's chromium package being a snap stub).
@@ -24,7 +25,7 @@ packages=(
   python3-prometheus-client
 )
 if [[ "${1:-}" == "--peers" ]]; then
-  packages+=(python3-numpy python3-open3d meshlab xvfb xauth)
+  packages+=(python3-numpy python3-open3d python3-matplotlib meshlab xvfb xauth)
 fi
 if [[ ${FQ_SETUP_BROWSER:-1} != 0 ]]; then
   packages+=(chromium yamllint)
