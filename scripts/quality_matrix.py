@@ -189,6 +189,13 @@ def parse_args():
     for name, default in zip(("mesh", "iso", "normal", "seeds"), row):
         if getattr(a, name) is None:
             setattr(a, name, default if isinstance(default, str) else ",".join(map(str, default)))
+    try:
+        a.noises = [("iso", s) for s in floats(a.iso)] + [("normal", s) for s in floats(a.normal)]
+        a.seed_list = [int(s) for s in a.seeds.split(",") if s.strip()]
+    except ValueError as e:
+        ap.error(f"--iso, --normal, --seeds: {e}")
+    if any(s <= 0 for _, s in a.noises):
+        ap.error("noise levels must be above 0 (the clean table is the noise-free case)")
     unknown = set(a.peers.split(",")) - {p for p, _ in SWEEPS}
     if unknown:
         ap.error(f"--peers: unknown {', '.join(sorted(unknown))} (known: {', '.join(p for p, _ in SWEEPS)})")
@@ -212,9 +219,8 @@ def main():
         labels = [m.label for m in meshes.values()]
         if len(set(labels)) != len(labels):
             raise SystemExit(f"quality_matrix.py: two meshes with one name among {labels}")
-        noises = [("iso", s) for s in floats(a.iso)] + [("normal", s) for s in floats(a.normal)]
-        seeds = [int(s) for s in a.seeds.split(",") if s]
-        tasks = [(run_row, (meshes[m], d, s, k)) for m in dict.fromkeys(names) for d, s in noises for k in seeds]
+        tasks = [(run_row, (meshes[m], d, s, k))
+                 for m in dict.fromkeys(names) for d, s in a.noises for k in a.seed_list]
         tasks += [(run_clean, (meshes[m],)) for m in dict.fromkeys(clean_names)]
         if not peers.PEERS["ml_taubin"].available():
             print("(meshlabserver or xvfb-run not found: MeshLab peers only from the cache)", file=sys.stderr)
@@ -224,7 +230,7 @@ def main():
     meta = {"machine": peers.machine(), "open3d": peers.o3d.__version__,
             "meshlab": peers.PEERS["ml_taubin"].available(),
             "fqfilter": subprocess.run([a.fqfilter, "--version"], capture_output=True, text=True).stdout.strip(),
-            "engine": a.engine, "fq_args": cfg.fq_args, "qf_args": peers.QF_ARGS, "seeds": seeds,
+            "engine": a.engine, "fq_args": cfg.fq_args, "qf_args": peers.QF_ARGS, "seeds": a.seed_list,
             "sweeps": {p: [str(s) for s in settings] for p, settings in cfg.sweeps},
             "jobs": a.jobs, "seconds": time.time() - started, "failed": failed}
     doc = report.build(meta, rows, clean)
@@ -238,7 +244,7 @@ def main():
         print(f"quality_matrix.py: {name}: {error}", file=sys.stderr)
     if failed:
         sys.exit(1)
-    if a.quick:
+    if a.quick and rows:
         r = rows[0]
         if not r["fq_default"]["mfne"] < r["noisy"]["mfne"] or not doc["rows"][0]["best_peer"]:
             sys.exit("quality_matrix.py: expected fq default under the noisy input and a best peer on the smoke row")

@@ -29,7 +29,8 @@ def judge_row(r):
         r["best_peer"] = {"peer": k, "mfne": m, "rmse": e}
         k, (m, e) = min(scored, key=lambda kv: kv[1][1])
         r["lowest_peer_rmse"] = {"peer": k, "mfne": m, "rmse": e}
-        r["ratio"] = r["fq_default"]["mfne"] / r["best_peer"]["mfne"]
+        best = r["best_peer"]["mfne"]
+        r["ratio"] = r["fq_default"]["mfne"] / best if best > 0 else None
 
 
 def not_monotone(rows):
@@ -93,8 +94,8 @@ def _matrix_md(rows):
     for r in rows:
         fq, n, b, lo = r["fq_default"], r["noisy"], r["best_peer"], r["lowest_peer_rmse"]
         fq_rmse = f"**{u(fq['rmse'])}**" if fq["rmse"] > n["rmse"] else u(fq["rmse"])
-        peer = [peer_text(b["peer"]), f"{b['mfne']:.3f}", u(b["rmse"]), u(lo["rmse"]),
-                f"**{r['ratio']:.2f}**" if r["ratio"] >= 1 else f"{r['ratio']:.2f}"] if b else ["–"] * 5
+        ratio = "–" if r["ratio"] is None else f"**{r['ratio']:.2f}**" if r["ratio"] >= 1 else f"{r['ratio']:.2f}"
+        peer = [peer_text(b["peer"]), f"{b['mfne']:.3f}", u(b["rmse"]), u(lo["rmse"]), ratio] if b else ["–"] * 5
         cells = [r["mesh"], f"{r['direction']} {r['noise']:g}", str(r["seed"]), f"{n['mfne']:.3f}", u(n["rmse"]),
                  f"{fq['mfne']:.3f}", fq_rmse, f"{r['fq_qf']['mfne']:.3f}", *peer]
         lines.append("| " + " | ".join(cells) + " |")

@@ -136,9 +136,14 @@ def test_a_drc_mesh_is_decoded_to_its_clean_reference(tmp_path):
     assert [c["mesh"] for c in doc["clean"]] == ["fandisk16"]
 
 
-def test_an_unknown_mesh_is_named_in_the_error(tmp_path):
-    out = run_matrix(tmp_path, "--quick", "--mesh", "no_such_mesh")
-    assert out.returncode != 0 and "no mesh 'no_such_mesh'" in out.stderr
+@pytest.mark.parametrize("args,error", [
+    (["--mesh", "no_such_mesh"], "no mesh 'no_such_mesh'"),
+    (["--iso", "0,0.1"], "noise levels must be above 0"),  # fqfilter writes no noisy file for 0
+    (["--seeds", "one"], "--seeds: invalid literal"),
+    (["--peers", "o3d_taubin,meshlab"], "--peers: unknown meshlab")])
+def test_bad_options_are_named_in_the_error(tmp_path, args, error):
+    out = run_matrix(tmp_path, "--quick", *args)
+    assert out.returncode != 0 and error in out.stderr
 
 
 def test_summary_counts_rows_won_rmse_and_monotony(peers):
