@@ -57,6 +57,8 @@ std::array<const ElementProperty*, 2> MeshAttributes::vertex_uv() const {
   return {nullptr, nullptr};
 }
 
+bool is_label_property(const std::string& name) { return group_of(name) == &kGroups[3]; }
+
 std::vector<std::string> group_property_names(const std::vector<std::string>& names) {
   std::vector<std::string> out;
   std::vector<const PropertyGroup*> seen;

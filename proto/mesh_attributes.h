@@ -65,6 +65,9 @@ struct MeshAttributes {
   std::array<const ElementProperty*, 2> vertex_uv() const;
 };
 
+/// label, cluster_red, cluster_green, cluster_blue: what fq writes with cluster labels.
+bool is_label_property(const std::string& name);
+
 /// Property names as the phrases of warnings, one phrase per group: "normals (nx, ny, nz)",
 /// "colours (red, green, blue, alpha)", "texture coordinates (u, v)", and the others named
 /// one by one: "property 'quality'". Names in `names`' order, each group where its first

@@ -187,7 +187,7 @@ void apply_keywords(const std::string& function, const pyb::dict& keywords, Para
                            ? set_by_name(kFilterRows, name, value, params.filtering)
                            : set_by_name(kClusterRows, name, value, params.clustering) ||
                                  set_by_name(kClusterFilterRows, name, value, params.filtering);
-    if (!known) throw pyb::type_error(function + "() got an unexpected keyword argument '" + name + "'");
+    if (!known) throw pyb::type_error(std::string(function).append("() got an unexpected keyword argument '").append(name).append("'"));
   }
 }
 

@@ -46,7 +46,7 @@ pyb::dict read_mesh(const pyb::handle& path_like) {
   }
   throw_if_file_error(s);
   pyb::dict d = mesh_dict(mesh, attributes);
-  d["dropped"] = pyb::cast(attributes.dropped);
+  d["dropped"] = pyb::cast(not_carried(attributes));
   return d;
 }
 

@@ -17,6 +17,11 @@ using FloatArray = pyb::array_t<float, pyb::array::c_style | pyb::array::forceca
 constexpr const char* kColourNames[] = {"red", "green", "blue", "alpha"};
 constexpr const char* kNormalNames[] = {"nx", "ny", "nz"};
 
+template <size_t N>
+bool one_of(const char* const (&names)[N], const std::string& name) {
+  return std::find(std::begin(names), std::end(names), name) != std::end(names);
+}
+
 bool is_integer(io::ScalarType t) { return t != io::ScalarType::kFloat32 && t != io::ScalarType::kFloat64; }
 
 /// The named vertex properties as one float32 (n, names) array; none when one is missing.
@@ -111,6 +116,23 @@ pyb::dict mesh_dict(const Mesh& mesh, const io::MeshAttributes& a) {
     d["labels"] = pyb::none();
   }
   return d;
+}
+
+std::vector<std::string> not_carried(const io::MeshAttributes& a) {
+  std::vector<std::string> out = a.dropped;
+  const auto uv = a.vertex_uv();
+  std::vector<std::string> names;
+  for (const io::ElementProperty& p : a.vertex) {
+    const bool carried = !p.is_list && (one_of(kColourNames, p.name) || one_of(kNormalNames, p.name) ||
+                                        &p == uv[0] || &p == uv[1] || io::is_label_property(p.name));
+    if (!carried) names.push_back(p.name);
+  }
+  for (const std::string& phrase : io::group_property_names(names)) out.push_back("vertex " + phrase);
+  for (const io::ElementProperty& p : a.face) out.push_back("face property '" + p.name + "'");
+  if (!a.materials.empty())
+    out.push_back("the materials" + (a.materials.library.empty() ? std::string() : " of '" + a.materials.library + "'") +
+                  " (fqfilter keeps them; an fq.Mesh has no place for them)");
+  return out;
 }
 
 io::MeshAttributes attributes_of(const pyb::dict& d, size_t n, size_t m) {

@@ -4,6 +4,9 @@
 
 #include <pybind11/numpy.h>
 
+#include <string>
+#include <vector>
+
 #include "kernels/mesh_view.h"
 #include "proto/mesh_attributes.h"
 
@@ -15,6 +18,10 @@ namespace pyb = pybind11;
 /// "colors" (float32 (n, 3|4) in [0, 1]), "normals" (n, 3), "uvs" (n, 2), "corner_uvs"
 /// (m, 3, 2), "corner_normals" (m, 3, 3) and "labels" (uint32 (n,)).
 pyb::dict mesh_dict(const Mesh& mesh, const io::MeshAttributes& attributes);
+
+/// What of `attributes` a Mesh cannot carry (other vertex and face properties, materials),
+/// one phrase a group, after what the reader itself could not keep.
+std::vector<std::string> not_carried(const io::MeshAttributes& attributes);
 
 /// The attributes of the optional arrays of `arrays` (keys of mesh_dict but vertices, faces
 /// and labels; None or absent: not written). Colours are written as uchar 0..255. ValueError

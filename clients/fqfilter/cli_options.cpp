@@ -135,9 +135,9 @@ void add_run_options(CLI::App& app, Options& o, std::string& engine, std::string
 
 // --help ends with these: the three commands most runs are.
 constexpr const char* kExamples = R"(Examples:
-  fqfilter scan.ply scan_smooth.ply                  smooth a mesh (defaults: qf+)
-  fqfilter scans/ smoothed/ --quiet                  every mesh of a folder, one line each
-  fqfilter part.obj part.glb --cluster --colour-clusters   clusters as colours, for a viewer)";
+  fqfilter scan.ply scan_smooth.ply                        smooth a mesh (qf+, the default)
+  fqfilter scans/ smoothed/ --quiet                        a folder of meshes; only problems printed
+  fqfilter part.obj part.glb --cluster --colour-clusters   clusters as colours, for a glTF viewer)";
 
 /// fq::validate of the parsed parameters (CLI11 checks each option alone: not NaN, theta
 /// in (0, 1], nothing to compute); the message, empty when valid.
