@@ -152,7 +152,7 @@ TEST(ObjCorners, PlyKeepsCornerUvsAsTexcoordAndNamesTheRest) {
   ASSERT_EQ(kept.face.size(), 1u);
   EXPECT_EQ(kept.face[0].name, "texcoord");
   ASSERT_EQ(kept.face[0].values.size(), 6 * back.num_triangles());
-  for (size_t c = 0; c < 3 * back.num_triangles(); ++c) {
+  for (size_t c = 0; c < 3 * size_t(back.num_triangles()); ++c) {
     const float* p = &back.positions[3 * size_t(back.triangles[c])];
     EXPECT_NEAR(kept.face[0].values[2 * c], p[0] / (kN - 1), 1e-6);
     EXPECT_NEAR(kept.face[0].values[2 * c + 1], p[1] / (kN - 1), 1e-6);
