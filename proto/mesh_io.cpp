@@ -11,6 +11,7 @@
 #include "proto/assimp_io.h"
 #include "proto/draco_reader.h"
 #include "proto/drc_writer.h"
+#include "proto/glb_writer.h"
 #include "proto/obj_writer.h"
 #include "proto/ply_reader.h"
 #include "proto/ply_writer.h"

@@ -3,5 +3,5 @@
 # so source paths are relative to proto/.
 fq_require_package(assimp DEBIAN_PKG libassimp-dev CONFIG)
 add_library(fq_meshio STATIC assimp_io.cpp mesh_attributes.cpp cluster_colors.cpp draco_reader.cpp drc_writer.cpp
-  mesh_io.cpp mtl_library.cpp obj_corners.cpp obj_writer.cpp ply_extent_check.cpp ply_reader.cpp ply_writer.cpp)
+  glb_writer.cpp mesh_io.cpp mtl_library.cpp obj_corners.cpp obj_writer.cpp ply_extent_check.cpp ply_reader.cpp ply_writer.cpp)
 target_link_libraries(fq_meshio PUBLIC fq_kernels fq_options PRIVATE draco::draco assimp::assimp)

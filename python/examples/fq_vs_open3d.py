@@ -19,7 +19,7 @@ import fq
 
 try:
     import matplotlib
-    import open3d as o3d
+    import open3d  # noqa: F401 (fq converts to and from its meshes)
 except ImportError:
     print("fq_vs_open3d: needs open3d and matplotlib (python3-open3d, python3-matplotlib)", file=sys.stderr)
     sys.exit(77)

@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import inspect
 import textwrap
-from typing import Any, Callable, Literal, Union
+from typing import Any, Callable, Literal
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
 from . import _fq
 from .mesh import as_mesh, is_mesh, moved_like

@@ -6,7 +6,6 @@ import os
 import warnings
 from typing import Any, Optional, Union
 
-import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _fq
