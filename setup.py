@@ -8,7 +8,7 @@ Environment:
   FQ_CMAKE_BUILD_DIR         an already configured build tree of this checkout whose module is
                              built for this Python: only its module target is brought up to
                              date there and packaged (what the wheel test does); by default
-                             the project is configured in build/setuptools/cmake-<python>.
+                             the project is configured in build/setuptools/cmake.<python tag>.
 """
 import os
 import re
