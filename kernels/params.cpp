@@ -74,6 +74,12 @@ const char* cluster_geometry_name(ClusterGeometry g) {
   return second_of(kClusterGeometryNames, g).value_or("auto");
 }
 
+std::vector<std::string> cluster_geometry_names() {
+  std::vector<std::string> out;
+  for (const auto& entry : kClusterGeometryNames) out.emplace_back(entry.second);
+  return out;
+}
+
 Status validate(const Params& p) {
   if (!p.filter && !p.cluster) return invalid_argument("nothing to compute: enable filter and/or cluster");
   const FilterParams& f = p.filtering;

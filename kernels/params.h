@@ -98,6 +98,8 @@ Status validate(const RefineParams& r);
 /// "auto" | "input" | "filtered" (command lines, config files).
 bool parse_cluster_geometry(const std::string& s, ClusterGeometry& out);
 const char* cluster_geometry_name(ClusterGeometry g);
+/// Every name parse_cluster_geometry accepts, in enum order (help texts, Python choices).
+std::vector<std::string> cluster_geometry_names();
 
 /// Clear message for the first bad value (sigma <= 0, NaN, theta outside (0, 1], ...).
 Status validate(const Params& p);

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages fq builds against, skipping those already present.
 # Safe to run repeatedly; needs root (or sudo) only when something is missing.
-# --peers also installs the other smoothers scripts/peer_quality.py compares with (Open3D,
-# MeshLab run headless under Xvfb); neither the build nor the tests need them.
+# --peers also installs the other smoothers scripts/peer_quality.py and scripts/quality_matrix.py
+# compare with (Open3D, MeshLab run headless under Xvfb) and matplotlib for the matrix's pictures;
+# neither the build nor the tests need them.
 # Then installs the live viewer's npm packages (scripts/web-deps.sh).
 # FQ_SETUP_BROWSER=0 leaves out Chromium and yamllint (only tests use them; the Docker image
 # sets it, Ubuntu's chromium package being a snap stub).
@@ -18,13 +19,15 @@ packages=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev
   python3-dev pybind11-dev python3-numpy python3-pytest python3-open3d
+  python3-venv python3-setuptools python3-wheel   # pip install . (pyproject.toml) and its test
+  python3-matplotlib   # the picture of python/examples/fq_vs_open3d.py
   clang-tidy
   python3-zmq python3-protobuf   # clients/examples/consume.py and its test
   libcpp-httplib-dev
   python3-prometheus-client
 )
 if [[ "${1:-}" == "--peers" ]]; then
-  packages+=(python3-numpy python3-open3d meshlab xvfb xauth)
+  packages+=(python3-numpy python3-open3d python3-matplotlib meshlab xvfb xauth)
 fi
 if [[ ${FQ_SETUP_BROWSER:-1} != 0 ]]; then
   packages+=(chromium yamllint)

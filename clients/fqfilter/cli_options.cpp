@@ -85,7 +85,7 @@ void add_cluster_control_options(CLI::App& app, Options& o, std::string& geometr
   app.add_option("--cluster-geometry", geometry,
                  "Quadrics the clustering uses: input (the paper), filtered (after a constrained filter) or "
                  "auto (filtered with --target-clusters)")
-      ->check(CLI::IsMember({"auto", "input", "filtered"}));
+      ->check(CLI::IsMember(cluster_geometry_names()));
   app.add_option("--min-cluster-size", c.min_cluster_size,
                  "Split clusters into mesh-connected parts and merge parts under N vertices (0 = off)");
 }
@@ -129,7 +129,15 @@ void add_run_options(CLI::App& app, Options& o, std::string& engine, std::string
   add_ranged(app, "--drc-bits", o.drc_bits, "Position quantization bits of .drc outputs (0 = lossless)", 0,
              30);
   app.add_flag("--json", o.json, "One JSON object per mesh on stdout (see docs/FQFILTER.md)");
+  app.add_flag("--quiet,-q", o.quiet,
+               "Print only warnings, errors and a folder's closing line (no report table or progress)");
 }
+
+// --help ends with these: the three commands most runs are.
+constexpr const char* kExamples = R"(Examples:
+  fqfilter scan.ply scan_smooth.ply                        smooth a mesh (qf+, the default)
+  fqfilter scans/ smoothed/ --quiet                        a folder of meshes; only problems printed
+  fqfilter part.obj part.glb --cluster --colour-clusters   clusters as colours, for a glTF viewer)";
 
 /// fq::validate of the parsed parameters (CLI11 checks each option alone: not NaN, theta
 /// in (0, 1], nothing to compute); the message, empty when valid.
@@ -141,6 +149,7 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
   client::ToolApp app{"fqfilter: smooth and cluster meshes with filtered quadrics (Legrand et al. 2019)",
                       "fqfilter"};
   app.name("fqfilter");  // "Usage: fqfilter", whatever path it was started by
+  app.footer(kExamples);
   std::string mode = method_name(o.params.filtering.method), method = method_name(o.params.clustering.method), engine = "auto",
               geometry = "auto";
   bool no_filter = false;

@@ -120,7 +120,7 @@ Status write_output(const Options& o, const std::string& output, const MeshView&
 Status run_file_job(const std::string& input, const std::string& output, const Options& o, Engine& engine,
                     FileReport& r) {
   describe(input, o, engine, r);
-  Progress progress(!o.json, input);
+  Progress progress(!o.json && !o.quiet, input);
   progress.show("reading");
   Mesh mesh, clean;
   io::MeshAttributes attributes;
