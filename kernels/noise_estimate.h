@@ -40,7 +40,7 @@ constexpr uint32_t kNoiseSamples = 4096;
 /// Lag-one correlation of the residuals of a clean surface's detail: fitted with the filter's
 /// constants (kernels/refine_plan.h); the clean meshes measured 0.06 (fandisk, with its creases
 /// trimmed) to 0.28 (a capture frame), so 0.5 errs towards calling detail noise.
-constexpr float kDetailCorrelation = 0.5f;
+constexpr float kDetailCorrelation = 0.35f;
 /// At most this many 2-ring neighbours enter a fit (a valence-6 mesh has 18).
 constexpr int kMaxRing = 48;
 /// Fewer neighbours than this leave too few degrees of freedom for six coefficients.

@@ -225,7 +225,7 @@ constexpr int kEnergyPasses = 2;
 
 /// Step 3. The result `out` of vertex v with its tangential move `t` scaled by g = min(1,
 /// allowance / energy): `energy` is the local mean of |t|² (ring_mean, twice), `allowance` the
-/// part isotropic noise explains (2σ²). Where the vertices slid no more than the noise moved
+/// part the noise explains (refine_plan.h). Where the vertices slid no more than the noise moved
 /// them, the slide undoes noise and stays; where they slid more (an irregular triangulation
 /// pulled towards regular triangles), only the noise's share of it stays (the Wiener gain of
 /// the slide: signal over signal plus noise).
