@@ -86,7 +86,10 @@ NoiseEstimate estimate_noise(DeviceFrame& f, RefineBuffers& b, cudaStream_t s) {
   FQ_CUDA_CHECK_LAUNCH("input_positions_kernel");
   const uint32_t stride = noise_sample_stride(n), count = noise_sample_count(n);
   NoiseSample* samples = b.samples.reserve(count);
-  noise_sample_kernel<<<blocks_for(count), block_size(), 0, s>>>(count, stride, fan, x, samples);
+  // A few thousand long threads (two ring fits each): small blocks spread them over every SM
+  // (256-thread blocks put 4096 samples on 16 SMs of an H100's 132).
+  constexpr unsigned kSampleBlock = 32;
+  noise_sample_kernel<<<(count + kSampleBlock - 1) / kSampleBlock, kSampleBlock, 0, s>>>(count, stride, fan, x, samples);
   FQ_CUDA_CHECK_LAUNCH("noise_sample_kernel");
   NoiseSample* h = b.h_samples.reserve(count);
   FQ_CUDA_CHECK(cudaMemcpyAsync(h, samples, count * sizeof(NoiseSample), cudaMemcpyDeviceToHost, s));
