@@ -11,6 +11,7 @@
 #include "daemon/ingest.h"
 #include "daemon/publisher.h"
 #include "daemon/result_socket.h"
+#include "daemon/settings_audit.h"
 #include "daemon/sub_ingest.h"
 
 namespace fq::daemon {
@@ -184,7 +185,15 @@ Status Daemon::start() {
 }
 
 std::vector<std::string> Daemon::reload_streams(const DaemonConfig& fresh) {
+  std::map<std::string, StreamSettings> before;
+  for (const std::string& id : registry_.list()) registry_.find(id, before[id]);
   registry_.reload(fresh.defaults, fresh.streams);
+  for (const std::string& id : registry_.list()) {
+    StreamSettings after;
+    if (!registry_.find(id, after)) continue;
+    auto it = before.find(id);
+    log_settings_changes(id, it == before.end() ? fresh.defaults : it->second, after, "reload");
+  }
   std::vector<std::string> restart;
   const DaemonConfig& c = config_;
   const Endpoints& e = fresh.endpoints;

@@ -1,0 +1,98 @@
+// The pieces of fqd's service behaviour that need no process: the settings audit, the late
+// warning, the "off" lines and the stream shard hash.
+#include <gtest/gtest.h>
+
+#include "daemon/late_warning.h"
+#include "daemon/service_config.h"
+#include "daemon/settings_audit.h"
+#include "daemon/startup_report.h"
+#include "daemon/stream_shard.h"
+
+namespace fq::daemon {
+namespace {
+
+TEST(SettingsAudit, NamesEachChangedKeyWithOldAndNewValue) {
+  StreamSettings before, after;
+  EXPECT_TRUE(settings_changes(before, after).empty());
+  after.params.filtering.sigma_s = 3.0f;
+  after.params.filtering.method = FilterMethod::kBilateral;
+  after.budget_ms = 33;
+  after.output.chunks = 4;
+  const std::vector<std::string> changes = settings_changes(before, after);
+  const std::vector<std::string> expected{"sigma_s 1.5 -> 3", "mode qf_plus -> bf", "budget_ms 100 -> 33", "chunks same -> 4"};
+  EXPECT_EQ(changes, expected);
+}
+
+TEST(LateWarning, OnlyWhenMostResultsOfTheIntervalWereLate) {
+  StreamSnapshot now;
+  now.stream_id = "cam0";
+  now.counters.frames_out = 10;
+  now.counters.late = 9;
+  now.stages["engine"].p50_ms = 250;
+  now.stages["receive_to_publish"].p99_ms = 300;
+  StreamCounters before;
+  before.frames_out = 1;
+  before.late = 0;
+  const auto w = late_warning(now, before, 60, 100);
+  ASSERT_TRUE(w);
+  EXPECT_EQ(*w, "stream cam0: 9 of 9 results late in the last 60 s (budget 100 ms, receive->publish p99 300 ms, "
+                "engine p50 250 ms, wait p50 0 ms): the engine alone takes longer than the budget: raise "
+                "budget_ms, lower the sigmas or use a GPU engine");
+  before.late = 5;  // 4 of 9: not mostly
+  EXPECT_FALSE(late_warning(now, before, 60, 100));
+  before = {};
+  before.frames_out = 8;  // 2 results: too few to judge
+  EXPECT_FALSE(late_warning(now, before, 60, 100));
+}
+
+TEST(StartupReport, SaysWhatIsOff) {
+  DaemonConfig c;
+  std::vector<std::string> off = off_lines(c);
+  ASSERT_EQ(off.size(), 2u);
+  EXPECT_EQ(off[0].rfind("fqd: HTTP off", 0), 0u);
+  EXPECT_EQ(off[1].rfind("fqd: security off", 0), 0u);
+  c.http.listen = "127.0.0.1:0";
+  c.stats.interval_s = 0;
+  off = off_lines(c);
+  ASSERT_EQ(off.size(), 2u);
+  EXPECT_EQ(off[1].rfind("fqd: [stats] lines off", 0), 0u);
+  EXPECT_EQ(cuda_line(c.engine, {"cuda:0 NVIDIA H100"}), "");
+  EXPECT_NE(cuda_line(c.engine, {"cpu"}).find("CUDA"), std::string::npos);
+}
+
+TEST(StreamShard, Fnv1aAndParsing) {
+  // FNV-1a 32-bit reference values.
+  EXPECT_EQ(stream_hash(""), 0x811c9dc5u);
+  EXPECT_EQ(stream_hash("a"), 0xe40c292cu);
+  EXPECT_EQ(stream_hash("foobar"), 0xbf9cf968u);
+  uint32_t k = 9, n = 9;
+  ASSERT_TRUE(parse_shard("2/3", k, n).ok());
+  EXPECT_EQ(k, 2u);
+  EXPECT_EQ(n, 3u);
+  ASSERT_TRUE(parse_shard("fqd-eu-1/4", k, n).ok());
+  EXPECT_EQ(k, 1u);
+  for (const char* bad : {"3/3", "1", "a/2", "1/0", "-1/2", "1/2x", "/2"}) EXPECT_FALSE(parse_shard(bad, k, n).ok()) << bad;
+}
+
+TEST(StreamShard, EveryStreamInExactlyOneShard) {
+  SubIngestConfig all;
+  all.connect = {"tcp://producer:7000"};
+  for (int i = 0; i < 50; ++i) all.streams.push_back("cam" + std::to_string(i));
+  size_t total = 0;
+  for (uint32_t k = 0; k < 4; ++k) {
+    SubIngestConfig mine = all;
+    const std::vector<std::string> kept = keep_shard(mine, k, 4);
+    EXPECT_FALSE(kept.empty());
+    for (const std::string& id : kept) EXPECT_EQ(shard_of(id, 4), k);
+    total += kept.size();
+  }
+  EXPECT_EQ(total, all.streams.size());
+  SubIngestConfig one;
+  one.connect = {"tcp://producer:7000"};
+  one.streams = {"cam0"};
+  EXPECT_TRUE(keep_shard(one, (shard_of("cam0", 2) + 1) % 2, 2).empty());
+  EXPECT_TRUE(one.connect.empty()) << "a shard without streams must not subscribe to all of them";
+}
+
+}  // namespace
+}  // namespace fq::daemon
