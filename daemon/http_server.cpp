@@ -88,7 +88,7 @@ std::string HttpServer::metrics() const {
   registry_.snapshot("", in.streams);
   in.engines = engines_;
   in.gpus = gpu_memory(gpus_);
-  return prometheus_text(in);
+  return extra_metrics_ ? prometheus_text(in) + extra_metrics_() : prometheus_text(in);
 }
 
 void HttpServer::add_api_routes() {

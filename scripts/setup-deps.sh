@@ -5,7 +5,7 @@
 # compare with (Open3D, MeshLab run headless under Xvfb) and matplotlib for the matrix's pictures;
 # neither the build nor the tests need them.
 # Then installs the live viewer's npm packages (scripts/web-deps.sh).
-# FQ_SETUP_BROWSER=0 leaves out Chromium and yamllint (only tests use them; the Docker image
+# FQ_SETUP_BROWSER=0 leaves out Chromium, yamllint and prometheus (only tests use them; the Docker image
 # sets it, Ubuntu's chromium package being a snap stub).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -30,7 +30,9 @@ if [[ "${1:-}" == "--peers" ]]; then
   packages+=(python3-numpy python3-open3d python3-matplotlib meshlab xvfb xauth)
 fi
 if [[ ${FQ_SETUP_BROWSER:-1} != 0 ]]; then
-  packages+=(chromium yamllint)
+  # prometheus: promtool checks and unit-tests deploy/monitoring's alert rules (the tests run no server;
+  # on a host with systemd Debian enables one: `systemctl disable --now prometheus` if unwanted)
+  packages+=(chromium yamllint python3-yaml prometheus)
 fi
 if [[ ${FQ_SETUP_FUZZ:-1} != 0 ]]; then
   packages+=(clang-14 libclang-rt-14-dev)   # scripts/fuzz.sh: libFuzzer with ASan + UBSan

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "daemon/late_warning.h"
+#include "daemon/process_stats.h"
 #include "daemon/service_config.h"
 #include "daemon/settings_audit.h"
 #include "daemon/startup_report.h"
@@ -92,6 +93,31 @@ TEST(StreamShard, EveryStreamInExactlyOneShard) {
   one.streams = {"cam0"};
   EXPECT_TRUE(keep_shard(one, (shard_of("cam0", 2) + 1) % 2, 2).empty());
   EXPECT_TRUE(one.connect.empty()) << "a shard without streams must not subscribe to all of them";
+}
+
+}  // namespace
+}  // namespace fq::daemon
+
+namespace fq::daemon {
+namespace {
+
+TEST(ProcessStats, ParsesProcStatAfterTheCommandName) {
+  // A command name with spaces and a ')' of its own; fields as the kernel writes them.
+  std::string stat = "4242 (fq d) x) S 1 4242 4242 0 -1 4194560 1000 0 0 0 250 50 0 0 20 0 17 0 360000 "
+                     "123456789 2048";
+  for (int i = 0; i < 27; ++i) stat += " 0";
+  const ProcessStats s = parse_proc_stat(stat, 100, 4096, 1.7e9);
+  ASSERT_TRUE(s.ok);
+  EXPECT_DOUBLE_EQ(s.cpu_seconds, 3.0);  // (250 + 50) ticks at 100 a second
+  EXPECT_EQ(s.threads, 17u);
+  EXPECT_DOUBLE_EQ(s.start_time_seconds, 1.7e9 + 3600.0);
+  EXPECT_EQ(s.virtual_bytes, 123456789u);
+  EXPECT_EQ(s.resident_bytes, 2048u * 4096u);
+  EXPECT_FALSE(parse_proc_stat("garbage", 100, 4096, 0).ok);
+  EXPECT_TRUE(process_metrics_text(ProcessStats{}).empty());
+  const std::string text = process_metrics_text(s);
+  EXPECT_NE(text.find("# TYPE process_cpu_seconds_total counter\nprocess_cpu_seconds_total 3\n"), std::string::npos)
+      << text;
 }
 
 }  // namespace
