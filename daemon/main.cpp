@@ -23,6 +23,7 @@
 #include "daemon/signals.h"
 #include "daemon/startup_report.h"
 #include "daemon/stream_shard.h"
+#include "daemon/web_root.h"
 
 namespace {
 
@@ -36,6 +37,7 @@ std::string endpoints_json(const fq::daemon::BoundEndpoints& e) {
 fq::Status load(const fq::daemon::ConfigSource& source, const fq::daemon::CommandLine& cl,
                 fq::daemon::DaemonConfig& config, std::vector<std::string>* shard_streams = nullptr) {
   if (!source.path.empty()) FQ_RETURN_IF_ERROR(fq::daemon::load_config(source.path, config));
+  fq::daemon::resolve_default_web_root(config.http);
   return fq::daemon::apply_command_line(cl, config, shard_streams);
 }
 

@@ -1,6 +1,9 @@
 // The pieces of fqd's service behaviour that need no process: the settings audit, the late
-// warning, the "off" lines and the stream shard hash.
+// warning, the "off" lines, the stream shard hash, /proc/self/stat and the viewer's default folder.
 #include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
 
 #include "daemon/late_warning.h"
 #include "daemon/process_stats.h"
@@ -8,6 +11,7 @@
 #include "daemon/settings_audit.h"
 #include "daemon/startup_report.h"
 #include "daemon/stream_shard.h"
+#include "daemon/web_root.h"
 
 namespace fq::daemon {
 namespace {
@@ -118,6 +122,31 @@ TEST(ProcessStats, ParsesProcStatAfterTheCommandName) {
   const std::string text = process_metrics_text(s);
   EXPECT_NE(text.find("# TYPE process_cpu_seconds_total counter\nprocess_cpu_seconds_total 3\n"), std::string::npos)
       << text;
+}
+
+}  // namespace
+}  // namespace fq::daemon
+
+namespace fq::daemon {
+namespace {
+
+TEST(WebRoot, DefaultFindsTheViewerInstalledBesideFqd) {
+  EXPECT_EQ(installed_web_root("/opt/fq/bin/fqd"), "/opt/fq/share/fq/web");
+  if (std::filesystem::exists("web/index.html")) GTEST_SKIP() << "run from a source tree: its web/ comes first";
+  const std::filesystem::path prefix = std::filesystem::path(testing::TempDir()) / "web_root_prefix";
+  std::filesystem::remove_all(prefix);
+  std::filesystem::create_directories(prefix / "bin");
+  std::filesystem::create_directories(prefix / "share/fq/web");
+  HttpConfig http;
+  resolve_default_web_root(http, (prefix / "bin/fqd").string());
+  EXPECT_EQ(http.web_root, "web") << "no viewer installed yet: the default stays";
+  std::ofstream((prefix / "share/fq/web/index.html").string()) << "<html>";
+  resolve_default_web_root(http, (prefix / "bin/fqd").string());
+  EXPECT_EQ(http.web_root, (prefix / "share/fq/web").lexically_normal().string());
+  HttpConfig configured;
+  configured.web_root = "/srv/viewer";
+  resolve_default_web_root(configured, (prefix / "bin/fqd").string());
+  EXPECT_EQ(configured.web_root, "/srv/viewer") << "a web_root from the file stays";
 }
 
 }  // namespace

@@ -74,11 +74,9 @@ def expressions(src):
     return out
 
 
-def exported_names(fqd, tmp):
-    config = f"{tmp}/fqd.toml"
-    open(config, "w").write('log_level = "warn"\n[endpoints]\ningest = "tcp://127.0.0.1:*"\n'
-                            'publish = "tcp://127.0.0.1:*"\ncontrol = "tcp://127.0.0.1:*"\n'
-                            '[engine]\nkind = "cpu"\ncpu_threads = 1\n[http]\nlisten = "127.0.0.1:0"\n')
+def exported_names(fqd, src, tmp):
+    config = f"{tmp}/fqd.toml"  # the tests' fqd (free ports on 127.0.0.1, the CPU engine) with HTTP
+    open(config, "w").write(open(f"{src}/tests/daemon/child_fqd.toml").read() + '[http]\nlisten = "127.0.0.1:0"\n')
     p = subprocess.Popen([fqd, "--config", config, "--print-endpoints"], stdout=subprocess.PIPE, text=True)
     try:
         http = json.loads(p.stdout.readline())["http"]
@@ -111,7 +109,7 @@ def main(fqd, src):
                                                          for i, (_, e) in enumerate(exprs)]}]}
         open(f"{tmp}/exprs.yml", "w").write(yaml.safe_dump(rules))
         subprocess.run([promtool, "check", "rules", f"{tmp}/exprs.yml"], check=True, stdout=subprocess.DEVNULL)
-        exported = exported_names(fqd, tmp)
+        exported = exported_names(fqd, src, tmp)
     unknown = []
     for where, e in exprs:
         unknown += [f"{where}: {n} (in {e.strip()})" for n in sorted(metric_names(e) - exported - PROMETHEUS_OWN)]

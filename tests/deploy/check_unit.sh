@@ -11,7 +11,9 @@ if ! command -v systemd-analyze >/dev/null; then
 fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-sed "s|^ExecStart=[^ ]*fqd|ExecStart=$fqd|" "$unit" >"$tmp/fqd.service"
+# packaging/fqd.service.in (paths as @VARIABLES@) or an installed unit.
+sed -e "s|@FQ_FQD_PATH@|$fqd|g" -e "s|@FQ_DOC_PATH@|/usr/share/doc/fq|g" -e "s|^ExecStart=[^ ]*fqd|ExecStart=$fqd|" \
+  "$unit" >"$tmp/fqd.service"
 grep -qx 'Type=notify' "$tmp/fqd.service" || { echo "FAIL: the unit is not Type=notify" >&2; exit 1; }
 grep -qx 'RestartPreventExitStatus=2' "$tmp/fqd.service" || { echo "FAIL: exit status 2 is restarted" >&2; exit 1; }
 # verify prints problems and exits 0 for some of them: any output is a failure here.
