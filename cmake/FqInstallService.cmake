@@ -16,11 +16,12 @@ set(three "${PROJECT_SOURCE_DIR}/web/node_modules/three")
 
 install(FILES web/index.html web/viewer.js web/frame_decode.js DESTINATION "${FQ_INSTALL_WEBDIR}")
 install(FILES "${three}/package.json" "${three}/LICENSE" DESTINATION "${FQ_INSTALL_WEBDIR}/node_modules/three" OPTIONAL)
-install(DIRECTORY "${three}/build" DESTINATION "${FQ_INSTALL_WEBDIR}/node_modules/three"
+install(DIRECTORY "${three}/build" DESTINATION "${FQ_INSTALL_WEBDIR}/node_modules/three" OPTIONAL
         FILES_MATCHING PATTERN "*.js")
-install(DIRECTORY "${three}/examples/jsm/controls" DESTINATION "${FQ_INSTALL_WEBDIR}/node_modules/three/examples/jsm")
+install(DIRECTORY "${three}/examples/jsm/controls" DESTINATION "${FQ_INSTALL_WEBDIR}/node_modules/three/examples/jsm"
+        OPTIONAL)
 install(DIRECTORY "${three}/examples/jsm/libs/draco" DESTINATION "${FQ_INSTALL_WEBDIR}/node_modules/three/examples/jsm/libs"
-        PATTERN "gltf" EXCLUDE)
+        OPTIONAL PATTERN "gltf" EXCLUDE)
 install(CODE "
   if(NOT EXISTS \"${three}/build/three.module.js\")
     message(WARNING \"fq: web/node_modules is missing: the viewer's page is installed without three.js \"
