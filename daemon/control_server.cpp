@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "daemon/settings_audit.h"
 #include "proto/header_codec.h"
 
 namespace fq::daemon {
@@ -40,13 +41,14 @@ wire::ControlReply set_params(const wire::SetParams& q, StreamRegistry& registry
   if (q.stream_id().empty()) return error_reply("set_params needs a stream id");
   StreamSettings s;
   if (!registry.settings(q.stream_id(), s)) return error_reply("too many streams");
+  const StreamSettings before = s;
   Status st = wire::apply_overrides(q.params(), s.params);
   if (st.ok() && q.has_compute()) st = wire::apply_compute(q.compute(), s.params);
   if (st.ok()) st = validate(s);
   if (!st.ok()) return error_reply("invalid parameters: " + st.message());
   if (q.has_result_form()) s.output.form = from_wire(q.result_form());
   registry.set_settings(q.stream_id(), s);
-  spdlog::info("control: stream '{}' parameters changed", q.stream_id());
+  log_settings_changes(q.stream_id(), before, s, "control");
   return settings_reply(s);
 }
 

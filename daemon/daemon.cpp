@@ -11,6 +11,8 @@
 #include "daemon/ingest.h"
 #include "daemon/publisher.h"
 #include "daemon/result_socket.h"
+#include "daemon/service_metrics.h"
+#include "daemon/settings_audit.h"
 #include "daemon/sub_ingest.h"
 
 namespace fq::daemon {
@@ -104,6 +106,24 @@ std::vector<std::string> Daemon::engine_names() const {
   return names;
 }
 
+std::string Daemon::service_metrics() const {
+  ServiceMetricsInput in;
+  for (size_t r = 0; r < static_cast<size_t>(Refusal::kCount); ++r)
+    in.refusals.emplace_back(refusal_name(static_cast<Refusal>(r)), registry_.refusals().get(static_cast<Refusal>(r)));
+  for (const std::string& id : registry_.list()) {
+    StreamSettings s;
+    if (registry_.find(id, s)) in.budgets_ms.emplace_back(id, s.budget_ms);
+  }
+  for (size_t i = 0; i < engines_.size() && i < pipeline_.engine_busy.size(); ++i)
+    in.engines.push_back({engines_[i]->name(), pipeline_.engine_busy.seconds(i), pipeline_.engine_busy.frames(i)});
+  in.queues = {{"decode", pipeline_.decode_queue.size()},
+               {"slots", pipeline_.slots.waiting()},
+               {"encode", pipeline_.encode_queue.size()},
+               {"publish", pipeline_.publish_queue.size()}};
+  in.process = read_process_stats();
+  return service_metrics_text(in);
+}
+
 Status Daemon::bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::socket_t& control) {
   ingest = zmq::socket_t(input_context_, zmq::socket_type::pull);
   control = zmq::socket_t(input_context_, zmq::socket_type::rep);
@@ -142,8 +162,12 @@ Status Daemon::start() {
   FQ_RETURN_IF_ERROR(bind_sockets(ingest, publish, control));
   zmq::socket_t sub;  // stays empty without [ingest] connect
   if (!config_.sub_ingest.connect.empty()) FQ_RETURN_IF_ERROR(make_sub_socket(input_context_, config_.sub_ingest, sub));
+  std::vector<const Engine*> engine_list;
+  for (const auto& e : engines_) engine_list.push_back(e.get());
+  pipeline_.engine_busy.reset(engine_list);
   if (!config_.http.listen.empty()) {
     http_ = std::make_unique<HttpServer>(config_, registry_, pipeline_.latest, engine_names(), healthy_);
+    http_->set_extra_metrics([this] { return service_metrics(); });
     FQ_RETURN_IF_ERROR(http_->start());
     endpoints_.http = http_->url();
   }
@@ -184,7 +208,15 @@ Status Daemon::start() {
 }
 
 std::vector<std::string> Daemon::reload_streams(const DaemonConfig& fresh) {
+  std::map<std::string, StreamSettings> before;
+  for (const std::string& id : registry_.list()) registry_.find(id, before[id]);
   registry_.reload(fresh.defaults, fresh.streams);
+  for (const std::string& id : registry_.list()) {
+    StreamSettings after;
+    if (!registry_.find(id, after)) continue;
+    auto it = before.find(id);
+    log_settings_changes(id, it == before.end() ? fresh.defaults : it->second, after, "reload");
+  }
   std::vector<std::string> restart;
   const DaemonConfig& c = config_;
   const Endpoints& e = fresh.endpoints;

@@ -48,6 +48,9 @@ class Daemon : NonCopyable {
   StreamRegistry& registry() { return registry_; }
   /// Names of the engines in use ("cpu", "cuda:<device>").
   std::vector<std::string> engine_names() const;
+  /// The /metrics families about the service (service_metrics.h): refusals, budgets,
+  /// engine busy time, queue depths, the process.
+  std::string service_metrics() const;
 
  private:
   Status bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::socket_t& control);

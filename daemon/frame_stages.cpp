@@ -200,6 +200,7 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
     const auto t0 = std::chrono::steady_clock::now();
     const Status s = run_engine(p, engine, *f);
     const double total = ms_since(t0);
+    p.engine_busy.add(&engine, static_cast<uint64_t>(total * 1e6));
     last_frame_ns = wall_ns();
     holding = true;
     for (const PassTiming& t : f->result.timings) f->timings.push_back({"engine." + t.name, t.ms});

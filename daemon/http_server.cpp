@@ -88,7 +88,7 @@ std::string HttpServer::metrics() const {
   registry_.snapshot("", in.streams);
   in.engines = engines_;
   in.gpus = gpu_memory(gpus_);
-  return prometheus_text(in);
+  return extra_metrics_ ? prometheus_text(in) + extra_metrics_() : prometheus_text(in);
 }
 
 void HttpServer::add_api_routes() {
@@ -154,8 +154,10 @@ void HttpServer::add_viewer_routes() {
   spdlog::info("http: no viewer in {} (run scripts/web-deps.sh); / explains how to install it", root.string());
   const std::string message =
       "fqd is running, but its live viewer is not installed in " + root.string() +
-      ".\nInstall it with `bash scripts/web-deps.sh` (npm ci in web/), or point [http] web_root at a "
-      "folder that has it.\nThe API works without it: /metrics /healthz /streams /streams/ID/latest\n";
+      ".\nIn fq's source tree, install it with `bash scripts/web-deps.sh` (npm ci in web/), then run fqd "
+      "from there or `cmake --install` again (it ships the viewer to <prefix>/share/fq/web, where fqd looks); "
+      "or point [http] web_root at a folder that has it.\nThe API works without it: /metrics /healthz /streams "
+      "/streams/ID/latest\n";
   server_->Get("/", [message](const httplib::Request&, httplib::Response& res) {
     res.status = 404;
     res.set_content(message, "text/plain");

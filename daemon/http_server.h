@@ -5,6 +5,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <string>
 #include <thread>
@@ -35,6 +36,9 @@ class HttpServer : NonCopyable {
   void stop();
   /// The bound address, "http://host:port".
   const std::string& url() const { return url_; }
+  /// More /metrics text, appended to the streams' (the daemon's service metrics); set
+  /// before start().
+  void set_extra_metrics(std::function<std::string()> extra) { extra_metrics_ = std::move(extra); }
 
  private:
   void add_api_routes();
@@ -51,6 +55,7 @@ class HttpServer : NonCopyable {
   std::thread thread_;
   std::atomic<bool> listen_returned_{false};
   std::string url_;
+  std::function<std::string()> extra_metrics_;
 };
 
 }  // namespace fq::daemon

@@ -39,6 +39,12 @@ class FrameSlots {
   /// Wakes every waiting worker; waiting frames are still handed out.
   void close();
 
+  /// Frames waiting in the slots now (fq_queue_depth{queue="slots"}).
+  size_t waiting() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return waiting_;
+  }
+
  private:
   struct Stream {
     FramePtr waiting;
@@ -48,7 +54,7 @@ class FrameSlots {
     uint64_t served = 0;  ///< when it was last handed out (served_ at the time); 0 = never
   };
 
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::condition_variable ready_;
   std::map<std::string, Stream> streams_;
   size_t waiting_ = 0;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "daemon/config.h"
+#include "daemon/engine_busy.h"
 #include "daemon/frame_job.h"
 #include "daemon/label_tracks.h"
 #include "daemon/latency_policy.h"
@@ -63,6 +64,7 @@ struct Pipeline {
   ObjectPool<Mesh> meshes;
   LatestResults latest;                      ///< each watched stream's last result (HTTP viewer)
   LabelTracks label_tracks;                  ///< stable cluster ids per stream
+  EngineBusy engine_busy;                    ///< time on frames per engine (/metrics)
   /// Set when a stopping daemon's grace (caps.stop_grace_s) has passed: every engine run
   /// ends at its next check, and frames still waiting get an error result at once.
   std::atomic<bool> cancel_engines{false};

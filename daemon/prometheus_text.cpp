@@ -74,6 +74,12 @@ void engines_and_gpus(std::string& out, const MetricsInput& in) {
 
 }  // namespace
 
+void append_family(std::string& out, const char* name, const char* type, const char* help) {
+  family(out, name, type, help);
+}
+
+std::string metric_number(double v) { return number(v); }
+
 std::string escape_label_value(const std::string& value) {
   std::string out;
   for (char c : value) {

@@ -20,6 +20,12 @@ struct MetricsInput {
 
 std::string prometheus_text(const MetricsInput& in);
 
+/// "# HELP name help" and "# TYPE name type" lines, for families written elsewhere.
+void append_family(std::string& out, const char* name, const char* type, const char* help);
+
+/// A sample value that round-trips (%.17g).
+std::string metric_number(double v);
+
 /// A label value with \, " and newline escaped as the format requires.
 std::string escape_label_value(const std::string& value);
 

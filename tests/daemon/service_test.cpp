@@ -3,11 +3,9 @@
 // file changes nothing and never stops fqd), and the periodic [stats] log line.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
-#include <thread>
 
 #include "daemon/config.h"
 #include "daemon/config_lookup.h"
@@ -15,21 +13,6 @@
 
 namespace fq::test {
 namespace {
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  return std::string((std::istreambuf_iterator<char>(in)), {});
-}
-
-// Polls `check` every 100 ms for up to 60 s (the daemon acts on signals asynchronously).
-template <class F>
-bool eventually(F check) {
-  for (int i = 0; i < 600; ++i) {
-    if (check()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  return false;
-}
 
 TEST(ConfigLookup, FlagThenEnvironmentThenSystemFileThenDefaults) {
   const std::string system = write_temp_file("lookup_system.toml", "");
@@ -85,13 +68,13 @@ TEST(Service, SighupReloadsStreamSettingsAndSurvivesABadFile) {
 
   write_temp_file("sighup.toml", ops_config("[streams.cam0.filter]\nsigma_s = 4\n[streams.cam9]\nbudget_ms = 50\n"));
   ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
-  EXPECT_TRUE(eventually([&] { return sigma_s(fqd, "cam0") == "4"; })) << read_file(log);
+  EXPECT_TRUE(eventually([&] { return sigma_s(fqd, "cam0") == "4"; })) << read_text_file(log);
   EXPECT_EQ(sigma_s(fqd, "cam9"), "1.5");  // newly configured stream, defaults' sigma_s
 
   write_temp_file("sighup.toml", "this is [not toml");
   ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
-  EXPECT_TRUE(eventually([&] { return read_file(log).find("not reloaded, settings unchanged") != std::string::npos; }))
-      << read_file(log);
+  EXPECT_TRUE(eventually([&] { return read_text_file(log).find("not reloaded, settings unchanged") != std::string::npos; }))
+      << read_text_file(log);
   EXPECT_TRUE(fqd.alive());
   EXPECT_EQ(sigma_s(fqd, "cam0"), "4");
   EXPECT_EQ(fqd.stop(), 0);
@@ -104,7 +87,7 @@ TEST(Service, SighupAfterTheFileWasRemovedKeepsRunning) {
   ASSERT_FALSE(fqd.endpoint("control").empty());
   std::filesystem::remove(config);
   ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
-  EXPECT_TRUE(eventually([&] { return read_file(log).find("not reloaded") != std::string::npos; })) << read_file(log);
+  EXPECT_TRUE(eventually([&] { return read_text_file(log).find("not reloaded") != std::string::npos; })) << read_text_file(log);
   EXPECT_TRUE(fqd.alive());
   EXPECT_EQ(fqd.stop(), 0);
 }
@@ -115,9 +98,9 @@ TEST(Service, StatsLogLinePerActiveStream) {
   FqdProcess fqd({"--config", config, "--log-level", "info"}, "", "2>'" + log + "'");
   ASSERT_FALSE(fqd.endpoint("ingest").empty());
   ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam0", 6).status, 0);
-  EXPECT_TRUE(eventually([&] { return read_file(log).find("[stats] stream=cam0 fps=") != std::string::npos; }))
-      << read_file(log);
-  const std::string text = read_file(log);
+  EXPECT_TRUE(eventually([&] { return read_text_file(log).find("[stats] stream=cam0 fps=") != std::string::npos; }))
+      << read_text_file(log);
+  const std::string text = read_text_file(log);
   const size_t at = text.find("[stats] stream=cam0");
   const std::string line = text.substr(at, text.find('\n', at) - at);
   for (const char* field : {" p99=", "ms late=", " superseded=", " stale=", " errors="})
