@@ -100,6 +100,14 @@ TEST(DaemonStream, ResultMatchesTheEngineOnTheDecodedFrame) {
   const std::vector<float> want = expected_positions(mesh, p);
   EXPECT_LT(max_displacement(r.mesh.positions, want), 1e-6);
   EXPECT_GT(max_displacement(r.mesh.positions, mesh.positions), 1e-3) << "the filter moved nothing";
+  // The noise "qf+" estimated and filtered for travels in the header, as the engine finds it on
+  // the frame before the wire's quantization (within 0.1 %).
+  CpuEngine engine(2);
+  FrameResult direct;
+  ASSERT_TRUE(engine.process(mesh.view(), p, direct).ok());
+  EXPECT_GT(r.header.noise_estimate(), 0.f);
+  EXPECT_NEAR(r.header.noise_estimate(), direct.noise_estimate, 1e-3f * direct.noise_estimate);
+  EXPECT_EQ(r.header.filter_noise(), r.header.noise_estimate());
 }
 
 TEST(DaemonStream, TwoStreamsWithDifferentParametersGiveDifferentResults) {
