@@ -113,9 +113,9 @@ TEST(DaemonStream, ResultMatchesTheEngineOnTheDecodedFrame) {
 TEST(DaemonStream, TwoStreamsWithDifferentParametersGiveDifferentResults) {
   daemon::DaemonConfig c = test_config();
   c.streams["soft"] = c.defaults;
-  c.streams["soft"].params.filtering.sigma_s = 1.0f;
+  c.streams["soft"].params.filtering.refine.strength = 0.5f;
   c.streams["strong"] = c.defaults;
-  c.streams["strong"].params.filtering.sigma_s = 4.0f;
+  c.streams["strong"].params.filtering.refine.strength = 3.0f;
   DaemonHarness h(c);
   const Mesh mesh = noisy_sphere();
   h.send(mesh, spec_for("soft"), 0);
@@ -137,10 +137,12 @@ TEST(DaemonStream, RuntimeParameterChangeTakesEffectOnTheNextFrame) {
   wire::ControlRequest set;
   set.mutable_set_params()->set_stream_id("cam");
   set.mutable_set_params()->mutable_params()->set_sigma_s(4.0f);
+  set.mutable_set_params()->mutable_params()->set_strength(3.0f);
   set.mutable_set_params()->set_compute(wire::FILTER);
   const wire::ControlReply sr = h.control(set);
   ASSERT_TRUE(sr.ok()) << sr.error();
   EXPECT_FLOAT_EQ(sr.params().sigma_s(), 4.0f);
+  EXPECT_FLOAT_EQ(sr.params().strength(), 3.0f);
 
   wire::ControlRequest get;
   get.mutable_get_params()->set_stream_id("cam");
@@ -153,6 +155,7 @@ TEST(DaemonStream, RuntimeParameterChangeTakesEffectOnTheNextFrame) {
   const client::ReceivedResult after = h.receive_decoded("cam");
   Params p = test_config().defaults.params;
   p.filtering.sigma_s = 4.0f;
+  p.filtering.refine.strength = 3.0f;
   p.cluster = false;
   EXPECT_LT(max_displacement(after.mesh.positions, expected_positions(mesh, p)), 1e-6);
   EXPECT_GT(max_displacement(after.mesh.positions, before.mesh.positions), 1e-3);
@@ -190,8 +193,10 @@ TEST(DaemonStream, ChunkedAndUnchunkedFramesGiveTheSameResult) {
   EXPECT_EQ(one.header.chunk_count(), 1u);
   EXPECT_EQ(four.header.chunk_count(), 4u);  // output chunks "same as input"
   // Chunks arrive with their triangles in another order, so the engine sums the same
-  // quadrics in another order: equal up to float rounding (and one quantization step).
-  EXPECT_LT(max_displacement(one.mesh.positions, four.mesh.positions), 1e-4);
+  // terms in another order (the noise estimate's fits visit their rings in triangle order,
+  // and every pass follows the estimate): equal up to float rounding and a few quantization
+  // steps (measured 1.1e-4 on a unit sphere).
+  EXPECT_LT(max_displacement(one.mesh.positions, four.mesh.positions), 2e-4);
   EXPECT_EQ(one.labels, four.labels);
   // Chunking may reorder the triangles (and rotate their corners), not change them.
   EXPECT_EQ(canonical_triangles(one.mesh), canonical_triangles(four.mesh));
