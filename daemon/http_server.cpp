@@ -8,6 +8,7 @@
 
 #include "daemon/control_server.h"
 #include "daemon/counters_json.h"
+#include "daemon/http_front.h"
 #include "daemon/prometheus_text.h"
 
 namespace fq::daemon {
@@ -76,7 +77,7 @@ HttpServer::HttpServer(const DaemonConfig& config, StreamRegistry& registry, Lat
       latest_(latest),
       engines_(std::move(engines)),
       healthy_(healthy),
-      server_(std::make_unique<httplib::Server>()) {
+      server_(std::make_unique<HttpFront>(config.http, refusals_)) {
   for (const std::string& e : engines_)
     if (e.rfind("cuda", 0) == 0) gpus_ = config.engine.gpus;
 }
@@ -88,6 +89,8 @@ std::string HttpServer::metrics() const {
   registry_.snapshot("", in.streams);
   in.engines = engines_;
   in.gpus = gpu_memory(gpus_);
+  for (size_t r = 0; r < HttpRefusalCounters::kReasons; ++r)
+    in.http_refusals.emplace_back(http_refusal_name(HttpRefusal(r)), refusals_.get(HttpRefusal(r)));
   return prometheus_text(in);
 }
 

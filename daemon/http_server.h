@@ -1,7 +1,7 @@
 // fqd's HTTP listener ([http] listen): GET /metrics (Prometheus text), /healthz, /streams
 // (JSON counters), /streams/ID/latest (the latest result's Draco chunks, for the viewer) and
-// the live viewer's files from http.web_root. cpp-httplib (Debian libcpp-httplib-dev) does the
-// HTTP: a small, well-kept server with its own thread pool, so no HTTP is hand-written here.
+// the live viewer's files from http.web_root. cpp-httplib (Debian libcpp-httplib-dev) parses and
+// answers the requests; HttpFront (http_front.h) holds fqd's bounds in front of it.
 #pragma once
 
 #include <atomic>
@@ -13,14 +13,13 @@
 #include "common/non_copyable.h"
 #include "common/status.h"
 #include "daemon/config.h"
+#include "daemon/http_refusals.h"
 #include "daemon/latest_results.h"
 #include "daemon/stream_registry.h"
 
-namespace httplib {
-class Server;
-}
-
 namespace fq::daemon {
+
+class HttpFront;
 
 class HttpServer : NonCopyable {
  public:
@@ -47,7 +46,8 @@ class HttpServer : NonCopyable {
   std::vector<std::string> engines_;
   std::vector<int> gpus_;  ///< devices with a CUDA engine (for GPU memory metrics)
   const std::atomic<bool>& healthy_;
-  std::unique_ptr<httplib::Server> server_;
+  HttpRefusalCounters refusals_;
+  std::unique_ptr<HttpFront> server_;
   std::thread thread_;
   std::atomic<bool> listen_returned_{false};
   std::string url_;

@@ -101,6 +101,9 @@ std::string prometheus_text(const MetricsInput& in) {
   family(out, "fq_streams", "gauge", "Streams fqd knows (configured or seen).");
   out += "fq_streams " + std::to_string(in.streams.size()) + "\n";
   engines_and_gpus(out, in);
+  family(out, "fq_http_refused_total", "counter", "HTTP requests and connections refused, by reason.");
+  for (const auto& [reason, n] : in.http_refusals)
+    out += "fq_http_refused_total{reason=\"" + escape_label_value(reason) + "\"} " + std::to_string(n) + "\n";
   return out;
 }
 

@@ -4,7 +4,9 @@
 // fq_frames_in_total{stream="…"}, stage latencies are fq_stage_latency_seconds{stream, stage}.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "daemon/gpu_memory.h"
@@ -16,6 +18,8 @@ struct MetricsInput {
   std::vector<StreamSnapshot> streams;
   std::vector<std::string> engines;  ///< engine names ("cpu", "cuda:<device name>")
   std::vector<GpuMemory> gpus;
+  /// HTTP requests and connections refused, by reason (fq_http_refused_total{reason}).
+  std::vector<std::pair<std::string, uint64_t>> http_refusals;
 };
 
 std::string prometheus_text(const MetricsInput& in);

@@ -3,14 +3,13 @@
 // counted per reason in a fixed set of counters, never per topic.
 #pragma once
 
-#include <array>
-#include <atomic>
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "common/status.h"
+#include "daemon/reason_counters.h"
 
 namespace fq::daemon {
 
@@ -33,14 +32,7 @@ bool stream_allowed(std::string_view id, const std::vector<std::string>& allowed
 std::string printable_id(std::string_view id, size_t max_chars = 64);
 
 /// Refusals by reason; thread-safe.
-class RefusalCounters {
- public:
-  void add(Refusal r) { counts_[static_cast<size_t>(r)].fetch_add(1, std::memory_order_relaxed); }
-  uint64_t get(Refusal r) const { return counts_[static_cast<size_t>(r)].load(std::memory_order_relaxed); }
-
- private:
-  std::array<std::atomic<uint64_t>, static_cast<size_t>(Refusal::kCount)> counts_{};
-};
+using RefusalCounters = ReasonCounters<Refusal>;
 
 /// At most `per_second` messages a second pass; the rest are counted, and the next message
 /// that passes reports how many were held back. Keeps junk traffic from flooding the log.

@@ -1,0 +1,35 @@
+// [http]: fqd's HTTP listener, the bounds it holds for every request and connection, and who
+// may use it. Read with the rest of the service sections (service_config.h).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "common/status.h"
+
+namespace fq::daemon {
+
+class TomlReader;
+
+struct HttpConfig {
+  /// "host:port" to listen on ("" = no HTTP listener; port 0 = any free port).
+  std::string listen;
+  /// Folder of the live viewer (index.html and its node_modules). A relative path in a config
+  /// file is taken from that file's folder; the built-in default from the working directory.
+  std::string web_root = "web";
+  /// Bytes of one request's head (request line and header lines): past it the request is
+  /// answered 431 and the connection closed, before more is read. fqd takes no request bodies:
+  /// a request that announces one is answered 413 without reading it.
+  uint32_t max_head_bytes = 16384;
+  /// Header lines of one request (431 past it).
+  uint32_t max_headers = 64;
+};
+
+/// Splits "host:port" ("[::1]:8080" for IPv6); false when it is not of that form or the
+/// port is outside 0..65535.
+bool split_host_port(const std::string& listen, std::string& host, int& port);
+
+/// Reads [http] from the root table (relative web_root taken from the file's folder).
+Status read_http_config(TomlReader& root, HttpConfig& out);
+
+}  // namespace fq::daemon

@@ -1,0 +1,33 @@
+// Why fqd's HTTP listener refused a request or a connection (counted on /metrics as
+// fq_http_refused_total{reason}).
+#pragma once
+
+#include "daemon/reason_counters.h"
+
+namespace fq::daemon {
+
+enum class HttpRefusal {
+  kHeadTooLarge,    ///< request line + headers over http.max_head_bytes (431)
+  kTooManyHeaders,  ///< more header lines than http.max_headers (431)
+  kBody,            ///< a request that carries a body (413): fqd takes none
+  kCount
+};
+
+/// The reason's label on /metrics.
+inline const char* http_refusal_name(HttpRefusal r) {
+  switch (r) {
+    case HttpRefusal::kHeadTooLarge:
+      return "head_too_large";
+    case HttpRefusal::kTooManyHeaders:
+      return "too_many_headers";
+    case HttpRefusal::kBody:
+      return "body";
+    case HttpRefusal::kCount:
+      break;
+  }
+  return "?";
+}
+
+using HttpRefusalCounters = ReasonCounters<HttpRefusal>;
+
+}  // namespace fq::daemon

@@ -1,0 +1,152 @@
+#include "daemon/http_stream.h"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <string>
+
+namespace fq::daemon {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+void ip_and_port(const sockaddr_storage& a, std::string& ip, int& port) {
+  char text[INET6_ADDRSTRLEN] = "";
+  if (a.ss_family == AF_INET) {
+    const auto& v4 = reinterpret_cast<const sockaddr_in&>(a);
+    inet_ntop(AF_INET, &v4.sin_addr, text, sizeof text);
+    port = ntohs(v4.sin_port);
+  } else if (a.ss_family == AF_INET6) {
+    const auto& v6 = reinterpret_cast<const sockaddr_in6&>(a);
+    inet_ntop(AF_INET6, &v6.sin6_addr, text, sizeof text);
+    port = ntohs(v6.sin6_port);
+  }
+  ip = text;
+}
+
+// The answer to a refused head, written by the stream itself (the library would say 400).
+std::string refusal_response(HttpRefusal why, const HttpStream::HeadLimits& limits) {
+  const std::string body =
+      why == HttpRefusal::kTooManyHeaders
+          ? "more than " + std::to_string(limits.max_headers) + " header lines (http.max_headers)\n"
+          : "request head over " + std::to_string(limits.max_bytes) + " bytes (http.max_head_bytes)\n";
+  return "HTTP/1.1 431 Request Header Fields Too Large\r\nConnection: close\r\nContent-Type: text/plain\r\n"
+         "Content-Length: " +
+         std::to_string(body.size()) + "\r\n\r\n" + body;
+}
+
+}  // namespace
+
+HttpStream::HttpStream(int fd, std::chrono::milliseconds io_timeout) : fd_(fd), io_timeout_(io_timeout) {
+  fcntl(fd_, F_SETFL, fcntl(fd_, F_GETFL, 0) | O_NONBLOCK);
+}
+
+bool HttpStream::wait(short events, Clock::time_point deadline) const {
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+    if (left < 0) return false;
+    pollfd p{fd_, events, 0};
+    const int n = ::poll(&p, 1, static_cast<int>(std::min<int64_t>(left, 60'000)));
+    if (n > 0) return true;  // ready, or an error/hangup the next call reports
+    if (n < 0 && errno != EINTR) return false;
+  }
+}
+
+bool HttpStream::fill() {
+  for (;;) {
+    const ssize_t n = ::recv(fd_, buf_, sizeof buf_, 0);
+    if (n > 0) {
+      pos_ = 0;
+      len_ = static_cast<size_t>(n);
+      return true;
+    }
+    if (n == 0) {
+      eof_ = true;
+      return false;
+    }
+    if (errno == EINTR) continue;
+    if (errno != EAGAIN && errno != EWOULDBLOCK) return false;
+    if (!wait(POLLIN, Clock::now() + io_timeout_)) return false;
+  }
+}
+
+bool HttpStream::is_readable() const { return pos_ < len_ || wait(POLLIN, Clock::now() + io_timeout_); }
+
+bool HttpStream::is_writable() const { return wait(POLLOUT, Clock::now() + io_timeout_); }
+
+bool HttpStream::wait_for_request(std::chrono::milliseconds idle) {
+  if (refusal_ || eof_) return false;
+  if (pos_ < len_) return true;  // a pipelined request is already here
+  return wait(POLLIN, Clock::now() + idle) && fill();
+}
+
+void HttpStream::begin_head(const HeadLimits& limits) {
+  limits_ = limits;
+  in_head_ = true;
+  head_bytes_ = 0;
+  head_lines_ = 0;
+}
+
+ssize_t HttpStream::refuse(HttpRefusal why) {
+  refusal_ = why;
+  const std::string answer = refusal_response(why, limits_);
+  send_all(answer.data(), answer.size());
+  discard_writes_ = true;
+  return -1;
+}
+
+ssize_t HttpStream::read(char* ptr, size_t size) {
+  if (refusal_) return -1;
+  if (pos_ == len_ && !fill()) return eof_ ? 0 : -1;
+  const size_t n = std::min(size, len_ - pos_);
+  if (in_head_) {
+    head_bytes_ += n;
+    head_lines_ += static_cast<uint32_t>(std::count(buf_ + pos_, buf_ + pos_ + n, '\n'));
+    if (head_bytes_ > limits_.max_bytes) return refuse(HttpRefusal::kHeadTooLarge);
+    // Lines: the request line, the headers and the blank line that ends them.
+    if (head_lines_ > limits_.max_headers + 2) return refuse(HttpRefusal::kTooManyHeaders);
+  }
+  std::copy_n(buf_ + pos_, n, ptr);
+  pos_ += n;
+  return static_cast<ssize_t>(n);
+}
+
+bool HttpStream::send_all(const char* ptr, size_t size) {
+  for (size_t done = 0; done < size;) {
+    const ssize_t n = ::send(fd_, ptr + done, size - done, MSG_NOSIGNAL);
+    if (n > 0) {
+      done += static_cast<size_t>(n);
+    } else if (n < 0 && errno == EINTR) {
+      continue;
+    } else if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+      if (!wait(POLLOUT, Clock::now() + io_timeout_)) return false;
+    } else {
+      return false;
+    }
+  }
+  return true;
+}
+
+ssize_t HttpStream::write(const char* ptr, size_t size) {
+  if (discard_writes_) return static_cast<ssize_t>(size);
+  return send_all(ptr, size) ? static_cast<ssize_t>(size) : -1;
+}
+
+void HttpStream::get_remote_ip_and_port(std::string& ip, int& port) const {
+  sockaddr_storage a{};
+  socklen_t len = sizeof a;
+  if (getpeername(fd_, reinterpret_cast<sockaddr*>(&a), &len) == 0) ip_and_port(a, ip, port);
+}
+
+void HttpStream::get_local_ip_and_port(std::string& ip, int& port) const {
+  sockaddr_storage a{};
+  socklen_t len = sizeof a;
+  if (getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &len) == 0) ip_and_port(a, ip, port);
+}
+
+}  // namespace fq::daemon
