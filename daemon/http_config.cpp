@@ -47,6 +47,11 @@ Status read_http_config(TomlReader& root, HttpConfig& http) {
   // A head needs its request line and a Host line; 1 MiB is far above any browser's.
   r.read("max_head_bytes", http.max_head_bytes, 256, 1 << 20);
   r.read("max_headers", http.max_headers, 4, 1000);
+  // Below FD_SETSIZE with room for fqd's other descriptors: the library refuses sockets past it.
+  r.read("max_connections", http.max_connections, 1, 900);
+  r.read("request_timeout_s", http.request_timeout_s, 0.1, 300.0);
+  r.read("idle_timeout_s", http.idle_timeout_s, 0.1, 3600.0);
+  r.read("max_long_polls", http.max_long_polls, 0, 900);
   return r.finish();
 }
 

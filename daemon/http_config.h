@@ -23,6 +23,16 @@ struct HttpConfig {
   uint32_t max_head_bytes = 16384;
   /// Header lines of one request (431 past it).
   uint32_t max_headers = 64;
+  /// Connections open at once, each served on a thread of its own; more are answered 503.
+  uint32_t max_connections = 256;
+  /// A request's head must arrive within this from its first byte (else 408 and close), and a
+  /// read or write that makes no progress for this long ends the connection.
+  double request_timeout_s = 5.0;
+  /// A kept-alive connection without a next request for this long is closed.
+  double idle_timeout_s = 5.0;
+  /// Long polls (/streams/ID/latest with wait_ms) waiting at once; more are answered 503 at
+  /// once, so that viewers cannot hold every connection.
+  uint32_t max_long_polls = 32;
 };
 
 /// Splits "host:port" ("[::1]:8080" for IPv6); false when it is not of that form or the

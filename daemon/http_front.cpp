@@ -1,16 +1,12 @@
 #include "daemon/http_front.h"
 
 #include <sys/socket.h>
-#include <unistd.h>
 
 namespace fq::daemon {
 namespace {
 
 // Requests served on one connection before it is closed (the viewer polls on one connection).
 constexpr int kRequestsPerConnection = 100;
-// How long a request may take to send anything (and a response to make progress).
-constexpr std::chrono::seconds kIoTimeout{5};
-constexpr std::chrono::seconds kIdleTimeout{5};
 
 // The stream of the connection this thread serves, for the pre-routing check (the library
 // hands handlers the request, not the stream).
@@ -22,22 +18,26 @@ bool has_body(const httplib::Request& req) {
   return !length.empty() && length.find_first_not_of('0') != std::string::npos;
 }
 
-// A peer still sending (a refused body) would get a reset instead of the answer if the socket
-// were closed with unread bytes: stop writing, then read briefly what is left.
-void close_gently(int fd) {
-  ::shutdown(fd, SHUT_WR);
-  char sink[4096];
-  timeval tv{0, 100'000};
-  setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-  for (int i = 0; i < 16 && ::recv(fd, sink, sizeof sink, 0) > 0; ++i) {
-  }
-  ::close(fd);
-}
+std::chrono::milliseconds ms(double seconds) { return std::chrono::milliseconds(static_cast<int64_t>(seconds * 1e3)); }
+
+// Runs each task where it is queued. The library queues one task per accepted socket, and
+// fqd's task (process_and_close_socket) only hands the socket to its connection thread, so
+// the accept thread never waits on a peer and no queue of sockets can grow.
+class InlineQueue : public httplib::TaskQueue {
+ public:
+  void enqueue(std::function<void()> fn) override { fn(); }
+  void shutdown() override {}
+};
 
 }  // namespace
 
 HttpFront::HttpFront(const HttpConfig& config, HttpRefusalCounters& refusals)
-    : head_limits_{config.max_head_bytes, config.max_headers}, refusals_(refusals) {
+    : head_limits_{config.max_head_bytes, config.max_headers, ms(config.request_timeout_s)},
+      io_timeout_(ms(config.request_timeout_s)),
+      idle_timeout_(ms(config.idle_timeout_s)),
+      refusals_(refusals),
+      connections_(config.max_connections, refusals, [this](int fd) { serve(fd); }) {
+  new_task_queue = [] { return new InlineQueue; };
   // SO_REUSEADDR only (a restart may bind while old connections linger): without the
   // library's SO_REUSEPORT a second process cannot bind the same port.
   set_socket_options([](int s) {
@@ -46,6 +46,22 @@ HttpFront::HttpFront(const HttpConfig& config, HttpRefusalCounters& refusals)
   });
   set_payload_max_length(0);  // no route reads a body (pre_routing refuses them first)
   set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) { return pre_routing(req, res); });
+}
+
+HttpFront::~HttpFront() { close_connections(); }
+
+int HttpFront::bind_listener(const std::string& host, int port) {
+  if (port == 0) {
+    port = bind_to_any_port(host);
+    if (port <= 0) return -1;
+  } else if (!bind_to_port(host, port)) {
+    return -1;
+  }
+  // The library listens with a backlog of 5 (compiled into Debian's build): 200 clients
+  // connecting at once waited 1 s and more for SYN retransmits. Linux takes a new backlog
+  // from listen() on a socket that listens already.
+  ::listen(svr_sock_, SOMAXCONN);
+  return port;
 }
 
 HttpFront::HandlerResponse HttpFront::pre_routing(const httplib::Request& req, httplib::Response& res) {
@@ -60,15 +76,14 @@ HttpFront::HandlerResponse HttpFront::pre_routing(const httplib::Request& req, h
 }
 
 bool HttpFront::process_and_close_socket(int sock) {
-  serve(sock);
-  close_gently(sock);
+  connections_.open(sock);
   return true;
 }
 
 void HttpFront::serve(int fd) {
-  HttpStream stream(fd, kIoTimeout);
+  HttpStream stream(fd, io_timeout_);
   current_stream = &stream;
-  for (int n = 1; n <= kRequestsPerConnection && stream.wait_for_request(kIdleTimeout); ++n) {
+  for (int n = 1; n <= kRequestsPerConnection && stream.wait_for_request(idle_timeout_); ++n) {
     stream.begin_head(head_limits_);
     bool closed = false;
     const bool ok = process_request(stream, n == kRequestsPerConnection, closed,

@@ -10,6 +10,9 @@ enum class HttpRefusal {
   kHeadTooLarge,    ///< request line + headers over http.max_head_bytes (431)
   kTooManyHeaders,  ///< more header lines than http.max_headers (431)
   kBody,            ///< a request that carries a body (413): fqd takes none
+  kHeadTimeout,     ///< a head not complete within http.request_timeout_s (408)
+  kTooManyConnections,  ///< http.max_connections open already (503)
+  kTooManyLongPolls,    ///< http.max_long_polls waiting already (503)
   kCount
 };
 
@@ -22,6 +25,12 @@ inline const char* http_refusal_name(HttpRefusal r) {
       return "too_many_headers";
     case HttpRefusal::kBody:
       return "body";
+    case HttpRefusal::kHeadTimeout:
+      return "head_timeout";
+    case HttpRefusal::kTooManyConnections:
+      return "too_many_connections";
+    case HttpRefusal::kTooManyLongPolls:
+      return "too_many_long_polls";
     case HttpRefusal::kCount:
       break;
   }

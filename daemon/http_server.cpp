@@ -33,6 +33,22 @@ std::string chunk_sizes(const LatestResult& r) {
 // Browsers read the arrays in their own byte order, little-endian on every platform they run on.
 static_assert(std::endian::native == std::endian::little, "the viewer's arrays are sent as little-endian words");
 
+// One waiting long poll, counted while it lives; not admitted past `max`.
+class LongPollTicket {
+ public:
+  LongPollTicket(std::atomic<uint32_t>& count, uint32_t max) : count_(count) {
+    admitted_ = count_.fetch_add(1) < max;
+  }
+  ~LongPollTicket() { count_.fetch_sub(1); }
+  LongPollTicket(const LongPollTicket&) = delete;
+  LongPollTicket& operator=(const LongPollTicket&) = delete;
+  bool admitted() const { return admitted_; }
+
+ private:
+  std::atomic<uint32_t>& count_;
+  bool admitted_ = false;
+};
+
 void append_words(std::string& body, const uint32_t* words, size_t count) {
   body.append(reinterpret_cast<const char*>(words), count * sizeof(uint32_t));
 }
@@ -133,6 +149,16 @@ void HttpServer::add_api_routes() {
       res.set_content("after, faces and wait_ms must be whole numbers\n", "text/plain");
       return;
     }
+    // A waiting poll holds its connection's thread: past http.max_long_polls it is refused
+    // at once (the viewer asks again a second later) instead of taking more.
+    LongPollTicket ticket(long_polls_, wait_ms > 0 ? config_.http.max_long_polls : UINT32_MAX);
+    if (!ticket.admitted()) {
+      refusals_.add(HttpRefusal::kTooManyLongPolls);
+      res.status = 503;
+      res.set_header("Retry-After", "1");
+      res.set_content("too many long polls waiting (http.max_long_polls)\n", "text/plain");
+      return;
+    }
     auto r = latest_.wait_newer(stream, after, std::chrono::milliseconds(wait_ms));
     if (!r) {
       res.status = 204;  // nothing newer yet: the viewer asks again
@@ -172,8 +198,8 @@ Status HttpServer::start() {
     return invalid_argument("http.listen \"" + config_.http.listen + "\" is not host:port");
   add_api_routes();
   add_viewer_routes();
-  const bool bound = port == 0 ? (port = server_->bind_to_any_port(host)) > 0 : server_->bind_to_port(host, port);
-  if (!bound) return invalid_argument("cannot listen on http " + config_.http.listen);
+  port = server_->bind_listener(host, port);
+  if (port < 0) return invalid_argument("cannot listen on http " + config_.http.listen);
   url_ = "http://" + (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" + std::to_string(port);
   thread_ = std::thread([this] {
     server_->listen_after_bind();
@@ -187,9 +213,10 @@ Status HttpServer::start() {
 
 void HttpServer::stop() {
   if (!thread_.joinable()) return;
-  latest_.close();  // long polls return, so the thread pool can drain
-  server_->stop();
+  latest_.close();  // long polls return at once
+  server_->stop();  // no more connections
   thread_.join();
+  server_->close_connections();  // the open ones end now, whatever their peers do
 }
 
 }  // namespace fq::daemon

@@ -50,6 +50,7 @@ class HttpServer : NonCopyable {
   std::unique_ptr<HttpFront> server_;
   std::thread thread_;
   std::atomic<bool> listen_returned_{false};
+  std::atomic<uint32_t> long_polls_{0};  ///< /latest requests waiting now
   std::string url_;
 };
 

@@ -31,12 +31,16 @@ void ip_and_port(const sockaddr_storage& a, std::string& ip, int& port) {
 
 // The answer to a refused head, written by the stream itself (the library would say 400).
 std::string refusal_response(HttpRefusal why, const HttpStream::HeadLimits& limits) {
-  const std::string body =
-      why == HttpRefusal::kTooManyHeaders
-          ? "more than " + std::to_string(limits.max_headers) + " header lines (http.max_headers)\n"
-          : "request head over " + std::to_string(limits.max_bytes) + " bytes (http.max_head_bytes)\n";
-  return "HTTP/1.1 431 Request Header Fields Too Large\r\nConnection: close\r\nContent-Type: text/plain\r\n"
-         "Content-Length: " +
+  std::string status = "431 Request Header Fields Too Large", body;
+  if (why == HttpRefusal::kTooManyHeaders) {
+    body = "more than " + std::to_string(limits.max_headers) + " header lines (http.max_headers)\n";
+  } else if (why == HttpRefusal::kHeadTimeout) {
+    status = "408 Request Timeout";
+    body = "request head not complete within http.request_timeout_s\n";
+  } else {
+    body = "request head over " + std::to_string(limits.max_bytes) + " bytes (http.max_head_bytes)\n";
+  }
+  return "HTTP/1.1 " + status + "\r\nConnection: close\r\nContent-Type: text/plain\r\nContent-Length: " +
          std::to_string(body.size()) + "\r\n\r\n" + body;
 }
 
@@ -71,7 +75,10 @@ bool HttpStream::fill() {
     }
     if (errno == EINTR) continue;
     if (errno != EAGAIN && errno != EWOULDBLOCK) return false;
-    if (!wait(POLLIN, Clock::now() + io_timeout_)) return false;
+    if (!wait(POLLIN, in_head_ ? head_deadline_ : Clock::now() + io_timeout_)) {
+      if (in_head_) refuse(HttpRefusal::kHeadTimeout);
+      return false;
+    }
   }
 }
 
@@ -87,6 +94,7 @@ bool HttpStream::wait_for_request(std::chrono::milliseconds idle) {
 
 void HttpStream::begin_head(const HeadLimits& limits) {
   limits_ = limits;
+  head_deadline_ = Clock::now() + limits.timeout;
   in_head_ = true;
   head_bytes_ = 0;
   head_lines_ = 0;

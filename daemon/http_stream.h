@@ -7,7 +7,8 @@
 // parser: the library's line reader takes one byte per read(), so what read() hands out between
 // begin_head() and end_head() is exactly the request line and the header lines. Past a limit
 // read() fails before another byte is taken from the socket; the stream then answers 431 itself
-// and swallows the answer the library writes for the failed read (a 400).
+// and swallows the answer the library writes for the failed read (a 400). A head that takes
+// longer than its timeout (slowloris: a byte every few seconds) is answered 408 the same way.
 #pragma once
 
 #include <httplib.h>
@@ -25,6 +26,7 @@ class HttpStream final : public httplib::Stream {
   struct HeadLimits {
     uint32_t max_bytes = 16384;  ///< request line + header lines + the blank line
     uint32_t max_headers = 64;   ///< header lines
+    std::chrono::milliseconds timeout{5000};  ///< the whole head, from its first byte
   };
 
   /// `fd`: a connected socket, made non-blocking here (the caller keeps and closes it).
@@ -53,6 +55,7 @@ class HttpStream final : public httplib::Stream {
   bool closing() const { return close_ || refusal_.has_value(); }
 
  private:
+  /// Reads more bytes into the buffer; false at the end, on an error or past the deadline.
   bool fill();
   /// Waits until the socket is ready for `events` (POLLIN/POLLOUT) or `deadline` passes.
   bool wait(short events, std::chrono::steady_clock::time_point deadline) const;
@@ -66,6 +69,7 @@ class HttpStream final : public httplib::Stream {
   bool eof_ = false;
   bool in_head_ = false;
   HeadLimits limits_;
+  std::chrono::steady_clock::time_point head_deadline_;
   uint64_t head_bytes_ = 0;
   uint32_t head_lines_ = 0;
   std::optional<HttpRefusal> refusal_;
