@@ -28,7 +28,10 @@ bool is_local_endpoint(const std::string& e) {
   if (e.rfind("ipc://", 0) == 0 || e.rfind("inproc://", 0) == 0) return true;
   const std::string tcp = "tcp://";
   if (e.rfind(tcp, 0) != 0) return false;
-  const std::string host = e.substr(tcp.size(), e.rfind(':') - tcp.size());
+  return is_loopback_host(e.substr(tcp.size(), e.rfind(':') - tcp.size()));
+}
+
+bool is_loopback_host(const std::string& host) {
   return host == "localhost" || host == "[::1]" || host == "::1" || host.rfind("127.", 0) == 0 || host == "lo";
 }
 

@@ -34,6 +34,8 @@ void make_curve_server(zmq::socket_t& s, const CurveKeyPair& server);
 
 /// True when `endpoint` can only be reached from this host (loopback, ipc, inproc).
 bool is_local_endpoint(const std::string& endpoint);
+/// True for a host name or address of this host only (localhost, 127.x, ::1).
+bool is_loopback_host(const std::string& host);
 
 /// Answers ZAP requests on one context: 200 for an allow-listed client key, 400 (counted as
 /// a refusal) for anything else.

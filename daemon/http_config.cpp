@@ -52,6 +52,13 @@ Status read_http_config(TomlReader& root, HttpConfig& http) {
   r.read("request_timeout_s", http.request_timeout_s, 0.1, 300.0);
   r.read("idle_timeout_s", http.idle_timeout_s, 0.1, 3600.0);
   r.read("max_long_polls", http.max_long_polls, 0, 900);
+  r.read("token_file", http.token_file);
+  r.read("tls_cert_file", http.tls_cert_file);
+  r.read("tls_key_file", http.tls_key_file);
+  if (http.tls_cert_file.empty() != http.tls_key_file.empty())
+    r.fail(http.tls_cert_file.empty() ? "tls_key_file" : "tls_cert_file",
+           "needs http.tls_cert_file and http.tls_key_file together");
+  r.read("allowed_hosts", http.allowed_hosts);
   return r.finish();
 }
 

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "common/status.h"
 
@@ -33,6 +34,14 @@ struct HttpConfig {
   /// Long polls (/streams/ID/latest with wait_ms) waiting at once; more are answered 503 at
   /// once, so that viewers cannot hold every connection.
   uint32_t max_long_polls = 32;
+  /// A file whose first line is the bearer token every request but /healthz must carry
+  /// (http_access.h); "" = none.
+  std::string token_file;
+  /// PEM certificate chain and private key: both set, the listener speaks only HTTPS.
+  std::string tls_cert_file, tls_key_file;
+  /// Host header values (port ignored; "*.example.com" for a domain, "*" for any) accepted;
+  /// empty: localhost, IP literals and the listen host (against DNS rebinding).
+  std::vector<std::string> allowed_hosts;
 };
 
 /// Splits "host:port" ("[::1]:8080" for IPv6); false when it is not of that form or the

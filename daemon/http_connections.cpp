@@ -56,7 +56,7 @@ void HttpConnections::refuse(int fd) {
   refusals_.add(HttpRefusal::kTooManyConnections);
   // Best effort and without waiting: the accept thread must not block on a peer.
   const std::string& busy = busy_response();
-  (void)::send(fd, busy.data(), busy.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+  if (answer_refusals_) (void)::send(fd, busy.data(), busy.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
   ::close(fd);
 }
 

@@ -35,6 +35,8 @@ class HttpConnections : NonCopyable {
   void close_all();
   /// Connections open now.
   size_t open_count() const;
+  /// Whether a refused connection gets a plain-text 503 (not on a TLS listener); before use.
+  void set_answer_refusals(bool answer) { answer_refusals_ = answer; }
 
  private:
   void run(int fd);
@@ -48,6 +50,7 @@ class HttpConnections : NonCopyable {
   std::set<int> open_;  ///< sockets being served (shut down by close_all)
   size_t threads_ = 0;  ///< threads still running (they outlive their socket briefly)
   bool closing_ = false;
+  bool answer_refusals_ = true;
 };
 
 }  // namespace fq::daemon

@@ -50,6 +50,11 @@ HttpFront::HttpFront(const HttpConfig& config, HttpRefusalCounters& refusals)
 
 HttpFront::~HttpFront() { close_connections(); }
 
+void HttpFront::set_tls(SSL_CTX* tls) {
+  tls_ = tls;
+  connections_.set_answer_refusals(tls == nullptr);
+}
+
 int HttpFront::bind_listener(const std::string& host, int port) {
   if (port == 0) {
     port = bind_to_any_port(host);
@@ -81,7 +86,11 @@ bool HttpFront::process_and_close_socket(int sock) {
 }
 
 void HttpFront::serve(int fd) {
-  HttpStream stream(fd, io_timeout_);
+  HttpStream stream(fd, tls_, io_timeout_);
+  if (tls_ && !stream.handshake(io_timeout_)) {
+    refusals_.add(HttpRefusal::kTls);
+    return;
+  }
   current_stream = &stream;
   for (int n = 1; n <= kRequestsPerConnection && stream.wait_for_request(idle_timeout_); ++n) {
     stream.begin_head(head_limits_);

@@ -30,6 +30,8 @@ class HttpFront : public httplib::Server {
   /// Runs before routing for every request that passed fqd's own checks (a body, ...);
   /// Handled ends the request with the response it set.
   void set_request_check(HandlerWithResponse check) { check_ = std::move(check); }
+  /// Serves TLS with `tls` (owned by the caller, alive while this serves); before binding.
+  void set_tls(SSL_CTX* tls);
   /// Binds host:port (0: any free port) and listens; the bound port, or -1.
   int bind_listener(const std::string& host, int port);
   /// Ends every open connection and waits for their threads (after stop(): none come after).
@@ -43,6 +45,7 @@ class HttpFront : public httplib::Server {
   void serve(int fd);
   HandlerResponse pre_routing(const httplib::Request& req, httplib::Response& res);
 
+  SSL_CTX* tls_ = nullptr;
   HttpStream::HeadLimits head_limits_;
   std::chrono::milliseconds io_timeout_, idle_timeout_;
   HttpRefusalCounters& refusals_;

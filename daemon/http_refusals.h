@@ -13,6 +13,9 @@ enum class HttpRefusal {
   kHeadTimeout,     ///< a head not complete within http.request_timeout_s (408)
   kTooManyConnections,  ///< http.max_connections open already (503)
   kTooManyLongPolls,    ///< http.max_long_polls waiting already (503)
+  kBadHost,             ///< a Host header outside http.allowed_hosts (421)
+  kUnauthenticated,     ///< no or a wrong token (401), or none possible with CURVE on (403)
+  kTls,                 ///< a TLS handshake that failed or did not finish in time
   kCount
 };
 
@@ -31,6 +34,12 @@ inline const char* http_refusal_name(HttpRefusal r) {
       return "too_many_connections";
     case HttpRefusal::kTooManyLongPolls:
       return "too_many_long_polls";
+    case HttpRefusal::kBadHost:
+      return "bad_host";
+    case HttpRefusal::kUnauthenticated:
+      return "unauthenticated";
+    case HttpRefusal::kTls:
+      return "tls";
     case HttpRefusal::kCount:
       break;
   }

@@ -4,10 +4,13 @@
 #include <spdlog/spdlog.h>
 
 #include <bit>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 
 #include "daemon/control_server.h"
 #include "daemon/counters_json.h"
+#include "daemon/curve_auth.h"
 #include "daemon/http_front.h"
 #include "daemon/prometheus_text.h"
 
@@ -93,6 +96,7 @@ HttpServer::HttpServer(const DaemonConfig& config, StreamRegistry& registry, Lat
       latest_(latest),
       engines_(std::move(engines)),
       healthy_(healthy),
+      access_(HttpAccessRules{}),
       server_(std::make_unique<HttpFront>(config.http, refusals_)) {
   for (const std::string& e : engines_)
     if (e.rfind("cuda", 0) == 0) gpus_ = config.engine.gpus;
@@ -191,16 +195,49 @@ void HttpServer::add_viewer_routes() {
   });
 }
 
+Status HttpServer::reload_access(const HttpConfig& http, bool curve_on) {
+  HttpAccessRules rules;
+  FQ_RETURN_IF_ERROR(load_http_access(http, curve_on, rules));
+  access_.set(std::move(rules));
+  return {};
+}
+
+void HttpServer::warn_if_exposed(const std::string& host) const {
+  const HttpConfig& h = config_.http;
+  if (config_.security.enabled() && h.token_file.empty())
+    spdlog::warn("http: [security] is on but http.token_file is not set: /streams, the results and the viewer "
+                 "answer 403 (only /metrics and /healthz are served)");
+  if (is_loopback_host(host)) return;
+  if (h.tls_cert_file.empty())
+    spdlog::warn("http: {} is reachable from other hosts without TLS: requests, tokens and results travel in "
+                 "clear (set http.tls_cert_file and http.tls_key_file)",
+                 h.listen);
+  if (h.token_file.empty() && !config_.security.enabled())
+    spdlog::warn("http: {} is reachable from other hosts without a token: anyone who can connect reads the "
+                 "metrics, the streams and their geometry (set http.token_file)",
+                 h.listen);
+}
+
 Status HttpServer::start() {
   std::string host;
   int port = 0;
   if (!split_host_port(config_.http.listen, host, port))
     return invalid_argument("http.listen \"" + config_.http.listen + "\" is not host:port");
+  FQ_RETURN_IF_ERROR(reload_access(config_.http, config_.security.enabled()));
+  if (!config_.http.tls_cert_file.empty()) {
+    FQ_RETURN_IF_ERROR(make_tls_context(config_.http.tls_cert_file, config_.http.tls_key_file, tls_));
+    server_->set_tls(tls_.get());
+  }
+  server_->set_request_check(
+      [this](const httplib::Request& req, httplib::Response& res) { return access_.check(req, res, refusals_); });
+  warn_if_exposed(host);
   add_api_routes();
   add_viewer_routes();
   port = server_->bind_listener(host, port);
-  if (port < 0) return invalid_argument("cannot listen on http " + config_.http.listen);
-  url_ = "http://" + (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" + std::to_string(port);
+  if (port < 0)
+    return invalid_argument("cannot listen on http " + config_.http.listen + ": " + std::strerror(errno) +
+                            " (another process on that port?)");
+  url_ = std::string(tls_ ? "https" : "http") + "://" + (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" + std::to_string(port);
   thread_ = std::thread([this] {
     server_->listen_after_bind();
     listen_returned_ = true;

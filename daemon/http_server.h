@@ -13,7 +13,9 @@
 #include "common/non_copyable.h"
 #include "common/status.h"
 #include "daemon/config.h"
+#include "daemon/http_access.h"
 #include "daemon/http_refusals.h"
+#include "daemon/tls_context.h"
 #include "daemon/latest_results.h"
 #include "daemon/stream_registry.h"
 
@@ -28,16 +30,21 @@ class HttpServer : NonCopyable {
              std::vector<std::string> engines, const std::atomic<bool>& healthy);
   ~HttpServer();
 
-  /// Binds http.listen (port 0: any free port) and serves on a thread of its own.
+  /// Loads the token and TLS files, binds http.listen (port 0: any free port) and serves on a
+  /// thread of its own. A second process on the same port fails here (no port sharing).
   Status start();
+  /// Applies a reloaded [http]'s token and allowed hosts (SIGHUP); an error changes nothing.
+  Status reload_access(const HttpConfig& http, bool curve_on);
   /// Stops serving and joins; idempotent.
   void stop();
-  /// The bound address, "http://host:port".
+  /// The bound address, "http://host:port" (https with TLS).
   const std::string& url() const { return url_; }
 
  private:
   void add_api_routes();
   void add_viewer_routes();
+  /// Warnings for a listener other hosts can reach without TLS or a token.
+  void warn_if_exposed(const std::string& host) const;
   std::string metrics() const;
 
   const DaemonConfig& config_;
@@ -47,6 +54,8 @@ class HttpServer : NonCopyable {
   std::vector<int> gpus_;  ///< devices with a CUDA engine (for GPU memory metrics)
   const std::atomic<bool>& healthy_;
   HttpRefusalCounters refusals_;
+  HttpAccess access_;
+  TlsContext tls_;
   std::unique_ptr<HttpFront> server_;
   std::thread thread_;
   std::atomic<bool> listen_returned_{false};

@@ -2,12 +2,14 @@
 
 #include <arpa/inet.h>
 #include <fcntl.h>
+#include <openssl/err.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <string>
 
 namespace fq::daemon {
@@ -46,8 +48,69 @@ std::string refusal_response(HttpRefusal why, const HttpStream::HeadLimits& limi
 
 }  // namespace
 
-HttpStream::HttpStream(int fd, std::chrono::milliseconds io_timeout) : fd_(fd), io_timeout_(io_timeout) {
+HttpStream::HttpStream(int fd, SSL_CTX* tls, std::chrono::milliseconds io_timeout)
+    : fd_(fd), io_timeout_(io_timeout) {
   fcntl(fd_, F_SETFL, fcntl(fd_, F_GETFL, 0) | O_NONBLOCK);
+  if (tls && (ssl_ = SSL_new(tls))) SSL_set_fd(ssl_, fd_);
+}
+
+HttpStream::~HttpStream() {
+  if (!ssl_) return;
+  if (SSL_is_init_finished(ssl_)) SSL_shutdown(ssl_);  // close_notify, without waiting for the peer's
+  SSL_free(ssl_);
+}
+
+bool HttpStream::handshake(std::chrono::milliseconds timeout) {
+  if (!ssl_) return false;
+  const auto deadline = Clock::now() + timeout;
+  for (;;) {
+    ERR_clear_error();
+    const int r = SSL_accept(ssl_);
+    if (r == 1) return true;
+    const int e = SSL_get_error(ssl_, r);
+    if (e != SSL_ERROR_WANT_READ && e != SSL_ERROR_WANT_WRITE) return false;
+    if (!wait(e == SSL_ERROR_WANT_READ ? POLLIN : POLLOUT, deadline)) return false;
+  }
+}
+
+ssize_t HttpStream::try_receive(char* ptr, size_t size, short& want) {
+  want = POLLIN;
+  if (!ssl_) {
+    const ssize_t n = ::recv(fd_, ptr, size, 0);
+    if (n >= 0) return n;
+    return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR ? -1 : -2;
+  }
+  ERR_clear_error();
+  const int n = SSL_read(ssl_, ptr, static_cast<int>(std::min<size_t>(size, INT_MAX)));
+  if (n > 0) return n;
+  switch (SSL_get_error(ssl_, n)) {
+    case SSL_ERROR_WANT_READ:
+      return -1;
+    case SSL_ERROR_WANT_WRITE:
+      want = POLLOUT;
+      return -1;
+    case SSL_ERROR_ZERO_RETURN:
+      return 0;
+    case SSL_ERROR_SYSCALL:  // a peer that closed without close_notify: the end too
+      return ERR_peek_error() == 0 ? 0 : -2;
+    default:
+      return -2;
+  }
+}
+
+ssize_t HttpStream::try_send(const char* ptr, size_t size, short& want) {
+  want = POLLOUT;
+  if (!ssl_) {
+    const ssize_t n = ::send(fd_, ptr, size, MSG_NOSIGNAL);
+    if (n >= 0) return n;
+    return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR ? -1 : -2;
+  }
+  ERR_clear_error();
+  const int n = SSL_write(ssl_, ptr, static_cast<int>(std::min<size_t>(size, INT_MAX)));
+  if (n > 0) return n;
+  const int e = SSL_get_error(ssl_, n);
+  if (e == SSL_ERROR_WANT_READ) want = POLLIN;
+  return e == SSL_ERROR_WANT_READ || e == SSL_ERROR_WANT_WRITE ? -1 : -2;
 }
 
 bool HttpStream::wait(short events, Clock::time_point deadline) const {
@@ -63,7 +126,8 @@ bool HttpStream::wait(short events, Clock::time_point deadline) const {
 
 bool HttpStream::fill() {
   for (;;) {
-    const ssize_t n = ::recv(fd_, buf_, sizeof buf_, 0);
+    short want = POLLIN;
+    const ssize_t n = try_receive(buf_, sizeof buf_, want);
     if (n > 0) {
       pos_ = 0;
       len_ = static_cast<size_t>(n);
@@ -73,9 +137,8 @@ bool HttpStream::fill() {
       eof_ = true;
       return false;
     }
-    if (errno == EINTR) continue;
-    if (errno != EAGAIN && errno != EWOULDBLOCK) return false;
-    if (!wait(POLLIN, in_head_ ? head_deadline_ : Clock::now() + io_timeout_)) {
+    if (n == -2) return false;
+    if (!wait(want, in_head_ ? head_deadline_ : Clock::now() + io_timeout_)) {
       if (in_head_) refuse(HttpRefusal::kHeadTimeout);
       return false;
     }
@@ -88,7 +151,7 @@ bool HttpStream::is_writable() const { return wait(POLLOUT, Clock::now() + io_ti
 
 bool HttpStream::wait_for_request(std::chrono::milliseconds idle) {
   if (refusal_ || eof_) return false;
-  if (pos_ < len_) return true;  // a pipelined request is already here
+  if (pos_ < len_ || (ssl_ && SSL_pending(ssl_) > 0)) return true;  // a pipelined request is here
   return wait(POLLIN, Clock::now() + idle) && fill();
 }
 
@@ -126,16 +189,12 @@ ssize_t HttpStream::read(char* ptr, size_t size) {
 
 bool HttpStream::send_all(const char* ptr, size_t size) {
   for (size_t done = 0; done < size;) {
-    const ssize_t n = ::send(fd_, ptr + done, size - done, MSG_NOSIGNAL);
-    if (n > 0) {
+    short want = POLLOUT;
+    const ssize_t n = try_send(ptr + done, size - done, want);
+    if (n > 0)
       done += static_cast<size_t>(n);
-    } else if (n < 0 && errno == EINTR) {
-      continue;
-    } else if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
-      if (!wait(POLLOUT, Clock::now() + io_timeout_)) return false;
-    } else {
+    else if (n != -1 || !wait(want, Clock::now() + io_timeout_))
       return false;
-    }
   }
   return true;
 }

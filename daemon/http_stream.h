@@ -9,9 +9,11 @@
 // read() fails before another byte is taken from the socket; the stream then answers 431 itself
 // and swallows the answer the library writes for the failed read (a 400). A head that takes
 // longer than its timeout (slowloris: a byte every few seconds) is answered 408 the same way.
+// With a TLS context the bytes go through OpenSSL on the same non-blocking socket.
 #pragma once
 
 #include <httplib.h>
+#include <openssl/ssl.h>
 
 #include <chrono>
 #include <cstdint>
@@ -29,9 +31,16 @@ class HttpStream final : public httplib::Stream {
     std::chrono::milliseconds timeout{5000};  ///< the whole head, from its first byte
   };
 
-  /// `fd`: a connected socket, made non-blocking here (the caller keeps and closes it).
+  /// `fd`: a connected socket, made non-blocking here (the caller keeps and closes it);
+  /// `tls`: null for plain HTTP, else the context to serve TLS with (handshake() first).
   /// A read or write that makes no progress for `io_timeout` fails.
-  HttpStream(int fd, std::chrono::milliseconds io_timeout);
+  HttpStream(int fd, SSL_CTX* tls, std::chrono::milliseconds io_timeout);
+  ~HttpStream() override;
+  HttpStream(const HttpStream&) = delete;
+  HttpStream& operator=(const HttpStream&) = delete;
+
+  /// The TLS handshake, within `timeout`; false when it failed (nothing is sent then).
+  bool handshake(std::chrono::milliseconds timeout);
 
   bool is_readable() const override;
   bool is_writable() const override;
@@ -57,12 +66,17 @@ class HttpStream final : public httplib::Stream {
  private:
   /// Reads more bytes into the buffer; false at the end, on an error or past the deadline.
   bool fill();
+  /// One receive or send attempt: bytes moved (> 0), 0 at the end of the stream, -1 when it
+  /// would block (`want`: the poll event to wait for), -2 on an error.
+  ssize_t try_receive(char* ptr, size_t size, short& want);
+  ssize_t try_send(const char* ptr, size_t size, short& want);
   /// Waits until the socket is ready for `events` (POLLIN/POLLOUT) or `deadline` passes.
   bool wait(short events, std::chrono::steady_clock::time_point deadline) const;
   ssize_t refuse(HttpRefusal why);
   bool send_all(const char* ptr, size_t size);
 
   int fd_;
+  SSL* ssl_ = nullptr;
   std::chrono::milliseconds io_timeout_;
   char buf_[4096];
   size_t pos_ = 0, len_ = 0;

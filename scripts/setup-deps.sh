@@ -21,6 +21,7 @@ packages=(
   clang-tidy
   python3-zmq python3-protobuf   # clients/examples/consume.py and its test
   libcpp-httplib-dev
+  libssl-dev openssl curl   # fqd's HTTPS and token check; the tests' certificate and TLS client
   python3-prometheus-client
 )
 if [[ "${1:-}" == "--peers" ]]; then
