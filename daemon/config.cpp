@@ -166,6 +166,8 @@ Status read_sections(TomlReader& root, DaemonConfig& c) {
     r.read("engine_time_limit_s", c.caps.engine_time_limit_s, 0.0, 1e9);
     r.read("stop_grace_s", c.caps.stop_grace_s, 0.0, 3600.0);
     r.read("max_subscriber_results", c.caps.max_subscriber_results, 2, 1000);
+    r.read("max_subscriptions", c.caps.max_subscriptions, 1, 100000);
+    r.read("max_subscription_bytes", c.caps.max_subscription_bytes, 1, 1 << 24);
     FQ_RETURN_IF_ERROR(r.finish());
   }
   return {};

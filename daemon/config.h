@@ -55,6 +55,10 @@ struct Caps {
   /// later ones are dropped for it and counted. Bounds what such a subscriber costs:
   /// (this + 1) x the largest result + 2 MiB of kernel buffer (docs/DAEMON.md).
   uint32_t max_subscriber_results = 16;
+  /// Subscriptions of one subscriber, and bytes of their topics: a subscriber past either is
+  /// cut (counted `subscriptions`), which frees what the publish socket kept for it.
+  uint32_t max_subscriptions = 128;
+  uint32_t max_subscription_bytes = 16384;
 };
 
 struct DaemonConfig {

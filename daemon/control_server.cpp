@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "daemon/bounded_receive.h"
+#include "daemon/log_limiter.h"
 #include "proto/header_codec.h"
 
 namespace fq::daemon {
@@ -106,16 +108,24 @@ std::string handle_control_bytes(std::string_view bytes, StreamRegistry& registr
 }
 
 void run_control(zmq::socket_t socket, StreamRegistry& registry) {
+  LogLimiter refused_log, error_log;
+  std::vector<zmq::message_t> request;
   for (;;) {
-    zmq::message_t request;
     try {
-      if (!socket.recv(request)) continue;
-      const std::string reply =
-          handle_control_bytes(std::string_view(request.data<char>(), request.size()), registry);
+      const Received got = receive_bounded(socket, request, {1, kMaxControlBytes});
+      if (got == Received::kNothing) continue;
+      std::string reply;
+      if (got == Received::kMessage) {
+        reply = handle_control_bytes(std::string_view(request[0].data<char>(), request[0].size()), registry);
+      } else {
+        registry.refusals().add(Refusal::kOversized);
+        refused_log.log(spdlog::level::warn, "control: refused a request of more than one part");
+        reply = error_reply("a control request is one message part (ControlRequest)").SerializeAsString();
+      }
       socket.send(zmq::buffer(reply), zmq::send_flags::none);
     } catch (const zmq::error_t& e) {
       if (e.num() == ETERM) break;
-      spdlog::error("control: {}", e.what());
+      error_log.log(spdlog::level::err, "control: {}", e.what());
     }
   }
   socket.close();

@@ -11,6 +11,11 @@
 
 namespace fq::daemon {
 
+/// The largest control request (ZMQ_MAXMSGSIZE of the control socket: a larger part drops the
+/// connection before it is buffered). A request is a few hundred bytes: a stream id (at most
+/// caps.max_stream_id_bytes) and parameters.
+inline constexpr size_t kMaxControlBytes = 64 << 10;
+
 /// Answers one request. A SetParams change is validated with fq::validate and takes
 /// effect on the stream's next frame to be decoded.
 wire::ControlReply handle_control(const wire::ControlRequest& request, StreamRegistry& registry);
@@ -18,7 +23,8 @@ wire::ControlReply handle_control(const wire::ControlRequest& request, StreamReg
 /// Parses, answers and serializes one request (an unparsable one gets an error reply).
 std::string handle_control_bytes(std::string_view request, StreamRegistry& registry);
 
-/// Serves requests until the socket's context is shut down, then closes the socket.
+/// Serves requests until the socket's context is shut down, then closes the socket. A request
+/// of more than one part is refused as a whole (one error reply, counted `oversized`).
 void run_control(zmq::socket_t socket, StreamRegistry& registry);
 
 }  // namespace fq::daemon

@@ -104,52 +104,70 @@ std::vector<std::string> Daemon::engine_names() const {
   return names;
 }
 
-Status Daemon::bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::socket_t& control) {
-  ingest = zmq::socket_t(input_context_, zmq::socket_type::pull);
-  control = zmq::socket_t(input_context_, zmq::socket_type::rep);
-  publish = zmq::socket_t(output_context_, zmq::socket_type::xpub);
-  ResultSocket::configure(publish, static_cast<int>(config_.caps.max_subscriber_results));
-  ingest.set(zmq::sockopt::linger, 0);
-  // Refused at the socket: a peer sending a larger part is disconnected before the part is
-  // buffered (max_frame_bytes bounds the whole message, so it bounds every part too).
-  ingest.set(zmq::sockopt::maxmsgsize, static_cast<int64_t>(config_.caps.max_frame_bytes));
+struct Daemon::Sockets {
+  zmq::socket_t ingest, publish, publish_monitor, control;
+  zmq::socket_t sub;  ///< stays empty without [ingest] connect
+  std::unique_ptr<SubReconnector> sub_reconnector;
+  CurveServerKeys keys;  ///< with [security]
+};
+
+// Every door of fqd under the same rules: a size bound at the socket (a larger part drops the
+// connection before it is buffered) and, with [security], CURVE with the ZAP allow-list.
+Status Daemon::make_sockets(Sockets& s) {
+  s.ingest = zmq::socket_t(input_context_, zmq::socket_type::pull);
+  s.control = zmq::socket_t(input_context_, zmq::socket_type::rep);
+  s.publish = zmq::socket_t(output_context_, zmq::socket_type::xpub);
+  ResultSocket::configure(s.publish, static_cast<int>(config_.caps.max_subscriber_results),
+                          config_.caps.max_stream_id_bytes);
+  s.publish_monitor = SubscriptionGate::monitor(output_context_, s.publish);
+  s.ingest.set(zmq::sockopt::linger, 0);
+  // max_frame_bytes bounds the whole message, so it bounds every part too.
+  s.ingest.set(zmq::sockopt::maxmsgsize, static_cast<int64_t>(config_.caps.max_frame_bytes));
   // Wakes the ingest thread once a second when nothing arrives, for idle-stream expiry.
-  ingest.set(zmq::sockopt::rcvtimeo, 1000);
-  control.set(zmq::sockopt::linger, 0);
-  publish.set(zmq::sockopt::linger, kPublishLingerMs);
+  s.ingest.set(zmq::sockopt::rcvtimeo, 1000);
+  s.control.set(zmq::sockopt::linger, 0);
+  s.control.set(zmq::sockopt::maxmsgsize, static_cast<int64_t>(kMaxControlBytes));
+  s.publish.set(zmq::sockopt::linger, kPublishLingerMs);
   if (config_.security.enabled()) {
-    CurveServerKeys keys;
-    FQ_RETURN_IF_ERROR(load_curve_server_keys(config_.security, keys));
-    input_zap_ = std::make_unique<ZapHandler>(input_context_, keys.clients, registry_.refusals());
-    output_zap_ = std::make_unique<ZapHandler>(output_context_, keys.clients, registry_.refusals());
-    for (zmq::socket_t* s : {&ingest, &publish, &control}) make_curve_server(*s, keys.server);
-    spdlog::info("fqd: CURVE on every socket, {} client key(s) allowed", keys.clients.size());
+    FQ_RETURN_IF_ERROR(load_curve_server_keys(config_.security, s.keys));
+    input_zap_ = std::make_unique<ZapHandler>(input_context_, s.keys.clients, registry_.refusals());
+    output_zap_ = std::make_unique<ZapHandler>(output_context_, s.keys.clients, registry_.refusals());
+    for (zmq::socket_t* socket : {&s.ingest, &s.publish, &s.control}) make_curve_server(*socket, s.keys.server);
+    spdlog::info("fqd: CURVE on every socket, {} client key(s) allowed", s.keys.clients.size());
   } else {
     for (const std::string& e : {config_.endpoints.ingest, config_.endpoints.publish, config_.endpoints.control})
       if (!is_local_endpoint(e))
         spdlog::warn("fqd: {} is reachable from other hosts without CURVE: anyone who can connect may send "
                      "frames, read results and change parameters (set [security] curve_key_file)", e);
   }
-  FQ_RETURN_IF_ERROR(bind_one(ingest, config_.endpoints.ingest, "ingest", endpoints_.ingest));
-  FQ_RETURN_IF_ERROR(bind_one(publish, config_.endpoints.publish, "publish", endpoints_.publish));
-  return bind_one(control, config_.endpoints.control, "control", endpoints_.control);
+  if (config_.sub_ingest.connect.empty()) return {};
+  return make_sub_socket(input_context_, config_.sub_ingest, config_.caps.max_frame_bytes,
+                         config_.security.enabled() ? &s.keys.server : nullptr, s.sub, s.sub_reconnector);
+}
+
+Status Daemon::bind_sockets(Sockets& s) {
+  FQ_RETURN_IF_ERROR(bind_one(s.ingest, config_.endpoints.ingest, "ingest", endpoints_.ingest));
+  FQ_RETURN_IF_ERROR(bind_one(s.publish, config_.endpoints.publish, "publish", endpoints_.publish));
+  return bind_one(s.control, config_.endpoints.control, "control", endpoints_.control);
 }
 
 Status Daemon::start() {
   if (running_) return {};
   FQ_RETURN_IF_ERROR(make_engines(config_.engine, engines_));
-  zmq::socket_t ingest, publish, control;
-  FQ_RETURN_IF_ERROR(bind_sockets(ingest, publish, control));
-  zmq::socket_t sub;  // stays empty without [ingest] connect
-  if (!config_.sub_ingest.connect.empty()) FQ_RETURN_IF_ERROR(make_sub_socket(input_context_, config_.sub_ingest, sub));
+  Sockets sockets;
+  FQ_RETURN_IF_ERROR(make_sockets(sockets));
+  FQ_RETURN_IF_ERROR(bind_sockets(sockets));
   if (!config_.http.listen.empty()) {
     http_ = std::make_unique<HttpServer>(config_, registry_, pipeline_.latest, engine_names(), healthy_);
     FQ_RETURN_IF_ERROR(http_->start());
     endpoints_.http = http_->url();
   }
   // Sockets were made on this thread and are handed over whole to their owner threads.
-  publisher_thread_ =
-      std::thread([this, s = std::move(publish)]() mutable { Publisher(std::move(s), pipeline_).run(); });
+  const SubscriptionCaps subscription_caps{config_.caps.max_subscriptions, config_.caps.max_subscription_bytes};
+  publisher_thread_ = std::thread(
+      [this, s = std::move(sockets.publish), m = std::move(sockets.publish_monitor), subscription_caps]() mutable {
+        Publisher(ResultSocket(std::move(s), std::move(m), subscription_caps, registry_.refusals()), pipeline_).run();
+      });
   for (int i = 0; i < config_.encode_threads; ++i)
     encoders_.emplace_back([this] { run_encode_worker(pipeline_); });
   for (auto& e : engines_)
@@ -157,15 +175,17 @@ Status Daemon::start() {
   for (int i = 0; i < config_.decode_threads; ++i)
     decoders_.emplace_back([this] { run_decode_worker(pipeline_); });
   control_thread_ =
-      std::thread([this, s = std::move(control)]() mutable { run_control(std::move(s), registry_); });
-  if (sub) {
-    ingest_thread_ = std::thread([this, pull = std::move(ingest), sub = std::move(sub)]() mutable {
+      std::thread([this, s = std::move(sockets.control)]() mutable { run_control(std::move(s), registry_); });
+  if (sockets.sub) {
+    ingest_thread_ = std::thread([this, pull = std::move(sockets.ingest), sub = std::move(sockets.sub),
+                                  reconnector = std::move(sockets.sub_reconnector)]() mutable {
       const auto& ids = config_.sub_ingest.streams;
-      run_sub_ingest(std::move(pull), std::move(sub), pipeline_, std::set<std::string>(ids.begin(), ids.end()));
+      run_sub_ingest(std::move(pull), std::move(sub), *reconnector, pipeline_,
+                     std::set<std::string>(ids.begin(), ids.end()));
     });
   } else {
     ingest_thread_ =
-        std::thread([this, s = std::move(ingest)]() mutable { run_ingest(std::move(s), pipeline_); });
+        std::thread([this, s = std::move(sockets.ingest)]() mutable { run_ingest(std::move(s), pipeline_); });
   }
   running_ = true;
   healthy_ = true;

@@ -50,7 +50,9 @@ class Daemon : NonCopyable {
   std::vector<std::string> engine_names() const;
 
  private:
-  Status bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::socket_t& control);
+  struct Sockets;  // made and bound by start(), then handed to their threads
+  Status bind_sockets(Sockets& s);
+  Status make_sockets(Sockets& s);
 
   DaemonConfig config_;
   StreamRegistry registry_;

@@ -109,6 +109,8 @@ std::string HttpServer::metrics() const {
   registry_.snapshot("", in.streams);
   in.engines = engines_;
   in.gpus = gpu_memory(gpus_);
+  for (size_t r = 0; r < RefusalCounters::kReasons; ++r)
+    in.refusals.emplace_back(refusal_name(Refusal(r)), registry_.refusals().get(Refusal(r)));
   for (size_t r = 0; r < HttpRefusalCounters::kReasons; ++r)
     in.http_refusals.emplace_back(http_refusal_name(HttpRefusal(r)), refusals_.get(HttpRefusal(r)));
   return prometheus_text(in);

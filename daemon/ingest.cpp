@@ -5,21 +5,18 @@
 
 #include <zmq_addon.hpp>
 
+#include "daemon/bounded_receive.h"
 #include "proto/frame_codec.h"
 #include "proto/header_codec.h"
 
 namespace fq::daemon {
 namespace {
 
-Status check_framing(const std::vector<zmq::message_t>& parts, const Caps& caps) {
+// Bytes and parts are bounded as the message is received (ingest_one).
+Status check_framing(const std::vector<zmq::message_t>& parts) {
   if (parts.size() < 3)
     return invalid_input("expected [stream id][FrameHeader][draco chunk]..., got " +
                          std::to_string(parts.size()) + " part(s)");
-  uint64_t bytes = 0;
-  for (const zmq::message_t& m : parts) bytes += m.size();
-  if (bytes > caps.max_frame_bytes)
-    return invalid_input("frame of " + std::to_string(bytes) + " bytes is over the cap of " +
-                         std::to_string(caps.max_frame_bytes));
   return {};
 }
 
@@ -92,6 +89,18 @@ FramePtr refuse(FramePtr f, Refusal why, Status message, Pipeline& p) {
   return f;
 }
 
+// A message that failed a check: a stream that exists already gets the error counted as its
+// own; otherwise it is refused before any state is made for it.
+FramePtr reject(FramePtr f, const std::string& topic, Refusal why, Status s, Pipeline& p) {
+  if (p.registry.find(topic, f->settings)) {
+    p.registry.count(topic, Counter::kIn);
+    f->arrival = p.next_arrival++;
+    f->error = std::move(s);
+    return f;
+  }
+  return refuse(std::move(f), why, std::move(s), p);
+}
+
 }  // namespace
 
 FramePtr admit_message(std::vector<zmq::message_t>& parts, Pipeline& p) {
@@ -104,19 +113,10 @@ FramePtr admit_message(std::vector<zmq::message_t>& parts, Pipeline& p) {
     return refuse(std::move(f), Refusal::kBadStreamId, std::move(s), p);
   f->stream_id = topic;
   // Only a well-formed frame can make a stream: junk never takes a slot.
-  Status s = check_framing(parts, caps);
+  Status s = check_framing(parts);
   if (s.ok()) s = wire::parse_frame_header(std::string_view(parts[1].data<char>(), parts[1].size()), f->header);
   if (s.ok()) s = check_header(f->header, f->stream_id, parts.size() - 2, caps);
-  if (!s.ok()) {
-    // A stream that exists already gets the error counted as its own.
-    if (p.registry.find(topic, f->settings)) {
-      p.registry.count(topic, Counter::kIn);
-      f->arrival = p.next_arrival++;
-      f->error = std::move(s);
-      return f;
-    }
-    return refuse(std::move(f), Refusal::kMalformed, std::move(s), p);
-  }
+  if (!s.ok()) return reject(std::move(f), topic, Refusal::kMalformed, std::move(s), p);
   if (!stream_allowed(topic, caps.allowed_streams))
     return refuse(std::move(f), Refusal::kNotAllowed, invalid_input("stream '" + topic + "' is not in caps.allowed_streams"), p);
   if (!p.registry.settings(topic, f->settings, f->receive_ns))
@@ -128,19 +128,48 @@ FramePtr admit_message(std::vector<zmq::message_t>& parts, Pipeline& p) {
   return f;
 }
 
-void run_ingest(zmq::socket_t socket, Pipeline& p) {
+namespace {
+
+// A message over the ingest bounds (its parts past them already dropped): an error of its
+// stream, or refused under its (escaped) topic.
+FramePtr refuse_oversized(const std::vector<zmq::message_t>& parts, Received why, Pipeline& p) {
+  auto f = std::make_unique<FrameJob>();
+  f->receive_ns = wall_ns();
+  const std::string topic = parts[0].to_string();
+  const bool valid = validate_stream_id(topic, p.config.caps.max_stream_id_bytes).ok();
+  f->stream_id = valid ? topic : printable_id(topic, p.config.caps.max_stream_id_bytes);
+  const std::string what = why == Received::kTooManyParts
+                               ? "more than " + std::to_string(2 + wire::kMaxChunks) + " parts"
+                               : "more than caps.max_frame_bytes = " + std::to_string(p.config.caps.max_frame_bytes) +
+                                     " bytes";
+  Status s = invalid_input("message of " + what);
+  if (!valid) return refuse(std::move(f), Refusal::kOversized, std::move(s), p);
+  return reject(std::move(f), topic, Refusal::kOversized, std::move(s), p);
+}
+
+}  // namespace
+
+bool ingest_one(zmq::socket_t& socket, Pipeline& p, zmq::recv_flags flags, const std::set<std::string>* assigned) {
   std::vector<zmq::message_t> parts;
+  const MessageBounds bounds{2 + wire::kMaxChunks, p.config.caps.max_frame_bytes};
+  const Received got = receive_bounded(socket, parts, bounds, flags);
+  if (got == Received::kNothing) return false;
+  // Another fqd's stream (a SUB topic matches by prefix): not ours to count.
+  if (assigned && !assigned->empty() && !assigned->count(parts[0].to_string())) return true;
+  queue_admitted(got == Received::kMessage ? admit_message(parts, p) : refuse_oversized(parts, got, p), p);
+  return true;
+}
+
+void run_ingest(zmq::socket_t socket, Pipeline& p) {
+  LogLimiter errors;
   for (;;) {
-    parts.clear();
     expire_idle_streams(p);
     try {
-      if (!zmq::recv_multipart(socket, std::back_inserter(parts))) continue;  // receive timeout
+      ingest_one(socket, p, zmq::recv_flags::none);  // nothing after the receive timeout
     } catch (const zmq::error_t& e) {
       if (e.num() == ETERM) break;
-      spdlog::error("ingest: {}", e.what());
-      continue;
+      errors.log(spdlog::level::err, "ingest: {}", e.what());
     }
-    queue_admitted(admit_message(parts, p), p);
   }
   socket.close();
 }

@@ -15,6 +15,7 @@
 #include "daemon/label_tracks.h"
 #include "daemon/latency_policy.h"
 #include "daemon/latest_results.h"
+#include "daemon/log_limiter.h"
 #include "daemon/object_pool.h"
 #include "daemon/stream_admission.h"
 #include "daemon/stream_registry.h"

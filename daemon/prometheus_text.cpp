@@ -72,6 +72,13 @@ void engines_and_gpus(std::string& out, const MetricsInput& in) {
            "\n";
 }
 
+void reasons(std::string& out, const char* name, const char* help,
+             const std::vector<std::pair<std::string, uint64_t>>& counts) {
+  family(out, name, "counter", help);
+  for (const auto& [reason, n] : counts)
+    out += std::string(name) + "{reason=\"" + escape_label_value(reason) + "\"} " + std::to_string(n) + "\n";
+}
+
 }  // namespace
 
 std::string escape_label_value(const std::string& value) {
@@ -101,9 +108,9 @@ std::string prometheus_text(const MetricsInput& in) {
   family(out, "fq_streams", "gauge", "Streams fqd knows (configured or seen).");
   out += "fq_streams " + std::to_string(in.streams.size()) + "\n";
   engines_and_gpus(out, in);
-  family(out, "fq_http_refused_total", "counter", "HTTP requests and connections refused, by reason.");
-  for (const auto& [reason, n] : in.http_refusals)
-    out += "fq_http_refused_total{reason=\"" + escape_label_value(reason) + "\"} " + std::to_string(n) + "\n";
+  reasons(out, "fq_refused_total", "Ingest and control messages, subscribers and ZeroMQ connections refused, by reason.",
+          in.refusals);
+  reasons(out, "fq_http_refused_total", "HTTP requests and connections refused, by reason.", in.http_refusals);
   return out;
 }
 

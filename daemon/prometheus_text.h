@@ -18,6 +18,9 @@ struct MetricsInput {
   std::vector<StreamSnapshot> streams;
   std::vector<std::string> engines;  ///< engine names ("cpu", "cuda:<device name>")
   std::vector<GpuMemory> gpus;
+  /// Messages, subscribers and connections refused on the ZeroMQ doors before any stream state
+  /// was made for them, by reason (fq_refused_total{reason}).
+  std::vector<std::pair<std::string, uint64_t>> refusals;
   /// HTTP requests and connections refused, by reason (fq_http_refused_total{reason}).
   std::vector<std::pair<std::string, uint64_t>> http_refusals;
 };

@@ -41,6 +41,10 @@ const char* refusal_name(Refusal r) {
       return "too_many_streams";
     case Refusal::kUnauthenticated:
       return "unauthenticated";
+    case Refusal::kOversized:
+      return "oversized";
+    case Refusal::kSubscriptions:
+      return "subscriptions";
     case Refusal::kCount:
       break;
   }
@@ -90,21 +94,6 @@ bool stream_allowed(std::string_view id, const std::vector<std::string>& allowed
     }
   }
   return false;
-}
-
-bool LogLimiter::allow(int64_t now_ns, uint64_t& suppressed) {
-  if (now_ns - window_start_ns_ >= 1'000'000'000) {
-    window_start_ns_ = now_ns;
-    in_window_ = 0;
-  }
-  if (in_window_ >= per_second_) {
-    ++suppressed_;
-    return false;
-  }
-  ++in_window_;
-  suppressed = suppressed_;
-  suppressed_ = 0;
-  return true;
 }
 
 }  // namespace fq::daemon

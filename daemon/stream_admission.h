@@ -15,7 +15,16 @@ namespace fq::daemon {
 
 struct Caps;
 
-enum class Refusal { kBadStreamId, kMalformed, kNotAllowed, kTooManyStreams, kUnauthenticated, kCount };
+enum class Refusal {
+  kBadStreamId,
+  kMalformed,
+  kNotAllowed,
+  kTooManyStreams,
+  kUnauthenticated,
+  kOversized,      ///< an ingest or control message over its bound on parts or bytes
+  kSubscriptions,  ///< a subscriber over caps.max_subscriptions / max_subscription_bytes (cut)
+  kCount
+};
 
 /// Name of a refusal reason as it appears in counters and logs.
 const char* refusal_name(Refusal r);
@@ -33,20 +42,5 @@ std::string printable_id(std::string_view id, size_t max_chars = 64);
 
 /// Refusals by reason; thread-safe.
 using RefusalCounters = ReasonCounters<Refusal>;
-
-/// At most `per_second` messages a second pass; the rest are counted, and the next message
-/// that passes reports how many were held back. Keeps junk traffic from flooding the log.
-class LogLimiter {
- public:
-  explicit LogLimiter(int per_second = 5) : per_second_(per_second) {}
-  /// True when a message may be logged now; `suppressed` is then the number held back since.
-  bool allow(int64_t now_ns, uint64_t& suppressed);
-
- private:
-  int per_second_;
-  int64_t window_start_ns_ = 0;
-  int in_window_ = 0;
-  uint64_t suppressed_ = 0;
-};
 
 }  // namespace fq::daemon
