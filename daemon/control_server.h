@@ -7,6 +7,7 @@
 #include <zmq.hpp>
 
 #include "proto/fq.pb.h"
+#include "daemon/live_caps.h"
 #include "daemon/stream_registry.h"
 
 namespace fq::daemon {
@@ -16,15 +17,16 @@ namespace fq::daemon {
 /// caps.max_stream_id_bytes) and parameters.
 inline constexpr size_t kMaxControlBytes = 64 << 10;
 
-/// Answers one request. A SetParams change is validated with fq::validate and takes
-/// effect on the stream's next frame to be decoded.
-wire::ControlReply handle_control(const wire::ControlRequest& request, StreamRegistry& registry);
+/// Answers one request under `caps`. A SetParams change is for a stream id the ingest would
+/// admit (check_stream_id), is validated with fq::validate and takes effect on the stream's
+/// next frame to be decoded.
+wire::ControlReply handle_control(const wire::ControlRequest& request, StreamRegistry& registry, const Caps& caps);
 
 /// Parses, answers and serializes one request (an unparsable one gets an error reply).
-std::string handle_control_bytes(std::string_view request, StreamRegistry& registry);
+std::string handle_control_bytes(std::string_view request, StreamRegistry& registry, const Caps& caps);
 
 /// Serves requests until the socket's context is shut down, then closes the socket. A request
 /// of more than one part is refused as a whole (one error reply, counted `oversized`).
-void run_control(zmq::socket_t socket, StreamRegistry& registry);
+void run_control(zmq::socket_t socket, StreamRegistry& registry, const LiveCaps& caps);
 
 }  // namespace fq::daemon

@@ -69,8 +69,8 @@ void ZapHandler::run(zmq::socket_t socket) {
         status = "200", text = "OK", user = z85;
       } else {
         refusals_.add(Refusal::kUnauthenticated);
-        spdlog::warn("refused a connection from {}: client key {} is not in security.client_keys_file",
-                     req[3].to_string(), z85);
+        log_.log(spdlog::level::warn, "refused a connection from {}: client key {} is not in security.client_keys_file",
+                 req[3].to_string(), z85);
       }
     } else {
       refusals_.add(Refusal::kUnauthenticated);

@@ -12,6 +12,7 @@
 #include "common/curve_keys.h"
 #include "common/non_copyable.h"
 #include "common/status.h"
+#include "daemon/log_limiter.h"
 #include "daemon/stream_admission.h"
 
 namespace fq::daemon {
@@ -51,6 +52,7 @@ class ZapHandler : NonCopyable {
 
   std::set<std::string> allowed_;
   RefusalCounters& refusals_;
+  LogLimiter log_;  ///< one line per refused connection, at most 5 a second
   std::thread thread_;
 };
 

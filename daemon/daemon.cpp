@@ -87,7 +87,8 @@ Status make_engines(const EngineConfig& c, std::vector<std::unique_ptr<Engine>>&
 Daemon::Daemon(DaemonConfig config)
     : config_(std::move(config)),
       registry_(config_),
-      pipeline_(config_, registry_),
+      caps_(config_.caps),
+      pipeline_(config_, registry_, caps_),
       input_context_(1),
       output_context_(1) {
   config_.resolve_auto_threads();
@@ -158,7 +159,7 @@ Status Daemon::start() {
   FQ_RETURN_IF_ERROR(make_sockets(sockets));
   FQ_RETURN_IF_ERROR(bind_sockets(sockets));
   if (!config_.http.listen.empty()) {
-    http_ = std::make_unique<HttpServer>(config_, registry_, pipeline_.latest, engine_names(), healthy_);
+    http_ = std::make_unique<HttpServer>(config_, caps_, registry_, pipeline_.latest, engine_names(), healthy_);
     FQ_RETURN_IF_ERROR(http_->start());
     endpoints_.http = http_->url();
   }
@@ -175,7 +176,7 @@ Status Daemon::start() {
   for (int i = 0; i < config_.decode_threads; ++i)
     decoders_.emplace_back([this] { run_decode_worker(pipeline_); });
   control_thread_ =
-      std::thread([this, s = std::move(sockets.control)]() mutable { run_control(std::move(s), registry_); });
+      std::thread([this, s = std::move(sockets.control)]() mutable { run_control(std::move(s), registry_, caps_); });
   if (sockets.sub) {
     ingest_thread_ = std::thread([this, pull = std::move(sockets.ingest), sub = std::move(sockets.sub),
                                   reconnector = std::move(sockets.sub_reconnector)]() mutable {

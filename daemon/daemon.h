@@ -56,6 +56,7 @@ class Daemon : NonCopyable {
 
   DaemonConfig config_;
   StreamRegistry registry_;
+  LiveCaps caps_;
   Pipeline pipeline_;
   std::vector<std::unique_ptr<Engine>> engines_;
   // Declared before the contexts, so destroyed after them: closing a context ends its

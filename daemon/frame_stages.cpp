@@ -116,7 +116,8 @@ Status run_engine(Pipeline& p, Engine& engine, FrameJob& f) {
 }  // namespace
 
 void Pipeline::fail(FramePtr frame, Status why) {
-  spdlog::warn("stream '{}' frame {}: {}", frame->stream_id, frame->header.sequence(), why.message());
+  fail_log.log(spdlog::level::warn, "stream '{}' frame {}: {}", frame->stream_id, frame->header.sequence(),
+               why.message());
   frame->error = std::move(why);
   publish_queue.push(std::move(frame));
 }
@@ -148,12 +149,14 @@ void run_decode_worker(Pipeline& p) {
     // Decoding a frame that is already too old would be wasted work under overload.
     if (is_stale(f->receive_ns, wall_ns(), f->settings.budget_ms)) {
       p.registry.count(f->stream_id, Counter::kDroppedStale);
-      spdlog::debug("stream '{}' frame {}: stale before decode", f->stream_id, f->header.sequence());
+      p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: stale before decode", f->stream_id,
+                     f->header.sequence());
       continue;
     }
     if (p.newer_queued(*f)) {
       p.registry.count(f->stream_id, Counter::kSuperseded);
-      spdlog::debug("stream '{}' frame {}: superseded before decode", f->stream_id, f->header.sequence());
+      p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: superseded before decode", f->stream_id,
+                     f->header.sequence());
       continue;
     }
     const auto t0 = std::chrono::steady_clock::now();
@@ -170,7 +173,8 @@ void run_decode_worker(Pipeline& p) {
     if (FramePtr loser = p.slots.offer(std::move(f))) {
       p.registry.count(loser->stream_id, Counter::kSuperseded);
       p.recycle(*loser);
-      spdlog::debug("stream '{}' frame {}: superseded", loser->stream_id, loser->header.sequence());
+      p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: superseded", loser->stream_id,
+                     loser->header.sequence());
     }
   }
 }
@@ -190,7 +194,7 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
     for (FramePtr& s : stale) {
       p.registry.count(s->stream_id, Counter::kDroppedStale);
       p.recycle(*s);
-      spdlog::debug("stream '{}' frame {}: dropped stale", s->stream_id, s->header.sequence());
+      p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: dropped stale", s->stream_id, s->header.sequence());
     }
     stale.clear();
     if (!f) continue;

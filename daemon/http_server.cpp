@@ -89,9 +89,10 @@ void send_latest(const LatestResult& r, uint64_t viewer_faces_id, httplib::Respo
 
 }  // namespace
 
-HttpServer::HttpServer(const DaemonConfig& config, StreamRegistry& registry, LatestResults& latest,
-                       std::vector<std::string> engines, const std::atomic<bool>& healthy)
+HttpServer::HttpServer(const DaemonConfig& config, const LiveCaps& caps, StreamRegistry& registry,
+                       LatestResults& latest, std::vector<std::string> engines, const std::atomic<bool>& healthy)
     : config_(config),
+      caps_(caps),
       registry_(registry),
       latest_(latest),
       engines_(std::move(engines)),
@@ -129,7 +130,7 @@ void HttpServer::add_api_routes() {
   s.Get("/streams", [this](const httplib::Request&, httplib::Response& res) {
     wire::ControlRequest q;
     q.mutable_get_counters();
-    nlohmann::json j = counters_json(handle_control(q, registry_));
+    nlohmann::json j = counters_json(handle_control(q, registry_, *caps_.get()));
     j["engines"] = engines_;
     res.set_header("Cache-Control", "no-store");
     res.set_content(j.dump(), "application/json");
@@ -139,9 +140,14 @@ void HttpServer::add_api_routes() {
   s.Get(R"(/streams/([^/]+)/latest)", [this](const httplib::Request& req, httplib::Response& res) {
     const std::string stream = req.matches[1];
     StreamSettings unused;
+    if (Status id = check_stream_id(stream, *caps_.get()); !id.ok()) {
+      res.status = 404;
+      res.set_content(id.message() + "\n", "text/plain");
+      return;
+    }
     if (!registry_.find(stream, unused)) {
       res.status = 404;
-      res.set_content("unknown stream '" + stream + "'\n", "text/plain");
+      res.set_content("unknown stream '" + printable_id(stream) + "'\n", "text/plain");
       return;
     }
     uint64_t after = 0, faces_id = 0;

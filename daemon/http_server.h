@@ -17,6 +17,7 @@
 #include "daemon/http_refusals.h"
 #include "daemon/tls_context.h"
 #include "daemon/latest_results.h"
+#include "daemon/live_caps.h"
 #include "daemon/stream_registry.h"
 
 namespace fq::daemon {
@@ -26,7 +27,7 @@ class HttpFront;
 class HttpServer : NonCopyable {
  public:
   /// `healthy` is the daemon's own view (engines made, sockets bound, threads running).
-  HttpServer(const DaemonConfig& config, StreamRegistry& registry, LatestResults& latest,
+  HttpServer(const DaemonConfig& config, const LiveCaps& caps, StreamRegistry& registry, LatestResults& latest,
              std::vector<std::string> engines, const std::atomic<bool>& healthy);
   ~HttpServer();
 
@@ -48,6 +49,7 @@ class HttpServer : NonCopyable {
   std::string metrics() const;
 
   const DaemonConfig& config_;
+  const LiveCaps& caps_;
   StreamRegistry& registry_;
   LatestResults& latest_;
   std::vector<std::string> engines_;

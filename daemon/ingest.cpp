@@ -23,7 +23,8 @@ Status check_framing(const std::vector<zmq::message_t>& parts) {
 Status check_header(const wire::FrameHeader& h, const std::string& topic, size_t chunk_parts,
                     const Caps& caps) {
   if (h.stream_id() != topic)
-    return invalid_input("header stream id '" + h.stream_id() + "' does not match the topic '" + topic + "'");
+    return invalid_input("header stream id '" + printable_id(h.stream_id()) + "' does not match the topic '" +
+                         printable_id(topic) + "'");
   if (h.chunk_count() != chunk_parts)
     return invalid_input("header says " + std::to_string(h.chunk_count()) + " chunk(s), message has " +
                          std::to_string(chunk_parts));
@@ -69,7 +70,8 @@ void expire_idle_streams(Pipeline& p) {
   hand_back_free_pages(p, now);
   for (const std::string& id : p.registry.expire_idle(now, p.config.caps.stream_idle_s)) {
     p.forget(id);
-    spdlog::info("stream '{}' expired after {} s without frames", id, p.config.caps.stream_idle_s);
+    p.expiry_log.log(spdlog::level::info, "stream '{}' expired after {} s without frames", id,
+                     p.config.caps.stream_idle_s);
   }
 }
 
@@ -80,10 +82,8 @@ namespace {
 // producer's operator can see why.
 FramePtr refuse(FramePtr f, Refusal why, Status message, Pipeline& p) {
   p.registry.refusals().add(why);
-  uint64_t held_back = 0;
-  if (p.refusal_log.allow(f->receive_ns, held_back))
-    spdlog::warn("refused a frame for stream '{}' ({}): {}{}", f->stream_id, refusal_name(why), message.message(),
-                 held_back ? fmt::format(" ({} similar messages not logged)", held_back) : std::string());
+  p.refusal_log.log(spdlog::level::warn, "refused a frame for stream '{}' ({}): {}", f->stream_id, refusal_name(why),
+                    message.message());
   f->error = std::move(message);
   f->refused = true;
   return f;
@@ -106,19 +106,18 @@ FramePtr reject(FramePtr f, const std::string& topic, Refusal why, Status s, Pip
 FramePtr admit_message(std::vector<zmq::message_t>& parts, Pipeline& p) {
   auto f = std::make_unique<FrameJob>();
   f->receive_ns = wall_ns();
-  const Caps& caps = p.config.caps;
+  const std::shared_ptr<const Caps> live = p.caps.get();
+  const Caps& caps = *live;
   const std::string topic = parts.empty() ? std::string() : parts[0].to_string();
   f->stream_id = printable_id(topic, caps.max_stream_id_bytes);
-  if (Status s = validate_stream_id(topic, caps.max_stream_id_bytes); !s.ok())
-    return refuse(std::move(f), Refusal::kBadStreamId, std::move(s), p);
+  Refusal why = Refusal::kBadStreamId;
+  if (Status s = check_stream_id(topic, caps, &why); !s.ok()) return refuse(std::move(f), why, std::move(s), p);
   f->stream_id = topic;
   // Only a well-formed frame can make a stream: junk never takes a slot.
   Status s = check_framing(parts);
   if (s.ok()) s = wire::parse_frame_header(std::string_view(parts[1].data<char>(), parts[1].size()), f->header);
   if (s.ok()) s = check_header(f->header, f->stream_id, parts.size() - 2, caps);
   if (!s.ok()) return reject(std::move(f), topic, Refusal::kMalformed, std::move(s), p);
-  if (!stream_allowed(topic, caps.allowed_streams))
-    return refuse(std::move(f), Refusal::kNotAllowed, invalid_input("stream '" + topic + "' is not in caps.allowed_streams"), p);
   if (!p.registry.settings(topic, f->settings, f->receive_ns))
     return refuse(std::move(f), Refusal::kTooManyStreams,
                   invalid_input("too many streams (caps.max_streams = " + std::to_string(caps.max_streams) + ")"), p);
@@ -136,7 +135,7 @@ FramePtr refuse_oversized(const std::vector<zmq::message_t>& parts, Received why
   auto f = std::make_unique<FrameJob>();
   f->receive_ns = wall_ns();
   const std::string topic = parts[0].to_string();
-  const bool valid = validate_stream_id(topic, p.config.caps.max_stream_id_bytes).ok();
+  const bool valid = check_stream_id(topic, *p.caps.get()).ok();
   f->stream_id = valid ? topic : printable_id(topic, p.config.caps.max_stream_id_bytes);
   const std::string what = why == Received::kTooManyParts
                                ? "more than " + std::to_string(2 + wire::kMaxChunks) + " parts"

@@ -15,6 +15,7 @@
 #include "daemon/label_tracks.h"
 #include "daemon/latency_policy.h"
 #include "daemon/latest_results.h"
+#include "daemon/live_caps.h"
 #include "daemon/log_limiter.h"
 #include "daemon/object_pool.h"
 #include "daemon/stream_admission.h"
@@ -33,16 +34,18 @@ size_t bytes_used(const V& v) {
 }
 
 struct Pipeline {
-  Pipeline(const DaemonConfig& c, StreamRegistry& r)
+  Pipeline(const DaemonConfig& c, StreamRegistry& r, LiveCaps& live_caps)
       : config(c),
         registry(r),
+        caps(live_caps),
         results(8, [](const FrameResult& x) { return bytes_held(x.positions) + bytes_held(x.labels); },
                 [](const FrameResult& x) { return bytes_used(x.positions) + bytes_used(x.labels); }),
         meshes(8, [](const Mesh& m) { return bytes_held(m.positions) + bytes_held(m.triangles); },
                [](const Mesh& m) { return bytes_used(m.positions) + bytes_used(m.triangles); }) {}
 
-  const DaemonConfig& config;
+  const DaemonConfig& config;  ///< as started; the caps that SIGHUP changes are in `caps`
   StreamRegistry& registry;
+  LiveCaps& caps;
   WorkQueue<FramePtr> decode_queue;
   FrameSlots slots;
   WorkQueue<FramePtr> encode_queue;
@@ -50,7 +53,11 @@ struct Pipeline {
   /// Arrival index of the next ingest message, across streams (monotonic, so also within
   /// each stream; one counter instead of one per topic). Ingest thread only.
   uint64_t next_arrival = 0;
-  LogLimiter refusal_log;  ///< ingest thread only
+  // Lines any producer can cause, each kind at most 5 a second (log_limiter.h).
+  LogLimiter refusal_log;  ///< frames refused at admission
+  LogLimiter fail_log;     ///< error results
+  LogLimiter drop_log;     ///< superseded and stale frames (debug)
+  LogLimiter expiry_log;   ///< streams expired
   int64_t last_sweep_ns = 0;        ///< idle-stream sweep (expire_idle_streams), ingest thread only
   int64_t last_malloc_trim_ns = 0;  ///< free pages last handed back, ingest thread only
   uint64_t oversized_at_trim = 0;   ///< the pools' oversized_freed() then, ingest thread only

@@ -37,6 +37,9 @@ constexpr CounterFamily kCounters[] = {
      &StreamCounters::time_limited},
     {"fq_subscriber_overflows_total", "Times a subscriber's queue was full and it started missing results.",
      &StreamCounters::subscriber_overflows},
+    {"fq_bad_send_time_total",
+     "Results whose producer send time was over an hour before publish or after it (left out of send_to_publish).",
+     &StreamCounters::bad_send_time},
 };
 
 void histograms(std::string& out, const std::vector<StreamSnapshot>& streams) {

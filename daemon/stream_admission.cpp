@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "daemon/config.h"
+
 namespace fq::daemon {
 namespace {
 
@@ -80,6 +82,18 @@ Status validate_stream_id(std::string_view id, uint32_t max_bytes) {
     if (n == 1 && (static_cast<unsigned char>(id[i]) < 0x20 || id[i] == 0x7f))
       return invalid_input("stream id holds a control character: '" + printable_id(id) + "'");
     i += n;
+  }
+  return {};
+}
+
+Status check_stream_id(std::string_view id, const Caps& caps, Refusal* why) {
+  if (Status s = validate_stream_id(id, caps.max_stream_id_bytes); !s.ok()) {
+    if (why) *why = Refusal::kBadStreamId;
+    return s;
+  }
+  if (!stream_allowed(id, caps.allowed_streams)) {
+    if (why) *why = Refusal::kNotAllowed;
+    return invalid_input("stream '" + printable_id(id) + "' is not in caps.allowed_streams");
   }
   return {};
 }

@@ -36,6 +36,11 @@ Status validate_stream_id(std::string_view id, uint32_t max_bytes);
 /// True when the allow-list is empty or names `id` exactly or by a "prefix*" entry.
 bool stream_allowed(std::string_view id, const std::vector<std::string>& allowed);
 
+/// The one check of a stream id on every door (ingest, SUB ingest, control, HTTP): valid
+/// (validate_stream_id with caps.max_stream_id_bytes) and allowed (caps.allowed_streams). On
+/// failure `why` (when given) says which, and the message shows the id escaped.
+Status check_stream_id(std::string_view id, const Caps& caps, Refusal* why = nullptr);
+
 /// `id` with every byte outside printable ASCII as \xNN, cut to `max_chars`: safe for
 /// logs and for protobuf string fields (always valid UTF-8).
 std::string printable_id(std::string_view id, size_t max_chars = 64);

@@ -91,5 +91,23 @@ TEST(HttpLimits, BodiesAreRefusedUnread) {
   EXPECT_EQ(fqd.stop(), 0);
 }
 
+TEST(HttpLimits, StreamIdsInPathsAreCheckedAsOnEveryDoor) {
+  FqdProcess fqd({"--config", write_temp_file("http_ids.toml", ops_config(kHttp))});
+  const int port = http_port(fqd.endpoint("http"));
+  ASSERT_GT(port, 0);
+  auto body_of = [&](const std::string& path) {
+    RawConnection c(port);
+    EXPECT_TRUE(c.send("GET " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n"));
+    return c.receive();
+  };
+  const std::string newline = body_of("/streams/cam%0A%5Bcritical%5D/latest");
+  EXPECT_EQ(status_of(newline), 404);
+  EXPECT_NE(newline.find("cam\\x0a[critical]"), std::string::npos) << newline;
+  const std::string longer = body_of("/streams/" + std::string(200, 'x') + "/latest");
+  EXPECT_EQ(status_of(longer), 404);
+  EXPECT_NE(longer.find("caps.max_stream_id_bytes"), std::string::npos) << longer;
+  EXPECT_EQ(fqd.stop(), 0);
+}
+
 }  // namespace
 }  // namespace fq::test

@@ -3,15 +3,13 @@
 // of 100,000 parts gets one error reply and at most a few log lines, an oversized one nothing;
 // a subscriber past caps.max_subscriptions is cut and counted while others keep their results.
 #include <gtest/gtest.h>
-#include <spdlog/sinks/ostream_sink.h>
-#include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <sstream>
 #include <thread>
 #include <zmq_addon.hpp>
 
 #include "tests/daemon/daemon_harness.h"
+#include "tests/daemon/log_capture.h"
 #include "tests/daemon/test_keys.h"
 
 namespace fq::test {
@@ -94,31 +92,9 @@ TEST(ZmqDoors, SubIngestTakesOnlyAuthenticatedProducersAndRefusesAnOversizedPart
   EXPECT_FALSE(has_stream(h, "sub_plain")) << "frames from a producer without keys got in";
 }
 
-// Log lines fqd writes while the object lives (the default logger's, at warn and above).
-class LogCapture {
- public:
-  LogCapture() : sink_(std::make_shared<spdlog::sinks::ostream_sink_mt>(text_)) {
-    spdlog::default_logger()->sinks().push_back(sink_);
-  }
-  ~LogCapture() {
-    auto& sinks = spdlog::default_logger()->sinks();
-    sinks.erase(std::remove(sinks.begin(), sinks.end(), sink_), sinks.end());
-  }
-  size_t lines_with(const std::string& word) {
-    std::istringstream in(text_.str());
-    size_t n = 0;
-    for (std::string line; std::getline(in, line);) n += line.find(word) != std::string::npos;
-    return n;
-  }
-
- private:
-  std::ostringstream text_;
-  std::shared_ptr<spdlog::sinks::ostream_sink_mt> sink_;
-};
-
 TEST(ZmqDoors, AControlRequestOfManyPartsGetsOneAnswerAndAnOversizedOneNone) {
+  LogCapture log;  // before fqd's threads log
   DaemonHarness h;
-  LogCapture log;
   zmq::context_t ctx(1);
   zmq::socket_t dealer(ctx, zmq::socket_type::dealer);
   dealer.set(zmq::sockopt::linger, 0);
