@@ -209,7 +209,7 @@ bool valid_log_level(const std::string& l) {
   return false;
 }
 
-Status parse_config(std::string_view text, const std::string& source, DaemonConfig& out) {
+Status parse_config(std::string_view text, const std::string& source, DaemonConfig& out, bool allow_empty) {
   toml::table root_table;
   try {
     root_table = toml::parse(text, source);
@@ -217,6 +217,9 @@ Status parse_config(std::string_view text, const std::string& source, DaemonConf
     return invalid_argument(source + ":" + std::to_string(e.source().begin.line) + ": " +
                             std::string(e.description()));
   }
+  if (root_table.empty() && !allow_empty)
+    return invalid_argument(source + " has no settings: an empty file is refused (it would reset every stream to "
+                                     "the built-in defaults)");
   DaemonConfig c;
   TomlReader root(root_table, source, "");
   root.read("log_level", c.log_level);
@@ -230,12 +233,12 @@ Status parse_config(std::string_view text, const std::string& source, DaemonConf
   return {};
 }
 
-Status load_config(const std::string& path, DaemonConfig& out) {
+Status load_config(const std::string& path, DaemonConfig& out, bool allow_empty) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return invalid_argument("cannot open config file " + path);
   std::ostringstream ss;
   ss << in.rdbuf();
-  return parse_config(ss.str(), path, out);
+  return parse_config(ss.str(), path, out, allow_empty);
 }
 
 }  // namespace fq::daemon

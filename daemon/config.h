@@ -83,11 +83,12 @@ struct DaemonConfig {
 };
 
 /// Parses TOML text (`source` names it in messages). Unknown keys, wrong types and
-/// out-of-range values are errors naming the key and line.
-Status parse_config(std::string_view text, const std::string& source, DaemonConfig& out);
+/// out-of-range values are errors naming the key and line; so is text without a single key
+/// unless `allow_empty` (a reload of an emptied file would reset every stream to the defaults).
+Status parse_config(std::string_view text, const std::string& source, DaemonConfig& out, bool allow_empty = true);
 
 /// Reads and parses a file.
-Status load_config(const std::string& path, DaemonConfig& out);
+Status load_config(const std::string& path, DaemonConfig& out, bool allow_empty = true);
 
 /// True for spdlog's level names: trace, debug, info, warn, error, critical, off.
 bool valid_log_level(const std::string& level);

@@ -124,7 +124,7 @@ std::string handle_control_bytes(std::string_view bytes, StreamRegistry& registr
   return handle_control(request, registry, caps).SerializeAsString();
 }
 
-void run_control(zmq::socket_t socket, StreamRegistry& registry, const LiveCaps& caps) {
+void run_control(zmq::socket_t socket, StreamRegistry& registry, const LiveCaps& caps, const ClientKeys* keys) {
   LogLimiter refused_log, error_log;
   std::vector<zmq::message_t> request;
   for (;;) {
@@ -132,7 +132,9 @@ void run_control(zmq::socket_t socket, StreamRegistry& registry, const LiveCaps&
       const Received got = receive_bounded(socket, request, {1, kMaxControlBytes});
       if (got == Received::kNothing) continue;
       std::string reply;
-      if (got == Received::kMessage) {
+      if (!admit_sender(request[0], keys, registry.refusals())) {
+        reply = error_reply("unauthenticated: this client key is no longer allowed").SerializeAsString();
+      } else if (got == Received::kMessage) {
         reply = handle_control_bytes(std::string_view(request[0].data<char>(), request[0].size()), registry,
                                      *caps.get());
       } else {

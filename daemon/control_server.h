@@ -7,6 +7,7 @@
 #include <zmq.hpp>
 
 #include "proto/fq.pb.h"
+#include "daemon/curve_auth.h"
 #include "daemon/live_caps.h"
 #include "daemon/stream_registry.h"
 
@@ -26,7 +27,9 @@ wire::ControlReply handle_control(const wire::ControlRequest& request, StreamReg
 std::string handle_control_bytes(std::string_view request, StreamRegistry& registry, const Caps& caps);
 
 /// Serves requests until the socket's context is shut down, then closes the socket. A request
-/// of more than one part is refused as a whole (one error reply, counted `oversized`).
-void run_control(zmq::socket_t socket, StreamRegistry& registry, const LiveCaps& caps);
+/// of more than one part is refused as a whole (one error reply, counted `oversized`); one
+/// from a client key revoked since it connected gets an error and its connection cut.
+void run_control(zmq::socket_t socket, StreamRegistry& registry, const LiveCaps& caps,
+                 const ClientKeys* keys = nullptr);
 
 }  // namespace fq::daemon

@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "common/non_copyable.h"
+#include "daemon/config_reload.h"
 #include "daemon/control_server.h"
 #include "daemon/ingest.h"
 #include "daemon/publisher.h"
@@ -131,8 +132,10 @@ Status Daemon::make_sockets(Sockets& s) {
   s.publish.set(zmq::sockopt::linger, kPublishLingerMs);
   if (config_.security.enabled()) {
     FQ_RETURN_IF_ERROR(load_curve_server_keys(config_.security, s.keys));
-    input_zap_ = std::make_unique<ZapHandler>(input_context_, s.keys.clients, registry_.refusals());
-    output_zap_ = std::make_unique<ZapHandler>(output_context_, s.keys.clients, registry_.refusals());
+    client_keys_ = std::make_unique<ClientKeys>(s.keys.clients);
+    pipeline_.keys = client_keys_.get();
+    input_zap_ = std::make_unique<ZapHandler>(input_context_, *client_keys_, registry_.refusals());
+    output_zap_ = std::make_unique<ZapHandler>(output_context_, *client_keys_, registry_.refusals());
     for (zmq::socket_t* socket : {&s.ingest, &s.publish, &s.control}) make_curve_server(*socket, s.keys.server);
     spdlog::info("fqd: CURVE on every socket, {} client key(s) allowed", s.keys.clients.size());
   } else {
@@ -167,7 +170,9 @@ Status Daemon::start() {
   const SubscriptionCaps subscription_caps{config_.caps.max_subscriptions, config_.caps.max_subscription_bytes};
   publisher_thread_ = std::thread(
       [this, s = std::move(sockets.publish), m = std::move(sockets.publish_monitor), subscription_caps]() mutable {
-        Publisher(ResultSocket(std::move(s), std::move(m), subscription_caps, registry_.refusals()), pipeline_).run();
+        Publisher(ResultSocket(std::move(s), std::move(m), subscription_caps, registry_.refusals(), client_keys_.get()),
+                  pipeline_)
+            .run();
       });
   for (int i = 0; i < config_.encode_threads; ++i)
     encoders_.emplace_back([this] { run_encode_worker(pipeline_); });
@@ -176,7 +181,7 @@ Status Daemon::start() {
   for (int i = 0; i < config_.decode_threads; ++i)
     decoders_.emplace_back([this] { run_decode_worker(pipeline_); });
   control_thread_ =
-      std::thread([this, s = std::move(sockets.control)]() mutable { run_control(std::move(s), registry_, caps_); });
+      std::thread([this, s = std::move(sockets.control)]() mutable { run_control(std::move(s), registry_, caps_, client_keys_.get()); });
   if (sockets.sub) {
     ingest_thread_ = std::thread([this, pull = std::move(sockets.ingest), sub = std::move(sockets.sub),
                                   reconnector = std::move(sockets.sub_reconnector)]() mutable {
@@ -204,23 +209,22 @@ Status Daemon::start() {
   return {};
 }
 
-std::vector<std::string> Daemon::reload_streams(const DaemonConfig& fresh) {
+Status Daemon::reload(const DaemonConfig& fresh) {
+  const std::vector<std::string> restart = restart_only_changes(config_, fresh);
+  if (!restart.empty())
+    return invalid_argument(fmt::format("{} changed, which takes effect only at a restart (nothing was applied)",
+                                        fmt::join(restart, ", ")));
+  // Everything that can fail is read first, so that a bad file changes nothing.
+  CurveServerKeys keys;
+  if (fresh.security.enabled()) FQ_RETURN_IF_ERROR(load_curve_server_keys(fresh.security, keys));
+  HttpAccessRules access;
+  if (http_) FQ_RETURN_IF_ERROR(load_http_access(fresh.http, fresh.security.enabled(), access));
   registry_.reload(fresh.defaults, fresh.streams);
-  std::vector<std::string> restart;
-  const DaemonConfig& c = config_;
-  const Endpoints& e = fresh.endpoints;
-  if (e.ingest != c.endpoints.ingest || e.publish != c.endpoints.publish || e.control != c.endpoints.control)
-    restart.push_back("endpoints");
-  if (fresh.http.listen != c.http.listen || fresh.http.web_root != c.http.web_root) restart.push_back("http");
-  if (fresh.engine.kind != c.engine.kind || fresh.engine.gpus != c.engine.gpus ||
-      fresh.engine.cpu_engines != c.engine.cpu_engines || fresh.engine.cpu_threads != c.engine.cpu_threads ||
-      fresh.engine.cpu_alongside_gpus != c.engine.cpu_alongside_gpus)
-    restart.push_back("engine");
-  if (fresh.caps.max_vertices != c.caps.max_vertices || fresh.caps.max_frame_bytes != c.caps.max_frame_bytes ||
-      fresh.caps.max_streams != c.caps.max_streams)
-    restart.push_back("caps");
-  if (fresh.stats.interval_s != c.stats.interval_s) restart.push_back("stats");
-  return restart;
+  caps_.set(fresh.caps);
+  if (client_keys_) client_keys_->set(std::move(keys.clients));  // revoked keys' connections are cut
+  if (http_) http_->set_access(std::move(access));
+  spdlog::set_level(spdlog::level::from_str(fresh.log_level));
+  return {};
 }
 
 void Daemon::stop() {
@@ -239,7 +243,7 @@ void Daemon::stop() {
   // already received may finish within the grace; then the engines stop theirs and every
   // frame left gets an error result (so a huge frame does not hold the exit for minutes).
   {
-    const Alarm grace(std::chrono::duration<double>(config_.caps.stop_grace_s), pipeline_.cancel_engines);
+    const Alarm grace(std::chrono::duration<double>(caps_.get()->stop_grace_s), pipeline_.cancel_engines);
     pipeline_.decode_queue.close();
     join_all(decoders_);
     pipeline_.slots.close();

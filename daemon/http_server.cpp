@@ -203,13 +203,6 @@ void HttpServer::add_viewer_routes() {
   });
 }
 
-Status HttpServer::reload_access(const HttpConfig& http, bool curve_on) {
-  HttpAccessRules rules;
-  FQ_RETURN_IF_ERROR(load_http_access(http, curve_on, rules));
-  access_.set(std::move(rules));
-  return {};
-}
-
 void HttpServer::warn_if_exposed(const std::string& host) const {
   const HttpConfig& h = config_.http;
   if (config_.security.enabled() && h.token_file.empty())
@@ -231,7 +224,9 @@ Status HttpServer::start() {
   int port = 0;
   if (!split_host_port(config_.http.listen, host, port))
     return invalid_argument("http.listen \"" + config_.http.listen + "\" is not host:port");
-  FQ_RETURN_IF_ERROR(reload_access(config_.http, config_.security.enabled()));
+  HttpAccessRules rules;
+  FQ_RETURN_IF_ERROR(load_http_access(config_.http, config_.security.enabled(), rules));
+  access_.set(std::move(rules));
   if (!config_.http.tls_cert_file.empty()) {
     FQ_RETURN_IF_ERROR(make_tls_context(config_.http.tls_cert_file, config_.http.tls_key_file, tls_));
     server_->set_tls(tls_.get());

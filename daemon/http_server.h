@@ -34,8 +34,8 @@ class HttpServer : NonCopyable {
   /// Loads the token and TLS files, binds http.listen (port 0: any free port) and serves on a
   /// thread of its own. A second process on the same port fails here (no port sharing).
   Status start();
-  /// Applies a reloaded [http]'s token and allowed hosts (SIGHUP); an error changes nothing.
-  Status reload_access(const HttpConfig& http, bool curve_on);
+  /// Applies a reloaded [http]'s token and allowed hosts (SIGHUP; load_http_access made them).
+  void set_access(HttpAccessRules rules) { access_.set(std::move(rules)); }
   /// Stops serving and joins; idempotent.
   void stop();
   /// The bound address, "http://host:port" (https with TLS).

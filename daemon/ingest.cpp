@@ -64,14 +64,15 @@ void expire_idle_streams(Pipeline& p) {
   const int64_t now = wall_ns();
   if (now - p.last_sweep_ns < 1'000'000'000) return;
   p.last_sweep_ns = now;
-  const auto idle_ns = static_cast<int64_t>(p.config.caps.pool_idle_s * 1e9);
+  const std::shared_ptr<const Caps> caps = p.caps.get();
+  const auto idle_ns = static_cast<int64_t>(caps->pool_idle_s * 1e9);
   p.results.trim(now, idle_ns);
   p.meshes.trim(now, idle_ns);
   hand_back_free_pages(p, now);
-  for (const std::string& id : p.registry.expire_idle(now, p.config.caps.stream_idle_s)) {
+  for (const std::string& id : p.registry.expire_idle(now, caps->stream_idle_s)) {
     p.forget(id);
     p.expiry_log.log(spdlog::level::info, "stream '{}' expired after {} s without frames", id,
-                     p.config.caps.stream_idle_s);
+                     caps->stream_idle_s);
   }
 }
 
@@ -136,7 +137,7 @@ FramePtr refuse_oversized(const std::vector<zmq::message_t>& parts, Received why
   f->receive_ns = wall_ns();
   const std::string topic = parts[0].to_string();
   const bool valid = check_stream_id(topic, *p.caps.get()).ok();
-  f->stream_id = valid ? topic : printable_id(topic, p.config.caps.max_stream_id_bytes);
+  f->stream_id = valid ? topic : printable_id(topic);
   const std::string what = why == Received::kTooManyParts
                                ? "more than " + std::to_string(2 + wire::kMaxChunks) + " parts"
                                : "more than caps.max_frame_bytes = " + std::to_string(p.config.caps.max_frame_bytes) +
@@ -153,6 +154,7 @@ bool ingest_one(zmq::socket_t& socket, Pipeline& p, zmq::recv_flags flags, const
   const MessageBounds bounds{2 + wire::kMaxChunks, p.config.caps.max_frame_bytes};
   const Received got = receive_bounded(socket, parts, bounds, flags);
   if (got == Received::kNothing) return false;
+  if (!admit_sender(parts[0], p.keys, p.registry.refusals())) return true;  // a key revoked since it connected
   // Another fqd's stream (a SUB topic matches by prefix): not ours to count.
   if (assigned && !assigned->empty() && !assigned->count(parts[0].to_string())) return true;
   queue_admitted(got == Received::kMessage ? admit_message(parts, p) : refuse_oversized(parts, got, p), p);

@@ -1,6 +1,7 @@
 // fqd: the streaming daemon. Usage: fqd [--config configs/fqd.toml]
 // Configuration: --config, else $FQ_CONFIG, else /etc/fq/fqd.toml, else built-in defaults.
-// SIGINT/SIGTERM stop it (frames in flight are finished); SIGHUP reloads per-stream settings.
+// SIGINT/SIGTERM stop it (frames in flight are finished); SIGHUP reloads the file (what a
+// reload may change: daemon/config_reload.h).
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
@@ -30,21 +31,22 @@ fq::Status load(const fq::daemon::ConfigSource& source, fq::daemon::DaemonConfig
   return source.path.empty() ? fq::Status{} : fq::daemon::load_config(source.path, config);
 }
 
-// SIGHUP: per-stream settings from the file again; a bad file changes nothing.
-void reload(const fq::daemon::ConfigSource& source, fq::daemon::Daemon& daemon) {
+// SIGHUP: the file again, applied whole or not at all (an invalid or empty file, or one that
+// changes a setting only a restart can change, changes nothing). `log_level`: --log-level.
+void reload(const fq::daemon::ConfigSource& source, const std::string& log_level, fq::daemon::Daemon& daemon) {
   if (source.path.empty()) {
     spdlog::info("fqd: SIGHUP ignored: running on built-in defaults, no configuration file to reload");
     return;
   }
   fq::daemon::DaemonConfig fresh;
-  if (fq::Status s = load(source, fresh); !s.ok()) {
+  fq::Status s = fq::daemon::load_config(source.path, fresh, /*allow_empty=*/false);
+  if (!log_level.empty()) fresh.log_level = log_level;
+  if (s.ok()) s = daemon.reload(fresh);
+  if (!s.ok()) {
     spdlog::error("fqd: SIGHUP: {} not reloaded, settings unchanged: {}", source.path, s.message());
     return;
   }
-  const std::vector<std::string> restart = daemon.reload_streams(fresh);
-  spdlog::info("fqd: SIGHUP: stream settings reloaded from {} ([defaults], [streams.*])", source.path);
-  for (const std::string& section : restart)
-    spdlog::warn("fqd: SIGHUP: [{}] changed in {}; it takes effect at the next start", section, source.path);
+  spdlog::info("fqd: SIGHUP: reloaded {} (streams, caps, client keys, HTTP access, log level)", source.path);
 }
 
 }  // namespace
@@ -100,7 +102,7 @@ int main(int argc, char** argv) {
   }
   if (!endpoints_file.empty()) std::ofstream(endpoints_file) << line << "\n";
   int sig = 0;
-  while ((sig = fq::daemon::wait_for_stop_signal()) == SIGHUP) reload(source, daemon);
+  while ((sig = fq::daemon::wait_for_stop_signal()) == SIGHUP) reload(source, log_level, daemon);
   spdlog::info("fqd: signal {} received, finishing frames in flight", sig);
   daemon.stop();
   return 0;

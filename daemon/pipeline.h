@@ -11,6 +11,7 @@
 #include <string>
 
 #include "daemon/config.h"
+#include "daemon/curve_auth.h"
 #include "daemon/frame_job.h"
 #include "daemon/label_tracks.h"
 #include "daemon/latency_policy.h"
@@ -46,6 +47,9 @@ struct Pipeline {
   const DaemonConfig& config;  ///< as started; the caps that SIGHUP changes are in `caps`
   StreamRegistry& registry;
   LiveCaps& caps;
+  /// With [security]: the client keys allowed now; a message from a key no longer in it is
+  /// refused and its connection cut (null without CURVE).
+  const ClientKeys* keys = nullptr;
   WorkQueue<FramePtr> decode_queue;
   FrameSlots slots;
   WorkQueue<FramePtr> encode_queue;

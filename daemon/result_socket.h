@@ -41,8 +41,9 @@ class ResultSocket {
   static void configure(zmq::socket_t& xpub, int max_results, uint32_t max_topic_bytes);
 
   /// `monitor` from SubscriptionGate::monitor(xpub), made before the socket bound.
-  ResultSocket(zmq::socket_t xpub, zmq::socket_t monitor, SubscriptionCaps caps, RefusalCounters& refusals)
-      : socket_(std::move(xpub)), gate_(std::move(monitor), caps, refusals) {}
+  ResultSocket(zmq::socket_t xpub, zmq::socket_t monitor, SubscriptionCaps caps, RefusalCounters& refusals,
+               const ClientKeys* keys = nullptr)
+      : socket_(std::move(xpub)), gate_(std::move(monitor), caps, refusals, keys) {}
 
   /// Sends one multipart result without blocking. False when a subscriber's queue was found
   /// full (an overflow: it did not get this result; the others did).

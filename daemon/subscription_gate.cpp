@@ -51,6 +51,13 @@ void SubscriptionGate::subscription(const zmq::message_t& m) {
   if (fd < 0) return;
   Peer& peer = peers_[fd];
   if (peer.cut) return;
+  if (keys_) {
+    peer.key = sender_key(m);
+    if (!keys_->allowed(peer.key)) {  // revoked since it connected
+      refusals_->add(Refusal::kUnauthenticated);
+      return cut(fd, peer);
+    }
+  }
   const auto known = peer.topics.find(topic);
   if (!subscribe) {
     if (known == peer.topics.end()) return;
@@ -70,6 +77,10 @@ void SubscriptionGate::subscription(const zmq::message_t& m) {
            "publish: cut a subscriber from {}: over caps.max_subscriptions = {} subscriptions or "
            "caps.max_subscription_bytes = {} bytes of topics",
            address ? address : "?", caps_.max_count, caps_.max_bytes);
+  cut(fd, peer);
+}
+
+void SubscriptionGate::cut(int fd, Peer& peer) {
   // Shut down, not closed: the socket stays libzmq's, which sees the end and drops the peer
   // with everything it subscribed.
   ::shutdown(fd, SHUT_RDWR);
@@ -77,8 +88,19 @@ void SubscriptionGate::subscription(const zmq::message_t& m) {
   peer.cut = true;
 }
 
+void SubscriptionGate::revoke() {
+  keys_seen_ = keys_->generation();
+  for (auto& [fd, peer] : peers_) {
+    if (peer.cut || peer.key.empty() || keys_->allowed(peer.key)) continue;
+    refusals_->add(Refusal::kUnauthenticated);
+    log_->log(spdlog::level::warn, "publish: cut a subscriber whose client key {} was revoked", peer.key);
+    cut(fd, peer);
+  }
+}
+
 void SubscriptionGate::drain(zmq::socket_t& xpub) {
   connection_events();  // first: a departed peer's number may be a new peer's now
+  if (keys_ && keys_->generation() != keys_seen_) revoke();
   zmq::message_t m;
   while (xpub.recv(m, zmq::recv_flags::dontwait)) subscription(m);
 }

@@ -25,6 +25,7 @@
 #include <string>
 #include <zmq.hpp>
 
+#include "daemon/curve_auth.h"
 #include "daemon/log_limiter.h"
 #include "daemon/stream_admission.h"
 
@@ -41,8 +42,11 @@ class SubscriptionGate {
   /// socket on `ctx` that receives its connection events (for the constructor).
   static zmq::socket_t monitor(zmq::context_t& ctx, zmq::socket_t& xpub);
 
-  SubscriptionGate(zmq::socket_t monitor, SubscriptionCaps caps, RefusalCounters& refusals)
-      : monitor_(std::move(monitor)), caps_(caps), refusals_(&refusals) {}
+  /// `keys`: with [security], the client keys allowed now (a subscriber whose key is revoked
+  /// is cut at the next drain); null without CURVE.
+  SubscriptionGate(zmq::socket_t monitor, SubscriptionCaps caps, RefusalCounters& refusals,
+                   const ClientKeys* keys = nullptr)
+      : monitor_(std::move(monitor)), caps_(caps), refusals_(&refusals), keys_(keys) {}
 
   /// Accounts for every subscription message waiting on `xpub`, cutting subscribers over the
   /// caps; on the socket's thread.
@@ -56,13 +60,20 @@ class SubscriptionGate {
     std::set<std::string, std::less<>> topics;
     uint64_t bytes = 0;
     bool cut = false;  ///< refused: its remaining messages are ignored until it is gone
+    std::string key;   ///< its CURVE client key
   };
   void connection_events();
   void subscription(const zmq::message_t& m);
+  /// Cuts the subscriber on socket `fd` (shutdown: libzmq then drops it and what it subscribed).
+  void cut(int fd, Peer& peer);
+  /// After the allowed keys changed: cuts every subscriber whose key is no longer allowed.
+  void revoke();
 
   zmq::socket_t monitor_;  ///< PAIR: ACCEPTED and DISCONNECTED events of the XPUB
   SubscriptionCaps caps_;
   RefusalCounters* refusals_;
+  const ClientKeys* keys_;
+  uint64_t keys_seen_ = 0;  ///< keys_->generation() at the last revoke()
   std::map<int, Peer> peers_;  ///< by socket
   std::unique_ptr<LogLimiter> log_ = std::make_unique<LogLimiter>();  // movable with the gate
 };

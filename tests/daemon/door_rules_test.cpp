@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
 #include <cmath>
 #include <thread>
 
@@ -80,6 +81,58 @@ TEST(DoorRules, SendTimesOutsideTheWindowAreCountedNotFoldedIntoTheHistograms) {
   const auto& hist = snaps.at(0).histograms.at("send_to_publish");
   EXPECT_EQ(hist.count(), 1u);
   EXPECT_GE(hist.sum_ms(), 0.0);
+}
+
+TEST(DoorRules, AKeyRevokedByAReloadLosesItsOpenConnections) {
+  const TestKeys k;
+  daemon::DaemonConfig c = k.secured(test_config());
+  // The harness's client and a second one, the stranger, both allowed at first.
+  c.security.client_keys_file = (k.dir / "both.pub").string();
+  {
+    std::ofstream both(c.security.client_keys_file);
+    both << std::ifstream(k.client_pub).rdbuf() << std::ifstream(k.stranger_pub).rdbuf();
+  }
+  DaemonHarness h(c, {k.server_pub, k.client_key});
+  zmq::context_t ctx(1);
+  zmq::socket_t push(ctx, zmq::socket_type::push), sub(ctx, zmq::socket_type::sub);
+  for (zmq::socket_t* s : {&push, &sub}) {
+    s->set(zmq::sockopt::linger, 0);
+    s->set(zmq::sockopt::reconnect_ivl, -1);  // a cut connection stays cut
+    ASSERT_TRUE(client::apply_curve_client(*s, {k.server_pub, k.stranger_key}).ok());
+  }
+  sub.set(zmq::sockopt::subscribe, "");
+  sub.set(zmq::sockopt::rcvtimeo, 30000);
+  push.connect(h.daemon()->endpoints().ingest);
+  sub.connect(h.daemon()->endpoints().publish);
+  h.sync_results();  // the stranger's subscription is in
+  client::FrameSpec spec;
+  spec.stream_id = "stranger";
+  std::vector<std::string> parts;
+  ASSERT_TRUE(client::build_frame(noisy_sphere().view(), spec, 1, parts).ok());
+  client::send_parts(push, parts);
+  EXPECT_EQ(h.receive("stranger").header.status(), wire::OK);
+  client::ReceivedResult r;
+  const StatusOr<bool> first = client::receive_result(sub, r);
+  ASSERT_TRUE(first.ok() && *first);
+
+  daemon::DaemonConfig fresh = c;
+  fresh.security.client_keys_file = k.client_pub;  // the stranger's key revoked
+  ASSERT_TRUE(h.daemon()->reload(fresh).ok());
+  const auto& refusals = h.daemon()->registry().refusals();
+  const uint64_t before = refusals.get(daemon::Refusal::kUnauthenticated);
+  ASSERT_TRUE(client::build_frame(noisy_sphere().view(), spec, 2, parts).ok());
+  client::send_parts(push, parts);
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (refusals.get(daemon::Refusal::kUnauthenticated) < before + 2 && std::chrono::steady_clock::now() < end)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));  // polling fqd's counter
+  EXPECT_GE(refusals.get(daemon::Refusal::kUnauthenticated), before + 2) << "the frame and the subscriber";
+  h.send(noisy_sphere(), spec, 3);  // the harness's key is still allowed
+  EXPECT_EQ(h.receive("stranger").header.sequence(), 3u);
+  EXPECT_EQ(h.counters("stranger").frames_in(), 2u) << "a frame from the revoked key got in";
+  // What was queued for the stranger before the cut may still come; nothing published after.
+  sub.set(zmq::sockopt::rcvtimeo, 1000);
+  for (StatusOr<bool> got = client::receive_result(sub, r); got.ok() && *got; got = client::receive_result(sub, r))
+    EXPECT_FALSE(r.topic == "stranger" && r.header.sequence() == 3) << "the revoked subscriber still gets results";
 }
 
 }  // namespace

@@ -26,7 +26,7 @@ TestKeys::TestKeys() {
   };
   pair("server", server_key, &server_pub);
   pair("client", client_key, &client_pub);
-  pair("stranger", stranger_key, nullptr);
+  pair("stranger", stranger_key, &stranger_pub);
 }
 
 TestKeys::~TestKeys() {

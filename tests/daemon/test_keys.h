@@ -19,7 +19,7 @@ struct TestKeys {
   daemon::DaemonConfig secured(daemon::DaemonConfig base) const;
 
   std::filesystem::path dir;
-  std::string server_key, server_pub, client_key, client_pub, stranger_key;
+  std::string server_key, server_pub, client_key, client_pub, stranger_key, stranger_pub;
 };
 
 }  // namespace fq::test
