@@ -168,6 +168,8 @@ Status read_sections(TomlReader& root, DaemonConfig& c) {
     r.read("max_subscriber_results", c.caps.max_subscriber_results, 2, 1000);
     r.read("max_subscriptions", c.caps.max_subscriptions, 1, 100000);
     r.read("max_subscription_bytes", c.caps.max_subscription_bytes, 1, 1 << 24);
+    r.read("max_queued_frames", c.caps.max_queued_frames, 1, 100000);
+    r.read("max_queued_bytes", c.caps.max_queued_bytes, 1, 1ll << 40);
     FQ_RETURN_IF_ERROR(r.finish());
   }
   return {};

@@ -59,6 +59,10 @@ struct Caps {
   /// cut (counted `subscriptions`), which frees what the publish socket kept for it.
   uint32_t max_subscriptions = 128;
   uint32_t max_subscription_bytes = 16384;
+  /// Frames received and waiting for a decoder, and their bytes: when either is reached the
+  /// ingest thread stops reading until a decoder takes one (backpressure; decode_queue.h).
+  uint32_t max_queued_frames = 32;
+  uint64_t max_queued_bytes = 256ull << 20;
 };
 
 struct DaemonConfig {

@@ -96,6 +96,7 @@ Daemon::Daemon(DaemonConfig config)
   // An engine that outruns the encoders waits instead of queueing results: frames then wait
   // in their streams' slots, where newer ones supersede them, and latency stays bounded.
   pipeline_.encode_queue.set_capacity(static_cast<size_t>(config_.encode_threads));
+  pipeline_.decode_queue.set_bounds(config_.caps.max_queued_frames, config_.caps.max_queued_bytes);
 }
 
 Daemon::~Daemon() { stop(); }
@@ -125,6 +126,9 @@ Status Daemon::make_sockets(Sockets& s) {
   s.ingest.set(zmq::sockopt::linger, 0);
   // max_frame_bytes bounds the whole message, so it bounds every part too.
   s.ingest.set(zmq::sockopt::maxmsgsize, static_cast<int64_t>(config_.caps.max_frame_bytes));
+  // When the decode queue is full the ingest thread stops reading: this mark (messages per
+  // producer connection) is what libzmq then holds before the producer is held back.
+  s.ingest.set(zmq::sockopt::rcvhwm, kIngestMark);
   // Wakes the ingest thread once a second when nothing arrives, for idle-stream expiry.
   s.ingest.set(zmq::sockopt::rcvtimeo, 1000);
   s.control.set(zmq::sockopt::linger, 0);
@@ -221,6 +225,7 @@ Status Daemon::reload(const DaemonConfig& fresh) {
   if (http_) FQ_RETURN_IF_ERROR(load_http_access(fresh.http, fresh.security.enabled(), access));
   registry_.reload(fresh.defaults, fresh.streams);
   caps_.set(fresh.caps);
+  pipeline_.decode_queue.set_bounds(fresh.caps.max_queued_frames, fresh.caps.max_queued_bytes);
   if (client_keys_) client_keys_->set(std::move(keys.clients));  // revoked keys' connections are cut
   if (http_) http_->set_access(std::move(access));
   spdlog::set_level(spdlog::level::from_str(fresh.log_level));

@@ -127,22 +127,6 @@ void Pipeline::recycle(FrameJob& f) {
   meshes.release(std::move(f.mesh));
 }
 
-void Pipeline::note_queued(const FrameJob& f) {
-  std::lock_guard<std::mutex> lock(newest_mutex_);
-  newest_queued_[f.stream_id] = f.arrival;
-}
-
-bool Pipeline::newer_queued(const FrameJob& f) {
-  std::lock_guard<std::mutex> lock(newest_mutex_);
-  auto it = newest_queued_.find(f.stream_id);
-  return it != newest_queued_.end() && it->second > f.arrival;
-}
-
-void Pipeline::forget(const std::string& stream_id) {
-  std::lock_guard<std::mutex> lock(newest_mutex_);
-  newest_queued_.erase(stream_id);
-}
-
 void run_decode_worker(Pipeline& p) {
   while (auto item = p.decode_queue.pop()) {
     FramePtr f = std::move(*item);
@@ -150,12 +134,6 @@ void run_decode_worker(Pipeline& p) {
     if (is_stale(f->receive_ns, wall_ns(), f->settings.budget_ms)) {
       p.registry.count(f->stream_id, Counter::kDroppedStale);
       p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: stale before decode", f->stream_id,
-                     f->header.sequence());
-      continue;
-    }
-    if (p.newer_queued(*f)) {
-      p.registry.count(f->stream_id, Counter::kSuperseded);
-      p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: superseded before decode", f->stream_id,
                      f->header.sequence());
       continue;
     }

@@ -70,7 +70,6 @@ void expire_idle_streams(Pipeline& p) {
   p.meshes.trim(now, idle_ns);
   hand_back_free_pages(p, now);
   for (const std::string& id : p.registry.expire_idle(now, caps->stream_idle_s)) {
-    p.forget(id);
     p.expiry_log.log(spdlog::level::info, "stream '{}' expired after {} s without frames", id,
                      caps->stream_idle_s);
   }
@@ -182,8 +181,15 @@ void queue_admitted(FramePtr f, Pipeline& p) {
     const Status why = f->error;
     p.fail(std::move(f), why);
   } else {
-    p.note_queued(*f);
-    p.decode_queue.push(std::move(f));
+    // Waits while the queue is full: this thread stops reading, and ZeroMQ's marks hold the
+    // producers back. An older frame of the stream still waiting gives its place up.
+    FramePtr older;
+    p.decode_queue.push(std::move(f), older);
+    if (older) {
+      p.registry.count(older->stream_id, Counter::kSuperseded);
+      p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: superseded before decode", older->stream_id,
+                     older->header.sequence());
+    }
   }
 }
 

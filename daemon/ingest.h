@@ -10,6 +10,10 @@
 
 namespace fq::daemon {
 
+/// The receive mark of the ingest sockets, in messages per producer connection: what libzmq
+/// holds while fqd's decode queue is full and the ingest thread waits (then producers wait).
+inline constexpr int kIngestMark = 4;
+
 /// Receives until the socket's context is shut down, then closes the socket.
 void run_ingest(zmq::socket_t socket, Pipeline& p);
 

@@ -1,17 +1,16 @@
 // The queues and shared state between fqd's threads:
-//   ingest thread -> decode_queue -> decode pool -> slots (latency policy)
+//   ingest thread -> decode_queue (bounded: backpressure) -> decode pool -> slots (latency policy)
 //   -> engine workers (one per engine) -> encode_queue -> encode pool
 //   -> publish_queue -> publisher thread (owns the PUB socket).
 // Error results skip ahead to publish_queue from whichever stage found the problem.
 #pragma once
 
 #include <atomic>
-#include <map>
-#include <mutex>
 #include <string>
 
 #include "daemon/config.h"
 #include "daemon/curve_auth.h"
+#include "daemon/decode_queue.h"
 #include "daemon/frame_job.h"
 #include "daemon/label_tracks.h"
 #include "daemon/latency_policy.h"
@@ -50,7 +49,7 @@ struct Pipeline {
   /// With [security]: the client keys allowed now; a message from a key no longer in it is
   /// refused and its connection cut (null without CURVE).
   const ClientKeys* keys = nullptr;
-  WorkQueue<FramePtr> decode_queue;
+  DecodeQueue decode_queue;  ///< bounded; at most one frame of each stream
   FrameSlots slots;
   WorkQueue<FramePtr> encode_queue;
   WorkQueue<FramePtr> publish_queue;
@@ -83,19 +82,6 @@ struct Pipeline {
   void fail(FramePtr frame, Status why);
   /// Returns the frame's mesh and result buffers to their pools once it is published or dropped.
   void recycle(FrameJob& frame);
-
-  /// Notes that `frame` is being queued for decode (ingest thread).
-  void note_queued(const FrameJob& frame);
-  /// True when a newer frame of the same stream is already queued: a decoder that pops an
-  /// older one skips it (superseded), as the newer one would take its slot anyway. This
-  /// keeps a backlog from building up in front of the decoders.
-  bool newer_queued(const FrameJob& frame);
-  /// Drops what the pipeline keeps for a stream that expired (ingest thread).
-  void forget(const std::string& stream_id);
-
- private:
-  std::mutex newest_mutex_;
-  std::map<std::string, uint64_t> newest_queued_;  ///< per stream, the last arrival queued
 };
 
 /// Decode pool worker: decode, check the mesh and the parameters, offer to the slots.

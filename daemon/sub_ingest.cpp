@@ -16,6 +16,7 @@ Status make_sub_socket(zmq::context_t& ctx, const SubIngestConfig& config, uint6
   reconnector = std::make_unique<SubReconnector>(ctx, out);
   out.set(zmq::sockopt::linger, 0);
   out.set(zmq::sockopt::maxmsgsize, static_cast<int64_t>(max_frame_bytes));
+  out.set(zmq::sockopt::rcvhwm, kIngestMark);  // what libzmq holds while the decode queue is full
   // The mechanism's roles do not follow bind and connect: fqd is the CURVE server here too, so
   // producers use the same keys (--server-key fqd.pub --key-file cam.key) for PUSH and PUB.
   if (curve_server) make_curve_server(out, *curve_server);
