@@ -33,6 +33,8 @@ void read_filter(TomlReader& r, FilterParams& f) {
   r.read("sigma_n", f.sigma_n);
   r.read("constrained", f.constrained);
   r.read("tikhonov", f.tikhonov);
+  r.read("known_noise", f.refine.known_noise);
+  r.read("strength", f.refine.strength);
 }
 
 void read_cluster(TomlReader& r, ClusterParams& c) {

@@ -51,6 +51,8 @@ wire::ResultHeader make_result_header(const FrameJob& f, int64_t publish_ns) {
   h.set_cluster_count(f.result.num_clusters);
   h.set_distinct_clusters(f.distinct_clusters);
   h.set_theta(f.result.theta);
+  h.set_noise_estimate(f.result.noise_estimate);
+  h.set_filter_noise(f.result.filter_noise);
   h.set_chunk_count(static_cast<uint32_t>(f.out_chunks.size()));
   h.set_vertex_count(f.mesh.num_vertices());
   h.set_form(to_wire(f.settings.output.form));
