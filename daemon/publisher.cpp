@@ -7,6 +7,18 @@
 #include "proto/header_codec.h"
 
 namespace fq::daemon {
+namespace {
+
+// Longest send -> publish believed: anything longer is a clock, not a latency.
+constexpr double kMaxSendToPublishMs = 3'600'000;
+
+// Sends that fail are logged, at most 5 a second.
+LogLimiter& send_errors() {
+  static LogLimiter log;
+  return log;
+}
+
+}  // namespace
 
 wire::ResultHeader make_result_header(const FrameJob& f, int64_t publish_ns) {
   wire::ResultHeader h;
@@ -92,7 +104,8 @@ void Publisher::publish(FrameJob& f) {
   try {
     if (!socket_.send(parts)) p_.registry.count(f.stream_id, Counter::kSubscriberOverflows);
   } catch (const zmq::error_t& e) {
-    spdlog::error("publish of stream '{}' frame {} failed: {}", f.stream_id, h.sequence(), e.what());
+    send_errors().log(spdlog::level::err, "publish of stream '{}' frame {} failed: {}", f.stream_id, h.sequence(),
+                      e.what());
   }
   p_.recycle(f);
 }
@@ -107,8 +120,15 @@ void Publisher::account(const FrameJob& f, const wire::ResultHeader& h) {
   if (h.status() == wire::LATE) r.count(f.stream_id, Counter::kLate);
   for (const PassTiming& t : f.timings) r.record(f.stream_id, t.name, t.ms);
   r.record(f.stream_id, "receive_to_publish", h.latency_ms());
-  if (h.send_time_ns() > 0)
-    r.record(f.stream_id, "send_to_publish", ms_between(h.send_time_ns(), h.publish_time_ns()));
+  if (h.send_time_ns() > 0) {
+    // The producer's clock: a time in the future or far in the past (a wrong clock, or a forged
+    // one) would drive the histograms' sums negative or off the scale; it is counted instead.
+    const double ms = ms_between(h.send_time_ns(), h.publish_time_ns());
+    if (ms >= 0 && ms <= kMaxSendToPublishMs)
+      r.record(f.stream_id, "send_to_publish", ms);
+    else
+      r.count(f.stream_id, Counter::kBadSendTime);
+  }
 }
 
 }  // namespace fq::daemon
