@@ -39,8 +39,14 @@ class FrameSlots {
   /// Wakes every waiting worker; waiting frames are still handed out.
   void close();
 
+  /// Frames waiting in the slots now (fq_queue_depth{queue="slots"}).
+  size_t waiting() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return waiting_.size();
+  }
+
  private:
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::condition_variable ready_;
   /// The streams whose slot holds a frame; that frame keeps its stream alive.
   std::vector<Stream*> waiting_;

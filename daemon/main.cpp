@@ -1,21 +1,30 @@
-// fqd: the streaming daemon. Usage: fqd [--config configs/fqd.toml]
-// Configuration: --config, else $FQ_CONFIG, else /etc/fq/fqd.toml, else built-in defaults.
-// SIGINT/SIGTERM stop it (frames in flight are finished); SIGHUP reloads per-stream settings.
-#include <spdlog/sinks/stdout_color_sinks.h>
+// fqd: the streaming daemon. Usage: fqd [--config configs/fqd.toml] [--engine cpu] ...
+// Configuration: --config, else $FQ_CONFIG, else /etc/fq/fqd.toml, else built-in defaults;
+// the flags override the file (daemon/command_line.h). Exit status: 0 after a stop signal,
+// 1 when it cannot start, 2 for a usage error or an invalid configuration.
+// SIGINT/SIGTERM stop it (frames in flight are finished); SIGHUP reloads the file, the flags
+// over it again (what a reload may change: daemon/config_reload.h).
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "common/version.h"
+#include "common/tool_main.h"
+#include "daemon/command_line.h"
 #include "daemon/config.h"
 #include "daemon/config_lookup.h"
 #include "daemon/daemon.h"
+#include "daemon/log_format.h"
+#include "daemon/service_notify.h"
 #include "daemon/signals.h"
+#include "daemon/startup_report.h"
+#include "daemon/stream_shard.h"
+#include "daemon/web_root.h"
 
 namespace {
 
@@ -25,67 +34,73 @@ std::string endpoints_json(const fq::daemon::BoundEndpoints& e) {
   return j.dump();
 }
 
-// `config` is left as it is (default-constructed by the caller) for the built-in defaults.
-fq::Status load(const fq::daemon::ConfigSource& source, fq::daemon::DaemonConfig& config) {
-  return source.path.empty() ? fq::Status{} : fq::daemon::load_config(source.path, config);
+// The file (or the built-in defaults), then the flags over it.
+// `allow_empty`: false for a reload (parse_config says why).
+fq::Status load(const fq::daemon::ConfigSource& source, const fq::daemon::CommandLine& cl,
+                fq::daemon::DaemonConfig& config, std::vector<std::string>* shard_streams = nullptr,
+                bool allow_empty = true) {
+  if (!source.path.empty()) FQ_RETURN_IF_ERROR(fq::daemon::load_config(source.path, config, allow_empty));
+  fq::daemon::resolve_default_web_root(config.http);
+  return fq::daemon::apply_command_line(cl, config, shard_streams);
 }
 
-// SIGHUP: per-stream settings from the file again; a bad file changes nothing.
-void reload(const fq::daemon::ConfigSource& source, fq::daemon::Daemon& daemon) {
+// SIGHUP: the file again (the flags over it, as at start), applied whole or not at all: an
+// invalid or empty file, or one that changes a setting only a restart can change, changes nothing.
+void reload(const fq::daemon::ConfigSource& source, const fq::daemon::CommandLine& cl, fq::daemon::Daemon& daemon) {
   if (source.path.empty()) {
     spdlog::info("fqd: SIGHUP ignored: running on built-in defaults, no configuration file to reload");
     return;
   }
+  fq::daemon::notify_service_manager("RELOADING=1");
   fq::daemon::DaemonConfig fresh;
-  if (fq::Status s = load(source, fresh); !s.ok()) {
+  fq::Status s = load(source, cl, fresh, nullptr, /*allow_empty=*/false);
+  if (s.ok()) s = daemon.reload(fresh);
+  if (!s.ok())
     spdlog::error("fqd: SIGHUP: {} not reloaded, settings unchanged: {}", source.path, s.message());
-    return;
-  }
-  const std::vector<std::string> restart = daemon.reload_streams(fresh);
-  spdlog::info("fqd: SIGHUP: stream settings reloaded from {} ([defaults], [streams.*])", source.path);
-  for (const std::string& section : restart)
-    spdlog::warn("fqd: SIGHUP: [{}] changed in {}; it takes effect at the next start", section, source.path);
+  else
+    spdlog::info("fqd: SIGHUP: reloaded {} (streams, caps, client keys, HTTP access, log level)", source.path);
+  fq::daemon::notify_service_manager("READY=1");
 }
 
-}  // namespace
+// --shard-map N: which of N shards serves each [ingest] stream.
+int print_shard_map(const fq::daemon::DaemonConfig& config, int shards) {
+  if (config.sub_ingest.streams.empty()) {
+    std::fprintf(stderr, "fqd: --shard-map needs the stream ids to spread in [ingest] streams\n");
+    return 2;
+  }
+  for (const std::string& id : config.sub_ingest.streams)
+    std::printf("%s %u\n", id.c_str(), fq::daemon::shard_of(id, static_cast<uint32_t>(shards)));
+  return 0;
+}
 
-int main(int argc, char** argv) {
-  CLI::App app{"fqd: filters and clusters streamed mesh frames within a latency budget"};
-  app.set_version_flag("--version", fq::version_line("fqd"));
-  std::string config_path, log_level, endpoints_file;
-  bool print_endpoints = false, check_only = false;
-  app.add_option("-c,--config", config_path,
-                 "TOML configuration file (default: $FQ_CONFIG, else /etc/fq/fqd.toml, else built-in defaults)");
-  app.add_option("--log-level", log_level,
-                 "override log_level: trace, debug, info, warn, error, critical, off");
-  app.add_flag("--print-endpoints", print_endpoints,
-               "print the bound endpoints as one JSON line on stdout once listening (for ports given as *)");
-  app.add_option("--endpoints-file", endpoints_file, "also write that JSON line to this file once listening");
-  app.add_flag("--check-config", check_only, "validate the configuration and exit");
-  CLI11_PARSE(app, argc, argv);
+void log_start(const fq::daemon::ConfigSource& source, const fq::daemon::DaemonConfig& config,
+               const fq::daemon::CommandLine& cl, const std::vector<std::string>& shard_streams) {
+  spdlog::info("{}", fq::daemon::start_line(source, static_cast<long>(getpid())));
+  if (cl.shard)
+    spdlog::info("fqd: shard {}: serves [{}] of [ingest] streams", *cl.shard, fmt::join(shard_streams, ", "));
+  for (const std::string& line : fq::daemon::off_lines(config)) spdlog::info("{}", line);
+}
+
+int run(int argc, char** argv) {
+  fq::daemon::CommandLine cl;
+  if (std::optional<int> exit_status = fq::daemon::parse_command_line(argc, argv, cl)) return *exit_status;
   // Logs go to stderr: stdout carries only the --print-endpoints line.
-  spdlog::set_default_logger(spdlog::stderr_color_mt("fqd"));
+  fq::daemon::use_log_format(cl.log_format);
 
-  const fq::daemon::ConfigSource source = fq::daemon::find_config(config_path, std::getenv("FQ_CONFIG"));
+  const fq::daemon::ConfigSource source = fq::daemon::find_config(cl.config_path, std::getenv("FQ_CONFIG"));
   fq::daemon::DaemonConfig config;
-  if (fq::Status s = load(source, config); !s.ok()) {
+  std::vector<std::string> shard_streams;
+  if (fq::Status s = load(source, cl, config, &shard_streams); !s.ok()) {
     std::fprintf(stderr, "fqd: invalid configuration: %s\n", s.message().c_str());
     return 2;
   }
-  if (!log_level.empty()) {
-    if (!fq::daemon::valid_log_level(log_level)) {
-      std::fprintf(stderr,
-                   "fqd: --log-level must be one of trace, debug, info, warn, error, critical, off\n");
-      return 2;
-    }
-    config.log_level = log_level;
-  }
-  if (check_only) {
+  if (cl.shard_map > 0) return print_shard_map(config, cl.shard_map);
+  if (cl.check_only) {
     std::printf("%s: configuration is valid\n", source.path.empty() ? source.from.c_str() : source.path.c_str());
     return 0;
   }
   spdlog::set_level(spdlog::level::from_str(config.log_level));
-  spdlog::info("fqd: configuration from {}{}", source.from, source.path.empty() || source.path == source.from ? "" : " (" + source.path + ")");
+  log_start(source, config, cl, shard_streams);
 
   fq::daemon::block_stop_signals();  // before any thread exists, so all of them inherit it
   fq::daemon::Daemon daemon(config);
@@ -93,15 +108,23 @@ int main(int argc, char** argv) {
     spdlog::critical("fqd: cannot start: {}", s.message());
     return 1;
   }
+  if (const std::string cuda = fq::daemon::cuda_line(config.engine, daemon.engine_names()); !cuda.empty())
+    spdlog::info("{}", cuda);
   const std::string line = endpoints_json(daemon.endpoints());
-  if (print_endpoints) {
+  if (cl.print_endpoints) {
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
   }
-  if (!endpoints_file.empty()) std::ofstream(endpoints_file) << line << "\n";
+  if (!cl.endpoints_file.empty()) std::ofstream(cl.endpoints_file) << line << "\n";
+  fq::daemon::notify_service_manager("READY=1\nSTATUS=serving " + line);
   int sig = 0;
-  while ((sig = fq::daemon::wait_for_stop_signal()) == SIGHUP) reload(source, daemon);
+  while ((sig = fq::daemon::wait_for_stop_signal()) == SIGHUP) reload(source, cl, daemon);
+  fq::daemon::notify_service_manager("STOPPING=1");
   spdlog::info("fqd: signal {} received, finishing frames in flight", sig);
   daemon.stop();
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return fq::tool_main("fqd", run, argc, argv); }

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cstdio>
 
+#include "daemon/late_warning.h"
+
 namespace fq::daemon {
 
 StatsLog::StatsLog(StreamRegistry& registry, double interval_s)
@@ -57,8 +59,15 @@ void StatsLog::run() {
     const auto now = clock::now();
     std::vector<StreamSnapshot> snaps;
     registry_.snapshot("", snaps);
-    for (const std::string& l : lines(snaps, std::chrono::duration<double>(now - last).count(), previous))
-      spdlog::info("{}", l);
+    const double seconds = std::chrono::duration<double>(now - last).count();
+    std::vector<std::string> warnings;  // judged against `previous` before lines() moves it on
+    for (const StreamSnapshot& s : snaps) {
+      StreamSettings settings;
+      if (!registry_.find(s.stream_id, settings)) continue;
+      if (auto w = late_warning(s, previous[s.stream_id], seconds, settings.budget_ms)) warnings.push_back(*w);
+    }
+    for (const std::string& l : lines(snaps, seconds, previous)) spdlog::info("{}", l);
+    for (const std::string& w : warnings) spdlog::warn("{}", w);
     last = now;
   }
 }

@@ -1,7 +1,7 @@
 // One stream in fqd, all of its state in one object: its settings, counters and latency
 // metrics (under its own lock), its waiting slot and ticket counter (the slots' lock), its
-// publish order (the publisher thread), its cluster id track (a lock of its own), its latest
-// result for the viewer (the latest results' lock) and the arrival of its newest queued frame.
+// publish order (the publisher thread), its cluster id track (a lock of its own) and its
+// latest result for the viewer (the latest results' lock).
 // The registry owns it and every frame in flight shares it (FrameJob::stream), so expiry is
 // one erase from the registry, and the last frame in flight frees the rest: no other owner
 // keeps a map by stream id that could outlive the stream or grow with every id ever seen.
@@ -38,9 +38,23 @@ struct StreamCounters {
   /// until it has read half its queue, so one overflow may stand for many missed results.
   /// Not part of the sum above: the results were published.
   uint64_t subscriber_overflows = 0;
+  /// Results whose producer send time was more than an hour before publish or after it (a
+  /// wrong or forged clock): their send_to_publish is left out of the metrics, not folded
+  /// into the histograms. Not part of the sum above.
+  uint64_t bad_send_time = 0;
 };
 
-enum class Counter { kIn, kOut, kSuperseded, kDroppedStale, kLate, kErrors, kTimeLimited, kSubscriberOverflows };
+enum class Counter {
+  kIn,
+  kOut,
+  kSuperseded,
+  kDroppedStale,
+  kLate,
+  kErrors,
+  kTimeLimited,
+  kSubscriberOverflows,
+  kBadSendTime
+};
 
 struct StreamSnapshot {
   std::string stream_id;
@@ -107,9 +121,6 @@ class Stream : NonCopyable {
 
   /// When a frame (or a control request) last found it, wall_ns(); the registry expires it.
   std::atomic<int64_t> last_seen_ns{0};
-  /// Arrival index of its newest frame queued for decode (ingest writes, decoders read): a
-  /// decoder that pops an older one skips it.
-  std::atomic<uint64_t> newest_queued{0};
 
   SlotState slot;      ///< FrameSlots' lock
   PublishOrder order;  ///< the publisher thread

@@ -1,5 +1,7 @@
 #include "io/draco_reader.h"
 
+#include <algorithm>
+#include <array>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +13,7 @@
 #include "draco/compression/decode.h"
 #include "draco/io/mesh_io.h"
 #include "io/mesh_io.h"
+#include "io/obj_corners.h"
 
 namespace fq::io {
 
@@ -91,19 +94,58 @@ Status check_stl_size(const std::string& path) {
                        " bytes");
 }
 
-/// What a Draco attribute holds, in the phrases of MeshAttributes::dropped.
-constexpr std::pair<draco::GeometryAttribute::Type, const char*> kAttributePhrases[] = {
-    {draco::GeometryAttribute::NORMAL, "normals"},
-    {draco::GeometryAttribute::COLOR, "colours"},
-    {draco::GeometryAttribute::TEX_COORD, "texture coordinates"},
-    {draco::GeometryAttribute::GENERIC, "a generic attribute"}};
+/// The vertex properties a Draco attribute becomes (as fq's writers name them).
+struct AttributeProperties {
+  draco::GeometryAttribute::Type type;
+  std::array<const char*, 4> names;  ///< per component; null past the last
+};
+constexpr AttributeProperties kKept[] = {
+    {draco::GeometryAttribute::NORMAL, {"nx", "ny", "nz", nullptr}},
+    {draco::GeometryAttribute::COLOR, {"red", "green", "blue", "alpha"}},
+    {draco::GeometryAttribute::TEX_COORD, {"u", "v", nullptr, nullptr}}};
 
-/// Names the attributes of `dm` other than positions in `attributes->dropped`.
-void name_dropped(const draco::Mesh& dm, const std::string& why, MeshAttributes* attributes) {
-  if (!attributes) return;
+/// One vertex property per component of `att` (per point: read_drc's vertices are points);
+/// uint8 values stay uchar (colours), others become float.
+void keep_attribute(const draco::Mesh& dm, const draco::PointAttribute& att, const AttributeProperties& kept,
+                    MeshAttributes& out) {
+  const int k = std::min<int>(att.num_components(), 4);
+  std::vector<float> value(size_t(att.num_components()));
+  for (int c = 0; c < k && kept.names[c]; ++c) {
+    ElementProperty p;
+    p.name = kept.names[c];
+    p.type = att.data_type() == draco::DT_UINT8 ? ScalarType::kUInt8 : ScalarType::kFloat32;
+    p.values.resize(dm.num_points());
+    out.vertex.push_back(std::move(p));
+  }
+  const size_t first = out.vertex.size() - std::min<size_t>(out.vertex.size(), size_t(k));
+  for (uint32_t i = 0; i < dm.num_points(); ++i) {
+    att.ConvertValue<float>(att.mapped_index(draco::PointIndex(i)), att.num_components(), value.data());
+    for (size_t c = first; c < out.vertex.size(); ++c) out.vertex[c].values[i] = value[c - first];
+  }
+}
+
+/// Normals, colours, texture coordinates and fq's labels of a .drc as vertex properties;
+/// other attributes are named in `dropped`.
+void keep_drc_attributes(const draco::Mesh& dm, MeshAttributes& out) {
+  const int32_t label_id = [&] {
+    const draco::AttributeMetadata* md = dm.GetAttributeMetadataByStringEntry(kLabelMetadataKey, kLabelMetadataName);
+    return md ? int32_t(md->att_unique_id()) : -1;
+  }();
   for (int i = 0; i < dm.num_attributes(); ++i) {
-    if (const auto phrase = second_of(kAttributePhrases, dm.attribute(i)->attribute_type()))
-      attributes->dropped.push_back(*phrase + why);
+    const draco::PointAttribute& att = *dm.attribute(i);
+    if (att.attribute_type() == draco::GeometryAttribute::POSITION) continue;
+    if (int32_t(att.unique_id()) == label_id) {
+      keep_attribute(dm, att, {draco::GeometryAttribute::GENERIC, {"label", nullptr, nullptr, nullptr}}, out);
+      out.vertex.back().type = ScalarType::kUInt32;
+      continue;
+    }
+    const AttributeProperties* kept = nullptr;
+    for (const AttributeProperties& a : kKept)
+      if (a.type == att.attribute_type()) kept = &a;
+    if (kept && att.num_components() >= 2)
+      keep_attribute(dm, att, *kept, out);
+    else
+      out.dropped.push_back("a " + std::string(att.TypeToString(att.attribute_type())) + " attribute");
   }
 }
 
@@ -134,7 +176,7 @@ Status read_drc(const std::string& path, Mesh& out, MeshAttributes* attributes) 
   draco::Decoder decoder;
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
   if (!decoded.ok()) return invalid_input("cannot decode '" + path + "': " + draco_message(decoded.status()));
-  name_dropped(*decoded.value(), " (only positions are read from .drc)", attributes);
+  if (attributes) keep_drc_attributes(*decoded.value(), *attributes);
   return from_draco(path, *decoded.value(), Vertices::kPoints, out);
 }
 
@@ -142,13 +184,15 @@ Status read_obj_or_stl(const std::string& path, Mesh& out, MeshAttributes* attri
   if (lower_extension(path) == ".stl") {
     FQ_RETURN_IF_ERROR(check_stl_size(path));
   }
-  auto decoded = draco::ReadMeshFromFile(path);
+  draco::Options options;
+  options.SetBool("use_metadata", true);  // the OBJ's material names and library
+  auto decoded = draco::ReadMeshFromFile(path, options);
   if (!decoded.ok()) return invalid_input("cannot decode '" + path + "': " + draco_message(decoded.status()));
   const std::unique_ptr<draco::Mesh> dm = std::move(decoded).value();
   if (!dm) return invalid_input("cannot decode '" + path + "': Draco returned no mesh");
-  // STL facet normals follow from the triangles; an OBJ's normals and UVs are data.
-  if (lower_extension(path) == ".obj")
-    name_dropped(*dm, " (per-corner values; vertices are welded by position)", attributes);
+  // STL facet normals follow from the triangles; an OBJ's normals, UVs and materials are
+  // data, kept per triangle corner beside the welded vertices.
+  if (attributes && lower_extension(path) == ".obj") keep_obj_corners(*dm, path, *attributes);
   // Welded: Draco splits a position into one point per texture coordinate or normal it
   // carries, which would cut the surface open along every seam.
   return from_draco(path, *dm, Vertices::kPositionValues, out);

@@ -13,15 +13,17 @@ namespace fq::io {
 /// Whole file into `bytes`; a status naming the file when it cannot be read.
 Status read_file_bytes(const std::string& path, std::vector<char>& bytes);
 
-/// Draco bitstream: a triangle mesh (a Draco point cloud is "not a triangle mesh"). Only
-/// positions are kept; other attributes are named in attributes->dropped (when given).
+/// Draco bitstream: a triangle mesh (a Draco point cloud is "not a triangle mesh"). With
+/// `attributes`, its NORMAL, COLOR and TEX_COORD attributes and fq's labels become vertex
+/// properties (nx, ny, nz; red, green, blue[, alpha]; u, v; label); others are named in
+/// attributes->dropped.
 Status read_drc(const std::string& path, Mesh& out, MeshAttributes* attributes = nullptr);
 
 /// OBJ or binary STL through draco::ReadMeshFromFile (which fan-triangulates OBJ
 /// polygons), welded to one vertex per distinct position value. A binary STL whose
 /// triangle count disagrees with its size is rejected first: Draco would trust the
-/// count and read far past the data. Welding loses the per-corner normals and texture
-/// coordinates: they are named in attributes->dropped (when given).
+/// count and read far past the data. An OBJ's per-corner texture coordinates and normals and
+/// its materials go to attributes->corner_uv, corner_normal and materials (when given).
 Status read_obj_or_stl(const std::string& path, Mesh& out, MeshAttributes* attributes = nullptr);
 
 /// An STL file that starts with "solid" and whose size is not that of the binary STL its

@@ -11,6 +11,8 @@
 #include "io/assimp_io.h"
 #include "io/draco_reader.h"
 #include "io/drc_writer.h"
+#include "io/glb_writer.h"
+#include "io/obj_writer.h"
 #include "io/ply_reader.h"
 #include "io/ply_writer.h"
 
@@ -53,6 +55,18 @@ Status check_attributes(const std::string& path, const MeshView& mesh, const Mes
                                 "' does not match the mesh");
     }
   }
+  const size_t corners = 3 * size_t(mesh.num_triangles);
+  for (const CornerValues* c : {&a.corner_uv, &a.corner_normal}) {
+    const size_t values = c->components > 0 ? c->values.size() / size_t(c->components) : 0;
+    if (!c->empty() && (c->corners.size() != corners ||
+                        std::any_of(c->corners.begin(), c->corners.end(), [&](uint32_t i) { return i >= values; })))
+      return invalid_argument("cannot write '" + path + "': per-corner values do not match the mesh");
+  }
+  const Materials& m = a.materials;
+  if (!m.empty() && (m.of_triangle.size() != mesh.num_triangles ||
+                     std::any_of(m.of_triangle.begin(), m.of_triangle.end(),
+                                 [&](uint32_t i) { return i >= m.names.size(); })))
+    return invalid_argument("cannot write '" + path + "': triangle materials do not match the mesh");
   return {};
 }
 
@@ -71,6 +85,40 @@ Status check_for_writing(const std::string& path, const MeshView& mesh, const ui
                               " clusters");
   }
   return {};
+}
+
+/// Names what of an OBJ's corners and materials a format cannot hold, and why.
+void name_corner_values(const MeshAttributes& a, const char* why, std::vector<std::string>& dropped) {
+  if (!a.corner_uv.empty()) dropped.push_back(std::string("per-corner texture coordinates (") + why + ")");
+  if (!a.corner_normal.empty()) dropped.push_back(std::string("per-corner normals (") + why + ")");
+  // (a filter moves positions only, so a format without them loses nothing else)
+  if (!a.materials.empty())
+    dropped.push_back("the materials" +
+                      (a.materials.library.empty() ? std::string() : " of '" + a.materials.library + "'") +
+                      " (no material library in this format)");
+}
+
+/// `a` for a PLY: per-corner texture coordinates as the face list `texcoord` (u, v of each
+/// corner, MeshLab's convention) unless the faces already carry one.
+MeshAttributes ply_attributes(const MeshAttributes& a, std::vector<std::string>& dropped) {
+  MeshAttributes out = a;
+  const bool has_texcoord =
+      std::any_of(a.face.begin(), a.face.end(), [](const ElementProperty& p) { return p.name == "texcoord"; });
+  if (!a.corner_uv.empty() && !has_texcoord) {
+    ElementProperty t;
+    t.name = "texcoord";
+    t.is_list = true;
+    t.offsets.push_back(0);
+    for (size_t c = 0; c < a.corner_uv.corners.size(); ++c) {
+      const float* uv = &a.corner_uv.values[2 * size_t(a.corner_uv.corners[c])];
+      t.values.insert(t.values.end(), {uv[0], uv[1]});
+      if (c % 3 == 2) t.offsets.push_back(uint32_t(t.values.size()));
+    }
+    out.face.push_back(std::move(t));
+    out.corner_uv = CornerValues{};
+  }
+  name_corner_values(out, "PLY has no place for them", dropped);
+  return out;
 }
 
 }  // namespace
@@ -127,17 +175,17 @@ Status write_mesh(const std::string& path, const MeshView& mesh, const uint32_t*
   std::vector<std::string> ignored;
   std::vector<std::string>& lost = dropped ? *dropped : ignored;
   try {
-    if (ext == ".ply") return write_ply(path, mesh, labels, a, options.colour_clusters);
-    if (ext == ".obj" || ext == ".glb")
-      return write_with_assimp(path, mesh, labels, a, options.colour_clusters, lost);
+    if (ext == ".ply") {
+      const MeshAttributes with_corners = a ? ply_attributes(*a, lost) : MeshAttributes{};
+      return write_ply(path, mesh, labels, a ? &with_corners : nullptr, options.colour_clusters);
+    }
+    if (ext == ".obj") return write_obj(path, mesh, labels, a, lost);
+    if (ext == ".glb") return write_glb(path, mesh, labels, a, options.colour_clusters, lost);
     if (options.drc_position_bits < 0 || options.drc_position_bits > 30)
       return invalid_argument("Draco position bits must be in 0..30 (got " +
                               std::to_string(options.drc_position_bits) + ")");
-    if (a) {
-      for (const ElementProperty& p : a->vertex) lost.push_back("vertex property '" + p.name + "'");
-      for (const ElementProperty& p : a->face) lost.push_back("face property '" + p.name + "'");
-    }
-    return write_drc(path, mesh, labels, num_clusters, options.drc_position_bits);
+    if (a) name_corner_values(*a, "a .drc holds values per vertex", lost);
+    return write_drc(path, mesh, labels, num_clusters, options.drc_position_bits, a, lost);
   } catch (const std::exception& e) {
     return invalid_input("cannot encode '" + path + "': " + e.what());
   }

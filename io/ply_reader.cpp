@@ -37,7 +37,10 @@ Status read_vertices(const std::string& path, const draco::PlyElement* vertex, M
   return {};
 }
 
-Status read_faces(const std::string& path, const draco::PlyElement* face, Mesh& out) {
+/// The faces as triangles: a polygon of k corners becomes the fan of its k - 2 triangles
+/// (0, i, i + 1), as Draco and assimp split OBJ polygons. `source` gets each triangle's face.
+Status read_faces(const std::string& path, const draco::PlyElement* face, Mesh& out,
+                  std::vector<uint32_t>& source) {
   if (!face || face->num_entries() == 0) return {};
   const draco::PlyProperty* idx = face->GetPropertyByName("vertex_indices");
   if (!idx) idx = face->GetPropertyByName("vertex_index");
@@ -45,22 +48,50 @@ Status read_faces(const std::string& path, const draco::PlyElement* face, Mesh& 
   const draco::PlyPropertyReader<int64_t> reader(idx);
   const int n = face->num_entries();
   const int64_t num_vertices = out.num_vertices();
-  out.triangles.resize(3 * size_t(n));
+  out.triangles.reserve(3 * size_t(n));
+  source.reserve(size_t(n));
+  std::vector<uint32_t> corners;
   for (int f = 0; f < n; ++f) {
-    if (idx->GetListEntryNumValues(f) != 3)
-      return invalid_input("'" + path + "' is not a triangle mesh: face " + std::to_string(f) + " has " +
-                           std::to_string(idx->GetListEntryNumValues(f)) + " vertices");
+    const int64_t count = idx->GetListEntryNumValues(f);
+    if (count < 3)
+      return invalid_input("'" + path + "' is not a surface mesh: face " + std::to_string(f) + " has " +
+                           std::to_string(count) + " vertices");
     const int64_t offset = idx->GetListEntryOffset(f);
-    for (int k = 0; k < 3; ++k) {
+    corners.clear();
+    for (int64_t k = 0; k < count; ++k) {
       const int64_t v = reader.ReadValue(static_cast<int>(offset + k));
       if (v < 0 || v >= num_vertices)
         return invalid_input("cannot decode '" + path + "': face " + std::to_string(f) +
                              " references vertex " + std::to_string(v) + " of " +
                              std::to_string(num_vertices));
-      out.triangles[3 * size_t(f) + k] = static_cast<uint32_t>(v);
+      corners.push_back(static_cast<uint32_t>(v));
+    }
+    for (size_t k = 1; k + 1 < corners.size(); ++k) {
+      out.triangles.insert(out.triangles.end(), {corners[0], corners[k], corners[k + 1]});
+      source.push_back(uint32_t(f));
     }
   }
   return {};
+}
+
+/// Face properties follow the faces into their triangles: each triangle of a polygon gets
+/// the polygon's values.
+void expand_to_triangles(std::vector<ElementProperty>& face, const std::vector<uint32_t>& source) {
+  for (ElementProperty& p : face) {
+    ElementProperty t = p;
+    t.values.clear();
+    t.offsets.clear();
+    if (p.is_list) t.offsets.push_back(0);
+    for (const uint32_t f : source) {
+      if (!p.is_list) {
+        t.values.push_back(p.values[f]);
+        continue;
+      }
+      t.values.insert(t.values.end(), p.values.begin() + p.offsets[f], p.values.begin() + p.offsets[f + 1]);
+      t.offsets.push_back(uint32_t(t.values.size()));
+    }
+    p = std::move(t);
+  }
 }
 
 constexpr std::pair<draco::DataType, ScalarType> kScalarTypes[] = {
@@ -150,9 +181,14 @@ Status read_ply(const std::string& path, Mesh& out, MeshAttributes* attributes) 
     const std::string& msg = s.error_msg_string();
     return invalid_input("cannot decode '" + path + "': " + (msg.empty() ? "not a valid PLY file" : msg));
   }
+  std::vector<uint32_t> source;  // each triangle's face
+  const draco::PlyElement* face = reader.GetElementByName("face");
   Status st = read_vertices(path, reader.GetElementByName("vertex"), out);
-  if (st.ok()) st = read_faces(path, reader.GetElementByName("face"), out);
-  if (st.ok() && attributes) keep_attributes(reader, bytes, *attributes);
+  if (st.ok()) st = read_faces(path, face, out, source);
+  if (st.ok() && attributes) {
+    keep_attributes(reader, bytes, *attributes);
+    if (face && source.size() != size_t(face->num_entries())) expand_to_triangles(attributes->face, source);
+  }
   return st;
 }
 

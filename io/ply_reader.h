@@ -13,8 +13,8 @@ namespace fq::io {
 /// draco::ReadMeshFromFile for PLY because its PlyDecoder deduplicates attribute values
 /// and point ids, which merges coincident vertices (dragon.ply: 435,545 -> 383,559) and
 /// reorders them; filtered output must keep the input's vertex count and order.
-/// Faces must be triangles ("not a triangle mesh" otherwise); a file without a face
-/// element reads as zero triangles. With `attributes`, also every other vertex and face
+/// Polygons are split into triangles (the fan of each face, whose face properties each
+/// triangle takes); a file without a face element reads as zero triangles. With `attributes`, also every other vertex and face
 /// property (colours, normals, texture coordinates, scalars, lists); other elements are
 /// named in attributes->dropped.
 Status read_ply(const std::string& path, Mesh& out, MeshAttributes* attributes = nullptr);

@@ -58,10 +58,6 @@ double channel(uint8_t c, ScalarType type) {
   return type == ScalarType::kFloat32 || type == ScalarType::kFloat64 ? c / 255.0 : c;
 }
 
-bool is_label_property(const std::string& name) {
-  return name == "label" || name == "cluster_red" || name == "cluster_green" || name == "cluster_blue";
-}
-
 /// Fills colour channel `k` (0 red, 1 green, 2 blue) of column `c` from the labels' colours.
 void fill_cluster_colour(ElementProperty& c, const std::vector<Rgb8>& colours, int k) {
   for (size_t v = 0; v < c.values.size(); ++v) {

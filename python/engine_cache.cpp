@@ -26,14 +26,17 @@ Slot& slot_for(const EngineOptions& options) {
 }  // namespace
 
 Status run_cached_engine(const EngineOptions& options, const MeshView& mesh, const Params& params,
-                         FrameResult& out, std::string* engine_name) {
+                         FrameResult& out, const std::atomic<bool>* stop) {
   Slot& slot = slot_for(options);
   const std::lock_guard<std::mutex> lock(slot.busy);
   if (!slot.engine) {
     FQ_ASSIGN_OR_RETURN(slot.engine, make_engine(options));
   }
-  if (engine_name) *engine_name = slot.engine->name();
-  return slot.engine->process(mesh, params, out);
+  const CancelToken token(stop);
+  slot.engine->set_cancel_token(&token);
+  Status s = slot.engine->process(mesh, params, out);
+  slot.engine->set_cancel_token(nullptr);
+  return s;
 }
 
 }  // namespace fq::py

@@ -1,5 +1,5 @@
-// fq.read_mesh, fq.write_mesh, fq.add_noise, fq.metrics. File work and measures run
-// without the GIL.
+// The compiled parts of fq.read_mesh, fq.write_mesh, fq.add_noise and fq.metrics (wrapped and
+// documented in fq/_files.py and fq/_measures.py). File work and measures run without the GIL.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -13,6 +13,7 @@
 #include "eval/surface_distance.h"
 #include "io/mesh_io.h"
 #include "python/bindings.h"
+#include "python/mesh_dict.h"
 #include "python/numpy_mesh.h"
 #include "python/py_errors.h"
 
@@ -27,7 +28,7 @@ std::string path_string(const pyb::handle& path) {
   return pyb::str(pyb::module_::import("os").attr("fspath")(path));
 }
 
-pyb::tuple read_mesh(const pyb::handle& path_like) {
+pyb::dict read_mesh(const pyb::handle& path_like) {
   const std::string path = path_string(path_like);
   if (!io::is_readable_mesh_file(path))
     throw pyb::value_error("cannot read '" + path + "': unsupported extension " +
@@ -37,19 +38,23 @@ pyb::tuple read_mesh(const pyb::handle& path_like) {
     throw pyb::error_already_set();
   }
   Mesh mesh;
+  io::MeshAttributes attributes;
   Status s;
   {
     const pyb::gil_scoped_release unlocked;
-    s = io::read_mesh(path, mesh);
+    s = io::read_mesh(path, mesh, &attributes);
   }
   throw_if_file_error(s);
-  pyb::array_t<float> v({ssize_t(mesh.num_vertices()), ssize_t(3)});
-  std::copy(mesh.positions.begin(), mesh.positions.end(), v.mutable_data());
-  return pyb::make_tuple(v, faces_array(mesh.triangles));
+  pyb::dict d = mesh_dict(mesh, attributes);
+  d["dropped"] = pyb::cast(not_carried(attributes));
+  return d;
 }
 
-void write_mesh(const pyb::handle& path_like, const pyb::handle& v, const pyb::handle& f,
-                const std::optional<pyb::handle>& labels_like, int drc_bits) {
+/// Writes V, F, the labels and the attribute arrays of `arrays`; returns what the format
+/// could not keep (one phrase a group).
+std::vector<std::string> write_mesh(const pyb::handle& path_like, const pyb::handle& v, const pyb::handle& f,
+                                    const std::optional<pyb::handle>& labels_like, const pyb::dict& arrays,
+                                    int drc_bits) {
   const std::string path = path_string(path_like);
   if (!io::is_writable_mesh_file(path))
     throw pyb::value_error("cannot write '" + path + "': unsupported output extension '" +
@@ -69,12 +74,19 @@ void write_mesh(const pyb::handle& path_like, const pyb::handle& v, const pyb::h
       num_clusters = std::max(num_clusters, labels.back() + 1);
     }
   }
+  const io::MeshAttributes attributes = attributes_of(arrays, mesh.num_vertices(), mesh.num_triangles());
+  io::WriteOptions options;
+  options.drc_position_bits = drc_bits;
+  options.attributes = &attributes;
+  std::vector<std::string> dropped;
   Status s;
   {
     const pyb::gil_scoped_release unlocked;
-    s = io::write_mesh(path, mesh.view(), labels.empty() ? nullptr : labels.data(), num_clusters, drc_bits);
+    s = io::write_mesh(path, mesh.view(), labels.empty() ? nullptr : labels.data(), num_clusters, options,
+                       &dropped);
   }
   throw_if_file_error(s);
+  return dropped;
 }
 
 pyb::array add_noise(const pyb::handle& v, const pyb::handle& f, double sigma, uint64_t seed) {
@@ -110,16 +122,11 @@ pyb::dict metrics(const pyb::handle& v_ref, const pyb::handle& f, const pyb::han
 }  // namespace
 
 void bind_mesh_functions(pyb::module_& m) {
-  m.def("read_mesh", &read_mesh, "path"_a,
-        "(V, F) of a mesh file (.ply .obj .stl .drc): float32 (n, 3) positions, int64 (m, 3) triangles.");
-  m.def("write_mesh", &write_mesh, "path"_a, "V"_a, "F"_a, "labels"_a = pyb::none(), pyb::kw_only(),
-        "drc_bits"_a = 16,
-        "Writes (V, F) as .ply, .drc, .obj or .glb, with one cluster label per vertex when given.");
-  m.def("add_noise", &add_noise, "V"_a, "F"_a, "sigma"_a, "seed"_a = 1,
-        "V plus Gaussian noise of std sigma mean edge lengths per coordinate; the same seed gives "
-        "the same noise everywhere (fqfilter --noise).");
-  m.def("metrics", &metrics, "V_ref"_a, "F"_a, "V"_a,
-        "Errors of V against the reference (V_ref, F): the keys of fqfilter's JSON metrics.");
+  // Documented where fq/_files.py and fq/_measures.py wrap them.
+  m.def("read_mesh", &read_mesh, "path"_a);
+  m.def("write_mesh", &write_mesh, "path"_a, "V"_a, "F"_a, "labels"_a, "arrays"_a, "drc_bits"_a);
+  m.def("add_noise", &add_noise, "V"_a, "F"_a, "sigma"_a, "seed"_a);
+  m.def("metrics", &metrics, "V_ref"_a, "F"_a, "V"_a);
 }
 
 }  // namespace fq::py

@@ -5,7 +5,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/setup-deps.sh"
-bash "$root/scripts/build.sh"
+bash "$root/scripts/build.sh" -DFQ_BUILD_TESTS=ON   # on also where scripts/demo.sh configured without them
 build=${BUILD_DIR:-$root/build}
 export FQ_MESH_DIR=${FQ_MESH_DIR:-$root/../shared/meshes}
 ctest --test-dir "$build" --output-on-failure -j "${JOBS:-$(nproc)}" --timeout 900

@@ -40,7 +40,7 @@ class PositionQuantizer {
   PositionQuantizer(const Box& box, int bits);
   int32_t operator()(float v, int axis) const {
     float x = v - lo_[axis];
-    x *= inverse_delta_;  // two roundings, as Draco's Quantizer (proto/wire.cmake: no FMA contraction)
+    x *= inverse_delta_;  // two roundings, as Draco's Quantizer (wire/CMakeLists.txt: no FMA contraction)
     return static_cast<int32_t>(std::floor(x + 0.5f));
   }
   /// The transform's parameters as the decoder reads them after the values.

@@ -1,5 +1,6 @@
-// The table `fqctl watch` redraws: one row per stream with its output rate and the
-// p50/p99 of the main stages, and the counts of frames that did not make it.
+// The tables `fqctl counters` prints and `fqctl watch` redraws, each within 80 columns: one
+// row per stream with its output rate and the counts of frames that did not make it, then
+// one row per stream with the p50/p99 of each stage.
 #pragma once
 
 #include <map>

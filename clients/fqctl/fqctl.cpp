@@ -1,6 +1,6 @@
 // fqctl: operates a running fqd over its control socket.
 //   fqctl [--control EP] streams | params STREAM | set STREAM key=value… |
-//         counters [STREAM] [--json] | watch [STREAM]
+//         counters [STREAM] | watch [STREAM]      (each with --json)
 // Exit status: 0 done; 1 fqd did not answer in time or refused the request (one line on
 // stderr says which); 2 bad command line.
 #include <unistd.h>
@@ -10,6 +10,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "clients/common/curve_client.h"
@@ -63,13 +64,29 @@ int cmd_streams(const Args& a) {
   q.mutable_list_streams();
   fq::wire::ControlReply r;
   if (fq::Status s = call(a, q, r); !s.ok()) return fail(s);
+  if (a.json) {
+    std::printf("%s\n", nlohmann::json{{"streams", r.streams()}}.dump(2).c_str());
+    return 0;
+  }
   for (const std::string& id : r.streams()) std::printf("%s\n", id.c_str());
   return 0;
 }
 
-int print_params(const fq::wire::ControlReply& r) {
-  for (const auto& [key, value] : fq::client::describe_params(r))
-    std::printf("%s = %s\n", key.c_str(), value.c_str());
+/// A parameter's value as JSON: numbers and booleans as such, names as strings.
+nlohmann::json json_value(const std::string& text) {
+  const nlohmann::json parsed = nlohmann::json::parse(text, nullptr, false);
+  return parsed.is_number() || parsed.is_boolean() ? parsed : nlohmann::json(text);
+}
+
+int print_params(const Args& a, const fq::wire::ControlReply& r) {
+  const auto params = fq::client::describe_params(r);
+  if (a.json) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const auto& [key, value] : params) j[key] = json_value(value);
+    std::printf("%s\n", nlohmann::json{{"stream", a.stream}, {"params", j}}.dump(2).c_str());
+    return 0;
+  }
+  for (const auto& [key, value] : params) std::printf("%s = %s\n", key.c_str(), value.c_str());
   return 0;
 }
 
@@ -78,7 +95,7 @@ int cmd_params(const Args& a) {
   q.mutable_get_params()->set_stream_id(a.stream);
   fq::wire::ControlReply r;
   if (fq::Status s = call(a, q, r); !s.ok()) return fail(s);
-  return print_params(r);
+  return print_params(a, r);
 }
 
 int cmd_set(const Args& a) {
@@ -93,7 +110,7 @@ int cmd_set(const Args& a) {
   }
   fq::wire::ControlReply r;
   if (fq::Status s = call(a, q, r); !s.ok()) return fail(s);
-  return print_params(r);
+  return print_params(a, r);
 }
 
 fq::Status get_counters(const Args& a, fq::wire::ControlReply& r) {
@@ -127,6 +144,20 @@ int cmd_watch(const Args& a) {
     const auto now = std::chrono::steady_clock::now();
     const double seconds = n == 0 ? 0.0 : std::chrono::duration<double>(now - last).count();
     last = now;
+    if (a.json) {  // one object a line: {"interval_s", "streams": [... each with "fps"]}
+      nlohmann::json j = fq::daemon::counters_json(r);
+      for (nlohmann::json& c : j["streams"]) {
+        const auto it = previous.find(c["stream"].get<std::string>());
+        c["fps"] = it == previous.end() || seconds <= 0
+                       ? nlohmann::json()
+                       : nlohmann::json((c["frames_out"].get<double>() - double(it->second)) / seconds);
+        previous[c["stream"].get<std::string>()] = c["frames_out"].get<uint64_t>();
+      }
+      j["interval_s"] = seconds;
+      std::printf("%s\n", j.dump().c_str());
+      std::fflush(stdout);
+      continue;
+    }
     // On a terminal the table is redrawn in place; piped, refreshes follow each other.
     std::printf("%s%s\n", tty ? "\033[H\033[2J" : "", fq::client::counters_table(r, seconds, previous).c_str());
     std::fflush(stdout);
@@ -152,13 +183,16 @@ int run(int argc, char** argv) {
       ->required();
   CLI::App* counters = app.add_subcommand("counters", "frame counters and stage latencies");
   counters->add_option("stream", a.stream, "one stream (default: all)");
-  counters->add_flag("--json", a.json, "JSON with the words of fqd's /metrics (\"frames_in\": N)");
-  CLI::App* watch = app.add_subcommand("watch", "live table: fps, p50/p99 per stage, drops, late, errors");
+  CLI::App* watch = app.add_subcommand("watch", "live tables: fps, drops, late, errors; p50/p99 per stage");
   watch->add_option("stream", a.stream, "one stream (default: all)");
   watch->add_option("-i,--interval", a.interval, "seconds between refreshes")
       ->capture_default_str()
       ->check(CLI::Range(0.05, 3600.0));
   watch->add_option("-n,--count", a.count, "stop after this many refreshes (0 = until Ctrl-C)");
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    sub->add_flag("--json", a.json,
+                  sub == watch ? "one JSON object a refresh, each stream with its fps (JSON lines)"
+                               : "JSON on stdout (counters: the words of fqd's /metrics, \"frames_in\": N)");
   CLI11_PARSE(app, argc, argv);
 
   if (*set) return cmd_set(a);

@@ -22,9 +22,9 @@ struct Options {
   int repeat = 1;         ///< engine runs per frame; timings are medians
   int drc_bits = 16;      ///< position quantization of .drc outputs
   bool json = false;
+  bool quiet = false;            ///< no report table, progress line or per-file line; warnings and errors stay
   bool colour_clusters = false;  ///< cluster colours replace the input's vertex colours
   bool in_place = false;         ///< OUT may be IN itself (replaced once the result is written)
-
 };
 
 /// Outcome of parsing: run, or exit with `exit_code` (help printed, or an error line).

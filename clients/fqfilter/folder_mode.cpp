@@ -38,7 +38,7 @@ bool prepare_output_folder(const Options& o) {
 void print_report(const Options& o, const FileReport& r) {
   if (o.json)
     std::cout << to_json(r).dump() << std::endl;
-  else if (r.error.empty())
+  else if (r.error.empty() && !o.quiet)
     print_human(r, std::cout);
 }
 
@@ -77,12 +77,13 @@ int run_folder(const Options& o, Engine& engine) {
       claimed[out_name] = name;
       s = run_file_job(files[i].string(), output, o, engine, report);
     }
-    std::cerr << "[" << (i + 1) << "/" << files.size() << "] " << name << ": ";
-    if (s.ok()) {
-      std::cerr << report.vertices << " V, " << std::lround(report.total_ms) << " ms\n";
-    } else {
-      std::cerr << "FAILED: " << s.message() << "\n";
-      ++failed;
+    if (!s.ok()) ++failed;
+    if (!s.ok() || !o.quiet) {
+      std::cerr << "[" << (i + 1) << "/" << files.size() << "] " << name << ": ";
+      if (s.ok())
+        std::cerr << report.vertices << " V, " << std::lround(report.total_ms) << " ms\n";
+      else
+        std::cerr << "FAILED: " << s.message() << "\n";
     }
     print_report(o, report);
   }

@@ -40,7 +40,7 @@ int run_single(const Options& o, fq::Engine& engine) {
     std::cerr << "fqfilter: error: " << s.message() << "\n";
     return 1;
   }
-  if (!o.json) fq::cli::print_human(report, std::cout);
+  if (!o.json && !o.quiet) fq::cli::print_human(report, std::cout);
   return 0;
 }
 

@@ -1,17 +1,21 @@
 // fqpub: publishes a mesh file, or a folder of meshes as a looped sequence, to fqd's ingest
 // endpoint at a fixed frame rate, optionally with fresh noise each frame.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <memory>
 #include <thread>
 
 #include "clients/common/curve_client.h"
 #include "clients/common/defaulted_option.h"
 #include "clients/common/frame_sender.h"
 #include "clients/common/mesh_source.h"
+#include "clients/common/peer_monitor.h"
 #include "clients/common/override_options.h"
 #include "clients/common/tool_app.h"
 
@@ -32,13 +36,32 @@ struct Args {
 
 struct Totals {
   uint64_t sent = 0;
+  uint64_t unconnected = 0;  ///< of them, sent while no fqd was connected
   double encode_ms = 0.0;
   double seconds = 0.0;
   bool failed = false;
 };
 
+// How long fqpub gives fqd to connect before it says that none is there.
+constexpr int kConnectGraceMs = 1000;
+
+// Says once when frames go out with no fqd connected, and again when one connects.
+void report_peer(const Args& a, const fq::client::PeerMonitor& monitor, bool& warned) {
+  const bool pub = !a.bind_pub.empty();
+  if (monitor.peers() == 0 && !warned) {
+    std::fprintf(stderr, "%sfqpub: no fqd connected %s %s: %s\n", a.quiet || a.json ? "" : "\n",
+                 pub ? "to our PUB socket at" : "at", (pub ? a.bind_pub : a.endpoint).c_str(),
+                 pub ? "frames are dropped until one subscribes" : "frames wait in the queue until one connects");
+    warned = true;
+  } else if (monitor.peers() > 0 && warned) {
+    std::fprintf(stderr, "%sfqpub: fqd connected\n", a.quiet || a.json ? "" : "\n");
+    warned = false;
+  }
+}
+
 // Sends frames until --count, --duration or a signal; returns the totals.
-Totals publish(const Args& a, const fq::client::MeshSource& source, zmq::socket_t& push) {
+Totals publish(const Args& a, const fq::client::MeshSource& source, zmq::socket_t& push,
+               fq::client::PeerMonitor& monitor) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   const auto period = std::chrono::duration<double>(1.0 / a.fps);
@@ -46,6 +69,7 @@ Totals publish(const Args& a, const fq::client::MeshSource& source, zmq::socket_
   std::vector<std::vector<std::string>> cached(source.size());  // noiseless frames encode once
   fq::Mesh scratch;
   auto last_send = start;
+  bool warned = false;
   for (uint64_t i = 0; !g_stop && (a.count == 0 || i < a.count); ++i) {
     const auto due = start + std::chrono::duration_cast<clock::duration>(period * static_cast<double>(i));
     if (a.duration > 0 && std::chrono::duration<double>(due - start).count() >= a.duration) break;
@@ -66,6 +90,9 @@ Totals publish(const Args& a, const fq::client::MeshSource& source, zmq::socket_
       fq::client::restamp_frame(parts, i);
     }
     t.encode_ms += std::chrono::duration<double, std::milli>(clock::now() - t0).count();
+    monitor.poll();
+    report_peer(a, monitor, warned);
+    if (monitor.peers() == 0) ++t.unconnected;
     fq::client::send_parts(push, parts);
     last_send = clock::now();
     ++t.sent;
@@ -74,6 +101,21 @@ Totals publish(const Args& a, const fq::client::MeshSource& source, zmq::socket_
   }
   t.seconds = std::chrono::duration<double>(last_send - start).count();
   return t;
+}
+
+// Frames 0..n-1 go out at t = 0, 1/fps, ...: n - 1 periods between the first and the last.
+double fps_of(const Totals& t) {
+  return t.sent > 1 && t.seconds > 0 ? static_cast<double>(t.sent - 1) / t.seconds : 0.0;
+}
+
+nlohmann::json summary(const Args& a, const Totals& t, bool connected) {
+  return {{"stream", a.spec.stream_id},
+          {"frames_sent", t.sent},
+          {"frames_sent_unconnected", t.unconnected},
+          {"fqd_connected", connected},
+          {"seconds", t.seconds},
+          {"fps", fps_of(t)},
+          {"encode_ms_mean", t.sent ? t.encode_ms / static_cast<double>(t.sent) : 0.0}};
 }
 
 // Every command-line option, into `a`.
@@ -122,6 +164,7 @@ int run(Args& a) {
     std::fprintf(stderr, "fqpub: %s\n", s.message().c_str());
     return 2;
   }
+  auto monitor = std::make_unique<fq::client::PeerMonitor>(push, std::to_string(::getpid()));
   try {
     if (pub)
       push.bind(a.bind_pub);
@@ -132,24 +175,30 @@ int run(Args& a) {
     std::fprintf(stderr, "fqpub: cannot %s %s: %s\n", pub ? "bind" : "connect to", ep.c_str(), e.what());
     return 2;
   }
-  const Totals t = publish(a, source, push);
+  monitor->wait_for_peer(kConnectGraceMs);
+  const Totals t = publish(a, source, push, *monitor);
+  monitor->poll();
+  const bool connected = monitor->ever_connected();
+  monitor.reset();  // before the socket closes (see peer_monitor.h)
+  if (!connected) {
+    push.set(zmq::sockopt::linger, 0);  // nothing can be delivered: do not wait for it
+    std::fprintf(stderr, "fqpub: no fqd ever connected: none of the %llu frames reached one\n",
+                 static_cast<unsigned long long>(t.sent));
+  }
   push.close();
-  if (t.failed || t.sent == 0) return 1;
-  // Frames 0..n-1 go out at t = 0, 1/fps, ...: n - 1 periods between the first and the last.
-  const double fps = t.sent > 1 && t.seconds > 0 ? static_cast<double>(t.sent - 1) / t.seconds : 0.0;
-  const double enc = t.sent ? t.encode_ms / static_cast<double>(t.sent) : 0.0;
+  if (t.failed || t.sent == 0 || !connected) {
+    if (a.json) std::printf("%s\n", summary(a, t, connected).dump().c_str());
+    return 1;
+  }
   if (a.json) {
-    std::printf("%s\n", nlohmann::json{{"stream", a.spec.stream_id},
-                                       {"frames_sent", t.sent},
-                                       {"seconds", t.seconds},
-                                       {"fps", fps},
-                                       {"encode_ms_mean", enc}}
-                            .dump()
-                            .c_str());
+    std::printf("%s\n", summary(a, t, connected).dump().c_str());
   } else {
     std::fprintf(stderr, "%sfqpub: stream '%s': %llu frames in %.2f s (%.1f fps), encode %.2f ms/frame\n",
                  a.quiet ? "" : "\n", a.spec.stream_id.c_str(), static_cast<unsigned long long>(t.sent),
-                 t.seconds, fps, enc);
+                 t.seconds, fps_of(t), t.sent ? t.encode_ms / static_cast<double>(t.sent) : 0.0);
+    if (t.unconnected > 0)
+      std::fprintf(stderr, "fqpub: %llu of them were sent while no fqd was connected\n",
+                   static_cast<unsigned long long>(t.unconnected));
   }
   return 0;
 }

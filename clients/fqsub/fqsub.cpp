@@ -1,12 +1,14 @@
 // fqsub: subscribes to fqd's results, decodes and checks each, writes every Nth as a PLY
 // with cluster colours, shows a live status line and prints a summary. Results in the
 // POSITIONS form take their faces from --faces (the mesh the producer sent).
-// Exit status: 0 when at least one result came and every result decoded, passed the checks
-// and was not an error result; 1 otherwise; 2 for bad options.
+// Exit status: 0 when every result decoded, passed the checks and was not an error result,
+// and at least one came (or Ctrl-C / SIGTERM ended the run: stopping it is no failure);
+// 1 otherwise; 2 for bad options.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -34,11 +36,17 @@ struct Args {
   bool json = false, quiet = false;
 };
 
+// Sequence numbers in file names have at least this many digits, so that names sort in frame
+// order (cam0_0000000020.ply before cam0_0000000101.ply) for 10^10 frames, 10 years at 30 fps.
+constexpr int kSequenceDigits = 10;
+
 // Writes one result as <out>/<stream>_<sequence>.ply; returns the path or "" on failure.
 std::string write_ply(const Args& a, const fq::client::ReceivedResult& r) {
-  const std::string path = (std::filesystem::path(a.out_dir) /
-                            (r.header.stream_id() + "_" + std::to_string(r.header.sequence()) + ".ply"))
-                               .string();
+  char sequence[32];
+  std::snprintf(sequence, sizeof sequence, "%0*llu", kSequenceDigits,
+                static_cast<unsigned long long>(r.header.sequence()));
+  std::string path =
+      (std::filesystem::path(a.out_dir) / (r.header.stream_id() + "_" + sequence + ".ply")).string();
   if (r.mesh.num_triangles() == 0) {
     std::fprintf(stderr, "\nfqsub: result carries positions only: pass --faces with the mesh the producer sent, "
                          "or set the stream's output.result_form = \"mesh\"\n");
@@ -103,7 +111,13 @@ std::string receive_loop(const Args& a, zmq::socket_t& sub, fq::client::StreamSt
       last_line = now;
     }
     fq::client::ReceivedResult r;
-    const fq::StatusOr<bool> got = fq::client::receive_result(sub, r);
+    fq::StatusOr<bool> got = false;
+    try {
+      got = fq::client::receive_result(sub, r);
+    } catch (const zmq::error_t& e) {
+      if (e.num() == EINTR) continue;  // a signal (Ctrl-C) interrupted the wait: g_stop says why
+      throw;
+    }
     if (fq::client::timed_out(got)) continue;
     if (!a.streams.empty() && std::find(a.streams.begin(), a.streams.end(), r.topic) == a.streams.end())
       continue;
@@ -170,7 +184,8 @@ int run(int argc, char** argv) {
     std::fprintf(stderr, "%sfqsub: %s\n", a.quiet ? "" : "\r", stats.status_line().c_str());
     if (!last_ply.empty()) std::fprintf(stderr, "fqsub: last PLY written: %s\n", last_ply.c_str());
   }
-  return stats.results() > 0 && stats.bad() == 0 && stats.errors() == 0 ? 0 : 1;
+  const bool enough = stats.results() > 0 || g_stop;  // stopped by the user: no result is no failure
+  return enough && stats.bad() == 0 && stats.errors() == 0 ? 0 : 1;
 }
 
 }  // namespace

@@ -1,11 +1,16 @@
 """fq: filtered quadrics smoothing and clustering of triangle meshes.
 
 Legrand, Thiery & Boubekeur, "Filtered Quadrics for High Speed Geometry Smoothing and
-Clustering" (CGF 2019), on the CPU or on an NVIDIA GPU. Meshes are numpy arrays:
-V (n, 3) positions and F (m, 3) vertex indices. See docs/PYTHON.md.
+Clustering" (CGF 2019), on the CPU or on an NVIDIA GPU. A mesh is numpy arrays, V (n, 3)
+positions and F (m, 3) vertex indices, or a `Mesh` that also carries colours, normals and
+texture coordinates (and converts to and from trimesh and Open3D meshes). Every function
+has a numpy-style docstring; see also docs/PYTHON.md.
 """
-from ._fq import (__version__, add_noise, built_with_cuda, cluster, engine_name, filter, metrics,
-                  read_mesh, write_mesh)
+from ._engine import cluster, engine_name, filter
+from ._fq import __version__, built_with_cuda
+from ._files import read_mesh, write_mesh
+from ._measures import add_noise, metrics
+from .mesh import Mesh
 
-__all__ = ["add_noise", "built_with_cuda", "cluster", "engine_name", "filter", "metrics", "read_mesh",
+__all__ = ["Mesh", "add_noise", "built_with_cuda", "cluster", "engine_name", "filter", "metrics", "read_mesh",
            "write_mesh"]

@@ -2,7 +2,10 @@
 // on ephemeral ports; fqsub checks every result and writes coloured PLYs.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <csignal>
+#include <regex>
+#include <thread>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -44,7 +47,9 @@ TEST(Clients, FqpubToFqdToFqsubGivesCheckedColouredPlys) {
   ASSERT_GT(pub.pid, 0);
   const nlohmann::json summary = nlohmann::json::parse(read_all(sub.out));
   EXPECT_EQ(wait_exit(sub.pid), 0);
-  EXPECT_EQ(nlohmann::json::parse(read_all(pub.out)).at("frames_sent"), 20);
+  const nlohmann::json sent = nlohmann::json::parse(read_all(pub.out));
+  EXPECT_EQ(sent.at("frames_sent"), 20);
+  EXPECT_EQ(sent.at("fqd_connected"), true);
   EXPECT_EQ(wait_exit(pub.pid), 0);
   kill(fqd.pid, SIGTERM);
   EXPECT_EQ(wait_exit(fqd.pid), 0);
@@ -63,6 +68,60 @@ TEST(Clients, FqpubToFqdToFqsubGivesCheckedColouredPlys) {
   EXPECT_NE(text.find("property uint label"), std::string::npos);
   EXPECT_NE(text.find("property uchar red"), std::string::npos);
   for (FILE* f : {fqd.out, sub.out, pub.out}) std::fclose(f);
+}
+
+TEST(Clients, FqsubCtrlCExitsZeroWithItsSummaryAndSortableNames) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(testing::TempDir()) / "fq_clients_ctrl_c_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "out");
+  std::ofstream(dir / "fqd.toml") << kConfig;
+  ASSERT_TRUE(io::write_mesh((dir / "sphere.ply").string(), noisy_sphere().view(), nullptr, 0).ok());
+  Child fqd = spawn(FQD_PATH, {"--config", (dir / "fqd.toml").string(), "--print-endpoints"});
+  char line[1024] = {0};
+  ASSERT_NE(std::fgets(line, sizeof line, fqd.out), nullptr) << "fqd printed no endpoints";
+  const nlohmann::json ep = nlohmann::json::parse(line);
+  // No --count: it runs until Ctrl-C.
+  Child sub = spawn(FQSUB_PATH, {"--endpoint", ep.at("publish"), "--stream", "cam", "--write-every", "1", "--out",
+                                 (dir / "out").string(), "--faces", (dir / "sphere.ply").string(), "--json",
+                                 "--quiet"});
+  Child pub = spawn(FQPUB_PATH, {(dir / "sphere.ply").string(), "--endpoint", ep.at("ingest"), "--stream", "cam",
+                                 "--fps", "10", "--count", "12", "--quiet", "--json"});
+  EXPECT_EQ(wait_exit(pub.pid), 0);
+  // Wait (polling the folder) for results to be written, then Ctrl-C.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  auto files = [&] { return std::distance(fs::directory_iterator(dir / "out"), fs::directory_iterator{}); };
+  while (files() < 2 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  kill(sub.pid, SIGINT);
+  const nlohmann::json summary = nlohmann::json::parse(read_all(sub.out), nullptr, false);
+  EXPECT_EQ(wait_exit(sub.pid), 0);  // stopped by the user: not an error
+  ASSERT_TRUE(summary.is_object());
+  EXPECT_GE(summary.at("results").get<int>(), 2);
+  EXPECT_EQ(summary.at("bad"), 0);
+  for (const auto& f : fs::directory_iterator(dir / "out"))
+    EXPECT_TRUE(std::regex_match(f.path().filename().string(), std::regex(R"(cam_\d{10}\.ply)")))
+        << f.path().filename();
+  kill(fqd.pid, SIGTERM);
+  EXPECT_EQ(wait_exit(fqd.pid), 0);
+  for (FILE* f : {fqd.out, sub.out, pub.out}) std::fclose(f);
+}
+
+TEST(Clients, FqpubSaysWhenNoFqdIsConnected) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(testing::TempDir()) / "fq_clients_no_fqd_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  ASSERT_TRUE(io::write_mesh((dir / "sphere.ply").string(), noisy_sphere().view(), nullptr, 0).ok());
+  // An endpoint nobody listens on: ZeroMQ connects lazily, so only the missing handshake tells.
+  Child pub = spawn(FQPUB_PATH, {(dir / "sphere.ply").string(), "--endpoint", "ipc://" + (dir / "nobody").string(),
+                                 "--fps", "20", "--count", "3", "--json"});
+  const nlohmann::json summary = nlohmann::json::parse(read_all(pub.out), nullptr, false);
+  EXPECT_EQ(wait_exit(pub.pid), 1);
+  ASSERT_TRUE(summary.is_object());
+  EXPECT_EQ(summary.at("fqd_connected"), false);
+  EXPECT_EQ(summary.at("frames_sent_unconnected"), 3);
+  std::fclose(pub.out);
 }
 
 }  // namespace

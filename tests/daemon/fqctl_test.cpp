@@ -1,10 +1,13 @@
 // fqctl against a real fqd (child process, ephemeral 127.0.0.1 ports) fed by fqpub:
-// streams, params, set (valid, invalid, unknown key), counters as a table and JSON, watch,
-// and a clear error with exit status 1, not a hang, when no fqd answers.
+// streams, params, set (valid, invalid, unknown key), counters and watch as 80-column tables,
+// --json on every subcommand, and a clear error with exit status 1, not a hang, when no fqd
+// answers.
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <sstream>
 #include <thread>
+#include <utility>
 #include <zmq.hpp>
 
 #include "tests/daemon/fqd_process.h"
@@ -15,6 +18,14 @@ namespace {
 ToolRun fqctl(const std::string& control, std::vector<std::string> args) {
   args.insert(args.begin(), {"--control", control});
   return run_tool(FQCTL_PATH, args);
+}
+
+void expect_fits_80_columns(const std::string& output) {
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("\033[H\033[2J", 0) == 0) line.erase(0, 7);  // a terminal's redraw (none when piped)
+    EXPECT_LE(line.size(), 80u) << line;
+  }
 }
 
 // Counters once every frame fqpub sent has been accounted for (fqd idle for that stream).
@@ -85,6 +96,42 @@ TEST(Fqctl, InspectsAndSteersARunningFqd) {
   size_t headers = 0;
   for (size_t at = 0; (at = watch.output.find("superseded", at)) != std::string::npos; ++at) ++headers;
   EXPECT_EQ(headers, 2u) << watch.output;
+  for (const std::string& output : {table.output, watch.output}) expect_fits_80_columns(output);
+  EXPECT_EQ(fqd.stop(), 0);
+}
+
+TEST(Fqctl, JsonFromEverySubcommandAndTablesWithin80Columns) {
+  FqdProcess fqd({"--config", write_temp_file("fqctl_json_test.toml", ops_config())});
+  const std::string control = fqd.endpoint("control");
+  ASSERT_FALSE(control.empty()) << "fqd did not start";
+  const std::string long_id = "north_gate_camera_0042";
+  ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), long_id, 4).status, 0);
+  settled_counters(control, long_id, 4);
+
+  const auto json_of = [&](std::vector<std::string> args) {
+    const ToolRun r = fqctl(control, std::move(args));
+    EXPECT_EQ(r.status, 0) << r.output;
+    return nlohmann::json::parse(r.output, nullptr, false);
+  };
+  EXPECT_EQ(json_of({"streams", "--json"}).at("streams"), nlohmann::json::array({long_id}));
+  const nlohmann::json set = json_of({"set", long_id, "sigma_s=2.5", "mode=qf", "--json"});
+  EXPECT_EQ(set.at("stream"), long_id);
+  EXPECT_EQ(set.at("params").at("sigma_s"), 2.5);  // numbers as numbers
+  EXPECT_EQ(set.at("params").at("mode"), "qf");     // names as strings
+  EXPECT_EQ(json_of({"params", long_id, "--json"}).at("params"), set.at("params"));
+  EXPECT_EQ(json_of({"counters", long_id, "--json"}).at("streams").at(0).at("frames_in"), 4);
+  const ToolRun watch = fqctl(control, {"watch", "--count", "2", "--interval", "0.1", "--json"});
+  ASSERT_EQ(watch.status, 0) << watch.output;
+  std::istringstream lines(watch.output);
+  std::string first, second;
+  std::getline(lines, first);
+  std::getline(lines, second);
+  EXPECT_TRUE(nlohmann::json::parse(first).at("streams").at(0).at("fps").is_null());  // no rate yet
+  EXPECT_EQ(nlohmann::json::parse(second).at("streams").at(0).at("fps"), 0.0);       // idle since
+  // A long stream id is cut in the tables, which stay within 80 columns.
+  const ToolRun table = fqctl(control, {"counters"});
+  expect_fits_80_columns(table.output);
+  EXPECT_NE(table.output.find("north_gate_~"), std::string::npos) << table.output;
   EXPECT_EQ(fqd.stop(), 0);
 }
 

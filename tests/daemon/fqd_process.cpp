@@ -31,6 +31,11 @@ std::string write_temp_file(const std::string& name, const std::string& text) {
   return path;
 }
 
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
 std::string shell_words(const std::string& path, const std::vector<std::string>& args) {
   std::string command = "'" + path + "'";
   for (const std::string& a : args) command += " '" + a + "'";

@@ -2,8 +2,10 @@
 // tools with their stdout and stderr captured together.
 #pragma once
 
+#include <chrono>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "common/non_copyable.h"
@@ -17,6 +19,19 @@ std::string ops_config(const std::string& extra = "");
 
 /// Writes `text` into the test's temporary folder as `name`; returns the path.
 std::string write_temp_file(const std::string& name, const std::string& text);
+
+/// The whole file ("" when it cannot be read).
+std::string read_text_file(const std::string& path);
+
+/// Polls `check` every 100 ms for up to 60 s (fqd acts on signals and frames asynchronously).
+template <class F>
+bool eventually(F check) {
+  for (int i = 0; i < 600; ++i) {
+    if (check()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return false;
+}
 
 class FqdProcess : NonCopyable {
  public:

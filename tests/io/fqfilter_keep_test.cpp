@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "draco/compression/decode.h"
 #include "draco/core/decoder_buffer.h"
 #include "draco/io/ply_property_reader.h"
 #include "draco/io/ply_reader.h"
@@ -133,14 +134,66 @@ TEST_F(KeepFixture, ColourClustersReplacesTheColours) {
   EXPECT_NE(b.values("vertex", "red"), PlyFile(in).values("vertex", "red"));
 }
 
-TEST_F(KeepFixture, DrcOutputWarnsAboutEveryPropertyInJsonToo) {
-  const RunResult r = run_fqfilter({in, dir.file("out.drc"), "--json"}, dir);
+TEST_F(KeepFixture, DrcKeepsNormalsColoursAndUvsAndWarnsOnceAGroup) {
+  const RunResult r = run_fqfilter({in, dir.file("out.drc"), "--json", "--drc-bits", "0"}, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   std::string all;
   for (const auto& w : j["warnings"]) all += w.get<std::string>() + "\n";
-  for (const char* p : {"'red'", "'u'", "'quality'", "'texcoord'", "element 'edge'"})
+  for (const char* p : {"vertex property 'quality'", "face property 'red'", "face property 'texcoord'",
+                        "element 'edge'"})
     EXPECT_NE(all.find(p), std::string::npos) << p << " in " << all;
+  EXPECT_EQ(j["warnings"].size(), 4u) << all;  // nothing about normals, colours or uvs
+  // Read back by Draco's decoder: the attributes are Draco's own, with the values fq wrote.
+  const std::string bytes = fq::test::read_bytes(dir.file("out.drc"));
+  draco::DecoderBuffer buffer;
+  buffer.Init(bytes.data(), bytes.size());
+  auto decoded = draco::Decoder().DecodeMeshFromBuffer(&buffer);
+  ASSERT_TRUE(decoded.ok());
+  const draco::Mesh& dm = *decoded.value();
+  const draco::PointAttribute* colour = dm.GetNamedAttribute(draco::GeometryAttribute::COLOR);
+  const draco::PointAttribute* normal = dm.GetNamedAttribute(draco::GeometryAttribute::NORMAL);
+  const draco::PointAttribute* uv = dm.GetNamedAttribute(draco::GeometryAttribute::TEX_COORD);
+  ASSERT_TRUE(colour && normal && uv);
+  EXPECT_EQ(colour->data_type(), draco::DT_UINT8);
+  const PlyFile a(in);
+  const auto red = a.values("vertex", "red"), u = a.values("vertex", "u");
+  const draco::PointAttribute* position = dm.GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  const auto x = a.values("vertex", "x"), y = a.values("vertex", "y");
+  for (uint32_t p = 0; p < dm.num_points(); ++p) {
+    // Draco may reorder points: find the input vertex by its grid position (x, y stay near
+    // their integer grid values under the filter).
+    float xyz[3], n[3], t[2];
+    uint8_t rgb[3];
+    position->ConvertValue<float>(position->mapped_index(draco::PointIndex(p)), 3, xyz);
+    const size_t v = size_t(std::lround(xyz[0])) * kN + size_t(std::lround(xyz[1]));
+    colour->ConvertValue<uint8_t>(colour->mapped_index(draco::PointIndex(p)), 3, rgb);
+    normal->ConvertValue<float>(normal->mapped_index(draco::PointIndex(p)), 3, n);
+    uv->ConvertValue<float>(uv->mapped_index(draco::PointIndex(p)), 2, t);
+    EXPECT_EQ(rgb[0], red[v]);
+    EXPECT_FLOAT_EQ(t[0], float(u[v]));
+    EXPECT_GT(std::abs(n[2]), 0.9f);  // recomputed from the filtered surface, as for PLY
+  }
+}
+
+TEST_F(KeepFixture, PlyQuadsFilter) {
+  // The grid as quads: fqfilter splits each in two triangles, filters, writes triangles.
+  std::ostringstream s;
+  s << "ply\nformat ascii 1.0\nelement vertex " << kN * kN
+    << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << (kN - 1) * (kN - 1)
+    << "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j) s << i << " " << j << " " << 0.05 * std::sin(3 * i + j) << "\n";
+  for (int i = 0; i + 1 < kN; ++i)
+    for (int j = 0; j + 1 < kN; ++j) s << "4 " << i * kN + j << " " << (i + 1) * kN + j << " " << (i + 1) * kN + j + 1
+                                       << " " << i * kN + j + 1 << "\n";
+  fq::test::write_bytes(dir.file("quads.ply"), s.str());
+  const RunResult r = run_fqfilter({dir.file("quads.ply"), dir.file("out.ply"), "--threads", "2"}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const PlyFile b(dir.file("out.ply"));
+  ASSERT_TRUE(b.ok());
+  EXPECT_EQ(b.values("face", "vertex_indices").size(), size_t(3 * 2 * (kN - 1) * (kN - 1)));
+  EXPECT_NE(b.values("vertex", "z"), PlyFile(dir.file("quads.ply")).values("vertex", "z"));  // it did filter
 }
 
 TEST_F(KeepFixture, RefusesToWriteOverTheInput) {
@@ -203,7 +256,7 @@ TEST(FqfilterProgress, OnlyOnATerminal) {
                             " /dev/null >" + fq::test::quote(dir.file("tty.txt"));
     ASSERT_EQ(fq::test::exit_code_of(std::system(cmd.c_str())), 0);
     const std::string tty = fq::test::read_bytes(dir.file("tty.txt"));
-    EXPECT_EQ(tty.find("diffusion done (") != std::string::npos, !json) << tty;
+    EXPECT_EQ(tty.find("refine done (") != std::string::npos, !json) << tty;
   }
 }
 

@@ -121,13 +121,13 @@ TEST(MeshIoErrors, BigEndianPlyIsNamed) {
   expect_read_error(dir.file("be.ply"), "binary_little_endian");
 }
 
-TEST(MeshIoErrors, PlyWithQuadsIsNotATriangleMesh) {
+TEST(MeshIoErrors, PlyFaceOfTwoVerticesIsNotASurface) {
   test::ScratchDir dir;
-  test::write_bytes(dir.file("quad.ply"),
+  test::write_bytes(dir.file("edge.ply"),
                     "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                    "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
-  expect_read_error(dir.file("quad.ply"), "not a triangle mesh");
+                    "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+                    "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n2 0 3\n");
+  expect_read_error(dir.file("edge.ply"), "face 1 has 2 vertices");
 }
 
 TEST(MeshIoErrors, PlyIndexOutOfRange) {

@@ -120,6 +120,22 @@ TEST(MeshIoPly, CoincidentVerticesStaySeparate) {
   EXPECT_EQ(back.triangles, soup.triangles);
 }
 
+TEST(MeshIoPly, PolygonsAreSplitIntoTrianglesWithTheirFaceProperties) {
+  test::ScratchDir dir;
+  test::write_bytes(dir.file("quads.ply"),
+                    "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 3\nproperty list uchar int vertex_indices\n"
+                    "property uchar red\nend_header\n"
+                    "0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0 0\n2 1 0\n4 0 1 2 3 10\n4 1 4 5 2 20\n3 0 2 3 30\n");
+  Mesh mesh;
+  MeshAttributes a;
+  const Status s = read_mesh(dir.file("quads.ply"), mesh, &a);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(mesh.triangles, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 1, 4, 5, 1, 5, 2, 0, 2, 3}));
+  ASSERT_EQ(a.face.size(), 1u);
+  EXPECT_EQ(a.face[0].values, (std::vector<double>{10, 10, 20, 20, 30}));  // each triangle its face's
+}
+
 TEST(MeshIoObjStl, ObjTextureSeamsAreWeldedInFileOrder) {
   // Every corner has its own texture coordinate: Draco makes one point per corner; fq
   // must still see one vertex per `v` line, in file order, with the file's faces.
