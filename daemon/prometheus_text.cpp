@@ -37,6 +37,8 @@ constexpr CounterFamily kCounters[] = {
      &StreamCounters::time_limited},
     {"fq_subscriber_overflows_total", "Times a subscriber's queue was full and it started missing results.",
      &StreamCounters::subscriber_overflows},
+    {"fq_temporal_resets_total", "Scene cuts of a stream filtered across frames: its temporal history restarted.",
+     &StreamCounters::temporal_resets},
 };
 
 void histograms(std::string& out, const std::vector<StreamSnapshot>& streams) {

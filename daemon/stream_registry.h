@@ -30,9 +30,12 @@ struct StreamCounters {
   /// until it has read half its queue, so one overflow may stand for many missed results.
   /// Not part of the sum above: the results were published.
   uint64_t subscriber_overflows = 0;
+  /// Scene cuts of a stream filtered across frames (temporal > 0): frames that found under half
+  /// their vertices near the stream's last result, so its history restarted. Not in the sum.
+  uint64_t temporal_resets = 0;
 };
 
-enum class Counter { kIn, kOut, kSuperseded, kDroppedStale, kLate, kErrors, kTimeLimited, kSubscriberOverflows };
+enum class Counter { kIn, kOut, kSuperseded, kDroppedStale, kLate, kErrors, kTimeLimited, kSubscriberOverflows, kTemporalResets };
 
 struct StreamSnapshot {
   std::string stream_id;

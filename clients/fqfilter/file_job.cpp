@@ -12,6 +12,7 @@
 #include "eval/sharp_edge_recall.h"
 #include "eval/surface_distance.h"
 #include "kernels/cpu_engine.h"
+#include "kernels/frame_prep.h"
 #include "proto/mesh_io.h"
 
 namespace fq::cli {
@@ -50,6 +51,11 @@ Status run_engine(const Options& o, Engine& engine, const MeshView& view, FrameR
   if (o.params.filter && o.params.filtering.method == FilterMethod::kQuadricRefined) {
     report.noise_estimate = result.noise_estimate;
     report.filter_noise = result.filter_noise;
+  }
+  if (o.params.filtering.temporal > 0.f && o.params.filtering.method == FilterMethod::kQuadricRefined) {
+    report.prior_coverage = result.prior_coverage;
+    report.prior_share = result.prior_share;
+    report.history_reset = result.history_reset;
   }
   if (o.params.cluster) {
     report.clusters = result.num_clusters;
@@ -122,7 +128,7 @@ Status write_output(const Options& o, const std::string& output, const MeshView&
 }  // namespace
 
 Status run_file_job(const std::string& input, const std::string& output, const Options& o, Engine& engine,
-                    FileReport& r) {
+                    FileReport& r, FramePositions* kept) {
   describe(input, o, engine, r);
   Progress progress(!o.json && !o.quiet, input);
   progress.show("reading");
@@ -156,6 +162,12 @@ Status run_file_job(const std::string& input, const std::string& output, const O
     r.input_error = measure(clean.view(), mesh.positions.data());
     if (o.params.filter) r.output_error = measure(clean.view(), result.positions.data());
     if (o.params.cluster) r.sharp_edges = sharp_edge_recall(clean.view(), result.labels.data());
+    if (kept && o.params.filter) {
+      kept->reference = clean.positions;
+      kept->result = result.positions;
+      kept->reference_mean_edge = mean_edge_length(clean.view());
+      kept->triangles = mesh.triangles;
+    }
   }
   if (!output.empty()) {
     progress.show("writing " + output);
