@@ -146,9 +146,11 @@ Status run_file_job(const std::string& input, const std::string& output, const O
       add_normal_noise(mesh, o.noise_sigma, o.seed);
     else
       add_gaussian_noise(mesh, o.noise_sigma, o.seed);
-    if (!o.noisy_out.empty()) {
-      if (Status s = io::write_mesh(o.noisy_out, mesh.view(), nullptr, 0, 0); !s.ok()) return fail(r, s);
-    }
+  }
+  // With --noise 0 the "noisy" input is the input itself: written all the same, so that a
+  // sweep over noise levels that starts at 0 finds every file it asked for.
+  if (!o.noisy_out.empty()) {
+    if (Status s = io::write_mesh(o.noisy_out, mesh.view(), nullptr, 0, 0); !s.ok()) return fail(r, s);
   }
   if (!r.reference.empty()) {
     if (Status s = check_same_connectivity(clean.view(), mesh.view()); !s.ok())
