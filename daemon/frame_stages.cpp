@@ -102,8 +102,11 @@ Status run_engine(Pipeline& p, Engine& engine, FrameJob& f) {
                                     : CancelToken::Clock::time_point::max();
   const CancelToken token(&p.cancel_engines, deadline);
   engine.set_cancel_token(&token);
-  const Status s = guarded("engine", [&] { return engine.process(f.mesh.view(), f.settings.params, f.result); });
+  const Status s = p.histories.with_history(f.stream_id, f.arrival, f.settings.params, engine, [&] {
+    return guarded("engine", [&] { return engine.process(f.mesh.view(), f.settings.params, f.result); });
+  });
   engine.set_cancel_token(nullptr);
+  if (s.ok() && f.result.history_reset) p.registry.count(f.stream_id, Counter::kTemporalResets);
   if (s.code() != StatusCode::kCancelled) return s;
   if (token.stopped())
     return {StatusCode::kCancelled, "cancelled: fqd is stopping (caps.stop_grace_s passed before the frame finished)"};

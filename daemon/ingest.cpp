@@ -70,6 +70,7 @@ void expire_idle_streams(Pipeline& p) {
   p.meshes.trim(now, idle_ns);
   hand_back_free_pages(p, now);
   for (const std::string& id : p.registry.expire_idle(now, caps->stream_idle_s)) {
+    p.histories.forget(id);
     p.expiry_log.log(spdlog::level::info, "stream '{}' expired after {} s without frames", id,
                      caps->stream_idle_s);
   }

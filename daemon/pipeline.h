@@ -14,6 +14,7 @@
 #include "daemon/engine_busy.h"
 #include "daemon/frame_job.h"
 #include "daemon/label_tracks.h"
+#include "daemon/stream_histories.h"
 #include "daemon/latency_policy.h"
 #include "daemon/latest_results.h"
 #include "daemon/live_caps.h"
@@ -75,6 +76,7 @@ struct Pipeline {
   ObjectPool<Mesh> meshes;
   LatestResults latest;                      ///< each watched stream's last result (HTTP viewer)
   LabelTracks label_tracks;                  ///< stable cluster ids per stream
+  StreamHistories histories;                 ///< last results of streams filtered across frames
   EngineBusy engine_busy;                    ///< time on frames per engine (/metrics)
   /// Set when a stopping daemon's grace (caps.stop_grace_s) has passed: every engine run
   /// ends at its next check, and frames still waiting get an error result at once.

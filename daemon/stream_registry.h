@@ -34,6 +34,9 @@ struct StreamCounters {
   /// wrong or forged clock): their send_to_publish is left out of the metrics, not folded
   /// into the histograms. Not part of the sum above.
   uint64_t bad_send_time = 0;
+  /// Scene cuts of a stream filtered across frames (temporal > 0): frames that found under half
+  /// their vertices near the stream's last result, so its history restarted. Not in the sum.
+  uint64_t temporal_resets = 0;
 };
 
 enum class Counter {
@@ -45,7 +48,8 @@ enum class Counter {
   kErrors,
   kTimeLimited,
   kSubscriberOverflows,
-  kBadSendTime
+  kBadSendTime,
+  kTemporalResets
 };
 
 struct StreamSnapshot {
