@@ -15,7 +15,10 @@ class CpuEngine final : public Engine {
   explicit CpuEngine(int threads = 0);
   std::string name() const override { return "cpu"; }
   Status process(const MeshView& mesh, const Params& params, FrameResult& out) override;
-  void release_memory() override { f_ = CpuFrame{}; }
+  void release_memory() override {
+    f_ = CpuFrame{};
+    temporal_scratch_ = TemporalScratch{};
+  }
   int threads() const { return threads_; }
 
  private:

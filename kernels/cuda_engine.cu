@@ -121,6 +121,7 @@ void CudaEngine::release_memory() {
   }
   f_ = cuda::DeviceFrame{};
   refine_ = cuda::RefineBuffers{};
+  temporal_scratch_ = TemporalScratch{};
 }
 
 // A bad launch is cleared by reading it; a fault inside a kernel is sticky and leaves the
