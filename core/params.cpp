@@ -89,6 +89,8 @@ Status validate(const Params& p) {
   if (!(f.tikhonov >= 0.f && f.tikhonov <= 1e3f))
     return invalid_argument("tikhonov must be in [0, 1000] (got " + show(f.tikhonov) + ")");
   if (Status s = validate(f.refine); !s.ok()) return s;
+  if (!(f.temporal >= 0.f && f.temporal <= 1.f))
+    return invalid_argument("temporal must be in [0, 1] (got " + show(f.temporal) + ")");
   if (p.cluster) {
     for (const Status& s :
          {check_sigma("sigma_d", p.clustering.sigma_d, false), check_sigma("sigma_q", p.clustering.sigma_q, false)})

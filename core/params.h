@@ -34,6 +34,10 @@ struct RefineParams {
   float strength = 1.f;
 };
 
+/// The temporal strength fqfilter --sequence and a stream with `temporal = true` use
+/// (FilterParams::temporal; docs/ALGORITHM.md, "Temporal filtering").
+inline constexpr float kDefaultTemporal = 0.75f;
+
 struct FilterParams {
   FilterMethod method = FilterMethod::kQuadricRefined;
   /// The quadric diffusion's extents, for "qf" and for the clustering (which scores the same
@@ -48,6 +52,10 @@ struct FilterParams {
   /// mesh intact and improves noisy ones (see docs/QUALITY.md); 0 is the paper's solver.
   float tikhonov = 0.05f;
   RefineParams refine;  ///< used by "qf+" only
+  /// "qf+" on a stream whose engine holds its history (Engine::set_history): how far each
+  /// vertex may be pulled to the last result's surface where that surface did not move, in
+  /// [0, 1]; 0: each frame alone (docs/ALGORITHM.md, "Temporal filtering").
+  float temporal = 0.f;
 
   /// Whether the filter moves vertices with the filtered quadrics ("qf" only).
   bool uses_quadrics() const { return method == FilterMethod::kQuadric; }

@@ -35,6 +35,7 @@ void read_filter(TomlReader& r, FilterParams& f) {
   r.read("tikhonov", f.tikhonov);
   r.read("known_noise", f.refine.known_noise);
   r.read("strength", f.refine.strength);
+  r.read("temporal", f.temporal);
 }
 
 void read_cluster(TomlReader& r, ClusterParams& c) {

@@ -10,7 +10,7 @@
 namespace fq::daemon {
 
 /// One stream: {"stream", "frames_in", "frames_out", "superseded", "dropped_stale", "late",
-/// "errors", "time_limited", "subscriber_overflows",
+/// "errors", "time_limited", "subscriber_overflows", "temporal_resets",
 /// "stages": {name: {"p50_ms", "p95_ms", "p99_ms", "count"}}}.
 nlohmann::json counters_json(const wire::StreamCounters& c);
 

@@ -5,16 +5,17 @@
 #include <chrono>
 #include <exception>
 
-#include "wire/draco_budget.h"
-#include "wire/frame_codec.h"
+#include "common/thread_pool.h"
 #include "core/mesh_checks.h"
-#include "wire/header_codec.h"
+#include "core/parallel_for.h"
 #include "daemon/label_tracks.h"
 #include "daemon/pipeline.h"
 #include "daemon/stream.h"
+#include "daemon/stream_history.h"
 #include "daemon/work_budget.h"
-#include "core/parallel_for.h"
-#include "common/thread_pool.h"
+#include "wire/draco_budget.h"
+#include "wire/frame_codec.h"
+#include "wire/header_codec.h"
 
 namespace fq::daemon {
 namespace {
@@ -104,8 +105,11 @@ Status run_engine(Pipeline& p, Engine& engine, FrameJob& f) {
                                     : CancelToken::Clock::time_point::max();
   const CancelToken token(&p.cancel_engines, deadline);
   engine.set_cancel_token(&token);
-  Status s = guarded("engine", [&] { return engine.process(f.mesh.view(), f.settings.params, f.result); });
+  Status s = with_history(*f.stream, f.arrival, f.settings.params, engine, [&] {
+    return guarded("engine", [&] { return engine.process(f.mesh.view(), f.settings.params, f.result); });
+  });
   engine.set_cancel_token(nullptr);
+  if (s.ok() && f.result.history_reset) f.stream->count(Counter::kTemporalResets);
   if (s.code() != StatusCode::kCancelled) return s;
   if (token.stopped())
     return {StatusCode::kCancelled, "cancelled: fqd is stopping (caps.stop_grace_s passed before the frame finished)"};

@@ -1,7 +1,7 @@
 // One stream in fqd, all of its state in one object: its settings, counters and latency
 // metrics (under its own lock), its waiting slot and ticket counter (the slots' lock), its
-// publish order (the publisher thread), its cluster id track (a lock of its own) and its
-// latest result for the viewer (the latest results' lock).
+// publish order (the publisher thread), its cluster id track and its temporal filtering
+// history (a lock each) and its latest result for the viewer (the latest results' lock).
 // The registry owns it and every frame in flight shares it (FrameJob::stream), so expiry is
 // one erase from the registry, and the last frame in flight frees the rest: no other owner
 // keeps a map by stream id that could outlive the stream or grow with every id ever seen.
@@ -20,6 +20,7 @@
 #include "daemon/stage_metrics.h"
 #include "daemon/stream_settings.h"
 #include "kernels/label_tracking.h"
+#include "kernels/temporal.h"
 
 namespace fq::daemon {
 
@@ -42,6 +43,9 @@ struct StreamCounters {
   /// wrong or forged clock): their send_to_publish is left out of the metrics, not folded
   /// into the histograms. Not part of the sum above.
   uint64_t bad_send_time = 0;
+  /// Scene cuts of a stream filtered across frames (temporal > 0): frames that found under half
+  /// their vertices near the stream's last result, so its history restarted. Not in the sum.
+  uint64_t temporal_resets = 0;
 };
 
 enum class Counter {
@@ -53,7 +57,8 @@ enum class Counter {
   kErrors,
   kTimeLimited,
   kSubscriberOverflows,
-  kBadSendTime
+  kBadSendTime,
+  kTemporalResets
 };
 
 struct StreamSnapshot {
@@ -95,6 +100,14 @@ struct LabelTrack {
   LabelTracker tracker;
 };
 
+/// Its last result for temporal filtering (kernels/temporal.h) and the arrival of the frame
+/// that made it (stream_history.h): tens of MB for a large frame, like the label track.
+struct TemporalTrack {
+  std::mutex mutex;
+  TemporalHistory history;
+  uint64_t last_arrival = 0;
+};
+
 struct LatestResult;
 /// The latest result kept for the viewer (latest_results.h); LatestResults' lock guards it.
 struct LatestSlot {
@@ -122,9 +135,10 @@ class Stream : NonCopyable {
   /// When a frame (or a control request) last found it, wall_ns(); the registry expires it.
   std::atomic<int64_t> last_seen_ns{0};
 
-  SlotState slot;      ///< FrameSlots' lock
-  PublishOrder order;  ///< the publisher thread
-  LabelTrack track;    ///< its own lock
+  SlotState slot;          ///< FrameSlots' lock
+  PublishOrder order;      ///< the publisher thread
+  LabelTrack track;        ///< its own lock
+  TemporalTrack temporal;  ///< its own lock
   LatestSlot latest;   ///< LatestResults' lock
 
  private:

@@ -61,6 +61,8 @@ Params geometry_filter(const Params& plain) {
   g.filter = true;
   g.cluster = false;
   g.filtering.constrained = true;
+  // The labels' geometry leaves the stream's history to the output's filter (one update a frame).
+  g.filtering.temporal = 0.f;
   return g;
 }
 

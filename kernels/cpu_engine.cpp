@@ -53,6 +53,9 @@ Status CpuEngine::run(const MeshView& mesh, const Params& params, FrameResult& o
   out.link_p.clear();
   out.noise_estimate = 0.f;
   out.filter_noise = 0.f;
+  out.prior_coverage = 0.f;
+  out.prior_share = 0.f;
+  out.history_reset = false;
   FQ_RETURN_IF_ERROR(validate(params));
   if (needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
   PassClock clock(out.timings, observer_);
@@ -120,6 +123,10 @@ Status CpuEngine::run(const MeshView& mesh, const Params& params, FrameResult& o
     std::copy(mesh.positions, mesh.positions + 3 * size_t(n), out.positions.begin());
   }
   clock.lap("output");
+  FQ_RETURN_IF_ERROR(check_cancel());  // a stopped frame must not become the stream's history
+  const size_t passes = out.timings.size();
+  follow_stream_history(mesh, params, out, threads_);
+  if (observer_ && out.timings.size() > passes) observer_(out.timings.back());
   return {};
 }
 

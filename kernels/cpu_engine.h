@@ -18,7 +18,10 @@ class CpuEngine final : public Engine {
   int threads() const { return threads_; }
 
  private:
-  void release_scratch() override { f_ = CpuFrame{}; }
+  void release_scratch() override {
+    f_ = CpuFrame{};
+    temporal_scratch_ = TemporalScratch{};
+  }
   Status run(const MeshView& mesh, const Params& params, FrameResult& out);
 
   int threads_;

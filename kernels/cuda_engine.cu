@@ -8,6 +8,7 @@
 #include <string>
 #include <thread>
 
+#include "core/parallel_for.h"
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/device_frame.cuh"
 #include "kernels/cuda/frame_checks.cuh"
@@ -89,6 +90,9 @@ Status CudaEngine::process(const MeshView& mesh, const Params& params, FrameResu
   out.link_p.clear();
   out.noise_estimate = 0.f;
   out.filter_noise = 0.f;
+  out.prior_coverage = 0.f;
+  out.prior_share = 0.f;
+  out.history_reset = false;
   Status st = validate(params);
   if (st.ok() && needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
   if (st.ok()) st = check_mesh_counts(mesh);
@@ -104,6 +108,8 @@ Status CudaEngine::process(const MeshView& mesh, const Params& params, FrameResu
     }
   }
   if (!st.ok() || !params.cluster) out.labels.clear();
+  // The temporal step runs on the host, on the downloaded result (kernels/temporal.h).
+  if (st.ok()) follow_stream_history(mesh, params, out, hardware_threads());
   return st;
 }
 
@@ -115,6 +121,7 @@ void CudaEngine::release_scratch() {
   }
   f_ = cuda::DeviceFrame{};
   refine_ = cuda::RefineBuffers{};
+  temporal_scratch_ = TemporalScratch{};
 }
 
 // A bad launch is cleared by reading it; a fault inside a kernel is sticky and leaves the

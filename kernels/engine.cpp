@@ -1,5 +1,7 @@
 #include "kernels/engine.h"
 
+#include <chrono>
+
 #include "kernels/cpu_engine.h"
 #include "kernels/fq_features.h"
 
@@ -35,6 +37,20 @@ bool parse_engine_kind(const std::string& s, EngineKind& out) {
   else if (s == "cuda") out = EngineKind::kCuda;
   else return false;
   return true;
+}
+
+void Engine::follow_stream_history(const MeshView& mesh, const Params& params, FrameResult& out, int threads) {
+  const FilterParams& f = params.filtering;
+  if (history_ == nullptr || !params.filter || f.method != FilterMethod::kQuadricRefined || !(f.temporal > 0.f))
+    return;
+  const auto start = std::chrono::steady_clock::now();
+  const TemporalStep step = follow_history(mesh, out.positions, out.mean_edge, out.noise_estimate, f.temporal,
+                                           *history_, temporal_scratch_, threads);
+  out.prior_coverage = step.coverage;
+  out.prior_share = step.share;
+  out.history_reset = step.reset;
+  out.timings.push_back(
+      {"temporal", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()});
 }
 
 StatusOr<std::unique_ptr<Engine>> make_engine(const EngineOptions& options) {

@@ -14,6 +14,7 @@
 #include "core/cancel_token.h"
 #include "core/mesh_view.h"
 #include "core/params.h"
+#include "kernels/temporal.h"
 
 namespace fq {
 
@@ -39,6 +40,11 @@ struct FrameResult {
   /// edge lengths; 0 for the other methods.
   float noise_estimate = 0.f;
   float filter_noise = 0.f;
+  /// Temporal filtering: the share of vertices that found a prior in the stream's last result,
+  /// the mean pull towards it, and whether this frame reset the history (a scene cut).
+  float prior_coverage = 0.f;
+  float prior_share = 0.f;
+  bool history_reset = false;
   std::vector<PassTiming> timings;
 
   double total_ms() const;
@@ -67,6 +73,10 @@ class Engine {
   /// loops) and returns kCancelled once it has expired. It must outlive the runs that use
   /// it; null: none. Frames that finish are computed exactly as without a token.
   void set_cancel_token(const CancelToken* token) { cancel_ = token; }
+  /// The stream history "qf+" filters the next frames with when FilterParams::temporal > 0
+  /// (kernels/temporal.h): read and updated by process(); null: every frame alone. Like the
+  /// token, it must outlive the runs that use it; a stream's frames must come in order.
+  void set_history(TemporalHistory* history) { history_ = history; }
   /// "cpu" or "cuda:<device name>".
   virtual std::string name() const = 0;
   /// Processes one frame. Bad parameters or a bad mesh give a non-ok status and leave the
@@ -96,8 +106,14 @@ class Engine {
     return size_t(vertices) * 4 < capacity && capacity > (size_t(1) << 16);
   }
 
+  /// The temporal step (kernels/temporal.h) of a "qf+" result in `out` (input order), when a
+  /// history is set and params ask for it; timed as the pass "temporal" in out.timings.
+  void follow_stream_history(const MeshView& mesh, const Params& params, FrameResult& out, int threads);
+
   PassObserver observer_;
   const CancelToken* cancel_ = nullptr;
+  TemporalHistory* history_ = nullptr;
+  TemporalScratch temporal_scratch_;  ///< the engine's scratch: release_scratch() gives it back
 
  private:
   // Cluster control runs the engine again with these as outputs.
