@@ -67,6 +67,10 @@ Status bind_one(zmq::socket_t& s, const std::string& endpoint, const char* role,
 
 Status make_engines(const EngineConfig& c, std::vector<std::unique_ptr<Engine>>& out) {
   out.clear();
+  if (c.kind == EngineKind::kCopy) {  // as many as CPU engines would be: a free engine per worker
+    for (int i = 0; i < c.cpu_engines; ++i) out.push_back(make_engine({EngineKind::kCopy, 0, 0, {}}).value());
+    return {};
+  }
   if (c.kind != EngineKind::kCpu) {
     for (int gpu : c.gpus) {
       StatusOr<std::unique_ptr<Engine>> e = make_engine({EngineKind::kCuda, c.cpu_threads, gpu, {}});
