@@ -131,6 +131,8 @@ FramePtr admit_message(std::vector<zmq::message_t>& parts, Pipeline& p) {
 void run_ingest(zmq::socket_t socket, Pipeline& p) {
   std::vector<zmq::message_t> parts;
   for (;;) {
+    // Per message, so the account stays current; a blocked receive costs no CPU time.
+    const CpuScope cpu(p.stage_cpu[CpuStage::kIngest]);
     parts.clear();
     expire_idle_streams(p);
     try {

@@ -17,6 +17,7 @@
 #include "daemon/latency_policy.h"
 #include "daemon/latest_results.h"
 #include "daemon/object_pool.h"
+#include "daemon/stage_cpu.h"
 #include "daemon/stream_admission.h"
 #include "daemon/stream_registry.h"
 #include "daemon/work_queue.h"
@@ -65,6 +66,7 @@ struct Pipeline {
   LatestResults latest;                      ///< each watched stream's last result (HTTP viewer)
   LabelTracks label_tracks;                  ///< stable cluster ids per stream
   EngineBusy engine_busy;                    ///< time on frames per engine (/metrics)
+  StageCpu stage_cpu;                        ///< host CPU per stage (/metrics, fqstreambench)
   /// Set when a stopping daemon's grace (caps.stop_grace_s) has passed: every engine run
   /// ends at its next check, and frames still waiting get an error result at once.
   std::atomic<bool> cancel_engines{false};

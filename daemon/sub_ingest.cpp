@@ -38,6 +38,7 @@ void run_sub_ingest(zmq::socket_t pull, zmq::socket_t sub, Pipeline& p, const st
   std::vector<zmq::message_t> parts;
   zmq::pollitem_t items[] = {{pull.handle(), 0, ZMQ_POLLIN, 0}, {sub.handle(), 0, ZMQ_POLLIN, 0}};
   for (;;) {
+    const CpuScope cpu(p.stage_cpu[CpuStage::kIngest]);
     try {
       expire_idle_streams(p);
       zmq::poll(items, 2, std::chrono::milliseconds(1000));  // wakes for the idle sweep
