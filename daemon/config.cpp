@@ -33,6 +33,8 @@ void read_filter(TomlReader& r, FilterParams& f) {
   r.read("sigma_n", f.sigma_n);
   r.read("constrained", f.constrained);
   r.read("tikhonov", f.tikhonov);
+  r.read("known_noise", f.refine.known_noise);
+  r.read("strength", f.refine.strength);
 }
 
 void read_cluster(TomlReader& r, ClusterParams& c) {
@@ -166,6 +168,10 @@ Status read_sections(TomlReader& root, DaemonConfig& c) {
     r.read("engine_time_limit_s", c.caps.engine_time_limit_s, 0.0, 1e9);
     r.read("stop_grace_s", c.caps.stop_grace_s, 0.0, 3600.0);
     r.read("max_subscriber_results", c.caps.max_subscriber_results, 2, 1000);
+    r.read("max_subscriptions", c.caps.max_subscriptions, 1, 100000);
+    r.read("max_subscription_bytes", c.caps.max_subscription_bytes, 1, 1 << 24);
+    r.read("max_queued_frames", c.caps.max_queued_frames, 1, 100000);
+    r.read("max_queued_bytes", c.caps.max_queued_bytes, 1, 1ll << 40);
     FQ_RETURN_IF_ERROR(r.finish());
   }
   return {};
@@ -207,7 +213,7 @@ bool valid_log_level(const std::string& l) {
   return false;
 }
 
-Status parse_config(std::string_view text, const std::string& source, DaemonConfig& out) {
+Status parse_config(std::string_view text, const std::string& source, DaemonConfig& out, bool allow_empty) {
   toml::table root_table;
   try {
     root_table = toml::parse(text, source);
@@ -215,6 +221,9 @@ Status parse_config(std::string_view text, const std::string& source, DaemonConf
     return invalid_argument(source + ":" + std::to_string(e.source().begin.line) + ": " +
                             std::string(e.description()));
   }
+  if (root_table.empty() && !allow_empty)
+    return invalid_argument(source + " has no settings: an empty file is refused (it would reset every stream to "
+                                     "the built-in defaults)");
   DaemonConfig c;
   TomlReader root(root_table, source, "");
   root.read("log_level", c.log_level);
@@ -228,12 +237,12 @@ Status parse_config(std::string_view text, const std::string& source, DaemonConf
   return {};
 }
 
-Status load_config(const std::string& path, DaemonConfig& out) {
+Status load_config(const std::string& path, DaemonConfig& out, bool allow_empty) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return invalid_argument("cannot open config file " + path);
   std::ostringstream ss;
   ss << in.rdbuf();
-  return parse_config(ss.str(), path, out);
+  return parse_config(ss.str(), path, out, allow_empty);
 }
 
 }  // namespace fq::daemon

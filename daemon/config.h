@@ -55,6 +55,14 @@ struct Caps {
   /// later ones are dropped for it and counted. Bounds what such a subscriber costs:
   /// (this + 1) x the largest result + 2 MiB of kernel buffer (docs/DAEMON.md).
   uint32_t max_subscriber_results = 16;
+  /// Subscriptions of one subscriber, and bytes of their topics: a subscriber past either is
+  /// cut (counted `subscriptions`), which frees what the publish socket kept for it.
+  uint32_t max_subscriptions = 128;
+  uint32_t max_subscription_bytes = 16384;
+  /// Frames received and waiting for a decoder, and their bytes: when either is reached the
+  /// ingest thread stops reading until a decoder takes one (backpressure; decode_queue.h).
+  uint32_t max_queued_frames = 32;
+  uint64_t max_queued_bytes = 256ull << 20;
 };
 
 struct DaemonConfig {
@@ -79,11 +87,12 @@ struct DaemonConfig {
 };
 
 /// Parses TOML text (`source` names it in messages). Unknown keys, wrong types and
-/// out-of-range values are errors naming the key and line.
-Status parse_config(std::string_view text, const std::string& source, DaemonConfig& out);
+/// out-of-range values are errors naming the key and line; so is text without a single key
+/// unless `allow_empty` (a reload of an emptied file would reset every stream to the defaults).
+Status parse_config(std::string_view text, const std::string& source, DaemonConfig& out, bool allow_empty = true);
 
 /// Reads and parses a file.
-Status load_config(const std::string& path, DaemonConfig& out);
+Status load_config(const std::string& path, DaemonConfig& out, bool allow_empty = true);
 
 /// True for spdlog's level names: trace, debug, info, warn, error, critical, off.
 bool valid_log_level(const std::string& level);

@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "daemon/bounded_receive.h"
+#include "daemon/log_limiter.h"
 #include "daemon/settings_audit.h"
 #include "proto/header_codec.h"
 
@@ -31,14 +33,30 @@ wire::ControlReply settings_reply(const StreamSettings& s) {
   return r;
 }
 
+wire::ControlReply unknown_stream(const std::string& id) {
+  return error_reply("unknown stream '" + printable_id(id) + "'");
+}
+
+// Parameter changes are logged (one line each, at most 5 a second: any control client can send them).
+LogLimiter& change_log() {
+  static LogLimiter log;
+  return log;
+}
+
 wire::ControlReply get_params(const wire::GetParams& q, StreamRegistry& registry) {
   StreamSettings s;
-  if (!registry.find(q.stream_id(), s)) return error_reply("unknown stream '" + q.stream_id() + "'");
+  if (!registry.find(q.stream_id(), s)) return unknown_stream(q.stream_id());
   return settings_reply(s);
 }
 
-wire::ControlReply set_params(const wire::SetParams& q, StreamRegistry& registry) {
+wire::ControlReply set_params(const wire::SetParams& q, StreamRegistry& registry, const Caps& caps) {
   if (q.stream_id().empty()) return error_reply("set_params needs a stream id");
+  // The ingest's own check: control makes no stream that a frame could not make.
+  Refusal why = Refusal::kBadStreamId;
+  if (Status id = check_stream_id(q.stream_id(), caps, &why); !id.ok()) {
+    registry.refusals().add(why);
+    return error_reply(id.message());
+  }
   StreamSettings s;
   if (!registry.settings(q.stream_id(), s)) return error_reply("too many streams");
   const StreamSettings before = s;
@@ -48,13 +66,13 @@ wire::ControlReply set_params(const wire::SetParams& q, StreamRegistry& registry
   if (!st.ok()) return error_reply("invalid parameters: " + st.message());
   if (q.has_result_form()) s.output.form = from_wire(q.result_form());
   registry.set_settings(q.stream_id(), s);
-  log_settings_changes(q.stream_id(), before, s, "control");
+  log_settings_changes(q.stream_id(), before, s, "control", &change_log());
   return settings_reply(s);
 }
 
 wire::ControlReply get_counters(const wire::GetCounters& q, StreamRegistry& registry) {
   std::vector<StreamSnapshot> snaps;
-  if (!registry.snapshot(q.stream_id(), snaps)) return error_reply("unknown stream '" + q.stream_id() + "'");
+  if (!registry.snapshot(q.stream_id(), snaps)) return unknown_stream(q.stream_id());
   wire::ControlReply r = ok_reply();
   for (const StreamSnapshot& s : snaps) {
     wire::StreamCounters* c = r.add_counters();
@@ -67,6 +85,7 @@ wire::ControlReply get_counters(const wire::GetCounters& q, StreamRegistry& regi
     c->set_errors(s.counters.errors);
     c->set_time_limited(s.counters.time_limited);
     c->set_subscriber_overflows(s.counters.subscriber_overflows);
+    c->set_bad_send_time(s.counters.bad_send_time);
     for (const auto& [name, pc] : s.stages) {
       wire::StagePercentiles* sp = c->add_stages();
       sp->set_name(name);
@@ -81,12 +100,12 @@ wire::ControlReply get_counters(const wire::GetCounters& q, StreamRegistry& regi
 
 }  // namespace
 
-wire::ControlReply handle_control(const wire::ControlRequest& request, StreamRegistry& registry) {
+wire::ControlReply handle_control(const wire::ControlRequest& request, StreamRegistry& registry, const Caps& caps) {
   switch (request.request_case()) {
     case wire::ControlRequest::kGetParams:
       return get_params(request.get_params(), registry);
     case wire::ControlRequest::kSetParams:
-      return set_params(request.set_params(), registry);
+      return set_params(request.set_params(), registry, caps);
     case wire::ControlRequest::kListStreams: {
       wire::ControlReply r = ok_reply();
       for (const std::string& id : registry.list()) r.add_streams(id);
@@ -100,24 +119,35 @@ wire::ControlReply handle_control(const wire::ControlRequest& request, StreamReg
   return error_reply("empty control request");
 }
 
-std::string handle_control_bytes(std::string_view bytes, StreamRegistry& registry) {
+std::string handle_control_bytes(std::string_view bytes, StreamRegistry& registry, const Caps& caps) {
   wire::ControlRequest request;
   if (Status s = wire::parse_control_request(bytes, request); !s.ok())
     return error_reply(s.message()).SerializeAsString();
-  return handle_control(request, registry).SerializeAsString();
+  return handle_control(request, registry, caps).SerializeAsString();
 }
 
-void run_control(zmq::socket_t socket, StreamRegistry& registry) {
+void run_control(zmq::socket_t socket, StreamRegistry& registry, const LiveCaps& caps, const ClientKeys* keys) {
+  LogLimiter refused_log, error_log;
+  std::vector<zmq::message_t> request;
   for (;;) {
-    zmq::message_t request;
     try {
-      if (!socket.recv(request)) continue;
-      const std::string reply =
-          handle_control_bytes(std::string_view(request.data<char>(), request.size()), registry);
+      const Received got = receive_bounded(socket, request, {1, kMaxControlBytes});
+      if (got == Received::kNothing) continue;
+      std::string reply;
+      if (!admit_sender(request[0], keys, registry.refusals())) {
+        reply = error_reply("unauthenticated: this client key is no longer allowed").SerializeAsString();
+      } else if (got == Received::kMessage) {
+        reply = handle_control_bytes(std::string_view(request[0].data<char>(), request[0].size()), registry,
+                                     *caps.get());
+      } else {
+        registry.refusals().add(Refusal::kOversized);
+        refused_log.log(spdlog::level::warn, "control: refused a request of more than one part");
+        reply = error_reply("a control request is one message part (ControlRequest)").SerializeAsString();
+      }
       socket.send(zmq::buffer(reply), zmq::send_flags::none);
     } catch (const zmq::error_t& e) {
       if (e.num() == ETERM) break;
-      spdlog::error("control: {}", e.what());
+      error_log.log(spdlog::level::err, "control: {}", e.what());
     }
   }
   socket.close();

@@ -7,18 +7,29 @@
 #include <zmq.hpp>
 
 #include "proto/fq.pb.h"
+#include "daemon/curve_auth.h"
+#include "daemon/live_caps.h"
 #include "daemon/stream_registry.h"
 
 namespace fq::daemon {
 
-/// Answers one request. A SetParams change is validated with fq::validate and takes
-/// effect on the stream's next frame to be decoded.
-wire::ControlReply handle_control(const wire::ControlRequest& request, StreamRegistry& registry);
+/// The largest control request (ZMQ_MAXMSGSIZE of the control socket: a larger part drops the
+/// connection before it is buffered). A request is a few hundred bytes: a stream id (at most
+/// caps.max_stream_id_bytes) and parameters.
+inline constexpr size_t kMaxControlBytes = 64 << 10;
+
+/// Answers one request under `caps`. A SetParams change is for a stream id the ingest would
+/// admit (check_stream_id), is validated with fq::validate and takes effect on the stream's
+/// next frame to be decoded.
+wire::ControlReply handle_control(const wire::ControlRequest& request, StreamRegistry& registry, const Caps& caps);
 
 /// Parses, answers and serializes one request (an unparsable one gets an error reply).
-std::string handle_control_bytes(std::string_view request, StreamRegistry& registry);
+std::string handle_control_bytes(std::string_view request, StreamRegistry& registry, const Caps& caps);
 
-/// Serves requests until the socket's context is shut down, then closes the socket.
-void run_control(zmq::socket_t socket, StreamRegistry& registry);
+/// Serves requests until the socket's context is shut down, then closes the socket. A request
+/// of more than one part is refused as a whole (one error reply, counted `oversized`); one
+/// from a client key revoked since it connected gets an error and its connection cut.
+void run_control(zmq::socket_t socket, StreamRegistry& registry, const LiveCaps& caps,
+                 const ClientKeys* keys = nullptr);
 
 }  // namespace fq::daemon

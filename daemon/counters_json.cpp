@@ -10,7 +10,8 @@ nlohmann::json counters_json(const wire::StreamCounters& c) {
           {"frames_out", c.frames_out()}, {"superseded", c.superseded()},
           {"dropped_stale", c.dropped_stale()}, {"late", c.late()},
           {"errors", c.errors()},          {"time_limited", c.time_limited()},
-          {"subscriber_overflows", c.subscriber_overflows()}, {"stages", std::move(stages)}};
+          {"subscriber_overflows", c.subscriber_overflows()}, {"bad_send_time", c.bad_send_time()},
+          {"stages", std::move(stages)}};
 }
 
 nlohmann::json counters_json(const wire::ControlReply& reply) {

@@ -1,8 +1,11 @@
 #include "daemon/curve_auth.h"
 
 #include <spdlog/spdlog.h>
+#include <sys/socket.h>
 
 #include <zmq_addon.hpp>
+
+#include "daemon/daemon_threads.h"
 
 namespace fq::daemon {
 
@@ -28,16 +31,51 @@ bool is_local_endpoint(const std::string& e) {
   if (e.rfind("ipc://", 0) == 0 || e.rfind("inproc://", 0) == 0) return true;
   const std::string tcp = "tcp://";
   if (e.rfind(tcp, 0) != 0) return false;
-  const std::string host = e.substr(tcp.size(), e.rfind(':') - tcp.size());
+  return is_loopback_host(e.substr(tcp.size(), e.rfind(':') - tcp.size()));
+}
+
+bool is_loopback_host(const std::string& host) {
   return host == "localhost" || host == "[::1]" || host == "::1" || host.rfind("127.", 0) == 0 || host == "lo";
 }
 
-ZapHandler::ZapHandler(zmq::context_t& context, std::set<std::string> allowed, RefusalCounters& refusals)
-    : allowed_(std::move(allowed)), refusals_(refusals) {
+bool ClientKeys::allowed(const std::string& key) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return keys_->count(key) > 0;
+}
+
+void ClientKeys::set(std::set<std::string> keys) {
+  auto fresh = std::make_shared<const std::set<std::string>>(std::move(keys));
+  std::lock_guard<std::mutex> lock(mutex_);
+  keys_ = std::move(fresh);
+  ++generation_;
+}
+
+std::string sender_key(const zmq::message_t& m) {
+  const char* user = zmq_msg_gets(const_cast<zmq_msg_t*>(m.handle()), "User-Id");
+  return user ? user : "";
+}
+
+void cut_sender(const zmq::message_t& m) {
+  const int fd = zmq_msg_get(const_cast<zmq_msg_t*>(m.handle()), ZMQ_SRCFD);
+  if (fd >= 0) ::shutdown(fd, SHUT_RDWR);
+}
+
+bool admit_sender(const zmq::message_t& m, const ClientKeys* keys, RefusalCounters& refusals) {
+  if (!keys || keys->allowed(sender_key(m))) return true;
+  refusals.add(Refusal::kUnauthenticated);
+  cut_sender(m);
+  return false;
+}
+
+ZapHandler::ZapHandler(zmq::context_t& context, const ClientKeys& allowed, RefusalCounters& refusals)
+    : allowed_(allowed), refusals_(refusals) {
   zmq::socket_t s(context, zmq::socket_type::rep);
   s.set(zmq::sockopt::linger, 0);
   s.bind("inproc://zeromq.zap.01");  // before any CURVE socket accepts a connection
-  thread_ = std::thread([this, s = std::move(s)]() mutable { run(std::move(s)); });
+  thread_ = std::thread([this, s = std::move(s)]() mutable {
+    name_this_thread("zap");  // its CPU counts in fq_cpu_seconds_total
+    run(std::move(s));
+  });
 }
 
 ZapHandler::~ZapHandler() { join(); }
@@ -62,12 +100,12 @@ void ZapHandler::run(zmq::socket_t socket) {
     if (req.size() >= 7 && req[5].to_string() == "CURVE" && req[6].size() == 32) {
       char z85[41];
       zmq_z85_encode(z85, req[6].data<uint8_t>(), 32);
-      if (allowed_.count(z85)) {
+      if (allowed_.allowed(z85)) {
         status = "200", text = "OK", user = z85;
       } else {
         refusals_.add(Refusal::kUnauthenticated);
-        spdlog::warn("refused a connection from {}: client key {} is not in security.client_keys_file",
-                     req[3].to_string(), z85);
+        log_.log(spdlog::level::warn, "refused a connection from {}: client key {} is not in security.client_keys_file",
+                 req[3].to_string(), z85);
       }
     } else {
       refusals_.add(Refusal::kUnauthenticated);

@@ -3,6 +3,9 @@
 // public keys. One handler runs per ZeroMQ context.
 #pragma once
 
+#include <atomic>
+#include <memory>
+#include <mutex>
 #include <set>
 #include <string>
 #include <thread>
@@ -12,6 +15,7 @@
 #include "common/curve_keys.h"
 #include "common/non_copyable.h"
 #include "common/status.h"
+#include "daemon/log_limiter.h"
 #include "daemon/stream_admission.h"
 
 namespace fq::daemon {
@@ -34,12 +38,43 @@ void make_curve_server(zmq::socket_t& s, const CurveKeyPair& server);
 
 /// True when `endpoint` can only be reached from this host (loopback, ipc, inproc).
 bool is_local_endpoint(const std::string& endpoint);
+/// True for a host name or address of this host only (localhost, 127.x, ::1).
+bool is_loopback_host(const std::string& host);
+
+/// The client keys allowed in now (security.client_keys_file), replaced when SIGHUP reloads
+/// it. Thread-safe.
+class ClientKeys : NonCopyable {
+ public:
+  explicit ClientKeys(std::set<std::string> keys) : keys_(std::make_shared<const std::set<std::string>>(std::move(keys))) {}
+  bool allowed(const std::string& key) const;
+  void set(std::set<std::string> keys);
+  /// Changes with every set(): a holder of connections checks them again when it moves.
+  uint64_t generation() const { return generation_.load(); }
+
+ private:
+  mutable std::mutex mutex_;
+  std::shared_ptr<const std::set<std::string>> keys_;
+  std::atomic<uint64_t> generation_{0};
+};
+
+/// The client key (Z85) a message came with over CURVE ("User-Id", as the ZAP handler
+/// answered); empty without one.
+std::string sender_key(const zmq::message_t& m);
+
+/// Ends the connection a message came over (ZMQ_SRCFD): shut down, not closed, so the socket
+/// stays libzmq's, which sees the end and drops the peer. Revoked keys lose their connections
+/// this way, since CURVE authenticates a connection only when it starts.
+void cut_sender(const zmq::message_t& m);
+
+/// True when `m` came from a client whose key is allowed now, or `keys` is null (no CURVE);
+/// otherwise counts an unauthenticated refusal, cuts the connection and returns false.
+bool admit_sender(const zmq::message_t& m, const ClientKeys* keys, RefusalCounters& refusals);
 
 /// Answers ZAP requests on one context: 200 for an allow-listed client key, 400 (counted as
 /// a refusal) for anything else.
 class ZapHandler : NonCopyable {
  public:
-  ZapHandler(zmq::context_t& context, std::set<std::string> allowed, RefusalCounters& refusals);
+  ZapHandler(zmq::context_t& context, const ClientKeys& allowed, RefusalCounters& refusals);
   ~ZapHandler();
   /// Joins the thread; call after the context was shut down or closed.
   void join();
@@ -47,8 +82,9 @@ class ZapHandler : NonCopyable {
  private:
   void run(zmq::socket_t socket);
 
-  std::set<std::string> allowed_;
+  const ClientKeys& allowed_;
   RefusalCounters& refusals_;
+  LogLimiter log_;  ///< one line per refused connection, at most 5 a second
   std::thread thread_;
 };
 

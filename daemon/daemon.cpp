@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "common/non_copyable.h"
+#include "daemon/config_reload.h"
 #include "daemon/control_server.h"
 #include "daemon/daemon_threads.h"
 #include "daemon/ingest.h"
@@ -94,7 +95,8 @@ Status make_engines(const EngineConfig& c, std::vector<std::unique_ptr<Engine>>&
 Daemon::Daemon(DaemonConfig config)
     : config_(std::move(config)),
       registry_(config_),
-      pipeline_(config_, registry_),
+      caps_(config_.caps),
+      pipeline_(config_, registry_, caps_),
       input_context_(1),
       output_context_(1) {
   config_.resolve_auto_threads();
@@ -103,6 +105,7 @@ Daemon::Daemon(DaemonConfig config)
   // An engine that outruns the encoders waits instead of queueing results: frames then wait
   // in their streams' slots, where newer ones supersede them, and latency stays bounded.
   pipeline_.encode_queue.set_capacity(static_cast<size_t>(config_.encode_threads));
+  pipeline_.decode_queue.set_bounds(config_.caps.max_queued_frames, config_.caps.max_queued_bytes);
 }
 
 Daemon::~Daemon() { stop(); }
@@ -131,7 +134,7 @@ std::string Daemon::service_metrics() const {
   }
   for (size_t i = 0; i < engines_.size() && i < pipeline_.engine_busy.size(); ++i)
     in.engines.push_back({engines_[i]->name(), pipeline_.engine_busy.seconds(i), pipeline_.engine_busy.frames(i)});
-  in.queues = {{"decode", pipeline_.decode_queue.size()},
+  in.queues = {{"decode", pipeline_.decode_queue.frames()},
                {"slots", pipeline_.slots.waiting()},
                {"encode", pipeline_.encode_queue.size()},
                {"publish", pipeline_.publish_queue.size()}};
@@ -139,58 +142,82 @@ std::string Daemon::service_metrics() const {
   return service_metrics_text(in) + stage_cpu_metrics_text(pipeline_.stage_cpu, daemon_threads_cpu_seconds());
 }
 
-Status Daemon::bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::socket_t& control) {
-  ingest = zmq::socket_t(input_context_, zmq::socket_type::pull);
-  control = zmq::socket_t(input_context_, zmq::socket_type::rep);
-  publish = zmq::socket_t(output_context_, zmq::socket_type::xpub);
-  ResultSocket::configure(publish, static_cast<int>(config_.caps.max_subscriber_results));
-  ingest.set(zmq::sockopt::linger, 0);
-  // Refused at the socket: a peer sending a larger part is disconnected before the part is
-  // buffered (max_frame_bytes bounds the whole message, so it bounds every part too).
-  ingest.set(zmq::sockopt::maxmsgsize, static_cast<int64_t>(config_.caps.max_frame_bytes));
+struct Daemon::Sockets {
+  zmq::socket_t ingest, publish, publish_monitor, control;
+  zmq::socket_t sub;  ///< stays empty without [ingest] connect
+  std::unique_ptr<SubReconnector> sub_reconnector;
+  CurveServerKeys keys;  ///< with [security]
+};
+
+// Every door of fqd under the same rules: a size bound at the socket (a larger part drops the
+// connection before it is buffered) and, with [security], CURVE with the ZAP allow-list.
+Status Daemon::make_sockets(Sockets& s) {
+  s.ingest = zmq::socket_t(input_context_, zmq::socket_type::pull);
+  s.control = zmq::socket_t(input_context_, zmq::socket_type::rep);
+  s.publish = zmq::socket_t(output_context_, zmq::socket_type::xpub);
+  ResultSocket::configure(s.publish, static_cast<int>(config_.caps.max_subscriber_results),
+                          config_.caps.max_stream_id_bytes);
+  s.publish_monitor = SubscriptionGate::monitor(output_context_, s.publish);
+  s.ingest.set(zmq::sockopt::linger, 0);
+  // max_frame_bytes bounds the whole message, so it bounds every part too.
+  s.ingest.set(zmq::sockopt::maxmsgsize, static_cast<int64_t>(config_.caps.max_frame_bytes));
+  // When the decode queue is full the ingest thread stops reading: this mark (messages per
+  // producer connection) is what libzmq then holds before the producer is held back.
+  s.ingest.set(zmq::sockopt::rcvhwm, kIngestMark);
   // Wakes the ingest thread once a second when nothing arrives, for idle-stream expiry.
-  ingest.set(zmq::sockopt::rcvtimeo, 1000);
-  control.set(zmq::sockopt::linger, 0);
-  publish.set(zmq::sockopt::linger, kPublishLingerMs);
+  s.ingest.set(zmq::sockopt::rcvtimeo, 1000);
+  s.control.set(zmq::sockopt::linger, 0);
+  s.control.set(zmq::sockopt::maxmsgsize, static_cast<int64_t>(kMaxControlBytes));
+  s.publish.set(zmq::sockopt::linger, kPublishLingerMs);
   if (config_.security.enabled()) {
-    CurveServerKeys keys;
-    FQ_RETURN_IF_ERROR(load_curve_server_keys(config_.security, keys));
-    input_zap_ = std::make_unique<ZapHandler>(input_context_, keys.clients, registry_.refusals());
-    output_zap_ = std::make_unique<ZapHandler>(output_context_, keys.clients, registry_.refusals());
-    for (zmq::socket_t* s : {&ingest, &publish, &control}) make_curve_server(*s, keys.server);
-    spdlog::info("fqd: CURVE on every socket, {} client key(s) allowed", keys.clients.size());
+    FQ_RETURN_IF_ERROR(load_curve_server_keys(config_.security, s.keys));
+    client_keys_ = std::make_unique<ClientKeys>(s.keys.clients);
+    pipeline_.keys = client_keys_.get();
+    input_zap_ = std::make_unique<ZapHandler>(input_context_, *client_keys_, registry_.refusals());
+    output_zap_ = std::make_unique<ZapHandler>(output_context_, *client_keys_, registry_.refusals());
+    for (zmq::socket_t* socket : {&s.ingest, &s.publish, &s.control}) make_curve_server(*socket, s.keys.server);
+    spdlog::info("fqd: CURVE on every socket, {} client key(s) allowed", s.keys.clients.size());
   } else {
     for (const std::string& e : {config_.endpoints.ingest, config_.endpoints.publish, config_.endpoints.control})
       if (!is_local_endpoint(e))
         spdlog::warn("fqd: {} is reachable from other hosts without CURVE: anyone who can connect may send "
                      "frames, read results and change parameters (set [security] curve_key_file)", e);
   }
-  FQ_RETURN_IF_ERROR(bind_one(ingest, config_.endpoints.ingest, "ingest", endpoints_.ingest));
-  FQ_RETURN_IF_ERROR(bind_one(publish, config_.endpoints.publish, "publish", endpoints_.publish));
-  return bind_one(control, config_.endpoints.control, "control", endpoints_.control);
+  if (config_.sub_ingest.connect.empty()) return {};
+  return make_sub_socket(input_context_, config_.sub_ingest, config_.caps.max_frame_bytes,
+                         config_.security.enabled() ? &s.keys.server : nullptr, s.sub, s.sub_reconnector);
+}
+
+Status Daemon::bind_sockets(Sockets& s) {
+  FQ_RETURN_IF_ERROR(bind_one(s.ingest, config_.endpoints.ingest, "ingest", endpoints_.ingest));
+  FQ_RETURN_IF_ERROR(bind_one(s.publish, config_.endpoints.publish, "publish", endpoints_.publish));
+  return bind_one(s.control, config_.endpoints.control, "control", endpoints_.control);
 }
 
 Status Daemon::start() {
   if (running_) return {};
   FQ_RETURN_IF_ERROR(make_engines(config_.engine, engines_));
-  zmq::socket_t ingest, publish, control;
-  FQ_RETURN_IF_ERROR(bind_sockets(ingest, publish, control));
-  zmq::socket_t sub;  // stays empty without [ingest] connect
-  if (!config_.sub_ingest.connect.empty()) FQ_RETURN_IF_ERROR(make_sub_socket(input_context_, config_.sub_ingest, sub));
+  Sockets sockets;
+  FQ_RETURN_IF_ERROR(make_sockets(sockets));
+  FQ_RETURN_IF_ERROR(bind_sockets(sockets));
   std::vector<const Engine*> engine_list;
   for (const auto& e : engines_) engine_list.push_back(e.get());
   pipeline_.engine_busy.reset(engine_list);
   if (!config_.http.listen.empty()) {
-    http_ = std::make_unique<HttpServer>(config_, registry_, pipeline_.latest, engine_names(), healthy_);
+    http_ = std::make_unique<HttpServer>(config_, caps_, registry_, pipeline_.latest, engine_names(), healthy_);
     http_->set_extra_metrics([this] { return service_metrics(); });
     FQ_RETURN_IF_ERROR(http_->start());
     endpoints_.http = http_->url();
   }
   // Sockets were made on this thread and are handed over whole to their owner threads.
-  publisher_thread_ = std::thread([this, s = std::move(publish)]() mutable {
-    name_this_thread("publish");
-    Publisher(std::move(s), pipeline_).run();
-  });
+  const SubscriptionCaps subscription_caps{config_.caps.max_subscriptions, config_.caps.max_subscription_bytes};
+  publisher_thread_ = std::thread(
+      [this, s = std::move(sockets.publish), m = std::move(sockets.publish_monitor), subscription_caps]() mutable {
+        name_this_thread("publish");
+        Publisher(ResultSocket(std::move(s), std::move(m), subscription_caps, registry_.refusals(), client_keys_.get()),
+                  pipeline_)
+            .run();
+      });
   for (int i = 0; i < config_.encode_threads; ++i)
     encoders_.emplace_back([this] {
       name_this_thread("encode");
@@ -206,18 +233,20 @@ Status Daemon::start() {
       name_this_thread("decode");
       run_decode_worker(pipeline_);
     });
-  control_thread_ = std::thread([this, s = std::move(control)]() mutable {
+  control_thread_ = std::thread([this, s = std::move(sockets.control)]() mutable {
     name_this_thread("control");
-    run_control(std::move(s), registry_);
+    run_control(std::move(s), registry_, caps_, client_keys_.get());
   });
-  if (sub) {
-    ingest_thread_ = std::thread([this, pull = std::move(ingest), sub = std::move(sub)]() mutable {
+  if (sockets.sub) {
+    ingest_thread_ = std::thread([this, pull = std::move(sockets.ingest), sub = std::move(sockets.sub),
+                                  reconnector = std::move(sockets.sub_reconnector)]() mutable {
       name_this_thread("ingest");
       const auto& ids = config_.sub_ingest.streams;
-      run_sub_ingest(std::move(pull), std::move(sub), pipeline_, std::set<std::string>(ids.begin(), ids.end()));
+      run_sub_ingest(std::move(pull), std::move(sub), *reconnector, pipeline_,
+                     std::set<std::string>(ids.begin(), ids.end()));
     });
   } else {
-    ingest_thread_ = std::thread([this, s = std::move(ingest)]() mutable {
+    ingest_thread_ = std::thread([this, s = std::move(sockets.ingest)]() mutable {
       name_this_thread("ingest");
       run_ingest(std::move(s), pipeline_);
     });
@@ -238,7 +267,16 @@ Status Daemon::start() {
   return {};
 }
 
-std::vector<std::string> Daemon::reload_streams(const DaemonConfig& fresh) {
+Status Daemon::reload(const DaemonConfig& fresh) {
+  const std::vector<std::string> restart = restart_only_changes(config_, fresh);
+  if (!restart.empty())
+    return invalid_argument(fmt::format("{} changed, which takes effect only at a restart (nothing was applied)",
+                                        fmt::join(restart, ", ")));
+  // Everything that can fail is read first, so that a bad file changes nothing.
+  CurveServerKeys keys;
+  if (fresh.security.enabled()) FQ_RETURN_IF_ERROR(load_curve_server_keys(fresh.security, keys));
+  HttpAccessRules access;
+  if (http_) FQ_RETURN_IF_ERROR(load_http_access(fresh.http, fresh.security.enabled(), access));
   std::map<std::string, StreamSettings> before;
   for (const std::string& id : registry_.list()) registry_.find(id, before[id]);
   registry_.reload(fresh.defaults, fresh.streams);
@@ -248,21 +286,12 @@ std::vector<std::string> Daemon::reload_streams(const DaemonConfig& fresh) {
     auto it = before.find(id);
     log_settings_changes(id, it == before.end() ? fresh.defaults : it->second, after, "reload");
   }
-  std::vector<std::string> restart;
-  const DaemonConfig& c = config_;
-  const Endpoints& e = fresh.endpoints;
-  if (e.ingest != c.endpoints.ingest || e.publish != c.endpoints.publish || e.control != c.endpoints.control)
-    restart.push_back("endpoints");
-  if (fresh.http.listen != c.http.listen || fresh.http.web_root != c.http.web_root) restart.push_back("http");
-  if (fresh.engine.kind != c.engine.kind || fresh.engine.gpus != c.engine.gpus ||
-      fresh.engine.cpu_engines != c.engine.cpu_engines || fresh.engine.cpu_threads != c.engine.cpu_threads ||
-      fresh.engine.cpu_alongside_gpus != c.engine.cpu_alongside_gpus)
-    restart.push_back("engine");
-  if (fresh.caps.max_vertices != c.caps.max_vertices || fresh.caps.max_frame_bytes != c.caps.max_frame_bytes ||
-      fresh.caps.max_streams != c.caps.max_streams)
-    restart.push_back("caps");
-  if (fresh.stats.interval_s != c.stats.interval_s) restart.push_back("stats");
-  return restart;
+  caps_.set(fresh.caps);
+  pipeline_.decode_queue.set_bounds(fresh.caps.max_queued_frames, fresh.caps.max_queued_bytes);
+  if (client_keys_) client_keys_->set(std::move(keys.clients));  // revoked keys' connections are cut
+  if (http_) http_->set_access(std::move(access));
+  spdlog::set_level(spdlog::level::from_str(fresh.log_level));
+  return {};
 }
 
 void Daemon::stop() {
@@ -281,7 +310,7 @@ void Daemon::stop() {
   // already received may finish within the grace; then the engines stop theirs and every
   // frame left gets an error result (so a huge frame does not hold the exit for minutes).
   {
-    const Alarm grace(std::chrono::duration<double>(config_.caps.stop_grace_s), pipeline_.cancel_engines);
+    const Alarm grace(std::chrono::duration<double>(caps_.get()->stop_grace_s), pipeline_.cancel_engines);
     pipeline_.decode_queue.close();
     join_all(decoders_);
     pipeline_.slots.close();

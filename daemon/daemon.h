@@ -42,9 +42,10 @@ class Daemon : NonCopyable {
 
   const BoundEndpoints& endpoints() const { return endpoints_; }
   const DaemonConfig& config() const { return config_; }
-  /// Applies a reloaded configuration's per-stream settings ([defaults], [streams.*]) to the
-  /// running daemon; other sections need a restart (the returned list names those that differ).
-  std::vector<std::string> reload_streams(const DaemonConfig& fresh);
+  /// Applies a reloaded configuration (SIGHUP) to the running daemon: every setting a reload
+  /// can change (config_reload.h) at once, or nothing: an error names the restart-only settings
+  /// `fresh` changes, or what is wrong with a file it names (the client keys, the token).
+  Status reload(const DaemonConfig& fresh);
   StreamRegistry& registry() { return registry_; }
   /// Names of the engines in use ("cpu", "cuda:<device>").
   std::vector<std::string> engine_names() const;
@@ -56,12 +57,16 @@ class Daemon : NonCopyable {
   CpuUsage cpu_usage() const;
 
  private:
-  Status bind_sockets(zmq::socket_t& ingest, zmq::socket_t& publish, zmq::socket_t& control);
+  struct Sockets;  // made and bound by start(), then handed to their threads
+  Status bind_sockets(Sockets& s);
+  Status make_sockets(Sockets& s);
 
   DaemonConfig config_;
   StreamRegistry registry_;
+  LiveCaps caps_;
   Pipeline pipeline_;
   std::vector<std::unique_ptr<Engine>> engines_;
+  std::unique_ptr<ClientKeys> client_keys_;  ///< with [security]; outlives the ZAP handlers
   // Declared before the contexts, so destroyed after them: closing a context ends its
   // handler's thread.
   std::unique_ptr<ZapHandler> input_zap_, output_zap_;

@@ -70,11 +70,11 @@ Status resolve_settings(FrameJob& f) {
   return {};
 }
 
-Status decode(FrameJob& f, const DaemonConfig& c) {
+Status decode(FrameJob& f, const Caps& caps) {
   std::vector<std::string_view> views;
   for (const zmq::message_t& m : f.chunks) views.emplace_back(m.data<char>(), m.size());
   // Counts are checked before Draco sees the bytes: it allocates for what a chunk declares.
-  const wire::ChunkBudget budget{c.caps.max_vertices};
+  const wire::ChunkBudget budget{caps.max_vertices};
   for (size_t i = 0; i < views.size(); ++i)
     if (Status s = wire::check_chunk_budget(views[i], budget); !s.ok())
       return invalid_input("chunk " + std::to_string(i) + ": " + s.message());
@@ -82,9 +82,9 @@ Status decode(FrameJob& f, const DaemonConfig& c) {
   opt.threads = frame_threads(views.size());
   FQ_RETURN_IF_ERROR(wire::decode_frame(views, f.header.vertex_count(), opt, f.mesh, nullptr, &f.chunk_triangles));
   f.chunks.clear();
-  if (f.mesh.num_vertices() > c.caps.max_vertices)
+  if (f.mesh.num_vertices() > caps.max_vertices)
     return invalid_input("frame has " + std::to_string(f.mesh.num_vertices()) +
-                         " vertices, over the cap of " + std::to_string(c.caps.max_vertices));
+                         " vertices, over the cap of " + std::to_string(caps.max_vertices));
   // decode_frame checked every index; Draco's positions may still be Inf or NaN (a forged
   // chunk's quantization, a plain mesh's raw floats), so only they are scanned again.
   FQ_RETURN_IF_ERROR(check_mesh_counts(f.mesh.view()));
@@ -96,7 +96,7 @@ Status decode(FrameJob& f, const DaemonConfig& c) {
 // One frame on `engine` under the time limit and the stop flag; a stopped frame's error
 // says which of the two stopped it.
 Status run_engine(Pipeline& p, Engine& engine, FrameJob& f) {
-  const double limit_s = p.config.caps.engine_time_limit_s;
+  const double limit_s = p.caps.get()->engine_time_limit_s;
   const auto deadline = limit_s > 0 ? CancelToken::Clock::now() + std::chrono::duration_cast<CancelToken::Clock::duration>(
                                                                        std::chrono::duration<double>(limit_s))
                                     : CancelToken::Clock::time_point::max();
@@ -116,7 +116,8 @@ Status run_engine(Pipeline& p, Engine& engine, FrameJob& f) {
 }  // namespace
 
 void Pipeline::fail(FramePtr frame, Status why) {
-  spdlog::warn("stream '{}' frame {}: {}", frame->stream_id, frame->header.sequence(), why.message());
+  fail_log.log(spdlog::level::warn, "stream '{}' frame {}: {}", frame->stream_id, frame->header.sequence(),
+               why.message());
   frame->error = std::move(why);
   publish_queue.push(std::move(frame));
 }
@@ -126,22 +127,6 @@ void Pipeline::recycle(FrameJob& f) {
   meshes.release(std::move(f.mesh));
 }
 
-void Pipeline::note_queued(const FrameJob& f) {
-  std::lock_guard<std::mutex> lock(newest_mutex_);
-  newest_queued_[f.stream_id] = f.arrival;
-}
-
-bool Pipeline::newer_queued(const FrameJob& f) {
-  std::lock_guard<std::mutex> lock(newest_mutex_);
-  auto it = newest_queued_.find(f.stream_id);
-  return it != newest_queued_.end() && it->second > f.arrival;
-}
-
-void Pipeline::forget(const std::string& stream_id) {
-  std::lock_guard<std::mutex> lock(newest_mutex_);
-  newest_queued_.erase(stream_id);
-}
-
 void run_decode_worker(Pipeline& p) {
   while (auto item = p.decode_queue.pop()) {
     const CpuScope cpu(p.stage_cpu[CpuStage::kDecode]);
@@ -149,19 +134,16 @@ void run_decode_worker(Pipeline& p) {
     // Decoding a frame that is already too old would be wasted work under overload.
     if (is_stale(f->receive_ns, wall_ns(), f->settings.budget_ms)) {
       p.registry.count(f->stream_id, Counter::kDroppedStale);
-      spdlog::debug("stream '{}' frame {}: stale before decode", f->stream_id, f->header.sequence());
-      continue;
-    }
-    if (p.newer_queued(*f)) {
-      p.registry.count(f->stream_id, Counter::kSuperseded);
-      spdlog::debug("stream '{}' frame {}: superseded before decode", f->stream_id, f->header.sequence());
+      p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: stale before decode", f->stream_id,
+                     f->header.sequence());
       continue;
     }
     const auto t0 = std::chrono::steady_clock::now();
     f->mesh = p.meshes.acquire(wall_ns());
-    Status s = guarded("decode", [&] { return decode(*f, p.config); });
+    const std::shared_ptr<const Caps> caps = p.caps.get();
+    Status s = guarded("decode", [&] { return decode(*f, *caps); });
     if (s.ok()) s = resolve_settings(*f);
-    if (s.ok()) s = check_work_budget(f->settings.params, f->mesh.num_vertices(), p.config.caps.max_neighbour_work);
+    if (s.ok()) s = check_work_budget(f->settings.params, f->mesh.num_vertices(), caps->max_neighbour_work);
     f->timings.push_back({"decode", ms_since(t0)});
     if (!s.ok()) {
       p.fail(std::move(f), s);
@@ -171,7 +153,8 @@ void run_decode_worker(Pipeline& p) {
     if (FramePtr loser = p.slots.offer(std::move(f))) {
       p.registry.count(loser->stream_id, Counter::kSuperseded);
       p.recycle(*loser);
-      spdlog::debug("stream '{}' frame {}: superseded", loser->stream_id, loser->header.sequence());
+      p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: superseded", loser->stream_id,
+                     loser->header.sequence());
     }
   }
 }
@@ -179,12 +162,12 @@ void run_decode_worker(Pipeline& p) {
 void run_engine_worker(Pipeline& p, Engine& engine) {
   FramePtr f;
   std::vector<FramePtr> stale;
-  const auto idle_ns = static_cast<int64_t>(p.config.caps.pool_idle_s * 1e9);
   int64_t last_frame_ns = wall_ns();
   bool holding = false;  // the engine keeps a frame's buffers
   while (p.slots.take(f, stale, std::chrono::seconds(1))) {
     const CpuScope cpu(p.stage_cpu[CpuStage::kEngine]);
     // Idle as long as the pools: the engine's buffers (host or device) go back too.
+    const auto idle_ns = static_cast<int64_t>(p.caps.get()->pool_idle_s * 1e9);
     if (!f && stale.empty() && holding && wall_ns() - last_frame_ns >= idle_ns) {
       engine.release_memory();
       holding = false;
@@ -192,7 +175,7 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
     for (FramePtr& s : stale) {
       p.registry.count(s->stream_id, Counter::kDroppedStale);
       p.recycle(*s);
-      spdlog::debug("stream '{}' frame {}: dropped stale", s->stream_id, s->header.sequence());
+      p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: dropped stale", s->stream_id, s->header.sequence());
     }
     stale.clear();
     if (!f) continue;

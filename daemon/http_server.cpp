@@ -4,10 +4,14 @@
 #include <spdlog/spdlog.h>
 
 #include <bit>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 
 #include "daemon/control_server.h"
 #include "daemon/counters_json.h"
+#include "daemon/curve_auth.h"
+#include "daemon/http_front.h"
 #include "daemon/prometheus_text.h"
 
 namespace fq::daemon {
@@ -31,6 +35,22 @@ std::string chunk_sizes(const LatestResult& r) {
 
 // Browsers read the arrays in their own byte order, little-endian on every platform they run on.
 static_assert(std::endian::native == std::endian::little, "the viewer's arrays are sent as little-endian words");
+
+// One waiting long poll, counted while it lives; not admitted past `max`.
+class LongPollTicket {
+ public:
+  LongPollTicket(std::atomic<uint32_t>& count, uint32_t max) : count_(count) {
+    admitted_ = count_.fetch_add(1) < max;
+  }
+  ~LongPollTicket() { count_.fetch_sub(1); }
+  LongPollTicket(const LongPollTicket&) = delete;
+  LongPollTicket& operator=(const LongPollTicket&) = delete;
+  bool admitted() const { return admitted_; }
+
+ private:
+  std::atomic<uint32_t>& count_;
+  bool admitted_ = false;
+};
 
 void append_words(std::string& body, const uint32_t* words, size_t count) {
   body.append(reinterpret_cast<const char*>(words), count * sizeof(uint32_t));
@@ -69,14 +89,16 @@ void send_latest(const LatestResult& r, uint64_t viewer_faces_id, httplib::Respo
 
 }  // namespace
 
-HttpServer::HttpServer(const DaemonConfig& config, StreamRegistry& registry, LatestResults& latest,
-                       std::vector<std::string> engines, const std::atomic<bool>& healthy)
+HttpServer::HttpServer(const DaemonConfig& config, const LiveCaps& caps, StreamRegistry& registry,
+                       LatestResults& latest, std::vector<std::string> engines, const std::atomic<bool>& healthy)
     : config_(config),
+      caps_(caps),
       registry_(registry),
       latest_(latest),
       engines_(std::move(engines)),
       healthy_(healthy),
-      server_(std::make_unique<httplib::Server>()) {
+      access_(HttpAccessRules{}),
+      server_(std::make_unique<HttpFront>(config.http, refusals_)) {
   for (const std::string& e : engines_)
     if (e.rfind("cuda", 0) == 0) gpus_ = config.engine.gpus;
 }
@@ -88,6 +110,8 @@ std::string HttpServer::metrics() const {
   registry_.snapshot("", in.streams);
   in.engines = engines_;
   in.gpus = gpu_memory(gpus_);
+  for (size_t r = 0; r < HttpRefusalCounters::kReasons; ++r)
+    in.http_refusals.emplace_back(http_refusal_name(HttpRefusal(r)), refusals_.get(HttpRefusal(r)));
   return extra_metrics_ ? prometheus_text(in) + extra_metrics_() : prometheus_text(in);
 }
 
@@ -104,7 +128,7 @@ void HttpServer::add_api_routes() {
   s.Get("/streams", [this](const httplib::Request&, httplib::Response& res) {
     wire::ControlRequest q;
     q.mutable_get_counters();
-    nlohmann::json j = counters_json(handle_control(q, registry_));
+    nlohmann::json j = counters_json(handle_control(q, registry_, *caps_.get()));
     j["engines"] = engines_;
     res.set_header("Cache-Control", "no-store");
     res.set_content(j.dump(), "application/json");
@@ -114,9 +138,14 @@ void HttpServer::add_api_routes() {
   s.Get(R"(/streams/([^/]+)/latest)", [this](const httplib::Request& req, httplib::Response& res) {
     const std::string stream = req.matches[1];
     StreamSettings unused;
+    if (Status id = check_stream_id(stream, *caps_.get()); !id.ok()) {
+      res.status = 404;
+      res.set_content(id.message() + "\n", "text/plain");
+      return;
+    }
     if (!registry_.find(stream, unused)) {
       res.status = 404;
-      res.set_content("unknown stream '" + stream + "'\n", "text/plain");
+      res.set_content("unknown stream '" + printable_id(stream) + "'\n", "text/plain");
       return;
     }
     uint64_t after = 0, faces_id = 0;
@@ -128,6 +157,16 @@ void HttpServer::add_api_routes() {
     } catch (const std::exception&) {
       res.status = 400;
       res.set_content("after, faces and wait_ms must be whole numbers\n", "text/plain");
+      return;
+    }
+    // A waiting poll holds its connection's thread: past http.max_long_polls it is refused
+    // at once (the viewer asks again a second later) instead of taking more.
+    LongPollTicket ticket(long_polls_, wait_ms > 0 ? config_.http.max_long_polls : UINT32_MAX);
+    if (!ticket.admitted()) {
+      refusals_.add(HttpRefusal::kTooManyLongPolls);
+      res.status = 503;
+      res.set_header("Retry-After", "1");
+      res.set_content("too many long polls waiting (http.max_long_polls)\n", "text/plain");
       return;
     }
     auto r = latest_.wait_newer(stream, after, std::chrono::milliseconds(wait_ms));
@@ -164,16 +203,44 @@ void HttpServer::add_viewer_routes() {
   });
 }
 
+void HttpServer::warn_if_exposed(const std::string& host) const {
+  const HttpConfig& h = config_.http;
+  if (config_.security.enabled() && h.token_file.empty())
+    spdlog::warn("http: [security] is on but http.token_file is not set: /streams, the results and the viewer "
+                 "answer 403 (only /metrics and /healthz are served)");
+  if (is_loopback_host(host)) return;
+  if (h.tls_cert_file.empty())
+    spdlog::warn("http: {} is reachable from other hosts without TLS: requests, tokens and results travel in "
+                 "clear (set http.tls_cert_file and http.tls_key_file)",
+                 h.listen);
+  if (h.token_file.empty() && !config_.security.enabled())
+    spdlog::warn("http: {} is reachable from other hosts without a token: anyone who can connect reads the "
+                 "metrics, the streams and their geometry (set http.token_file)",
+                 h.listen);
+}
+
 Status HttpServer::start() {
   std::string host;
   int port = 0;
   if (!split_host_port(config_.http.listen, host, port))
     return invalid_argument("http.listen \"" + config_.http.listen + "\" is not host:port");
+  HttpAccessRules rules;
+  FQ_RETURN_IF_ERROR(load_http_access(config_.http, config_.security.enabled(), rules));
+  access_.set(std::move(rules));
+  if (!config_.http.tls_cert_file.empty()) {
+    FQ_RETURN_IF_ERROR(make_tls_context(config_.http.tls_cert_file, config_.http.tls_key_file, tls_));
+    server_->set_tls(tls_.get());
+  }
+  server_->set_request_check(
+      [this](const httplib::Request& req, httplib::Response& res) { return access_.check(req, res, refusals_); });
+  warn_if_exposed(host);
   add_api_routes();
   add_viewer_routes();
-  const bool bound = port == 0 ? (port = server_->bind_to_any_port(host)) > 0 : server_->bind_to_port(host, port);
-  if (!bound) return invalid_argument("cannot listen on http " + config_.http.listen);
-  url_ = "http://" + (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" + std::to_string(port);
+  port = server_->bind_listener(host, port);
+  if (port < 0)
+    return invalid_argument("cannot listen on http " + config_.http.listen + ": " + std::strerror(errno) +
+                            " (another process on that port?)");
+  url_ = std::string(tls_ ? "https" : "http") + "://" + (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" + std::to_string(port);
   thread_ = std::thread([this] {
     server_->listen_after_bind();
     listen_returned_ = true;
@@ -186,9 +253,10 @@ Status HttpServer::start() {
 
 void HttpServer::stop() {
   if (!thread_.joinable()) return;
-  latest_.close();  // long polls return, so the thread pool can drain
-  server_->stop();
+  latest_.close();  // long polls return at once
+  server_->stop();  // no more connections
   thread_.join();
+  server_->close_connections();  // the open ones end now, whatever their peers do
 }
 
 }  // namespace fq::daemon

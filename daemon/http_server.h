@@ -1,7 +1,7 @@
 // fqd's HTTP listener ([http] listen): GET /metrics (Prometheus text), /healthz, /streams
 // (JSON counters), /streams/ID/latest (the latest result's Draco chunks, for the viewer) and
-// the live viewer's files from http.web_root. cpp-httplib (Debian libcpp-httplib-dev) does the
-// HTTP: a small, well-kept server with its own thread pool, so no HTTP is hand-written here.
+// the live viewer's files from http.web_root. cpp-httplib (Debian libcpp-httplib-dev) parses and
+// answers the requests; HttpFront (http_front.h) holds fqd's bounds in front of it.
 #pragma once
 
 #include <atomic>
@@ -14,27 +14,32 @@
 #include "common/non_copyable.h"
 #include "common/status.h"
 #include "daemon/config.h"
+#include "daemon/http_access.h"
+#include "daemon/http_refusals.h"
+#include "daemon/tls_context.h"
 #include "daemon/latest_results.h"
+#include "daemon/live_caps.h"
 #include "daemon/stream_registry.h"
 
-namespace httplib {
-class Server;
-}
-
 namespace fq::daemon {
+
+class HttpFront;
 
 class HttpServer : NonCopyable {
  public:
   /// `healthy` is the daemon's own view (engines made, sockets bound, threads running).
-  HttpServer(const DaemonConfig& config, StreamRegistry& registry, LatestResults& latest,
+  HttpServer(const DaemonConfig& config, const LiveCaps& caps, StreamRegistry& registry, LatestResults& latest,
              std::vector<std::string> engines, const std::atomic<bool>& healthy);
   ~HttpServer();
 
-  /// Binds http.listen (port 0: any free port) and serves on a thread of its own.
+  /// Loads the token and TLS files, binds http.listen (port 0: any free port) and serves on a
+  /// thread of its own. A second process on the same port fails here (no port sharing).
   Status start();
+  /// Applies a reloaded [http]'s token and allowed hosts (SIGHUP; load_http_access made them).
+  void set_access(HttpAccessRules rules) { access_.set(std::move(rules)); }
   /// Stops serving and joins; idempotent.
   void stop();
-  /// The bound address, "http://host:port".
+  /// The bound address, "http://host:port" (https with TLS).
   const std::string& url() const { return url_; }
   /// More /metrics text, appended to the streams' (the daemon's service metrics); set
   /// before start().
@@ -43,17 +48,24 @@ class HttpServer : NonCopyable {
  private:
   void add_api_routes();
   void add_viewer_routes();
+  /// Warnings for a listener other hosts can reach without TLS or a token.
+  void warn_if_exposed(const std::string& host) const;
   std::string metrics() const;
 
   const DaemonConfig& config_;
+  const LiveCaps& caps_;
   StreamRegistry& registry_;
   LatestResults& latest_;
   std::vector<std::string> engines_;
   std::vector<int> gpus_;  ///< devices with a CUDA engine (for GPU memory metrics)
   const std::atomic<bool>& healthy_;
-  std::unique_ptr<httplib::Server> server_;
+  HttpRefusalCounters refusals_;
+  HttpAccess access_;
+  TlsContext tls_;
+  std::unique_ptr<HttpFront> server_;
   std::thread thread_;
   std::atomic<bool> listen_returned_{false};
+  std::atomic<uint32_t> long_polls_{0};  ///< /latest requests waiting now
   std::string url_;
   std::function<std::string()> extra_metrics_;
 };

@@ -5,28 +5,26 @@
 
 #include <zmq_addon.hpp>
 
+#include "daemon/bounded_receive.h"
 #include "proto/frame_codec.h"
 #include "proto/header_codec.h"
 
 namespace fq::daemon {
 namespace {
 
-Status check_framing(const std::vector<zmq::message_t>& parts, const Caps& caps) {
+// Bytes and parts are bounded as the message is received (ingest_one).
+Status check_framing(const std::vector<zmq::message_t>& parts) {
   if (parts.size() < 3)
     return invalid_input("expected [stream id][FrameHeader][draco chunk]..., got " +
                          std::to_string(parts.size()) + " part(s)");
-  uint64_t bytes = 0;
-  for (const zmq::message_t& m : parts) bytes += m.size();
-  if (bytes > caps.max_frame_bytes)
-    return invalid_input("frame of " + std::to_string(bytes) + " bytes is over the cap of " +
-                         std::to_string(caps.max_frame_bytes));
   return {};
 }
 
 Status check_header(const wire::FrameHeader& h, const std::string& topic, size_t chunk_parts,
                     const Caps& caps) {
   if (h.stream_id() != topic)
-    return invalid_input("header stream id '" + h.stream_id() + "' does not match the topic '" + topic + "'");
+    return invalid_input("header stream id '" + printable_id(h.stream_id()) + "' does not match the topic '" +
+                         printable_id(topic) + "'");
   if (h.chunk_count() != chunk_parts)
     return invalid_input("header says " + std::to_string(h.chunk_count()) + " chunk(s), message has " +
                          std::to_string(chunk_parts));
@@ -66,13 +64,14 @@ void expire_idle_streams(Pipeline& p) {
   const int64_t now = wall_ns();
   if (now - p.last_sweep_ns < 1'000'000'000) return;
   p.last_sweep_ns = now;
-  const auto idle_ns = static_cast<int64_t>(p.config.caps.pool_idle_s * 1e9);
+  const std::shared_ptr<const Caps> caps = p.caps.get();
+  const auto idle_ns = static_cast<int64_t>(caps->pool_idle_s * 1e9);
   p.results.trim(now, idle_ns);
   p.meshes.trim(now, idle_ns);
   hand_back_free_pages(p, now);
-  for (const std::string& id : p.registry.expire_idle(now, p.config.caps.stream_idle_s)) {
-    p.forget(id);
-    spdlog::info("stream '{}' expired after {} s without frames", id, p.config.caps.stream_idle_s);
+  for (const std::string& id : p.registry.expire_idle(now, caps->stream_idle_s)) {
+    p.expiry_log.log(spdlog::level::info, "stream '{}' expired after {} s without frames", id,
+                     caps->stream_idle_s);
   }
 }
 
@@ -83,13 +82,23 @@ namespace {
 // producer's operator can see why.
 FramePtr refuse(FramePtr f, Refusal why, Status message, Pipeline& p) {
   p.registry.refusals().add(why);
-  uint64_t held_back = 0;
-  if (p.refusal_log.allow(f->receive_ns, held_back))
-    spdlog::warn("refused a frame for stream '{}' ({}): {}{}", f->stream_id, refusal_name(why), message.message(),
-                 held_back ? fmt::format(" ({} similar messages not logged)", held_back) : std::string());
+  p.refusal_log.log(spdlog::level::warn, "refused a frame for stream '{}' ({}): {}", f->stream_id, refusal_name(why),
+                    message.message());
   f->error = std::move(message);
   f->refused = true;
   return f;
+}
+
+// A message that failed a check: a stream that exists already gets the error counted as its
+// own; otherwise it is refused before any state is made for it.
+FramePtr reject(FramePtr f, const std::string& topic, Refusal why, Status s, Pipeline& p) {
+  if (p.registry.find(topic, f->settings)) {
+    p.registry.count(topic, Counter::kIn);
+    f->arrival = p.next_arrival++;
+    f->error = std::move(s);
+    return f;
+  }
+  return refuse(std::move(f), why, std::move(s), p);
 }
 
 }  // namespace
@@ -97,28 +106,18 @@ FramePtr refuse(FramePtr f, Refusal why, Status message, Pipeline& p) {
 FramePtr admit_message(std::vector<zmq::message_t>& parts, Pipeline& p) {
   auto f = std::make_unique<FrameJob>();
   f->receive_ns = wall_ns();
-  const Caps& caps = p.config.caps;
+  const std::shared_ptr<const Caps> live = p.caps.get();
+  const Caps& caps = *live;
   const std::string topic = parts.empty() ? std::string() : parts[0].to_string();
   f->stream_id = printable_id(topic, caps.max_stream_id_bytes);
-  if (Status s = validate_stream_id(topic, caps.max_stream_id_bytes); !s.ok())
-    return refuse(std::move(f), Refusal::kBadStreamId, std::move(s), p);
+  Refusal why = Refusal::kBadStreamId;
+  if (Status s = check_stream_id(topic, caps, &why); !s.ok()) return refuse(std::move(f), why, std::move(s), p);
   f->stream_id = topic;
   // Only a well-formed frame can make a stream: junk never takes a slot.
-  Status s = check_framing(parts, caps);
+  Status s = check_framing(parts);
   if (s.ok()) s = wire::parse_frame_header(std::string_view(parts[1].data<char>(), parts[1].size()), f->header);
   if (s.ok()) s = check_header(f->header, f->stream_id, parts.size() - 2, caps);
-  if (!s.ok()) {
-    // A stream that exists already gets the error counted as its own.
-    if (p.registry.find(topic, f->settings)) {
-      p.registry.count(topic, Counter::kIn);
-      f->arrival = p.next_arrival++;
-      f->error = std::move(s);
-      return f;
-    }
-    return refuse(std::move(f), Refusal::kMalformed, std::move(s), p);
-  }
-  if (!stream_allowed(topic, caps.allowed_streams))
-    return refuse(std::move(f), Refusal::kNotAllowed, invalid_input("stream '" + topic + "' is not in caps.allowed_streams"), p);
+  if (!s.ok()) return reject(std::move(f), topic, Refusal::kMalformed, std::move(s), p);
   if (!p.registry.settings(topic, f->settings, f->receive_ns))
     return refuse(std::move(f), Refusal::kTooManyStreams,
                   invalid_input("too many streams (caps.max_streams = " + std::to_string(caps.max_streams) + ")"), p);
@@ -128,21 +127,51 @@ FramePtr admit_message(std::vector<zmq::message_t>& parts, Pipeline& p) {
   return f;
 }
 
-void run_ingest(zmq::socket_t socket, Pipeline& p) {
+namespace {
+
+// A message over the ingest bounds (its parts past them already dropped): an error of its
+// stream, or refused under its (escaped) topic.
+FramePtr refuse_oversized(const std::vector<zmq::message_t>& parts, Received why, Pipeline& p) {
+  auto f = std::make_unique<FrameJob>();
+  f->receive_ns = wall_ns();
+  const std::string topic = parts[0].to_string();
+  const bool valid = check_stream_id(topic, *p.caps.get()).ok();
+  f->stream_id = valid ? topic : printable_id(topic);
+  const std::string what = why == Received::kTooManyParts
+                               ? "more than " + std::to_string(2 + wire::kMaxChunks) + " parts"
+                               : "more than caps.max_frame_bytes = " + std::to_string(p.config.caps.max_frame_bytes) +
+                                     " bytes";
+  Status s = invalid_input("message of " + what);
+  if (!valid) return refuse(std::move(f), Refusal::kOversized, std::move(s), p);
+  return reject(std::move(f), topic, Refusal::kOversized, std::move(s), p);
+}
+
+}  // namespace
+
+bool ingest_one(zmq::socket_t& socket, Pipeline& p, zmq::recv_flags flags, const std::set<std::string>* assigned) {
   std::vector<zmq::message_t> parts;
+  const MessageBounds bounds{2 + wire::kMaxChunks, p.config.caps.max_frame_bytes};
+  const Received got = receive_bounded(socket, parts, bounds, flags);
+  if (got == Received::kNothing) return false;
+  if (!admit_sender(parts[0], p.keys, p.registry.refusals())) return true;  // a key revoked since it connected
+  // Another fqd's stream (a SUB topic matches by prefix): not ours to count.
+  if (assigned && !assigned->empty() && !assigned->count(parts[0].to_string())) return true;
+  queue_admitted(got == Received::kMessage ? admit_message(parts, p) : refuse_oversized(parts, got, p), p);
+  return true;
+}
+
+void run_ingest(zmq::socket_t socket, Pipeline& p) {
+  LogLimiter errors;
   for (;;) {
     // Per message, so the account stays current; a blocked receive costs no CPU time.
     const CpuScope cpu(p.stage_cpu[CpuStage::kIngest]);
-    parts.clear();
     expire_idle_streams(p);
     try {
-      if (!zmq::recv_multipart(socket, std::back_inserter(parts))) continue;  // receive timeout
+      ingest_one(socket, p, zmq::recv_flags::none);  // nothing after the receive timeout
     } catch (const zmq::error_t& e) {
       if (e.num() == ETERM) break;
-      spdlog::error("ingest: {}", e.what());
-      continue;
+      errors.log(spdlog::level::err, "ingest: {}", e.what());
     }
-    queue_admitted(admit_message(parts, p), p);
   }
   socket.close();
 }
@@ -154,8 +183,15 @@ void queue_admitted(FramePtr f, Pipeline& p) {
     const Status why = f->error;
     p.fail(std::move(f), why);
   } else {
-    p.note_queued(*f);
-    p.decode_queue.push(std::move(f));
+    // Waits while the queue is full: this thread stops reading, and ZeroMQ's marks hold the
+    // producers back. An older frame of the stream still waiting gives its place up.
+    FramePtr older;
+    p.decode_queue.push(std::move(f), older);
+    if (older) {
+      p.registry.count(older->stream_id, Counter::kSuperseded);
+      p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: superseded before decode", older->stream_id,
+                     older->header.sequence());
+    }
   }
 }
 

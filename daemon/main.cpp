@@ -2,7 +2,8 @@
 // Configuration: --config, else $FQ_CONFIG, else /etc/fq/fqd.toml, else built-in defaults;
 // the flags override the file (daemon/command_line.h). Exit status: 0 after a stop signal,
 // 1 when it cannot start, 2 for a usage error or an invalid configuration.
-// SIGINT/SIGTERM stop it (frames in flight are finished); SIGHUP reloads per-stream settings.
+// SIGINT/SIGTERM stop it (frames in flight are finished); SIGHUP reloads the file, the flags
+// over it again (what a reload may change: daemon/config_reload.h).
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
@@ -34,14 +35,17 @@ std::string endpoints_json(const fq::daemon::BoundEndpoints& e) {
 }
 
 // The file (or the built-in defaults), then the flags over it.
+// `allow_empty`: false for a reload (parse_config says why).
 fq::Status load(const fq::daemon::ConfigSource& source, const fq::daemon::CommandLine& cl,
-                fq::daemon::DaemonConfig& config, std::vector<std::string>* shard_streams = nullptr) {
-  if (!source.path.empty()) FQ_RETURN_IF_ERROR(fq::daemon::load_config(source.path, config));
+                fq::daemon::DaemonConfig& config, std::vector<std::string>* shard_streams = nullptr,
+                bool allow_empty = true) {
+  if (!source.path.empty()) FQ_RETURN_IF_ERROR(fq::daemon::load_config(source.path, config, allow_empty));
   fq::daemon::resolve_default_web_root(config.http);
   return fq::daemon::apply_command_line(cl, config, shard_streams);
 }
 
-// SIGHUP: per-stream settings from the file again; a bad file changes nothing.
+// SIGHUP: the file again (the flags over it, as at start), applied whole or not at all: an
+// invalid or empty file, or one that changes a setting only a restart can change, changes nothing.
 void reload(const fq::daemon::ConfigSource& source, const fq::daemon::CommandLine& cl, fq::daemon::Daemon& daemon) {
   if (source.path.empty()) {
     spdlog::info("fqd: SIGHUP ignored: running on built-in defaults, no configuration file to reload");
@@ -49,14 +53,12 @@ void reload(const fq::daemon::ConfigSource& source, const fq::daemon::CommandLin
   }
   fq::daemon::notify_service_manager("RELOADING=1");
   fq::daemon::DaemonConfig fresh;
-  if (fq::Status s = load(source, cl, fresh); !s.ok()) {
+  fq::Status s = load(source, cl, fresh, nullptr, /*allow_empty=*/false);
+  if (s.ok()) s = daemon.reload(fresh);
+  if (!s.ok())
     spdlog::error("fqd: SIGHUP: {} not reloaded, settings unchanged: {}", source.path, s.message());
-  } else {
-    const std::vector<std::string> restart = daemon.reload_streams(fresh);
-    spdlog::info("fqd: SIGHUP: stream settings reloaded from {} ([defaults], [streams.*])", source.path);
-    for (const std::string& section : restart)
-      spdlog::warn("fqd: SIGHUP: [{}] changed in {}; it takes effect at the next start", section, source.path);
-  }
+  else
+    spdlog::info("fqd: SIGHUP: reloaded {} (streams, caps, client keys, HTTP access, log level)", source.path);
   fq::daemon::notify_service_manager("READY=1");
 }
 

@@ -1,21 +1,23 @@
 // The queues and shared state between fqd's threads:
-//   ingest thread -> decode_queue -> decode pool -> slots (latency policy)
+//   ingest thread -> decode_queue (bounded: backpressure) -> decode pool -> slots (latency policy)
 //   -> engine workers (one per engine) -> encode_queue -> encode pool
 //   -> publish_queue -> publisher thread (owns the PUB socket).
 // Error results skip ahead to publish_queue from whichever stage found the problem.
 #pragma once
 
 #include <atomic>
-#include <map>
-#include <mutex>
 #include <string>
 
 #include "daemon/config.h"
+#include "daemon/curve_auth.h"
+#include "daemon/decode_queue.h"
 #include "daemon/engine_busy.h"
 #include "daemon/frame_job.h"
 #include "daemon/label_tracks.h"
 #include "daemon/latency_policy.h"
 #include "daemon/latest_results.h"
+#include "daemon/live_caps.h"
+#include "daemon/log_limiter.h"
 #include "daemon/object_pool.h"
 #include "daemon/stage_cpu.h"
 #include "daemon/stream_admission.h"
@@ -34,24 +36,33 @@ size_t bytes_used(const V& v) {
 }
 
 struct Pipeline {
-  Pipeline(const DaemonConfig& c, StreamRegistry& r)
+  Pipeline(const DaemonConfig& c, StreamRegistry& r, LiveCaps& live_caps)
       : config(c),
         registry(r),
+        caps(live_caps),
         results(8, [](const FrameResult& x) { return bytes_held(x.positions) + bytes_held(x.labels); },
                 [](const FrameResult& x) { return bytes_used(x.positions) + bytes_used(x.labels); }),
         meshes(8, [](const Mesh& m) { return bytes_held(m.positions) + bytes_held(m.triangles); },
                [](const Mesh& m) { return bytes_used(m.positions) + bytes_used(m.triangles); }) {}
 
-  const DaemonConfig& config;
+  const DaemonConfig& config;  ///< as started; the caps that SIGHUP changes are in `caps`
   StreamRegistry& registry;
-  WorkQueue<FramePtr> decode_queue;
+  LiveCaps& caps;
+  /// With [security]: the client keys allowed now; a message from a key no longer in it is
+  /// refused and its connection cut (null without CURVE).
+  const ClientKeys* keys = nullptr;
+  DecodeQueue decode_queue;  ///< bounded; at most one frame of each stream
   FrameSlots slots;
   WorkQueue<FramePtr> encode_queue;
   WorkQueue<FramePtr> publish_queue;
   /// Arrival index of the next ingest message, across streams (monotonic, so also within
   /// each stream; one counter instead of one per topic). Ingest thread only.
   uint64_t next_arrival = 0;
-  LogLimiter refusal_log;  ///< ingest thread only
+  // Lines any producer can cause, each kind at most 5 a second (log_limiter.h).
+  LogLimiter refusal_log;  ///< frames refused at admission
+  LogLimiter fail_log;     ///< error results
+  LogLimiter drop_log;     ///< superseded and stale frames (debug)
+  LogLimiter expiry_log;   ///< streams expired
   int64_t last_sweep_ns = 0;        ///< idle-stream sweep (expire_idle_streams), ingest thread only
   int64_t last_malloc_trim_ns = 0;  ///< free pages last handed back, ingest thread only
   uint64_t oversized_at_trim = 0;   ///< the pools' oversized_freed() then, ingest thread only
@@ -75,19 +86,6 @@ struct Pipeline {
   void fail(FramePtr frame, Status why);
   /// Returns the frame's mesh and result buffers to their pools once it is published or dropped.
   void recycle(FrameJob& frame);
-
-  /// Notes that `frame` is being queued for decode (ingest thread).
-  void note_queued(const FrameJob& frame);
-  /// True when a newer frame of the same stream is already queued: a decoder that pops an
-  /// older one skips it (superseded), as the newer one would take its slot anyway. This
-  /// keeps a backlog from building up in front of the decoders.
-  bool newer_queued(const FrameJob& frame);
-  /// Drops what the pipeline keeps for a stream that expired (ingest thread).
-  void forget(const std::string& stream_id);
-
- private:
-  std::mutex newest_mutex_;
-  std::map<std::string, uint64_t> newest_queued_;  ///< per stream, the last arrival queued
 };
 
 /// Decode pool worker: decode, check the mesh and the parameters, offer to the slots.

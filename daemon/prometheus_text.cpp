@@ -37,6 +37,9 @@ constexpr CounterFamily kCounters[] = {
      &StreamCounters::time_limited},
     {"fq_subscriber_overflows_total", "Times a subscriber's queue was full and it started missing results.",
      &StreamCounters::subscriber_overflows},
+    {"fq_bad_send_time_total",
+     "Results whose producer send time was over an hour before publish or after it (left out of send_to_publish).",
+     &StreamCounters::bad_send_time},
 };
 
 void histograms(std::string& out, const std::vector<StreamSnapshot>& streams) {
@@ -74,6 +77,13 @@ void engines_and_gpus(std::string& out, const MetricsInput& in) {
 
 }  // namespace
 
+void append_reason_counts(std::string& out, const char* name, const char* help,
+                          const std::vector<std::pair<std::string, uint64_t>>& counts) {
+  family(out, name, "counter", help);
+  for (const auto& [reason, n] : counts)
+    out += std::string(name) + "{reason=\"" + escape_label_value(reason) + "\"} " + std::to_string(n) + "\n";
+}
+
 void append_family(std::string& out, const char* name, const char* type, const char* help) {
   family(out, name, type, help);
 }
@@ -107,6 +117,8 @@ std::string prometheus_text(const MetricsInput& in) {
   family(out, "fq_streams", "gauge", "Streams fqd knows (configured or seen).");
   out += "fq_streams " + std::to_string(in.streams.size()) + "\n";
   engines_and_gpus(out, in);
+  append_reason_counts(out, "fq_http_refused_total", "HTTP requests and connections refused, by reason.",
+                       in.http_refusals);
   return out;
 }
 

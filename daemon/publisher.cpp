@@ -7,6 +7,18 @@
 #include "proto/header_codec.h"
 
 namespace fq::daemon {
+namespace {
+
+// Longest send -> publish believed: anything longer is a clock, not a latency.
+constexpr double kMaxSendToPublishMs = 3'600'000;
+
+// Sends that fail are logged, at most 5 a second.
+LogLimiter& send_errors() {
+  static LogLimiter log;
+  return log;
+}
+
+}  // namespace
 
 wire::ResultHeader make_result_header(const FrameJob& f, int64_t publish_ns) {
   wire::ResultHeader h;
@@ -39,6 +51,8 @@ wire::ResultHeader make_result_header(const FrameJob& f, int64_t publish_ns) {
   h.set_cluster_count(f.result.num_clusters);
   h.set_distinct_clusters(f.distinct_clusters);
   h.set_theta(f.result.theta);
+  h.set_noise_estimate(f.result.noise_estimate);
+  h.set_filter_noise(f.result.filter_noise);
   h.set_chunk_count(static_cast<uint32_t>(f.out_chunks.size()));
   h.set_vertex_count(f.mesh.num_vertices());
   h.set_form(to_wire(f.settings.output.form));
@@ -91,7 +105,8 @@ void Publisher::publish(FrameJob& f) {
   try {
     if (!socket_.send(parts)) p_.registry.count(f.stream_id, Counter::kSubscriberOverflows);
   } catch (const zmq::error_t& e) {
-    spdlog::error("publish of stream '{}' frame {} failed: {}", f.stream_id, h.sequence(), e.what());
+    send_errors().log(spdlog::level::err, "publish of stream '{}' frame {} failed: {}", f.stream_id, h.sequence(),
+                      e.what());
   }
   p_.recycle(f);
 }
@@ -106,8 +121,15 @@ void Publisher::account(const FrameJob& f, const wire::ResultHeader& h) {
   if (h.status() == wire::LATE) r.count(f.stream_id, Counter::kLate);
   for (const PassTiming& t : f.timings) r.record(f.stream_id, t.name, t.ms);
   r.record(f.stream_id, "receive_to_publish", h.latency_ms());
-  if (h.send_time_ns() > 0)
-    r.record(f.stream_id, "send_to_publish", ms_between(h.send_time_ns(), h.publish_time_ns()));
+  if (h.send_time_ns() > 0) {
+    // The producer's clock: a time in the future or far in the past (a wrong clock, or a forged
+    // one) would drive the histograms' sums negative or off the scale; it is counted instead.
+    const double ms = ms_between(h.send_time_ns(), h.publish_time_ns());
+    if (ms >= 0 && ms <= kMaxSendToPublishMs)
+      r.record(f.stream_id, "send_to_publish", ms);
+    else
+      r.count(f.stream_id, Counter::kBadSendTime);
+  }
 }
 
 }  // namespace fq::daemon

@@ -15,8 +15,7 @@ namespace fq::daemon {
 
 class Publisher {
  public:
-  Publisher(zmq::socket_t socket, Pipeline& p)
-      : socket_(std::move(socket)), p_(p) {}
+  Publisher(ResultSocket socket, Pipeline& p) : socket_(std::move(socket)), p_(p) {}
 
   /// Publishes until the publish queue is closed and drained, then closes the socket.
   void run();

@@ -1,15 +1,21 @@
 #include "daemon/result_socket.h"
 
+#include <algorithm>
+
 namespace fq::daemon {
 
-void ResultSocket::configure(zmq::socket_t& xpub, int max_results) {
+void ResultSocket::configure(zmq::socket_t& xpub, int max_results, uint32_t max_topic_bytes) {
   xpub.set(zmq::sockopt::sndhwm, max_results);
   xpub.set(zmq::sockopt::xpub_nodrop, 1);
   // Set, not autotuned (Linux grows it to 4 MiB by default): part of the documented bound.
   xpub.set(zmq::sockopt::sndbuf, kSendBufferBytes);
-  // Subscriptions are topics (stream ids of at most a few hundred bytes): a peer sending
-  // more is disconnected before the bytes are buffered.
-  xpub.set(zmq::sockopt::maxmsgsize, int64_t{64} << 10);
+  // Subscriptions are topics, at most a stream id ([1|0] + id): a peer sending more is
+  // disconnected before the bytes are buffered. The bound also applies to the handshake's
+  // commands (CURVE's INITIATE is about 300 bytes), hence the floor.
+  xpub.set(zmq::sockopt::maxmsgsize, std::max<int64_t>(int64_t{max_topic_bytes} + 1, kMinMessageBytes));
+  // Subscriptions libzmq takes in from one subscriber before fqd counts them: what a
+  // subscriber past the caps can add before it is cut (subscription_gate.h).
+  xpub.set(zmq::sockopt::rcvhwm, kSubscriptionsInFlight);
 }
 
 bool ResultSocket::try_send(const std::vector<zmq::const_buffer>& parts) {
@@ -32,10 +38,5 @@ bool ResultSocket::send(const std::vector<zmq::const_buffer>& parts) {
   return false;
 }
 
-void ResultSocket::drain_subscriptions() {
-  zmq::message_t m;
-  while (socket_.recv(m, zmq::recv_flags::dontwait)) {
-  }
-}
 
 }  // namespace fq::daemon

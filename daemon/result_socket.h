@@ -22,29 +22,44 @@
 #include <vector>
 #include <zmq.hpp>
 
+#include "daemon/subscription_gate.h"
+
 namespace fq::daemon {
 
 class ResultSocket {
  public:
   /// The kernel send buffer of each subscriber connection (Linux books up to twice this).
   static constexpr int kSendBufferBytes = 2 << 20;
+  /// The smallest ZMQ_MAXMSGSIZE: the CURVE handshake's commands must fit.
+  static constexpr int64_t kMinMessageBytes = 1024;
+  /// The receive mark: subscription messages of one subscriber libzmq holds at once.
+  static constexpr int kSubscriptionsInFlight = 64;
 
-  /// Sets the options of a new XPUB socket (before bind): `max_results` queued per subscriber.
-  static void configure(zmq::socket_t& xpub, int max_results);
+  /// Sets the options of a new XPUB socket (before bind): `max_results` queued per subscriber,
+  /// subscriptions of at most `max_topic_bytes` (a longer one drops the subscriber's
+  /// connection before it is buffered).
+  static void configure(zmq::socket_t& xpub, int max_results, uint32_t max_topic_bytes);
 
-  explicit ResultSocket(zmq::socket_t xpub) : socket_(std::move(xpub)) {}
+  /// `monitor` from SubscriptionGate::monitor(xpub), made before the socket bound.
+  ResultSocket(zmq::socket_t xpub, zmq::socket_t monitor, SubscriptionCaps caps, RefusalCounters& refusals,
+               const ClientKeys* keys = nullptr)
+      : socket_(std::move(xpub)), gate_(std::move(monitor), caps, refusals, keys) {}
 
   /// Sends one multipart result without blocking. False when a subscriber's queue was found
   /// full (an overflow: it did not get this result; the others did).
   bool send(const std::vector<zmq::const_buffer>& parts);
-  /// Reads the subscription messages XPUB hands up (they would pile up unread).
-  void drain_subscriptions();
-  void close() { socket_.close(); }
+  /// Reads the subscription messages XPUB hands up, bounding each subscriber's (subscription_gate.h).
+  void drain_subscriptions() { gate_.drain(socket_); }
+  void close() {
+    gate_.close();
+    socket_.close();
+  }
 
  private:
   bool try_send(const std::vector<zmq::const_buffer>& parts);
 
   zmq::socket_t socket_;
+  SubscriptionGate gate_;
 };
 
 }  // namespace fq::daemon

@@ -6,18 +6,11 @@
 #include <vector>
 
 #include "common/status.h"
+#include "daemon/http_config.h"
 
 namespace fq::daemon {
 
 class TomlReader;
-
-struct HttpConfig {
-  /// "host:port" to listen on ("" = no HTTP listener; port 0 = any free port).
-  std::string listen;
-  /// Folder of the live viewer (index.html and its node_modules). A relative path in a config
-  /// file is taken from that file's folder; the built-in default from the working directory.
-  std::string web_root = "web";
-};
 
 /// [ingest]: SUB-connect to producers' PUB endpoints as well as the PULL bind (scale-out).
 struct SubIngestConfig {
@@ -35,9 +28,5 @@ Status read_service_sections(TomlReader& root, HttpConfig& http, StatsLogConfig&
 
 /// Reads [ingest] (connect, streams: arrays of strings).
 Status read_sub_ingest(TomlReader& root, SubIngestConfig& out);
-
-/// Splits "host:port" ("[::1]:8080" for IPv6); false when it is not of that form or the
-/// port is outside 0..65535.
-bool split_host_port(const std::string& listen, std::string& host, int& port);
 
 }  // namespace fq::daemon

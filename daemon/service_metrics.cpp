@@ -31,11 +31,11 @@ std::string service_metrics_text(const ServiceMetricsInput& in) {
   append_family(out, "fq_build_info", "gauge", "fq's version and whether the CUDA engine is compiled in; always 1.");
   out += "fq_build_info{" + label("version", version_string()) + "," +
          label("cuda", built_with_cuda() ? "compiled_in" : "absent") + "} 1\n";
-  append_family(out, "fq_refused_total", "counter",
-                "Ingest messages refused before any stream state was made for them, by reason "
-                "(bad_stream_id, malformed, not_allowed, too_many_streams, unauthenticated).");
-  for (const auto& [reason, n] : in.refusals)
-    out += "fq_refused_total{" + label("reason", reason) + "} " + std::to_string(n) + "\n";
+  append_reason_counts(out, "fq_refused_total",
+                       "Ingest and control messages, subscribers and ZeroMQ connections refused before any stream "
+                       "state was made for them, by reason (bad_stream_id, malformed, not_allowed, "
+                       "too_many_streams, unauthenticated, oversized, subscriptions).",
+                       in.refusals);
   append_family(out, "fq_stream_budget_seconds", "gauge",
                 "Each stream's receive-to-publish budget (budget_ms): results later than this are LATE.");
   for (const auto& [stream, ms] : in.budgets_ms)

@@ -1,5 +1,5 @@
 // The /metrics families about fqd as a service rather than about its streams' frames: build
-// info, admission refusals by reason, each stream's budget, engine busy time, queue depths
+// info, refusals on the ZeroMQ doors by reason, each stream's budget, engine busy time, queue depths
 // and the process (CPU, memory, file descriptors). They are what alert rules and the
 // dashboard in deploy/monitoring read (docs/DAEMON.md has PromQL for each).
 #pragma once

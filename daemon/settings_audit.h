@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "daemon/log_limiter.h"
 #include "daemon/stream_settings.h"
 
 namespace fq::daemon {
@@ -19,8 +20,10 @@ std::vector<std::pair<std::string, std::string>> settings_fields(const StreamSet
 /// "key old -> new" for each setting that differs, in settings_fields' order.
 std::vector<std::string> settings_changes(const StreamSettings& before, const StreamSettings& after);
 
-/// Logs one info line per change: "<stream> <key> <old> -> <new> (<cause>)".
+/// Logs one info line per change: "<stream> <key> <old> -> <new> (<cause>)". With a `limiter`
+/// (changes any peer can cause: the control socket) one request's lines pass or are held back
+/// together, so that an audited change is never logged in part.
 void log_settings_changes(const std::string& stream_id, const StreamSettings& before, const StreamSettings& after,
-                          const char* cause);
+                          const char* cause, LogLimiter* limiter = nullptr);
 
 }  // namespace fq::daemon

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "daemon/config.h"
+
 namespace fq::daemon {
 namespace {
 
@@ -41,6 +43,10 @@ const char* refusal_name(Refusal r) {
       return "too_many_streams";
     case Refusal::kUnauthenticated:
       return "unauthenticated";
+    case Refusal::kOversized:
+      return "oversized";
+    case Refusal::kSubscriptions:
+      return "subscriptions";
     case Refusal::kCount:
       break;
   }
@@ -80,6 +86,18 @@ Status validate_stream_id(std::string_view id, uint32_t max_bytes) {
   return {};
 }
 
+Status check_stream_id(std::string_view id, const Caps& caps, Refusal* why) {
+  if (Status s = validate_stream_id(id, caps.max_stream_id_bytes); !s.ok()) {
+    if (why) *why = Refusal::kBadStreamId;
+    return s;
+  }
+  if (!stream_allowed(id, caps.allowed_streams)) {
+    if (why) *why = Refusal::kNotAllowed;
+    return invalid_input("stream '" + printable_id(id) + "' is not in caps.allowed_streams");
+  }
+  return {};
+}
+
 bool stream_allowed(std::string_view id, const std::vector<std::string>& allowed) {
   if (allowed.empty()) return true;
   for (const std::string& a : allowed) {
@@ -90,21 +108,6 @@ bool stream_allowed(std::string_view id, const std::vector<std::string>& allowed
     }
   }
   return false;
-}
-
-bool LogLimiter::allow(int64_t now_ns, uint64_t& suppressed) {
-  if (now_ns - window_start_ns_ >= 1'000'000'000) {
-    window_start_ns_ = now_ns;
-    in_window_ = 0;
-  }
-  if (in_window_ >= per_second_) {
-    ++suppressed_;
-    return false;
-  }
-  ++in_window_;
-  suppressed = suppressed_;
-  suppressed_ = 0;
-  return true;
 }
 
 }  // namespace fq::daemon

@@ -3,20 +3,28 @@
 // counted per reason in a fixed set of counters, never per topic.
 #pragma once
 
-#include <array>
-#include <atomic>
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "common/status.h"
+#include "daemon/reason_counters.h"
 
 namespace fq::daemon {
 
 struct Caps;
 
-enum class Refusal { kBadStreamId, kMalformed, kNotAllowed, kTooManyStreams, kUnauthenticated, kCount };
+enum class Refusal {
+  kBadStreamId,
+  kMalformed,
+  kNotAllowed,
+  kTooManyStreams,
+  kUnauthenticated,
+  kOversized,      ///< an ingest or control message over its bound on parts or bytes
+  kSubscriptions,  ///< a subscriber over caps.max_subscriptions / max_subscription_bytes (cut)
+  kCount
+};
 
 /// Name of a refusal reason as it appears in counters and logs.
 const char* refusal_name(Refusal r);
@@ -28,33 +36,16 @@ Status validate_stream_id(std::string_view id, uint32_t max_bytes);
 /// True when the allow-list is empty or names `id` exactly or by a "prefix*" entry.
 bool stream_allowed(std::string_view id, const std::vector<std::string>& allowed);
 
+/// The one check of a stream id on every door (ingest, SUB ingest, control, HTTP): valid
+/// (validate_stream_id with caps.max_stream_id_bytes) and allowed (caps.allowed_streams). On
+/// failure `why` (when given) says which, and the message shows the id escaped.
+Status check_stream_id(std::string_view id, const Caps& caps, Refusal* why = nullptr);
+
 /// `id` with every byte outside printable ASCII as \xNN, cut to `max_chars`: safe for
 /// logs and for protobuf string fields (always valid UTF-8).
 std::string printable_id(std::string_view id, size_t max_chars = 64);
 
 /// Refusals by reason; thread-safe.
-class RefusalCounters {
- public:
-  void add(Refusal r) { counts_[static_cast<size_t>(r)].fetch_add(1, std::memory_order_relaxed); }
-  uint64_t get(Refusal r) const { return counts_[static_cast<size_t>(r)].load(std::memory_order_relaxed); }
-
- private:
-  std::array<std::atomic<uint64_t>, static_cast<size_t>(Refusal::kCount)> counts_{};
-};
-
-/// At most `per_second` messages a second pass; the rest are counted, and the next message
-/// that passes reports how many were held back. Keeps junk traffic from flooding the log.
-class LogLimiter {
- public:
-  explicit LogLimiter(int per_second = 5) : per_second_(per_second) {}
-  /// True when a message may be logged now; `suppressed` is then the number held back since.
-  bool allow(int64_t now_ns, uint64_t& suppressed);
-
- private:
-  int per_second_;
-  int64_t window_start_ns_ = 0;
-  int in_window_ = 0;
-  uint64_t suppressed_ = 0;
-};
+using RefusalCounters = ReasonCounters<Refusal>;
 
 }  // namespace fq::daemon

@@ -30,9 +30,23 @@ struct StreamCounters {
   /// until it has read half its queue, so one overflow may stand for many missed results.
   /// Not part of the sum above: the results were published.
   uint64_t subscriber_overflows = 0;
+  /// Results whose producer send time was more than an hour before publish or after it (a
+  /// wrong or forged clock): their send_to_publish is left out of the metrics, not folded
+  /// into the histograms. Not part of the sum above.
+  uint64_t bad_send_time = 0;
 };
 
-enum class Counter { kIn, kOut, kSuperseded, kDroppedStale, kLate, kErrors, kTimeLimited, kSubscriberOverflows };
+enum class Counter {
+  kIn,
+  kOut,
+  kSuperseded,
+  kDroppedStale,
+  kLate,
+  kErrors,
+  kTimeLimited,
+  kSubscriberOverflows,
+  kBadSendTime
+};
 
 struct StreamSnapshot {
   std::string stream_id;

@@ -51,6 +51,8 @@ Status CpuEngine::run(const MeshView& mesh, const Params& params, FrameResult& o
   out.theta = 0.f;
   out.link_parent.clear();
   out.link_p.clear();
+  out.noise_estimate = 0.f;
+  out.filter_noise = 0.f;
   FQ_RETURN_IF_ERROR(validate(params));
   if (needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
   PassClock clock(out.timings, observer_);
@@ -81,15 +83,20 @@ Status CpuEngine::run(const MeshView& mesh, const Params& params, FrameResult& o
     FQ_RETURN_IF_ERROR(pass_done("diffusion"));
   }
   if (params.filter) {
-    if (fp.uses_quadrics()) {
+    if (fp.method == FilterMethod::kQuadricRefined) {
+      const NoiseEstimate noise = cpu::estimate_noise(f_, threads_);
+      FQ_RETURN_IF_ERROR(pass_done("noise"));
+      const RefinePlan plan = plan_refinement(fp.refine, noise.noise);
+      cpu::refine_positions(f_, plan, threads_);
+      out.noise_estimate = noise.noise;
+      out.filter_noise = plan.noise;
+      FQ_RETURN_IF_ERROR(pass_done("refine"));
+    } else if (fp.uses_quadrics()) {
       cpu::update_positions(f_, fp, threads_);
+      FQ_RETURN_IF_ERROR(pass_done("update"));
     } else {
       cpu::bilateral_filter(f_, fp, threads_);
-    }
-    FQ_RETURN_IF_ERROR(pass_done(fp.uses_quadrics() ? "update" : "bilateral_filter"));
-    if (fp.method == FilterMethod::kQuadricRefined) {
-      cpu::refine_positions(f_, fp.refine, threads_);
-      FQ_RETURN_IF_ERROR(pass_done("refine"));
+      FQ_RETURN_IF_ERROR(pass_done("bilateral_filter"));
     }
   }
   if (params.cluster) {

@@ -8,6 +8,7 @@
 
 #include "kernels/frame_prep.h"
 #include "kernels/grid_build.h"
+#include "kernels/noise_estimate.h"
 #include "kernels/quadric.h"
 #include "kernels/refine_math.h"
 #include "kernels/triangle_math.h"
@@ -27,14 +28,16 @@ struct CpuFrame {
   std::vector<uint32_t> vf_faces;
   std::vector<Quadric> base, nbhd, bl;
   std::vector<Vec3> vnormal, moved;
-  // Refinement ("qf+"): double buffers of positions and face normals.
+  // "qf+": the noise samples, double buffers of positions and face normals.
+  std::vector<NoiseSample> noise_samples;
   std::vector<Vec3> refine_x;
   std::vector<uint8_t> refine_closed;  ///< closed_fan per vertex
   std::vector<TriangleGeom> refine_geom;
   std::vector<Vec3> refine_n[2];
   std::vector<FreeDirections> refine_free;  ///< per vertex, per round of the vertex update
-  std::vector<float> refine_change;  ///< block sums of the clean-input guard
-  std::vector<Vec3> refine_fine;     ///< the fine run's result while the rough-input run goes
+  std::vector<Vec3> refine_round;    ///< the positions before a fractional last round
+  std::vector<Vec3> refine_t;        ///< per vertex: its tangential move (limited_position)
+  std::vector<float> refine_e[2];    ///< per vertex: its squared tangential move, then its local mean
   // Bilateral baseline: triangles in centroid-grid order.
   CpuGrid tri_grid;
   std::vector<Point4> tri_points;    ///< centroid, w = area

@@ -10,7 +10,7 @@
 #include "kernels/link_export.h"
 #include "kernels/parallel_for.h"
 #include "kernels/refine_math.h"
-#include "kernels/refine_schedule.h"
+#include "kernels/refine_plan.h"
 
 namespace fq::cpu {
 
@@ -99,77 +99,78 @@ void update_positions(CpuFrame& f, const FilterParams& p, int threads) {
   });
 }
 
-namespace {
-
-// One refinement run (fine or rough schedule) on f.moved; every pass reads one buffer and
-// writes the other.
-void run_refinement(CpuFrame& f, const FanView& fan, const RefineSchedule& s, int threads) {
-  const uint32_t n = static_cast<uint32_t>(f.moved.size());
-  const uint32_t m = static_cast<uint32_t>(f.tris.size() / 3);
-  auto vertex_pass = [&](auto&& position) {
-    parallel_for(n, threads, [&](uint32_t v) { f.refine_x[v] = position(f.moved.data(), v); });
-    f.moved.swap(f.refine_x);
-  };
-  for (int it = 0; it < s.relax_iterations; ++it) {
-    vertex_pass([&](const Vec3* x, uint32_t v) {
-      return relaxed_position(fan, x, v, f.refine_closed[v] != 0, s.relax_step, s.feature_ratio);
-    });
-  }
-  f.refine_geom.resize(m);
-  f.refine_n[0].resize(m);
-  f.refine_n[1].resize(m);
-  for (int round = 0; round < s.rounds; ++round) {
-    parallel_for(m, threads, [&](uint32_t t) {
-      const uint32_t* tri = &f.tris[3 * size_t(t)];
-      f.refine_geom[t] = triangle_geom(f.moved[tri[0]], f.moved[tri[1]], f.moved[tri[2]]);
-      f.refine_n[0][t] = f.refine_geom[t].normal;
-    });
-    for (int it = 0; it < s.normal_iterations; ++it) {
-      const Vec3* in = f.refine_n[it & 1].data();
-      Vec3* out = f.refine_n[(it + 1) & 1].data();
-      parallel_for(m, threads, [&](uint32_t t) { out[t] = filtered_face_normal(fan, f.refine_geom.data(), in, t, s.gs, s.gr); });
-    }
-    const Vec3* normals = f.refine_n[s.normal_iterations & 1].data();
-    f.refine_free.resize(n);
-    parallel_for(n, threads, [&](uint32_t v) {
-      f.refine_free[v] = free_directions(fan, normals, v, f.refine_closed[v] != 0);
-    });
-    for (int it = 0; it < s.vertex_iterations; ++it) {
-      vertex_pass([&](const Vec3* x, uint32_t v) {
-        return updated_vertex(fan, x, normals, v, f.refine_free[v], s.tangential_step);
-      });
-    }
-  }
+NoiseEstimate estimate_noise(CpuFrame& f, int threads) {
+  const uint32_t n = static_cast<uint32_t>(f.points.size());
+  const FanView fan{f.tris.data(), f.vf_offsets.data(), f.vf_faces.data()};
+  // The samples read positions as Vec3: the input's, where refine_positions starts.
+  f.moved.resize(n);
+  parallel_for(n, threads, [&](uint32_t v) { f.moved[v] = xyz(f.points[v]); });
+  const uint32_t stride = noise_sample_stride(n), count = noise_sample_count(n);
+  f.noise_samples.resize(count);
+  parallel_for(count, threads, [&](uint32_t k) { f.noise_samples[k] = noise_sample(fan, f.moved.data(), k * stride); });
+  return estimate_noise(f.noise_samples.data(), count);
 }
 
-}  // namespace
-
-void refine_positions(CpuFrame& f, const RefineParams& r, int threads) {
-  const uint32_t n = static_cast<uint32_t>(f.moved.size());
+void refine_positions(CpuFrame& f, const RefinePlan& plan, int threads) {
+  const uint32_t n = static_cast<uint32_t>(f.points.size());
   const uint32_t m = static_cast<uint32_t>(f.tris.size() / 3);
   const FanView fan{f.tris.data(), f.vf_offsets.data(), f.vf_faces.data()};
   f.refine_x.resize(n);
   f.refine_closed.resize(n);
   parallel_for(n, threads, [&](uint32_t v) { f.refine_closed[v] = closed_fan(fan, v) ? 1 : 0; });
-  run_refinement(f, fan, fine_schedule(r), threads);
-  if (!(r.full_above > 0.f)) return;
-  f.refine_change.resize(normal_change_blocks(m));
-  parallel_for(uint32_t(f.refine_change.size()), threads, [&](uint32_t b) {
-    f.refine_change[b] = normal_change_block(f.tris.data(), m, f.points.data(), f.moved.data(), b);
-  });
-  const float alpha = refine_strength(f.refine_change.data(), m, r.clean_below, r.full_above);
-  const float beta = rough_path_on(r) ? rough_weight(f.refine_change.data(), m, r.rough_from, r.rough_full) : 0.f;
-  if (beta > 0.f) {  // rough_from >= full_above: alpha is 1 here
-    f.refine_fine.swap(f.moved);
-    f.moved.resize(n);
-    parallel_for(n, threads, [&](uint32_t v) { f.moved[v] = xyz(f.points[v]); });
-    run_refinement(f, fan, rough_schedule(r), threads);
-    parallel_for(n, threads, [&](uint32_t v) { f.refine_x[v] = blended_position(f.refine_fine[v], f.moved[v], beta); });
-    f.moved.swap(f.refine_x);
-  } else if (alpha < 1.f) {
-    parallel_for(n, threads, [&](uint32_t v) { f.refine_x[v] = guarded_position(f.points[v], f.moved[v], alpha); });
-    f.moved.swap(f.refine_x);
+  f.refine_geom.resize(m);
+  f.refine_n[0].resize(m);
+  f.refine_n[1].resize(m);
+  f.refine_free.resize(n);
+  const Passes rounds = plan.rounds, normals = plan.normal_passes, updates = plan.vertex_passes;
+  for (int round = 0; round < rounds.count; ++round) {
+    const float round_share = round == rounds.count - 1 ? rounds.last : 1.f;
+    if (round_share < 1.f) f.refine_round = f.moved;
+    parallel_for(m, threads, [&](uint32_t t) {
+      const uint32_t* tri = &f.tris[3 * size_t(t)];
+      f.refine_geom[t] = triangle_geom(f.moved[tri[0]], f.moved[tri[1]], f.moved[tri[2]]);
+      f.refine_n[0][t] = f.refine_geom[t].normal;
+    });
+    for (int it = 0; it < normals.count; ++it) {
+      const Vec3* in = f.refine_n[it & 1].data();
+      Vec3* out = f.refine_n[(it + 1) & 1].data();
+      const float share = it == normals.count - 1 ? normals.last : 1.f;
+      parallel_for(m, threads, [&](uint32_t t) {
+        out[t] = partial_normal(in[t], filtered_face_normal(fan, f.refine_geom.data(), in, t, plan.gs, plan.gr), share);
+      });
+    }
+    const Vec3* filtered = f.refine_n[normals.count & 1].data();
+    parallel_for(n, threads, [&](uint32_t v) {
+      f.refine_free[v] = free_directions(fan, filtered, v, f.refine_closed[v] != 0);
+    });
+    for (int it = 0; it < updates.count; ++it) {
+      const float share = it == updates.count - 1 ? updates.last : 1.f;
+      parallel_for(n, threads, [&](uint32_t v) {
+        const Vec3 next = updated_vertex(fan, f.moved.data(), filtered, v, f.refine_free[v], plan.tangential_step);
+        f.refine_x[v] = partial_position(f.moved[v], next, share);
+      });
+      f.moved.swap(f.refine_x);
+    }
+    if (round_share < 1.f)
+      parallel_for(n, threads, [&](uint32_t v) { f.moved[v] = partial_position(f.refine_round[v], f.moved[v], round_share); });
   }
+  // Step 3: tangential moves cut back to what the noise explains.
+  f.refine_t.resize(n);
+  f.refine_e[0].resize(n);
+  f.refine_e[1].resize(n);
+  parallel_for(n, threads, [&](uint32_t v) {
+    f.refine_t[v] = tangential_move(xyz(f.points[v]), f.moved[v], vertex_normal(fan, f.moved.data(), v));
+    f.refine_e[0][v] = norm2(f.refine_t[v]);
+  });
+  for (int pass = 0; pass < kEnergyPasses; ++pass) {
+    const float* in = f.refine_e[pass & 1].data();
+    float* out = f.refine_e[(pass + 1) & 1].data();
+    parallel_for(n, threads, [&](uint32_t v) { out[v] = ring_mean(fan, in, v); });
+  }
+  const float* energy = f.refine_e[kEnergyPasses & 1].data();
+  parallel_for(n, threads, [&](uint32_t v) {
+    f.moved[v] = limited_position(f.moved[v], f.refine_t[v], energy[v], plan.tangential_allowance);
+  });
 }
 
 void bilateral_filter(CpuFrame& f, const FilterParams& p, int threads) {

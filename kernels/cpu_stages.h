@@ -4,6 +4,7 @@
 #include "kernels/cpu_frame.h"
 #include "kernels/mesh_view.h"
 #include "kernels/params.h"
+#include "kernels/refine_plan.h"
 
 namespace fq::cpu {
 
@@ -14,8 +15,12 @@ void base_quadrics(CpuFrame& f, int threads);
 void neighbourhood_quadrics(CpuFrame& f, float sigma_b, int threads);
 void diffuse_quadrics(CpuFrame& f, const FilterParams& p, int threads);
 void update_positions(CpuFrame& f, const FilterParams& p, int threads);
-/// The "qf+" refinement of f.moved in place (kernels/refine_math.h).
-void refine_positions(CpuFrame& f, const RefineParams& r, int threads);
+/// "qf+": the noise of the frame's input positions (kernels/noise_estimate.h); needs the
+/// vertex -> triangle CSR of base_quadrics. Leaves the input positions in f.moved.
+NoiseEstimate estimate_noise(CpuFrame& f, int threads);
+/// "qf+": f.moved, the input positions that estimate_noise left there, filtered by `plan`
+/// (kernels/refine_math.h).
+void refine_positions(CpuFrame& f, const RefinePlan& plan, int threads);
 /// Jones et al. 2003 (positions into f.moved).
 void bilateral_filter(CpuFrame& f, const FilterParams& p, int threads);
 void cluster_scores(CpuFrame& f, const ClusterParams& p, int threads);

@@ -60,7 +60,7 @@ class CudaEngine final : public Engine {
   Status run_frame(const MeshView& mesh, const Params& params, FrameResult& out);
   void upload(const MeshView& mesh);
   Status normalize(const MeshView& mesh, float cell, Normalization& norm);
-  Status enqueue_passes(const Params& params);
+  Status enqueue_passes(const Params& params, FrameResult& out);
   Status mark(const char* pass);
   Status stop_if_cancelled();
   int team_size() const;
@@ -87,6 +87,8 @@ Status CudaEngine::process(const MeshView& mesh, const Params& params, FrameResu
   out.theta = 0.f;
   out.link_parent.clear();
   out.link_p.clear();
+  out.noise_estimate = 0.f;
+  out.filter_noise = 0.f;
   Status st = validate(params);
   if (st.ok() && needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
   if (st.ok()) st = check_mesh_counts(mesh);
@@ -205,7 +207,7 @@ int CudaEngine::team_size() const {
   return per_sm <= 512 ? 8 : (per_sm <= 12288 ? 4 : 1);
 }
 
-Status CudaEngine::enqueue_passes(const Params& params) {
+Status CudaEngine::enqueue_passes(const Params& params, FrameResult& out) {
   const cudaStream_t s = stream_.get();
   const FilterParams& fp = params.filtering;
   const int team = team_size();
@@ -213,7 +215,7 @@ Status CudaEngine::enqueue_passes(const Params& params) {
   cuda::sort_into_grid(f_, f_.grid.layout, s);
   FQ_RETURN_IF_ERROR(mark("grid"));
   const bool refine = params.filter && fp.method == FilterMethod::kQuadricRefined;
-  cuda::base_quadrics(f_, s);  // also the vertex -> triangle table the refinement reads
+  cuda::base_quadrics(f_, s);  // also the vertex -> triangle table that "qf+" reads
   FQ_RETURN_IF_ERROR(mark("base_quadrics"));
   if (params.cluster || fp.uses_quadrics()) {
     if (team)
@@ -228,15 +230,21 @@ Status CudaEngine::enqueue_passes(const Params& params) {
     FQ_RETURN_IF_ERROR(mark("diffusion"));
   }
   if (params.filter) {
-    if (fp.uses_quadrics())
+    if (refine) {
+      const NoiseEstimate noise = cuda::estimate_noise(f_, refine_, s);
+      FQ_RETURN_IF_ERROR(mark("noise"));
+      const RefinePlan plan = plan_refinement(fp.refine, noise.noise);
+      cuda::refine_positions(f_, refine_, plan, s);
+      out.noise_estimate = noise.noise;
+      out.filter_noise = plan.noise;
+      FQ_RETURN_IF_ERROR(mark("refine"));
+    } else if (fp.uses_quadrics()) {
       cuda::update_positions(f_, fp, s);
-    else
+      FQ_RETURN_IF_ERROR(mark("update"));
+    } else {
       cuda::bilateral_filter(f_, fp, s);
-    FQ_RETURN_IF_ERROR(mark(fp.uses_quadrics() ? "update" : "bilateral_filter"));
-  }
-  if (refine) {
-    cuda::refine_positions(f_, refine_, fp.refine, s);
-    FQ_RETURN_IF_ERROR(mark("refine"));
+      FQ_RETURN_IF_ERROR(mark("bilateral_filter"));
+    }
   }
   if (params.cluster) {
     if (team)
@@ -275,7 +283,7 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
   if (Status st = normalize(mesh, params.filtering.sigma_s, norm); !st.ok()) return st;
   out.mean_edge = norm.mean_edge;
   FQ_RETURN_IF_ERROR(stop_if_cancelled());
-  FQ_RETURN_IF_ERROR(enqueue_passes(params));
+  FQ_RETURN_IF_ERROR(enqueue_passes(params, out));
   if (params.filter) {
     cuda::positions_to_input(f_, norm, s);
     FQ_RETURN_IF_ERROR(mark("output"));

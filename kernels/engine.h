@@ -34,6 +34,11 @@ struct FrameResult {
   std::vector<uint32_t> link_parent;
   std::vector<float> link_p;
   double mean_edge = 0.0;         ///< the unit of every sigma, in input units
+  /// "qf+": the noise estimated from the frame (kernels/noise_estimate.h) and the noise the
+  /// filter's strengths came from (the estimate × strength, or the noise given), both in mean
+  /// edge lengths; 0 for the other methods.
+  float noise_estimate = 0.f;
+  float filter_noise = 0.f;
   std::vector<PassTiming> timings;
 
   double total_ms() const;

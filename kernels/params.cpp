@@ -34,8 +34,6 @@ std::string show(float v) {
 // Upper bound on any sigma: beyond it the neighbourhood is the whole mesh anyway and
 // the grid visitor would only waste time.
 constexpr float kMaxSigma = 1e4f;
-// Each refinement pass is one sweep over the mesh; beyond this a frame only burns time.
-constexpr int kMaxRefineIterations = 100;
 
 Status check_sigma(const char* name, float v, bool zero_means_default) {
   if (std::isnan(v)) return invalid_argument(std::string(name) + " is NaN");
@@ -44,13 +42,6 @@ Status check_sigma(const char* name, float v, bool zero_means_default) {
   if (!(v <= kMaxSigma))
     return invalid_argument(std::string(name) + " must be at most 1e4 mean edge lengths (got " +
                             show(v) + ")");
-  return {};
-}
-
-Status check_iterations(const char* name, int v) {
-  if (v < 0 || v > kMaxRefineIterations)
-    return invalid_argument(std::string(name) + " must be in [0, " + std::to_string(kMaxRefineIterations) +
-                            "] (got " + std::to_string(v) + ")");
   return {};
 }
 
@@ -65,30 +56,11 @@ bool parse_filter_method(const std::string& s, FilterMethod& out) {
 }
 
 Status validate(const RefineParams& r) {
-  for (Status s : {check_iterations("refine relax_iterations", r.relax_iterations),
-                   check_iterations("refine normal_iterations", r.normal_iterations),
-                   check_iterations("refine vertex_iterations", r.vertex_iterations),
-                   check_sigma("refine normal_sigma_s", r.normal_sigma_s, false),
-                   check_sigma("refine normal_sigma_r", r.normal_sigma_r, false),
-                   check_iterations("refine rough_rounds", r.rough_rounds),
-                   check_iterations("refine rough_vertex_iterations", r.rough_vertex_iterations),
-                   check_sigma("refine rough_normal_sigma_r", r.rough_normal_sigma_r, false)}) {
-    if (!s.ok()) return s;
-  }
-  if (!(r.relax_step > 0.f && r.relax_step <= 1.f))
-    return invalid_argument("refine relax_step must be in (0, 1] (got " + show(r.relax_step) + ")");
-  if (!(r.feature_ratio >= 0.f && r.feature_ratio <= 1.f))
-    return invalid_argument("refine feature_ratio must be in [0, 1] (got " + show(r.feature_ratio) + ")");
-  if (!(r.full_above >= 0.f && r.full_above <= 3.1416f))
-    return invalid_argument("refine full_above must be in [0, pi] radians (got " + show(r.full_above) + ")");
-  if (r.full_above > 0.f && !(r.clean_below >= 0.f && r.clean_below < r.full_above))
-    return invalid_argument("refine clean_below must be in [0, full_above) (got " + show(r.clean_below) + ")");
-  if (!(r.tangential_step >= 0.f && r.tangential_step <= 1.f))
-    return invalid_argument("refine tangential_step must be in [0, 1] (got " + show(r.tangential_step) + ")");
-  if (!(r.rough_full >= 0.f && r.rough_full <= 3.1416f))
-    return invalid_argument("refine rough_full must be in [0, pi] radians (got " + show(r.rough_full) + ")");
-  if (r.rough_full > 0.f && !(r.rough_from >= r.full_above && r.rough_from < r.rough_full))
-    return invalid_argument("refine rough_from must be in [full_above, rough_full) (got " + show(r.rough_from) + ")");
+  // Beyond 10 mean edges of noise the triangulation says nothing about the surface any more.
+  if (!(r.known_noise >= 0.f && r.known_noise <= 10.f))
+    return invalid_argument("known_noise must be in [0, 10] mean edge lengths (0 = estimated; got " + show(r.known_noise) + ")");
+  if (!(r.strength >= 0.f && r.strength <= 10.f))
+    return invalid_argument("strength must be in [0, 10] (got " + show(r.strength) + ")");
   return {};
 }
 

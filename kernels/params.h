@@ -11,8 +11,8 @@
 
 namespace fq {
 
-/// "qf+" (the paper's filter, then the refinement below; the default) | "qf" (the paper
-/// exactly) | "bf" (Jones 2003).
+/// "qf+" (fq's noise-adaptive filter, RefineParams below; the default) | "qf" (the paper's
+/// filtered quadrics, exactly) | "bf" (Jones 2003).
 enum class FilterMethod { kQuadric, kBilateral, kQuadricRefined };
 enum class ClusterMethod { kQuadric, kEuclidean };  ///< the paper | plain quick shift (Fig. 17)
 /// Whose quadrics the clustering scores and links with: the input's (the paper) or those
@@ -20,38 +20,25 @@ enum class ClusterMethod { kQuadric, kEuclidean };  ///< the paper | plain quick
 /// (docs/ALGORITHM.md). kAuto: filtered with a target cluster count, input otherwise.
 enum class ClusterGeometry { kAuto, kInput, kFiltered };
 
-/// Feature-preserving refinement after QF (method "qf+"; docs/ALGORITHM.md, kernels/refine_math.h).
-/// Distances in mean edge lengths of the frame.
+/// "qf+", fq's default filter: it estimates each frame's noise from the frame itself
+/// (kernels/noise_estimate.h) and derives every strength from it (kernels/refine_plan.h), so a
+/// frame with half the noise gets about half the smoothing and a clean frame almost none; see
+/// docs/ALGORITHM.md, "qf+: a filter that follows the noise". Both values are optional.
 struct RefineParams {
-  int relax_iterations = 5;      ///< tangential relaxation passes (un-fold triangles)
-  float relax_step = 0.5f;       ///< fraction of the way to the 1-ring mean per pass, in (0, 1]
-  float feature_ratio = 0.1f;    ///< normal-tensor eigenvalues below ratio × largest are free directions
-  int normal_iterations = 3;     ///< bilateral face-normal filtering passes
-  float normal_sigma_s = 1.0f;   ///< spatial extent (face centroid distance)
-  float normal_sigma_r = 0.35f;  ///< range extent (|n_i − n_j|)
-  int vertex_iterations = 20;    ///< normal-driven vertex update passes (Sun et al. 2007)
-  float tangential_step = 0.3f;  ///< per vertex update, this share of the tangential move to the 1-ring mean
-  /// Clean-input guard, on the mean angle (radians) between input and result face normals:
-  /// at or below clean_below the input is kept, at or above full_above the result, linear
-  /// between. full_above = 0 turns it off.
-  float clean_below = 0.1f;
-  float full_above = 0.2f;
-  /// Rough input, on the same r: from rough_from the refinement also runs on the input itself
-  /// (no QF, no relaxation), with the normal filter's range widened to rough_normal_sigma_r
-  /// and rough_rounds rounds of normal filtering and rough_vertex_iterations vertex updates;
-  /// its result replaces the other linearly up to rough_full. rough_full = 0 (or no guard)
-  /// turns it off.
-  float rough_from = 0.75f;
-  float rough_full = 0.85f;
-  float rough_normal_sigma_r = 0.7f;
-  int rough_rounds = 2;
-  int rough_vertex_iterations = 8;  // 10 gave the same dragon MFNE (docs/ALGORITHM.md)
+  /// The noise to filter for, in mean edge lengths (standard deviation along the surface
+  /// normal); 0: estimated per frame. Set it when a capture rig's noise is known, or to force a
+  /// full filter on an input the estimate finds clean.
+  float known_noise = 0.f;
+  /// Multiplies the noise (estimated or given) that the strengths are derived from: 2 filters
+  /// as for twice the noise, 0.5 as for half, 0 not at all.
+  float strength = 1.f;
 };
 
 struct FilterParams {
   FilterMethod method = FilterMethod::kQuadricRefined;
-  /// Defaults 1.5 / 0.7: the best setting of "qf+" on docs/QUALITY.md's benchmark (the
-  /// paper's Table 1 uses 2 / 1 and 2 / 0.7; pass them for the paper's rows).
+  /// The quadric diffusion's extents, for "qf" and for the clustering (which scores the same
+  /// filtered quadrics); "qf+" moves vertices without them. Defaults 1.5 / 0.7 (the paper's
+  /// Table 1 uses 2 / 1 and 2 / 0.7; pass them for the paper's rows).
   float sigma_s = 1.5f;  ///< spatial extent of the quadric diffusion (BF: of the filter)
   float sigma_r = 0.7f;  ///< range extent (RMS quadric distance; BF: prediction distance)
   float sigma_b = 0.0f;  ///< finest detail captured by Q'; 0 means sigma_s / 2
@@ -62,7 +49,8 @@ struct FilterParams {
   float tikhonov = 0.05f;
   RefineParams refine;  ///< used by "qf+" only
 
-  bool uses_quadrics() const { return method != FilterMethod::kBilateral; }
+  /// Whether the filter moves vertices with the filtered quadrics ("qf" only).
+  bool uses_quadrics() const { return method == FilterMethod::kQuadric; }
 
   float effective_sigma_b() const { return sigma_b > 0.f ? sigma_b : 0.5f * sigma_s; }
   float effective_sigma_n() const { return sigma_n > 0.f ? sigma_n : 0.5f * sigma_s; }
@@ -104,7 +92,7 @@ const char* filter_method_name(FilterMethod m);
 /// Parses a name of filter_method_name(); false for anything else.
 bool parse_filter_method(const std::string& s, FilterMethod& out);
 
-/// Clear message for the first bad refinement value (negative or huge iteration count, ...).
+/// Clear message for the first bad "qf+" value (negative, NaN or huge noise or strength).
 Status validate(const RefineParams& r);
 
 /// "auto" | "input" | "filtered" (command lines, config files).

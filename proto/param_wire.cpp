@@ -55,6 +55,8 @@ fq::Status apply_overrides(const ParamOverrides& o, fq::Params& inout) {
   if (o.has_sigma_n()) p.filtering.sigma_n = o.sigma_n();
   if (o.has_constrained()) p.filtering.constrained = o.constrained();
   if (o.has_tikhonov()) p.filtering.tikhonov = o.tikhonov();
+  if (o.has_known_noise()) p.filtering.refine.known_noise = o.known_noise();
+  if (o.has_strength()) p.filtering.refine.strength = o.strength();
   if (o.has_mode()) FQ_RETURN_IF_ERROR(set_from_wire(kModes, o.mode(), "filter mode", p.filtering.method));
   if (o.has_sigma_d()) p.clustering.sigma_d = o.sigma_d();
   if (o.has_sigma_q()) p.clustering.sigma_q = o.sigma_q();
@@ -94,6 +96,8 @@ void params_to_wire(const fq::Params& p, ParamOverrides& out) {
   out.set_sigma_n(p.filtering.sigma_n);
   out.set_constrained(p.filtering.constrained);
   out.set_tikhonov(p.filtering.tikhonov);
+  out.set_known_noise(p.filtering.refine.known_noise);
+  out.set_strength(p.filtering.refine.strength);
   out.set_mode(to_wire(p.filtering.method));
   out.set_sigma_d(p.clustering.sigma_d);
   out.set_sigma_q(p.clustering.sigma_q);

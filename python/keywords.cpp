@@ -30,14 +30,21 @@ struct Row {
 // clang-format off
 const Row<FilterParams> kFilterRows[] = {
     {"mode", &FilterParams::method,
-     "'qf+' (filtered quadrics, then the feature-preserving refinement), 'qf' (the paper "
-     "exactly) or 'bf' (bilateral baseline)."},
-    {"sigma_s", &FilterParams::sigma_s, "Spatial extent of the diffusion, in mean edge lengths."},
-    {"sigma_r", &FilterParams::sigma_r, "Range extent (RMS quadric distance), in mean edge lengths."},
+     "'qf+' (fq's filter, its strength derived from the noise it estimates), 'qf' (the paper's "
+     "filtered quadrics exactly) or 'bf' (bilateral baseline)."},
+    {"sigma_s", &FilterParams::sigma_s, "qf and bf: spatial extent of the diffusion, in mean edge lengths."},
+    {"sigma_r", &FilterParams::sigma_r, "qf: range extent (RMS quadric distance), in mean edge lengths."},
     {"sigma_b", &FilterParams::sigma_b, "Finest detail captured by the neighbourhood quadrics; 0 means sigma_s / 2."},
     {"sigma_n", &FilterParams::sigma_n, "Normal smoothing of the constrained update; 0 means sigma_s / 2."},
     {"constrained", &FilterParams::constrained, "Move vertices along the smoothed normal only."},
     {"tikhonov", &FilterParams::tikhonov, "Pull toward the current position, relative to tr(A)/3; 0 is the paper's solver."},
+};
+// "qf+": the noise it filters for.
+const Row<RefineParams> kRefineRows[] = {
+    {"known_noise", &RefineParams::known_noise,
+     "qf+: noise to filter for, in mean edge lengths (along the normal); 0 estimates it per mesh."},
+    {"strength", &RefineParams::strength,
+     "qf+: multiplies the noise the filter's strengths come from (2: as for twice the noise; 0: no filtering)."},
 };
 // The filter's quadric field is what the clustering scores and links with.
 const Row<FilterParams> kClusterFilterRows[] = {
@@ -171,6 +178,7 @@ pyb::list keyword_rows(const std::string& function) {
   pyb::list out;
   if (function == "filter") {
     add_rows(out, kFilterRows);
+    add_rows(out, kRefineRows);
   } else if (function == "cluster") {
     add_rows(out, kClusterRows);
     add_rows(out, kClusterFilterRows);
@@ -184,7 +192,8 @@ void apply_keywords(const std::string& function, const pyb::dict& keywords, Para
   for (const auto& [key, value] : keywords) {
     const std::string name = pyb::cast<std::string>(key);
     const bool known = function == "filter"
-                           ? set_by_name(kFilterRows, name, value, params.filtering)
+                           ? set_by_name(kFilterRows, name, value, params.filtering) ||
+                                 set_by_name(kRefineRows, name, value, params.filtering.refine)
                            : set_by_name(kClusterRows, name, value, params.clustering) ||
                                  set_by_name(kClusterFilterRows, name, value, params.filtering);
     if (!known) throw pyb::type_error(std::string(function).append("() got an unexpected keyword argument '").append(name).append("'"));

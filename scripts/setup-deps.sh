@@ -26,6 +26,7 @@ build_packages=(
   libspdlog-dev libfmt-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libcpp-httplib-dev
+  libssl-dev   # fqd's HTTPS listener and its token comparison
 )
 # The tests, the Python module and the tidy check.
 test_packages=(
@@ -36,6 +37,7 @@ test_packages=(
   python3-matplotlib   # the picture of python/examples/fq_vs_open3d.py
   clang-tidy
   python3-zmq python3-protobuf   # clients/examples/consume.py and its test
+  openssl curl   # the tests' self-signed certificate and TLS client
   python3-prometheus-client
 )
 packages=("${build_packages[@]}")

@@ -29,6 +29,8 @@ void add_override_options(CLI::App& app, OverrideArgs& a) {
   add_field(app, g, "--sigma-n", &P::set_sigma_n, o, "normal smoothing of the constrained update");
   add_field(app, g, "--constrained", &P::set_constrained, o, "normal-constrained update (true/false)");
   add_field(app, g, "--tikhonov", &P::set_tikhonov, o, "pull toward the current position");
+  add_field(app, g, "--known-noise", &P::set_known_noise, o, "qf+: noise to filter for, mean edges (0 = estimated)");
+  add_field(app, g, "--strength", &P::set_strength, o, "qf+: factor on the noise the strengths come from");
   app.add_option("--mode", a.mode, "filter: " + join_names(method_names<FilterMethod>(), " | "))->group(g);
   add_field(app, g, "--sigma-d", &P::set_sigma_d, o, "clustering spatial extent");
   add_field(app, g, "--sigma-q", &P::set_sigma_q, o, "clustering range extent");

@@ -34,6 +34,7 @@ void StreamStats::add(const ReceivedResult& r, bool ok) {
   latency_.push_back(h.latency_ms());
   if (h.send_time_ns() > 0) send_to_receive_.push_back(send_to_receive_ms(r));
   for (const wire::StageTiming& t : h.timings()) stages_[t.name()].push_back(t.ms());
+  last_noise_ = h.noise_estimate();
 }
 
 double StreamStats::fps() const {
@@ -43,7 +44,7 @@ double StreamStats::fps() const {
 
 std::string StreamStats::status_line() const {
   char line[256];
-  std::snprintf(
+  const int used = std::snprintf(
       line, sizeof line,
       "%llu results  %.1f fps  latency p50 %.1f p99 %.1f ms  send->recv p50 %.1f p99 %.1f ms  drops %llu  "
       "errors %llu  late %llu  bad %llu",
@@ -51,6 +52,8 @@ std::string StreamStats::status_line() const {
       percentile(send_to_receive_, 0.5), percentile(send_to_receive_, 0.99),
       static_cast<unsigned long long>(drops_), static_cast<unsigned long long>(errors_),
       static_cast<unsigned long long>(late_), static_cast<unsigned long long>(bad_));
+  if (last_noise_ > 0.f && used > 0 && size_t(used) < sizeof line)
+    std::snprintf(line + used, sizeof line - size_t(used), "  noise %.3f", last_noise_);
   return line;
 }
 
@@ -65,7 +68,8 @@ nlohmann::json StreamStats::to_json() const {
           {"fps", fps()},
           {"receive_to_publish", summary(latency_)},
           {"send_to_receive", summary(send_to_receive_)},
-          {"stages", stages}};
+          {"stages", stages},
+          {"noise_estimate", last_noise_}};
 }
 
 }  // namespace fq::client

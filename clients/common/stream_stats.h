@@ -25,7 +25,7 @@ class StreamStats {
 
   /// Results per second between the first and the last result.
   double fps() const;
-  /// One status line: fps, latency p50/p99, drops, errors.
+  /// One status line: fps, latency p50/p99, drops, errors, and the last frame's estimated noise.
   std::string status_line() const;
   /// Everything, for --json and the benchmark reports.
   nlohmann::json to_json() const;
@@ -36,6 +36,7 @@ class StreamStats {
   std::map<std::string, uint64_t> next_seq_;
   std::vector<double> latency_, send_to_receive_;
   std::map<std::string, std::vector<double>> stages_;
+  float last_noise_ = 0.f;  ///< the last result's noise estimate (filter "qf+"), mean edges
 };
 
 }  // namespace fq::client

@@ -19,36 +19,10 @@ using client::MemberOption;
 // Every member of RefineParams, in --help's order: one option a row, its help under its flag.
 // clang-format off
 const MemberOption<RefineParams> kRefineOptions[] = {
-    {"--relax-iterations", &RefineParams::relax_iterations,
-     "Tangential relaxation passes (un-fold triangles)"},
-    {"--relax-step", &RefineParams::relax_step,
-     "Fraction of the way to the 1-ring mean per relaxation pass"},
-    {"--feature-ratio", &RefineParams::feature_ratio,
-     "Normal-tensor eigenvalues below this times the largest are free to relax along"},
-    {"--normal-iterations", &RefineParams::normal_iterations,
-     "Bilateral face-normal filtering passes"},
-    {"--normal-sigma-s", &RefineParams::normal_sigma_s,
-     "Spatial extent of the normal filter, in mean edge lengths"},
-    {"--normal-sigma-r", &RefineParams::normal_sigma_r,
-     "Range extent of the normal filter (|n_i - n_j|)"},
-    {"--vertex-iterations", &RefineParams::vertex_iterations,
-     "Normal-driven vertex update passes (Sun et al. 2007)"},
-    {"--tangential-step", &RefineParams::tangential_step,
-     "Per vertex update, share of the move to the 1-ring mean within the filtered tangent plane"},
-    {"--clean-below", &RefineParams::clean_below,
-     "Mean face-normal change (rad) at or below which the input is kept (a clean input)"},
-    {"--full-above", &RefineParams::full_above,
-     "Mean face-normal change (rad) at or above which the full result is kept; 0 = no guard"},
-    {"--rough-from", &RefineParams::rough_from,
-     "Mean face-normal change (rad) from which the refinement also runs on the input itself (rough input)"},
-    {"--rough-full", &RefineParams::rough_full,
-     "Mean face-normal change (rad) from which that rough-input result is kept alone; 0 = off"},
-    {"--rough-normal-sigma-r", &RefineParams::rough_normal_sigma_r,
-     "Range extent of the rough-input normal filter"},
-    {"--rough-rounds", &RefineParams::rough_rounds,
-     "Rounds of normal filtering and vertex updates on rough input"},
-    {"--rough-vertex-iterations", &RefineParams::rough_vertex_iterations,
-     "Vertex update passes per rough round"},
+    {"--known-noise", &RefineParams::known_noise,
+     "Noise to filter for, in mean edge lengths (along the normal); 0 = estimated per mesh"},
+    {"--strength", &RefineParams::strength,
+     "Multiplies the noise the filter's strengths come from (2: as for twice the noise; 0: no filtering)"},
 };
 // clang-format on
 
@@ -59,11 +33,11 @@ void add_filter_options(CLI::App& app, Options& o, std::string& mode) {
   FilterParams& f = o.params.filtering;
   app.option_defaults()->group("Filter");
   app.add_option("--mode", mode,
-                 "Filter: qf+ (filtered quadrics, then the feature-preserving refinement), qf (the paper "
-                 "exactly) or bf (bilateral baseline)")
+                 "Filter: qf+ (fq's filter, its strength derived from the noise it estimates), qf (the "
+                 "paper's filtered quadrics exactly) or bf (bilateral baseline)")
       ->check(CLI::IsMember(method_names<FilterMethod>()));
-  app.add_option("--sigma-s", f.sigma_s, "Spatial extent of the diffusion, in mean edge lengths");
-  app.add_option("--sigma-r", f.sigma_r, "Range extent (RMS quadric distance), in mean edge lengths");
+  app.add_option("--sigma-s", f.sigma_s, "qf, bf and the clustering: spatial extent of the diffusion, in mean edge lengths");
+  app.add_option("--sigma-r", f.sigma_r, "qf and the clustering: range extent (RMS quadric distance), in mean edge lengths");
   app.add_option("--sigma-b", f.sigma_b,
                  "Finest detail captured by the neighbourhood quadrics; 0 = sigma-s/2");
   app.add_option("--sigma-n", f.sigma_n, "Normal smoothing of --constrained; 0 = sigma-s/2");
@@ -73,7 +47,7 @@ void add_filter_options(CLI::App& app, Options& o, std::string& mode) {
 }
 
 void add_refine_options(CLI::App& app, RefineParams& r) {
-  app.option_defaults()->group("Refinement (--mode qf+)");
+  app.option_defaults()->group("Noise (--mode qf+)");
   add_member_options(app, r, kRefineOptions);
 }
 

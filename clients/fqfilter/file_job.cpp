@@ -47,6 +47,10 @@ Status run_engine(const Options& o, Engine& engine, const MeshView& view, FrameR
   }
   summarize_timings(runs, report);
   report.mean_edge = result.mean_edge;
+  if (o.params.filter && o.params.filtering.method == FilterMethod::kQuadricRefined) {
+    report.noise_estimate = result.noise_estimate;
+    report.filter_noise = result.filter_noise;
+  }
   if (o.params.cluster) {
     report.clusters = result.num_clusters;
     report.theta_used = result.theta;

@@ -10,6 +10,7 @@
 
 #include "clients/fqfilter/cli_options.h"
 #include "common/sample_stats.h"
+#include "kernels/refine_plan.h"
 
 namespace fq::cli {
 
@@ -24,21 +25,20 @@ double as_typed(float v) {
 }
 
 nlohmann::json refine_json(const RefineParams& r) {
-  return {{"relax_iterations", r.relax_iterations},
-          {"relax_step", as_typed(r.relax_step)},
-          {"feature_ratio", as_typed(r.feature_ratio)},
-          {"normal_iterations", r.normal_iterations},
-          {"normal_sigma_s", as_typed(r.normal_sigma_s)},
-          {"normal_sigma_r", as_typed(r.normal_sigma_r)},
-          {"vertex_iterations", r.vertex_iterations},
-          {"tangential_step", as_typed(r.tangential_step)},
-          {"clean_below", as_typed(r.clean_below)},
-          {"full_above", as_typed(r.full_above)},
-          {"rough_from", as_typed(r.rough_from)},
-          {"rough_full", as_typed(r.rough_full)},
-          {"rough_normal_sigma_r", as_typed(r.rough_normal_sigma_r)},
-          {"rough_rounds", r.rough_rounds},
-          {"rough_vertex_iterations", r.rough_vertex_iterations}};
+  return {{"known_noise", as_typed(r.known_noise)}, {"strength", as_typed(r.strength)}};
+}
+
+// What "qf+" made of the noise: the estimate, the noise filtered for and the passes that gave.
+nlohmann::json noise_json(const FileReport& r) {
+  if (!r.noise_estimate || !r.filter_noise) return nullptr;
+  const RefinePlan plan = plan_refinement(RefineParams{*r.filter_noise, 1.f}, 0.f);
+  auto passes = [](Passes p) { return p.count > 0 ? p.count - 1 + p.last : 0.f; };
+  return {{"estimated", *r.noise_estimate},
+          {"filtered_for", *r.filter_noise},
+          {"looks_clean", *r.noise_estimate < kLooksCleanBelow},
+          {"rounds", passes(plan.rounds)},
+          {"normal_passes", passes(plan.normal_passes)},
+          {"vertex_passes", passes(plan.vertex_passes)}};
 }
 
 nlohmann::json params_json(const Params& p) {
@@ -126,6 +126,7 @@ nlohmann::json to_json(const FileReport& r) {
             {"vertices", r.vertices},
             {"triangles", r.triangles},
             {"mean_edge", r.mean_edge},
+            {"noise_estimate", noise_json(r)},
             {"params", params_json(r.params)},
             {"noise", r.noise_sigma > 0 ? nlohmann::json{{"sigma", r.noise_sigma},
                                                                       {"direction", r.noise_along_normal ? "normal" : "iso"},
@@ -163,6 +164,13 @@ void print_human(const FileReport& r, std::ostream& os) {
      << r.total_ms;
   if (r.repeat > 1) os << "  (median of " << r.repeat << " runs)";
   os << "\n";
+  if (r.noise_estimate && r.filter_noise) {
+    os << std::setprecision(3) << "  noise: " << *r.noise_estimate << " mean edges estimated";
+    if (*r.filter_noise != *r.noise_estimate) os << ", filtered for " << *r.filter_noise;
+    os << "\n";
+    if (*r.noise_estimate < kLooksCleanBelow && r.params.filtering.refine.known_noise == 0.f)
+      os << "  input looks clean: filtered lightly (--known-noise 0.1 filters it as 0.1 mean edges of noise)\n";
+  }
   if (r.clusters) {
     os << "  clusters: " << *r.clusters;
     if (r.theta_used && r.params.clustering.target_clusters > 0) os << " (theta " << std::setprecision(4) << *r.theta_used << ")";

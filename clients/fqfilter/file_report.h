@@ -38,6 +38,8 @@ struct FileReport {
   int repeat = 1;
   std::vector<PassTiming> passes;  ///< median ms of each pass over the repeats
   double total_ms = 0.0;           ///< median of the per-run totals
+  /// "qf+": the noise estimated from the mesh and the noise filtered for (mean edge lengths).
+  std::optional<float> noise_estimate, filter_noise;
   std::optional<uint32_t> clusters;
   std::optional<float> theta_used;        ///< the theta that gave the labels (found with a target)
   std::optional<SharpEdgeRecall> sharp_edges;  ///< labels vs the reference's creases
@@ -50,6 +52,10 @@ struct FileReport {
 
 /// Per pass (by name, in the first run's order) the median over runs, and the median total.
 void summarize_timings(const std::vector<std::vector<PassTiming>>& runs, FileReport& report);
+
+/// Below this estimated noise (mean edge lengths) the report calls an input clean: what "qf+" then
+/// does is a light touch (docs/ALGORITHM.md), and the report names the option for a full filter.
+inline constexpr float kLooksCleanBelow = 0.02f;
 
 /// The JSON object documented in docs/FQFILTER.md (NaN values become null).
 nlohmann::json to_json(const FileReport& report);

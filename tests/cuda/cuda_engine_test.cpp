@@ -315,8 +315,8 @@ TEST_F(CudaEngineTest, ReportsDeviceTimePerPassAndTransfers) {
     names.push_back(t.name);
     EXPECT_GE(t.ms, 0.0) << t.name;
   }
-  for (const char* want : {"upload", "checks", "to_normalized", "grid", "base_quadrics", "neighbourhood_quadrics", "diffusion", "update",
-                           "score", "link", "modes", "output", "download", "finish"}) {
+  for (const char* want : {"upload", "checks", "to_normalized", "grid", "base_quadrics", "neighbourhood_quadrics", "diffusion", "noise",
+                           "refine", "score", "link", "modes", "output", "download", "finish"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
   }
 }

@@ -1,7 +1,11 @@
-// The "qf+" refinement on the CUDA engine against the CPU engine: noisy synthetic shapes
-// and the shared real meshes (FQ_MESH_DIR), under every kernel path of the quadric passes
-// (the refinement reads base_quadrics' vertex -> triangle table). Skips without a device.
+// "qf+" on the CUDA engine against the CPU engine: the noise estimate (the same samples, the
+// same host reduction) and the filtered positions, on noisy and clean synthetic shapes, with a
+// given noise and strength, with fractional rounds, with clustering beside it (every kernel
+// path of the quadric passes), and on the shared real meshes (FQ_MESH_DIR). Skips without a
+// device.
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "eval/noise.h"
 #include "proto/mesh_io.h"
@@ -14,61 +18,67 @@ namespace {
 
 class CudaRefineParity : public CudaTest {};
 
-Params refined() {
-  Params p;
-  p.filtering.method = FilterMethod::kQuadricRefined;
-  return p;
+// Both engines' estimates: the samples are the same math in double precision on both sides,
+// reduced on the host by the same code; contraction into fused multiply-adds on the device
+// leaves them within 1e-4 of each other (relative).
+void expect_same_noise(const Parity& p) {
+  EXPECT_NEAR(p.gpu.noise_estimate, p.cpu.noise_estimate, 1e-4f * std::fmax(p.cpu.noise_estimate, 1e-3f));
+  EXPECT_NEAR(p.gpu.filter_noise, p.cpu.filter_noise, 1e-4f * std::fmax(p.cpu.filter_noise, 1e-3f));
 }
+
+const std::initializer_list<CudaTuning> kDefault = {{CudaTuning::kTeamBySize, false}};
 
 TEST_F(CudaRefineParity, NoisyCubeAndSphere) {
   Mesh shapes[] = {make_cube(16), make_icosphere(5)};
   for (Mesh& m : shapes) {
-    add_gaussian_noise(m, 0.3, 7);
-    expect_parity_for_each(*cpu_, m.view(), refined(), kKernelPaths);
+    for (double s : {0.05, 0.3}) {
+      Mesh noisy = m;
+      add_gaussian_noise(noisy, s, 7);
+      expect_parity_for_each(*cpu_, noisy.view(), Params{}, kDefault, expect_same_noise);
+    }
   }
 }
 
-// The clean-input guard at a partial strength (the mean normal change over 3 rad: about
-// 0.1-0.2 of the result kept) and at its defaults on clean shapes (the input kept).
-TEST_F(CudaRefineParity, CleanInputGuard) {
-  Params partial = refined();
-  partial.filtering.refine.clean_below = 0.f;
-  partial.filtering.refine.full_above = 3.f;
-  partial.filtering.refine.rough_full = 0.f;  // rough_from must not lie below full_above
-  Mesh noisy = make_icosphere(5);
-  add_gaussian_noise(noisy, 0.3, 7);
-  expect_parity_for_each(*cpu_, noisy.view(), partial, kKernelPaths);
+TEST_F(CudaRefineParity, CleanShapes) {
   Mesh shapes[] = {make_cube(16), make_icosphere(5)};
-  for (Mesh& m : shapes) expect_parity_for_each(*cpu_, m.view(), refined(), kKernelPaths);
+  for (Mesh& m : shapes) expect_parity_for_each(*cpu_, m.view(), Params{}, kDefault, expect_same_noise);
 }
 
-// The rough-input run (step 5): taken in full (over rough_full) and blended with the fine
-// run (r between rough_from and rough_full).
-TEST_F(CudaRefineParity, RoughInputRun) {
-  Params full = refined();
-  full.filtering.refine.rough_from = 0.2f;
-  full.filtering.refine.rough_full = 0.21f;
-  Params blended = refined();
-  blended.filtering.refine.rough_from = 0.2f;
-  blended.filtering.refine.rough_full = 3.f;
-  Mesh shapes[] = {make_cube(16), make_icosphere(5)};
-  for (Mesh& m : shapes) {
-    add_gaussian_noise(m, 0.3, 7);
-    expect_parity_for_each(*cpu_, m.view(), full, kKernelPaths);
-    expect_parity_for_each(*cpu_, m.view(), blended, kKernelPaths);
-  }
+// A given noise, a strength, and a noise whose plan has a fractional last round (1 + 16σ²
+// rounds: 3.56 at σ = 0.4).
+TEST_F(CudaRefineParity, GivenNoiseStrengthAndFractionalRounds) {
+  Mesh m = make_icosphere(5);
+  add_gaussian_noise(m, 0.3, 9);
+  Params given;
+  given.filtering.refine.known_noise = 0.4f;
+  expect_parity_for_each(*cpu_, m.view(), given, kDefault, expect_same_noise);
+  Params strong;
+  strong.filtering.refine.strength = 1.7f;
+  expect_parity_for_each(*cpu_, m.view(), strong, kDefault, expect_same_noise);
+}
+
+// Clustering beside "qf+": the quadric passes run for the labels, under every kernel path.
+TEST_F(CudaRefineParity, WithClustering) {
+  Mesh m = make_cube(16);
+  add_gaussian_noise(m, 0.2, 7);
+  Params p;
+  p.cluster = true;
+  expect_parity_for_each(*cpu_, m.view(), p, kKernelPaths, expect_same_noise);
 }
 
 TEST_F(CudaRefineParity, RealMeshesWithNoise) {
-  for (const char* file : {"fandisk.ply", "bunny.ply", "igea.ply"}) {
+  for (const char* file : {"fandisk.ply", "bunny.ply", "igea.ply", "crane/crane_0060.drc"}) {
     const auto path = find_mesh(file);
     if (!path) GTEST_SKIP() << file << " not found in " << mesh_dir();
     Mesh mesh;
     const Status rs = io::read_mesh(*path, mesh);
     ASSERT_TRUE(rs.ok()) << rs.message();
-    add_gaussian_noise(mesh, 0.2, 7);
-    std::printf("  %s (%u vertices):\n", file, mesh.num_vertices());
-    expect_parity_for_each(*cpu_, mesh.view(), refined(), {{CudaTuning::kTeamBySize, false}, {0, false}});
+    for (double s : {0.05, 0.2}) {
+      Mesh noisy = mesh;
+      add_gaussian_noise(noisy, s, 7);
+      std::printf("  %s (%u vertices), noise %.2f:\n", file, mesh.num_vertices(), s);
+      expect_parity_for_each(*cpu_, noisy.view(), Params{}, kDefault, expect_same_noise);
+    }
   }
 }
 

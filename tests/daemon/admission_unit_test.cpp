@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "daemon/log_limiter.h"
 #include "daemon/object_pool.h"
 #include "daemon/stream_admission.h"
 #include "daemon/work_budget.h"

@@ -4,66 +4,30 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <filesystem>
 #include <thread>
 
 #include <zmq_addon.hpp>
 
-#include "common/curve_keys.h"
 #include "tests/daemon/daemon_harness.h"
+#include "tests/daemon/test_keys.h"
 
 namespace fq::test {
 namespace {
 
-namespace fs = std::filesystem;
-
-struct Keys {
-  fs::path dir;
-  std::string server_key, server_pub, client_key, client_pub, stranger_key;
-};
-
-Keys make_keys() {
-  Keys k;
-  k.dir = fs::temp_directory_path() / ("fq_curve_test_" + std::to_string(::getpid()));
-  fs::create_directories(k.dir);
-  auto pair = [&](const std::string& name, std::string& key, std::string* pub) {
-    CurveKeyPair p;
-    EXPECT_TRUE(make_curve_key_pair(p).ok());
-    key = (k.dir / (name + ".key")).string();
-    EXPECT_TRUE(write_curve_key_file(key, p).ok());
-    if (pub) {
-      *pub = (k.dir / (name + ".pub")).string();
-      EXPECT_TRUE(write_curve_key_file(*pub, {p.public_key, ""}).ok());
-    }
-  };
-  pair("server", k.server_key, &k.server_pub);
-  pair("client", k.client_key, &k.client_pub);
-  pair("stranger", k.stranger_key, nullptr);
-  return k;
-}
-
-daemon::DaemonConfig curve_config(const Keys& k) {
-  daemon::DaemonConfig c = test_config();
-  c.security.curve_key_file = k.server_key;
-  c.security.client_keys_file = k.client_pub;
-  return c;
-}
-
 TEST(DaemonCurve, AnAllowListedClientRoundTripsFramesAndControl) {
-  const Keys k = make_keys();
-  DaemonHarness h(curve_config(k), {k.server_pub, k.client_key});  // waits for a probe result
+  const TestKeys k;
+  DaemonHarness h(k.secured(test_config()), {k.server_pub, k.client_key});  // waits for a probe result
   client::FrameSpec spec;
   spec.stream_id = "cam";
   h.send(noisy_sphere(), spec, 3);
   const client::ReceivedResult r = h.receive_decoded("cam");
   EXPECT_EQ(r.header.status(), wire::OK);
   EXPECT_EQ(h.counters("cam").frames_out(), 1u);
-  fs::remove_all(k.dir);
 }
 
 TEST(DaemonCurve, ClientsWithoutAnAllowedKeyGetNothing) {
-  const Keys k = make_keys();
-  DaemonHarness h(curve_config(k), {k.server_pub, k.client_key});
+  const TestKeys k;
+  DaemonHarness h(k.secured(test_config()), {k.server_pub, k.client_key});
   zmq::context_t ctx(1);
   // One producer without keys, one with a key fqd does not know.
   zmq::socket_t plain(ctx, zmq::socket_type::push), stranger(ctx, zmq::socket_type::push);
@@ -101,24 +65,22 @@ TEST(DaemonCurve, ClientsWithoutAnAllowedKeyGetNothing) {
          std::chrono::steady_clock::now() < end)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   EXPECT_GE(h.daemon()->registry().refusals().get(daemon::Refusal::kUnauthenticated), 1u);
-  fs::remove_all(k.dir);
 }
 
 TEST(DaemonCurve, MissingOrBadKeyFilesStopTheStartWithTheirName) {
-  const Keys k = make_keys();
-  daemon::DaemonConfig c = curve_config(k);
+  const TestKeys k;
+  daemon::DaemonConfig c = k.secured(test_config());
   c.security.client_keys_file.clear();
   daemon::Daemon d1(c);
   Status s = d1.start();
   EXPECT_FALSE(s.ok());
   EXPECT_NE(s.message().find("client_keys_file"), std::string::npos) << s.message();
-  c = curve_config(k);
+  c = k.secured(test_config());
   c.security.curve_key_file = k.server_pub;  // public only: no secret
   daemon::Daemon d2(c);
   s = d2.start();
   EXPECT_FALSE(s.ok());
   EXPECT_NE(s.message().find("no secret key"), std::string::npos) << s.message();
-  fs::remove_all(k.dir);
 }
 
 }  // namespace

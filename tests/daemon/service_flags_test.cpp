@@ -108,10 +108,11 @@ TEST(ServiceFlags, EveryControlAndReloadChangeIsAudited) {
 
 TEST(ServiceFlags, MostlyLateStreamWarns) {
   const std::string log = testing::TempDir() + "/fqd_late.log";
-  // The CPU engine on one thread filters fandisk in ~100 ms on the 2-core development machine:
-  // over a 30 ms budget, while frames 333 ms apart find the engine free (not dropped stale).
+  // The CPU engine filters clean fandisk in 20-40 ms on the 2-core development machine: every
+  // result is over a 10 ms budget, while frames 333 ms apart find the engine free after a decode of
+  // about 1 ms (not dropped stale).
   const std::string config = write_temp_file(
-      "late.toml", ops_config("[streams.cam0]\ncompute = \"filter\"\nbudget_ms = 30\n[stats]\ninterval_s = 2\n"));
+      "late.toml", ops_config("[streams.cam0]\ncompute = \"filter\"\nbudget_ms = 10\n[stats]\ninterval_s = 2\n"));
   FqdProcess fqd({"--config", config, "--log-level", "info"}, "", "2>'" + log + "'");
   ASSERT_FALSE(fqd.endpoint("ingest").empty());
   ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam0", 12, 3).status, 0);
@@ -122,7 +123,7 @@ TEST(ServiceFlags, MostlyLateStreamWarns) {
   const size_t at = text.find("stream cam0: ");
   ASSERT_NE(at, std::string::npos) << text;
   EXPECT_NE(text.rfind("[warning]", at), std::string::npos) << text;
-  EXPECT_NE(text.find("(budget 30 ms", at), std::string::npos) << text;
+  EXPECT_NE(text.find("(budget 10 ms", at), std::string::npos) << text;
 }
 
 // A datagram socket standing in for systemd's notify socket.

@@ -1,6 +1,6 @@
 // fqd's service conventions: the config lookup order (--config, $FQ_CONFIG, /etc/fq/fqd.toml,
-// built-in defaults) from any working directory, SIGHUP reloading per-stream settings (a bad
-// file changes nothing and never stops fqd), and the periodic [stats] log line.
+// built-in defaults) from any working directory, SIGHUP reloading the file (all of it or, for a
+// bad file or a restart-only change, nothing; it never stops fqd), and the periodic [stats] log line.
 #include <gtest/gtest.h>
 
 #include <csignal>
@@ -77,6 +77,63 @@ TEST(Service, SighupReloadsStreamSettingsAndSurvivesABadFile) {
       << read_text_file(log);
   EXPECT_TRUE(fqd.alive());
   EXPECT_EQ(sigma_s(fqd, "cam0"), "4");
+  EXPECT_EQ(fqd.stop(), 0);
+}
+
+std::string http_status(const FqdProcess& fqd, const std::string& path, const std::string& token) {
+  return run_tool("/usr/bin/curl", {"-s", "-o", "/dev/null", "-w", "%{http_code}", "-H",
+                                    "Authorization: Bearer " + token, fqd.endpoint("http") + path})
+      .output;
+}
+
+bool lists(const FqdProcess& fqd, const std::string& stream) {
+  const ToolRun r = run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "streams"});
+  return r.output.find(stream + "\n") != std::string::npos;
+}
+
+TEST(Service, SighupAppliesCapsAccessAndLogLevelLiveOrRefusesNamingTheSetting) {
+  const std::string log = testing::TempDir() + "/fqd_sighup_live.log";
+  const std::string t1 = "0123456789abcdef-first", t2 = "0123456789abcdef-second";
+  const std::string http = "[http]\nlisten = \"127.0.0.1:0\"\nweb_root = \"/x\"\ntoken_file = \"";
+  auto config = [&](const std::string& level, const std::string& allowed, int idle, const std::string& token) {
+    std::string text = ops_config("[caps]\nallowed_streams = [\"" + allowed + "\"]\nstream_idle_s = " +
+                                  std::to_string(idle) + "\n" + http + write_temp_file("live_token", token) + "\"\n");
+    return "log_level = \"" + level + "\"\n" + text.substr(text.find('\n', text.find("log_level")) + 1);
+  };
+  const std::string file = write_temp_file("sighup_live.toml", config("warn", "cam*", 0, t1));
+  FqdProcess fqd({"--config", file}, "", "2>'" + log + "'");
+  ASSERT_FALSE(fqd.endpoint("http").empty()) << read_text_file(log);
+  ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam0", 2).status, 0);
+  EXPECT_TRUE(eventually([&] { return lists(fqd, "cam0"); }));
+
+  // Live: the allow-list, the idle time, the token and the log level.
+  write_temp_file("sighup_live.toml", config("info", "other*", 1, t2));
+  ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
+  EXPECT_TRUE(eventually([&] { return read_text_file(log).find("SIGHUP: reloaded") != std::string::npos; })) << read_text_file(log);
+  EXPECT_EQ(http_status(fqd, "/streams", t1), "401");
+  EXPECT_EQ(http_status(fqd, "/streams", t2), "200");
+  ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam1", 1).status, 0);
+  EXPECT_TRUE(eventually([&] {
+    const ToolRun m = run_tool("/usr/bin/curl", {"-s", "-H", "Authorization: Bearer " + t2, fqd.endpoint("http") + "/metrics"});
+    return m.output.find("fq_refused_total{reason=\"not_allowed\"} 1") != std::string::npos;
+  }));
+  EXPECT_FALSE(lists(fqd, "cam1"));
+  EXPECT_TRUE(eventually([&] { return !lists(fqd, "cam0"); })) << "cam0 did not expire after stream_idle_s = 1";
+  EXPECT_NE(read_text_file(log).find("stream 'cam0' expired"), std::string::npos) << "an info line after log_level = info";
+
+  // Restart-only: refused whole, naming it; the stream in the same file is not applied.
+  write_temp_file("sighup_live.toml",
+                  config("info", "other*", 1, t2) + "[threads]\ndecode = 3\n[streams.other1]\nbudget_ms = 50\n");
+  ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
+  EXPECT_TRUE(eventually([&] {
+    return read_text_file(log).find("threads.decode changed, which takes effect only at a restart") != std::string::npos;
+  })) << read_text_file(log);
+  EXPECT_FALSE(lists(fqd, "other1"));
+  // Empty: refused.
+  write_temp_file("sighup_live.toml", "# nothing here\n");
+  ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
+  EXPECT_TRUE(eventually([&] { return read_text_file(log).find("has no settings") != std::string::npos; })) << read_text_file(log);
+  EXPECT_EQ(http_status(fqd, "/streams", t2), "200");
   EXPECT_EQ(fqd.stop(), 0);
 }
 

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Deployment files: yamllint (Debian) on the Kubernetes kustomization and the compose file,
 # `fqd --check-config` on every fqd configuration they carry (deploy/k8s/fqd.toml, for every
-# pod's shard, and the container's /etc/fq/fqd.toml), and check_k8s.py on the kustomization
-# (with `kubectl kustomize` where kubectl exists).  check_deploy.sh FQD SOURCE_DIR
+# pod's shard, and the container's /etc/fq/fqd.toml), check_k8s.py on the kustomization
+# (with `kubectl kustomize` where kubectl exists), and check_http_token.py: their HTTP
+# listeners need the token, from a Secret.  check_deploy.sh FQD SOURCE_DIR
 # Exit 77 (skipped) only when yamllint is absent.
 set -euo pipefail
 fqd=$1 src=$2
@@ -16,4 +17,5 @@ for f in "$src/deploy/k8s/fqd.toml" "$src/docker/fqd.container.toml"; do
 done
 # yamllint depends on python3-yaml, so Debian's python3 can read the manifests.
 /usr/bin/python3 "$(dirname "$0")/check_k8s.py" "$fqd" "$src"
+/usr/bin/python3 "$(dirname "$0")/check_http_token.py" "$fqd" "$src"
 echo "deploy: yamllint clean, fqd configurations valid"

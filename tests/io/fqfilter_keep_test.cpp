@@ -256,7 +256,7 @@ TEST(FqfilterProgress, OnlyOnATerminal) {
                             " /dev/null >" + fq::test::quote(dir.file("tty.txt"));
     ASSERT_EQ(fq::test::exit_code_of(std::system(cmd.c_str())), 0);
     const std::string tty = fq::test::read_bytes(dir.file("tty.txt"));
-    EXPECT_EQ(tty.find("diffusion done (") != std::string::npos, !json) << tty;
+    EXPECT_EQ(tty.find("refine done (") != std::string::npos, !json) << tty;
   }
 }
 

@@ -49,21 +49,23 @@ TEST(KernelParams, FilterSigmasMustBePositiveAndFinite) {
   }
 }
 
-TEST(KernelParams, RefinementTangentialAndRoughBoundsAreChecked) {
+TEST(KernelParams, KnownNoiseAndStrengthAreBounded) {
+  for (float bad : {-0.1f, kNaN, kInf, 11.f}) {
+    Params p;
+    p.filtering.refine.known_noise = bad;
+    SCOPED_TRACE(std::to_string(bad));
+    expect_rejected(p, "known_noise");
+    p = Params{};
+    p.filtering.refine.strength = bad;
+    expect_rejected(p, "strength");
+  }
   Params p;
-  p.filtering.refine.tangential_step = 1.5f;
-  expect_rejected(p, "tangential_step");
-  p = Params{};
-  p.filtering.refine.rough_from = 0.1f;  // below full_above (0.2)
-  expect_rejected(p, "rough_from");
-  p.filtering.refine.rough_full = 0.f;  // off: rough_from is not used
+  p.filtering.refine.known_noise = 0.f;  // estimated
+  p.filtering.refine.strength = 0.f;     // no filtering: allowed
   EXPECT_TRUE(validate(p).ok());
-  p = Params{};
-  p.filtering.refine.rough_rounds = -1;
-  expect_rejected(p, "rough_rounds");
-  p = Params{};
-  p.filtering.refine.rough_normal_sigma_r = kNaN;
-  expect_rejected(p, "rough_normal_sigma_r");
+  p.filtering.refine.known_noise = 10.f;
+  p.filtering.refine.strength = 10.f;
+  EXPECT_TRUE(validate(p).ok());
 }
 
 TEST(KernelParams, OptionalSigmasAcceptZeroAsDefault) {

@@ -1,7 +1,9 @@
 // Drives fqd's live viewer in real headless Chromium (Debian's /usr/bin/chromium through
 // playwright-core): waits for a frame, checks the canvas shows a coloured mesh (pixels),
 // that the frame count keeps rising, and saves a screenshot.
-//   node viewer_check.mjs URL STREAM SCREENSHOT.png [--measure SECONDS [--replay]]
+//   node viewer_check.mjs URL STREAM SCREENSHOT.png [--token TOKEN] [--measure SECONDS [--replay]]
+// --token: fqd has [http] token_file; the page must be refused (401) before the browser logs in
+// through /login?token=TOKEN, and work after it (its requests carry the login cookie).
 // --measure reports the display fps over SECONDS; with --replay the page redraws the latest
 // result as fast as it can (the viewer's own rate, not fqd's).
 // Prints one JSON line; exit 0 when every check passed, 1 otherwise.
@@ -14,7 +16,9 @@ const require = createRequire(path.join(here, '../../web/package.json'));
 const { chromium } = require('playwright-core');
 
 const [url, stream, screenshot, ...rest] = process.argv.slice(2);
-const measure = rest[0] === '--measure' ? Number(rest[1]) : 0;
+const option = (name) => (rest.includes(name) ? rest[rest.indexOf(name) + 1] : undefined);
+const measure = Number(option('--measure') || 0);
+const token = option('--token');
 const replay = rest.includes('--replay');
 const flags = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
   '--disable-background-networking', '--disable-component-update', '--disable-sync',
@@ -56,6 +60,12 @@ try {
   const logs = [];
   page.on('console', (m) => logs.push(m.text()));
   page.on('pageerror', (e) => logs.push(String(e)));
+  if (token) {
+    const before = await page.goto(`${url}/`);
+    if (before.status() !== 401) fail(result, `the viewer answered ${before.status()} before the login, not 401`);
+    const login = await page.goto(`${url}/login?token=${encodeURIComponent(token)}`);
+    if (!login.ok()) fail(result, `login answered ${login.status()}`);
+  }
   await page.goto(`${url}/?stream=${encodeURIComponent(stream)}${replay ? '&replay=1' : ''}`);
   try {
     await page.waitForFunction(() => window.fqViewer && window.fqViewer.frames >= 1, null, { timeout: 90000 });

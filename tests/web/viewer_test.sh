@@ -3,7 +3,8 @@
 # from web/) and fqpub on the bundled fandisk, once per result form (stream "fandisk" in the
 # default POSITIONS form, "fandisk_mesh" in the MESH form); viewer_check.mjs loads the page,
 # waits for a frame, checks the canvas and the rising frame count, and saves a screenshot; the
-# overlay must name the form shown.
+# overlay must name the form shown. fqd has a token (http.token_file): the page is refused until
+# the browser logs in at /login?token=..., then works on the cookie that sets.
 #   viewer_test.sh FQD FQPUB SOURCE_DIR OUT_DIR
 # Exit 77 (skipped) only when Chromium is absent.
 set -euo pipefail
@@ -25,10 +26,13 @@ cleanup() {
   rm -rf "$tmp"
 }
 trap cleanup EXIT
+token=$(od -An -tx1 -N16 /dev/urandom | tr -d ' \n')
+echo "$token" >"$tmp/token"
 { cat "$src/tests/daemon/child_fqd.toml"; cat <<TOML; } >"$tmp/fqd.toml"
 [http]
 listen = "127.0.0.1:0"
 web_root = "$src/web"
+token_file = "$tmp/token"
 [streams.fandisk_mesh.output]
 result_form = "mesh"
 TOML
@@ -45,7 +49,8 @@ pub=$!
 pub_mesh=$!
 check() {  # STREAM FORM SCREENSHOT
   local result
-  result=$(node "$src/tests/web/viewer_check.mjs" "$(field http)" "$1" "$3") || { echo "$result"; return 1; }
+  result=$(node "$src/tests/web/viewer_check.mjs" "$(field http)" "$1" "$3" --token "$token") ||
+    { echo "$result"; return 1; }
   echo "$result"
   [[ $result == *"$2 form"* ]] || { echo "FAIL: the overlay of stream $1 does not say \"$2 form\"" >&2; return 1; }
 }

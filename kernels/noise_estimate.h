@@ -1,0 +1,207 @@
+// The noise of a frame, estimated from the frame alone, written once for the CPU and the CUDA
+// engine (docs/ALGORITHM.md, "Noise estimate").
+//
+// At a sample of vertices, a quadratic height field h(u, v) = b0 + b1 u + b2 v + b3 u² + b4 uv + b5 v²
+// is fitted by least squares to the vertex's 2-ring (its neighbours and theirs, the vertex itself
+// left out), in the frame of the vertex's area-weighted normal. The fit follows any smooth surface
+// up to second order, so what is left of the vertex's own height, e = 0 − b0, is its noise along
+// the normal plus the detail a quadratic over two rings cannot follow. With Gaussian noise of
+// standard deviation σ along the normal, Var(e) = σ² (1 + λ), λ = [(XᵀX)⁻¹]₀₀ the leverage of the
+// prediction, so z = e / √(1 + λ) has standard deviation σ whatever the ring's shape.
+// Topological rings, not a ball in space: a ball also catches the other side of a thin part (a
+// limb, a skirt), which a height field cannot fit.
+//
+// Noise and detail are told apart by how neighbours' residuals correlate. Detail (the bumps of
+// a scanned surface, a capture's reconstruction relief) varies smoothly from a vertex to the
+// next, so neighbours' residuals correlate positively; noise is independent from vertex to
+// vertex, and each fit uses its neighbour's noise with a negative sign, so for pure noise the
+// correlation is a known negative number w, computed exactly from the two fits' weights. With
+// the measured correlation r and detail's own correlation d (kDetailCorrelation), the noise's
+// share of the residual variance is (d − r) / (d − w), clamped to [0, 1].
+// The frame's residual scale is robust: 1.4826 · median |z| over the samples (a crease or a
+// corner, where the quadratic fails, changes a few of them, not the median); the correlation is
+// measured on the pairs within 3.5 of that scale. σ̂ = scale · √share.
+//
+// Units are those of the engines' frame (mean edge = 1), so σ̂ is in mean edge lengths.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "kernels/hd.h"
+#include "kernels/refine_math.h"
+#include "kernels/vec3.h"
+
+namespace fq {
+
+/// Vertices sampled per frame: every ⌈n / kNoiseSamples⌉-th vertex of the grid order (spread
+/// over the whole surface). The median of 4096 samples is within about 2 % of the population's.
+constexpr uint32_t kNoiseSamples = 4096;
+/// Lag-one correlation of the residuals of a clean surface's detail: fitted with the filter's
+/// constants (kernels/refine_plan.h); the clean meshes measured 0.06 (fandisk, with its creases
+/// trimmed) to 0.28 (a capture frame), so 0.5 errs towards calling detail noise.
+constexpr float kDetailCorrelation = 0.35f;
+/// At most this many 2-ring neighbours enter a fit (a valence-6 mesh has 18).
+constexpr int kMaxRing = 48;
+/// Fewer neighbours than this leave too few degrees of freedom for six coefficients.
+constexpr int kMinRing = 9;
+
+FQ_HD uint32_t noise_sample_stride(uint32_t n) { return n > kNoiseSamples ? (n + kNoiseSamples - 1) / kNoiseSamples : 1; }
+FQ_HD uint32_t noise_sample_count(uint32_t n) { return n == 0 ? 0 : (n - 1) / noise_sample_stride(n) + 1; }
+
+namespace detail {
+
+FQ_HD int add_unique(uint32_t* ring, int count, uint32_t v) {
+  for (int k = 0; k < count; ++k)
+    if (ring[k] == v) return count;
+  if (count < kMaxRing) ring[count++] = v;
+  return count;
+}
+
+/// The vertices of v's incident triangles other than v, appended to ring (unique).
+FQ_HD int add_one_ring(const FanView& m, uint32_t v, uint32_t self, uint32_t* ring, int count) {
+  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
+    const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[k]);
+    for (int c = 0; c < 3; ++c)
+      if (tri[c] != self) count = add_unique(ring, count, tri[c]);
+  }
+  return count;
+}
+
+/// Solves the symmetric positive definite 6×6 system a x = b in place (Cholesky); false when
+/// a is not positive definite (a degenerate ring: collinear or coincident neighbours).
+FQ_HD bool solve6(double (&a)[6][6], double (&b)[6]) {
+  for (int j = 0; j < 6; ++j) {
+    double d = a[j][j];
+    for (int k = 0; k < j; ++k) d -= a[j][k] * a[j][k];
+    if (!(d > 1e-12)) return false;
+    a[j][j] = sqrt(d);
+    for (int i = j + 1; i < 6; ++i) {
+      double s = a[i][j];
+      for (int k = 0; k < j; ++k) s -= a[i][k] * a[j][k];
+      a[i][j] = s / a[j][j];
+    }
+  }
+  for (int i = 0; i < 6; ++i) {
+    double s = b[i];
+    for (int k = 0; k < i; ++k) s -= a[i][k] * b[k];
+    b[i] = s / a[i][i];
+  }
+  for (int i = 5; i >= 0; --i) {
+    double s = b[i];
+    for (int k = i + 1; k < 6; ++k) s -= a[k][i] * b[k];
+    b[i] = s / a[i][i];
+  }
+  return true;
+}
+
+}  // namespace detail
+
+/// A vertex's fit: its 2-ring, the weight of each ring vertex's height in the fitted height at
+/// the vertex (the intercept row of (XᵀX)⁻¹Xᵀ, so that b0 = Σ a_k h_k), the leverage λ and the
+/// standardized residual z.
+struct RingFit {
+  uint32_t ring[kMaxRing];
+  float weight[kMaxRing];
+  int count = 0;
+  float z = 0.f;
+  float leverage = 0.f;
+  bool ok = false;
+};
+
+/// Fits vertex v (see the top of this file); fit.ok is false where v has fewer than kMinRing
+/// 2-ring neighbours, no normal or a degenerate ring.
+FQ_HD void fit_ring(const FanView& m, const Vec3* x, uint32_t v, RingFit& fit) {
+  fit.ok = false;
+  int count = detail::add_one_ring(m, v, v, fit.ring, 0);
+  const int first = count;
+  for (int k = 0; k < first; ++k) count = detail::add_one_ring(m, fit.ring[k], v, fit.ring, count);
+  fit.count = count;
+  if (count < kMinRing) return;
+  const Vec3 p = x[v];
+  Vec3 n{0.f, 0.f, 0.f};
+  double edge = 0.0;
+  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
+    const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[k]);
+    n = n + cross(x[tri[1]] - x[tri[0]], x[tri[2]] - x[tri[0]]);
+  }
+  for (int k = 0; k < first; ++k) edge += std::sqrt(double(norm2(x[fit.ring[k]] - p)));
+  const float len = std::sqrt(norm2(n));
+  if (!(len > 0.f) || !(edge > 0.0)) return;
+  n = (1.0f / len) * n;
+  // A tangent frame: the axis least aligned with n, crossed with n.
+  const Vec3 axis = std::fabs(n.x) < 0.9f ? Vec3{1.f, 0.f, 0.f} : Vec3{0.f, 1.f, 0.f};
+  Vec3 t1 = cross(n, axis);
+  t1 = (1.0f / std::sqrt(norm2(t1))) * t1;
+  const Vec3 t2 = cross(n, t1);
+  const double inv_edge = first / edge;  // u, v in the vertex's own edge lengths: a well-scaled system
+  double a[6][6] = {}, y[6] = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  for (int k = 0; k < count; ++k) {
+    const Vec3 d = x[fit.ring[k]] - p;
+    const double u = dot(d, t1) * inv_edge, w = dot(d, t2) * inv_edge;
+    const double row[6] = {1.0, u, w, u * u, u * w, w * w};
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j <= i; ++j) a[i][j] += row[i] * row[j];
+  }
+  for (int i = 0; i < 6; ++i)
+    for (int j = i + 1; j < 6; ++j) a[i][j] = a[j][i];
+  if (!detail::solve6(a, y)) return;  // y = (XᵀX)⁻¹ e0
+  double b0 = 0.0;
+  for (int k = 0; k < count; ++k) {
+    const Vec3 d = x[fit.ring[k]] - p;
+    const double u = dot(d, t1) * inv_edge, w = dot(d, t2) * inv_edge;
+    const double ak = y[0] + y[1] * u + y[2] * w + y[3] * u * u + y[4] * u * w + y[5] * w * w;
+    fit.weight[k] = float(ak);
+    b0 += ak * dot(d, n);
+  }
+  fit.leverage = float(y[0] > 0.0 ? y[0] : 0.0);
+  fit.z = float(-b0 / sqrt(1.0 + fit.leverage));
+  fit.ok = true;
+}
+
+/// One sample of the estimate: the residuals of vertex v and of a neighbour (the first other
+/// corner of v's first triangle), and the correlation their residuals would have if the
+/// heights were white noise: with e_v = n_v − Σ a_vk n_k,
+///   Cov(e_v, e_u) / σ² = −a_v(u) − a_u(v) + Σ_k a_v(k) a_u(k).
+/// Surface detail that the quadratics cannot follow varies smoothly from one vertex to the
+/// next, so the residuals of neighbours correlate positively; noise makes them correlate
+/// negatively (each fit uses the other vertex's noise). NaN fields where a fit failed.
+struct NoiseSample {
+  float z_v, z_u, white_correlation;
+};
+
+FQ_HD NoiseSample noise_sample(const FanView& m, const Vec3* x, uint32_t v) {
+  NoiseSample s{NAN, NAN, NAN};
+  if (m.vf_offsets[v + 1] == m.vf_offsets[v]) return s;
+  const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[m.vf_offsets[v]]);
+  const uint32_t u = tri[0] != v ? tri[0] : tri[1];
+  RingFit fv, fu;
+  fit_ring(m, x, v, fv);
+  if (!fv.ok) return s;
+  s.z_v = fv.z;
+  fit_ring(m, x, u, fu);
+  if (!fu.ok) return s;
+  s.z_u = fu.z;
+  double c = 0.0;
+  for (int k = 0; k < fv.count; ++k) {
+    if (fv.ring[k] == u) c -= fv.weight[k];
+    for (int l = 0; l < fu.count; ++l)
+      if (fu.ring[l] == fv.ring[k]) c += double(fv.weight[k]) * fu.weight[l];
+  }
+  for (int l = 0; l < fu.count; ++l)
+    if (fu.ring[l] == v) c -= fu.weight[l];
+  s.white_correlation = float(c / sqrt((1.0 + fv.leverage) * (1.0 + fu.leverage)));
+  return s;
+}
+
+/// The estimate from the samples (host only; both engines bring their samples to the host).
+/// NaN fields of a sample are skipped; without a usable sample the estimate is 0.
+struct NoiseEstimate {
+  float residual = 0.f;    ///< 1.4826 × median |z_v|: noise and unfollowed detail together
+  float correlation = 0.f; ///< measured correlation of neighbours' residuals
+  float white = 0.f;       ///< the correlation white noise would give
+  float noise = 0.f;       ///< σ̂: the residual's white share
+};
+NoiseEstimate estimate_noise(const NoiseSample* samples, uint32_t count);
+
+}  // namespace fq

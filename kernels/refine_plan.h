@@ -1,0 +1,91 @@
+// The passes of one "qf+" frame, every strength a continuous function of the noise σ the frame is
+// filtered for (its estimate × strength, or the noise given; mean edge lengths). Host only: both
+// engines make the plan once per frame and run the same passes (kernels/refine_math.h).
+//
+// Why these functions (docs/ALGORITHM.md, "qf+: a filter that follows the noise"):
+// - Face normals of a frame with noise σ scatter by about 2σ radians (a corner moving σ along
+//   the normal tilts its triangle by σ over the triangle's height). The normal filter's range
+//   grows with σ; σ → 0 makes it 0: a clean frame's normals are their own filtered normals, and
+//   the vertex update then has nothing to move.
+// - More noise needs more averaging: normal passes grow linearly with σ, the vertex passes that
+//   realize the filtered normals too, and at heavy noise whole rounds (filter the normals of
+//   the updated surface again) are added, quadratically in σ.
+// - Counts are real numbers: the last pass of each kind counts only its fraction, so the result
+//   moves continuously with σ instead of jumping where a count would round.
+// - Tangential moves: isotropic noise displaces a vertex by 2σ² (squared, mean) within the
+//   tangent plane. The vertex update also slides vertices towards regular triangles; where the
+//   slide is larger than the noise explains (an irregular capture triangulation), it is cut back
+//   (refine_math.h, limited_position), so vertices do not drift along the surface (textures
+//   would swim).
+// The constants were fitted once on fandisk, bunny, crane frame 0 and armadillo (seed 1, noise
+// 0.05–0.5) against the best of Open3D's smoothers, and checked on the meshes, seeds and noise
+// levels of the quality matrix they were not fitted on (docs/QUALITY.md).
+#pragma once
+
+#include <cmath>
+
+#include "kernels/gaussian.h"
+#include "kernels/params.h"
+
+namespace fq {
+
+/// `count` passes of which the last counts only `last` (in (0, 1]) of its change.
+struct Passes {
+  int count;
+  float last;
+};
+
+/// x ≥ 0 passes: ⌈x⌉ of them, the last one counting x − ⌈x⌉ + 1.
+inline Passes passes_of(float x) {
+  if (!(x > 0.f)) return {0, 1.f};
+  const int count = static_cast<int>(std::ceil(x));
+  return {count, x - float(count - 1)};
+}
+
+struct RefinePlan {
+  float noise;                 ///< σ the strengths come from, in mean edge lengths
+  Passes rounds;               ///< normal filtering then vertex updates, this many times over
+  Passes normal_passes;        ///< per round
+  Passes vertex_passes;        ///< per round
+  Gaussian gs, gr;             ///< the normal filter's spatial and range kernels
+  float tangential_step;       ///< share of the move to the 1-ring mean per vertex update
+  float tangential_allowance;  ///< squared tangential move the noise explains (kTangentialAllowance σ²)
+};
+
+constexpr float kRoundsPerNoise2 = 16.f;       ///< rounds = 1 + 16σ²
+constexpr float kNormalPassesAtZero = 1.f;    ///< normal passes = 1 + 10σ
+constexpr float kNormalPassesPerNoise = 10.f;
+constexpr float kVertexPassesAtZero = 2.f;    ///< vertex passes = 2 + 15σ
+constexpr float kVertexPassesPerNoise = 15.f;
+constexpr float kRangeScale = 1.f;            ///< range σ_r = σ^0.3 (chord length |n_i − n_j|)
+constexpr float kRangeExponent = 0.3f;
+constexpr float kNormalSigmaS = 0.7f;          ///< spatial extent of the normal filter, mean edges
+constexpr float kTangentialStep = 0.1f;
+/// The share fades in linearly up to this noise: a clean frame has no triangles for it to
+/// repair, and at a corner whose fan is uneven it would move the vertex off the surface.
+constexpr float kShareFullFrom = 0.05f;
+/// Isotropic noise moves a vertex 2σ² (squared, mean) within its tangent plane; the slide that
+/// also repairs triangles the noise folded is allowed half as much again (3σ² measured better
+/// than 2σ² at heavy noise on the fitting meshes, the same at light noise).
+constexpr float kTangentialAllowance = 3.f;
+constexpr float kMinRange = 1e-4f;           ///< the range at σ = 0 (a Gaussian needs σ > 0)
+
+/// The plan for a frame whose estimated noise is `estimate` (mean edges; ignored when the
+/// parameters give the noise).
+inline RefinePlan plan_refinement(const RefineParams& r, float estimate) {
+  const float s = r.strength * (r.known_noise > 0.f ? r.known_noise : estimate);
+  const float range = s > 0.f ? kRangeScale * std::pow(s, kRangeExponent) : 0.f;
+  RefinePlan p;
+  p.noise = s;
+  p.rounds = passes_of(1.f + kRoundsPerNoise2 * s * s);
+  p.normal_passes = passes_of(kNormalPassesAtZero + kNormalPassesPerNoise * s);
+  p.vertex_passes = passes_of(kVertexPassesAtZero + kVertexPassesPerNoise * s);
+  p.gs = Gaussian::with_sigma(kNormalSigmaS);
+  // A clean frame (σ = 0) weights only normals within 1e-4 of the face's own: nothing moves.
+  p.gr = Gaussian::with_sigma(std::fmax(range, kMinRange));
+  p.tangential_step = kTangentialStep * std::fmin(1.f, s / kShareFullFrom);
+  p.tangential_allowance = kTangentialAllowance * s * s;
+  return p;
+}
+
+}  // namespace fq

@@ -1,0 +1,102 @@
+// The noise estimate (kernels/noise_estimate.h) on surfaces whose noise and detail are known:
+// a plane's residual is its noise, white noise correlates between neighbours as the fits'
+// weights predict, and smooth detail that a quadratic cannot follow is not taken for noise.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "kernels/noise_estimate.h"
+#include "tests/support/test_meshes.h"
+
+namespace fq {
+namespace {
+
+struct Frame {
+  std::vector<Vec3> x;
+  std::vector<uint32_t> tris, offsets, faces;
+  FanView view() const { return {tris.data(), offsets.data(), faces.data()}; }
+};
+
+// A plane grid of 1-unit edges, heights from `height(x, y)` plus white noise of `sigma` units.
+Frame grid_frame(int n, double sigma, double (*height)(double, double), uint32_t seed) {
+  const Mesh m = test::make_plane_grid(n, n, 1.f);
+  Frame f;
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  for (uint32_t v = 0; v < m.num_vertices(); ++v) {
+    const Vec3 p = test::vertex(m, v);
+    f.x.push_back({p.x, p.y, float(height(p.x, p.y) + (sigma > 0 ? noise(rng) : 0.0))});
+  }
+  f.tris = m.triangles;
+  f.offsets.assign(m.num_vertices() + 1, 0);
+  for (uint32_t v : f.tris) ++f.offsets[v + 1];
+  for (size_t i = 1; i < f.offsets.size(); ++i) f.offsets[i] += f.offsets[i - 1];
+  f.faces.resize(f.tris.size());
+  std::vector<uint32_t> cursor(f.offsets.begin(), f.offsets.end() - 1);
+  for (uint32_t t = 0; t < m.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) f.faces[cursor[f.tris[3 * t + k]]++] = t;
+  return f;
+}
+
+double flat(double, double) { return 0.0; }
+// Bumps 8 edges across, 0.3 edges high: smooth, but no quadratic over two rings follows them.
+double bumps(double x, double y) { return 0.3 * std::sin(2 * M_PI * x / 8) * std::sin(2 * M_PI * y / 8); }
+
+NoiseEstimate estimate(const Frame& f) {
+  const uint32_t n = static_cast<uint32_t>(f.x.size());
+  const uint32_t stride = noise_sample_stride(n), count = noise_sample_count(n);
+  std::vector<NoiseSample> s(count);
+  for (uint32_t k = 0; k < count; ++k) s[k] = noise_sample(f.view(), f.x.data(), k * stride);
+  return estimate_noise(s.data(), count);
+}
+
+TEST(KernelNoiseEstimate, AFlatPlanesResidualIsItsNoise) {
+  EXPECT_EQ(estimate(grid_frame(60, 0.0, flat, 1)).noise, 0.f);
+  for (double sigma : {0.02, 0.1, 0.3}) {
+    const NoiseEstimate e = estimate(grid_frame(80, sigma, flat, 2));
+    SCOPED_TRACE(sigma);
+    EXPECT_NEAR(e.residual, sigma, 0.1 * sigma);
+    EXPECT_NEAR(e.noise, sigma, 0.15 * sigma);
+  }
+}
+
+// For white noise the neighbours' residuals correlate as the weights say (a few percent of
+// sampling error over ~4000 pairs).
+TEST(KernelNoiseEstimate, WhiteNoiseCorrelatesAsTheWeightsPredict) {
+  const NoiseEstimate e = estimate(grid_frame(80, 0.1, flat, 3));
+  EXPECT_LT(e.white, -0.1f);
+  EXPECT_NEAR(e.correlation, e.white, 0.05f);
+}
+
+TEST(KernelNoiseEstimate, SmoothDetailIsNotTakenForNoise) {
+  const NoiseEstimate clean = estimate(grid_frame(80, 0.0, bumps, 4));
+  EXPECT_GT(clean.residual, 0.01f);  // the quadratics cannot follow the bumps...
+  EXPECT_GT(clean.correlation, kDetailCorrelation);  // ...but neighbours agree on them
+  EXPECT_EQ(clean.noise, 0.f);
+  const NoiseEstimate noisy = estimate(grid_frame(80, 0.1, bumps, 5));
+  EXPECT_NEAR(noisy.noise, 0.1, 0.025);
+  EXPECT_GT(noisy.residual, noisy.noise);
+}
+
+TEST(KernelNoiseEstimate, SamplesSpreadOverTheFrame) {
+  EXPECT_EQ(noise_sample_count(0), 0u);
+  EXPECT_EQ(noise_sample_count(10), 10u);
+  EXPECT_EQ(noise_sample_stride(kNoiseSamples), 1u);
+  EXPECT_EQ(noise_sample_stride(kNoiseSamples + 1), 2u);
+  const uint32_t n = 1000003;
+  EXPECT_LE(noise_sample_count(n), kNoiseSamples);
+  EXPECT_LT((noise_sample_count(n) - 1) * noise_sample_stride(n), n);
+}
+
+// A vertex with too few neighbours for six coefficients gives no sample, not garbage.
+TEST(KernelNoiseEstimate, TinyMeshesGiveNoSample) {
+  const Frame f = grid_frame(1, 0.0, flat, 6);  // 4 vertices
+  const NoiseSample s = noise_sample(f.view(), f.x.data(), 0);
+  EXPECT_TRUE(std::isnan(s.z_v));
+  EXPECT_EQ(estimate(f).noise, 0.f);
+}
+
+}  // namespace
+}  // namespace fq
