@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <iterator>
+#include <utility>
 
 namespace fq::daemon {
 
@@ -109,19 +110,28 @@ std::vector<std::string> StreamRegistry::list() const {
   return ids;
 }
 
-StreamSnapshot StreamRegistry::snapshot_of(const std::string& id, const Entry& e) const {
-  return {id, e.counters, e.metrics.summary(), e.metrics.histograms()};
-}
-
 bool StreamRegistry::snapshot(const std::string& stream_id, std::vector<StreamSnapshot>& out) const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (stream_id.empty()) {
-    for (const auto& [id, e] : streams_) out.push_back(snapshot_of(id, e));
-    return true;
+  // Stream by stream, the samples are copied under the lock and summarised outside it: the
+  // publisher takes this lock for every result, and the percentiles of many streams' windows
+  // take milliseconds. The lock is held for one stream's memory copy at a time.
+  const std::vector<std::string> ids = stream_id.empty() ? list() : std::vector<std::string>{stream_id};
+  SampleCopy samples;
+  for (const std::string& id : ids) {
+    StreamSnapshot snap{id, {}, {}, {}};
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      auto it = streams_.find(id);
+      if (it == streams_.end()) {
+        if (!stream_id.empty()) return false;
+        continue;  // expired since the list was taken
+      }
+      snap.counters = it->second.counters;
+      snap.histograms = it->second.metrics.histograms();
+      it->second.metrics.copy_samples(samples);
+    }
+    snap.stages = samples.summary();
+    out.push_back(std::move(snap));
   }
-  auto it = streams_.find(stream_id);
-  if (it == streams_.end()) return false;
-  out.push_back(snapshot_of(stream_id, it->second));
   return true;
 }
 
