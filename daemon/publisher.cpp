@@ -112,24 +112,30 @@ void Publisher::publish(FrameJob& f) {
 }
 
 void Publisher::account(const FrameJob& f, const wire::ResultHeader& h) {
-  StreamRegistry& r = p_.registry;
+  static const std::string kReceiveToPublish = "receive_to_publish";
+  static const std::string kSendToPublish = "send_to_publish";
+  // Gathered first, so the registry's lock is taken once for the whole result.
+  Counter counters[3];
+  size_t n = 0;
+  samples_.clear();
   if (h.status() == wire::ERROR) {
-    r.count(f.stream_id, Counter::kErrors);
-    return;
+    counters[n++] = Counter::kErrors;
+  } else {
+    counters[n++] = Counter::kOut;
+    if (h.status() == wire::LATE) counters[n++] = Counter::kLate;
+    for (const PassTiming& t : f.timings) samples_.push_back({&t.name, t.ms});
+    samples_.push_back({&kReceiveToPublish, h.latency_ms()});
+    if (h.send_time_ns() > 0) {
+      // The producer's clock: a time in the future or far in the past (a wrong clock, or a forged
+      // one) would drive the histograms' sums negative or off the scale; it is counted instead.
+      const double ms = ms_between(h.send_time_ns(), h.publish_time_ns());
+      if (ms >= 0 && ms <= kMaxSendToPublishMs)
+        samples_.push_back({&kSendToPublish, ms});
+      else
+        counters[n++] = Counter::kBadSendTime;
+    }
   }
-  r.count(f.stream_id, Counter::kOut);
-  if (h.status() == wire::LATE) r.count(f.stream_id, Counter::kLate);
-  for (const PassTiming& t : f.timings) r.record(f.stream_id, t.name, t.ms);
-  r.record(f.stream_id, "receive_to_publish", h.latency_ms());
-  if (h.send_time_ns() > 0) {
-    // The producer's clock: a time in the future or far in the past (a wrong clock, or a forged
-    // one) would drive the histograms' sums negative or off the scale; it is counted instead.
-    const double ms = ms_between(h.send_time_ns(), h.publish_time_ns());
-    if (ms >= 0 && ms <= kMaxSendToPublishMs)
-      r.record(f.stream_id, "send_to_publish", ms);
-    else
-      r.count(f.stream_id, Counter::kBadSendTime);
-  }
+  p_.registry.record_result(f.stream_id, std::span<const Counter>(counters, n), samples_);
 }
 
 }  // namespace fq::daemon

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 #include <zmq.hpp>
 
 #include "daemon/pipeline.h"
@@ -32,6 +33,7 @@ class Publisher {
   ResultSocket socket_;
   Pipeline& p_;
   std::map<std::string, Order> order_;
+  std::vector<StageSample> samples_;  // account()'s, reused from result to result
 };
 
 /// The ResultHeader of `f` as published at `publish_ns`.

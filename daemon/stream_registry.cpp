@@ -85,17 +85,31 @@ bool StreamRegistry::find(const std::string& stream_id, StreamSettings& out) con
   return true;
 }
 
+namespace {
+
+// The field of each Counter, in the enum's order.
+constexpr uint64_t StreamCounters::*kCounterFields[] = {
+    &StreamCounters::frames_in,     &StreamCounters::frames_out, &StreamCounters::superseded,
+    &StreamCounters::dropped_stale, &StreamCounters::late,       &StreamCounters::errors,
+    &StreamCounters::time_limited,  &StreamCounters::subscriber_overflows, &StreamCounters::bad_send_time};
+static_assert(std::size(kCounterFields) == static_cast<size_t>(Counter::kBadSendTime) + 1, "one field per Counter");
+
+uint64_t& field(StreamCounters& c, Counter which) { return c.*kCounterFields[static_cast<size_t>(which)]; }
+
+}  // namespace
+
 void StreamRegistry::count(const std::string& stream_id, Counter c, uint64_t n) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (Entry* e = existing(stream_id)) field(e->counters, c) += n;
+}
+
+void StreamRegistry::record_result(const std::string& stream_id, std::span<const Counter> counters,
+                                   std::span<const StageSample> samples) {
   std::lock_guard<std::mutex> lock(mutex_);
   Entry* e = existing(stream_id);
   if (!e) return;
-  // The field of each Counter, in the enum's order.
-  static constexpr uint64_t StreamCounters::*kFields[] = {
-      &StreamCounters::frames_in,     &StreamCounters::frames_out, &StreamCounters::superseded,
-      &StreamCounters::dropped_stale, &StreamCounters::late,       &StreamCounters::errors,
-      &StreamCounters::time_limited,  &StreamCounters::subscriber_overflows, &StreamCounters::bad_send_time};
-  static_assert(std::size(kFields) == static_cast<size_t>(Counter::kBadSendTime) + 1, "one field per Counter");
-  e->counters.*kFields[static_cast<size_t>(c)] += n;
+  for (const Counter c : counters) ++field(e->counters, c);
+  for (const StageSample& s : samples) e->metrics.add(*s.stage, s.ms);
 }
 
 void StreamRegistry::record(const std::string& stream_id, const std::string& stage, double ms) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <map>
 #include <mutex>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,12 @@ struct StreamSnapshot {
   std::map<std::string, LatencyHistogram> histograms;  ///< since start, by stage (for /metrics)
 };
 
+/// A stage's time in one result (the stage name lives as long as the call).
+struct StageSample {
+  const std::string* stage;
+  double ms;
+};
+
 class StreamRegistry {
  public:
   explicit StreamRegistry(const DaemonConfig& config);
@@ -79,6 +86,10 @@ class StreamRegistry {
 
   void count(const std::string& stream_id, Counter c, uint64_t n = 1);
   void record(const std::string& stream_id, const std::string& stage, double ms);
+  /// One published result at once: its counters and its stages' samples under one lock
+  /// (the publisher's; a result has a dozen of them).
+  void record_result(const std::string& stream_id, std::span<const Counter> counters,
+                     std::span<const StageSample> samples);
 
   std::vector<std::string> list() const;
   /// One stream (false when unknown) or, with an empty id, every stream.
@@ -98,7 +109,6 @@ class StreamRegistry {
   };
   Entry* entry(const std::string& stream_id);  // registers; null when full
   Entry* existing(const std::string& stream_id);  // null when unknown
-  StreamSnapshot snapshot_of(const std::string& id, const Entry& e) const;
 
   const StreamSettings& configured(const std::string& stream_id) const;
 

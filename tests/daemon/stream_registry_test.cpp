@@ -1,4 +1,4 @@
-// The registry's snapshots, without sockets.
+// The registry's per-result accounting and its snapshots, without sockets.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -8,6 +8,37 @@
 
 namespace fq::daemon {
 namespace {
+
+TEST(StreamRegistry, OneResultsCountersAndSamplesLandTogether) {
+  DaemonConfig c;
+  StreamRegistry r(c);
+  StreamSettings s;
+  ASSERT_TRUE(r.settings("cam0", s));
+  const std::string decode = "decode", total = "receive_to_publish";
+  const Counter late[] = {Counter::kOut, Counter::kLate};
+  const StageSample samples[] = {{&decode, 2.0}, {&total, 30.0}};
+  r.record_result("cam0", late, samples);
+  const Counter ok[] = {Counter::kOut};
+  const StageSample more[] = {{&decode, 4.0}, {&total, 10.0}};
+  r.record_result("cam0", ok, more);
+  r.record_result("unknown", ok, more);  // not registered: nothing is made for it
+
+  std::vector<StreamSnapshot> snaps;
+  ASSERT_TRUE(r.snapshot("", snaps));
+  ASSERT_EQ(snaps.size(), 1u);
+  const StreamSnapshot& snap = snaps[0];
+  EXPECT_EQ(snap.stream_id, "cam0");
+  EXPECT_EQ(snap.counters.frames_out, 2u);
+  EXPECT_EQ(snap.counters.late, 1u);
+  EXPECT_EQ(snap.counters.errors, 0u);
+  ASSERT_EQ(snap.stages.count("decode"), 1u);
+  EXPECT_EQ(snap.stages.at("decode").count, 2u);
+  EXPECT_EQ(snap.stages.at("decode").p50_ms, 2.0);
+  EXPECT_EQ(snap.stages.at("decode").p99_ms, 4.0);
+  EXPECT_EQ(snap.stages.at("receive_to_publish").p50_ms, 10.0);
+  EXPECT_EQ(snap.histograms.at("receive_to_publish").count(), 2u);
+  EXPECT_FALSE(r.snapshot("unknown", snaps));
+}
 
 TEST(StreamRegistry, SnapshotsOfOneAndOfAllStreamsAgree) {
   DaemonConfig c;
