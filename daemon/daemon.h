@@ -52,6 +52,9 @@ class Daemon : NonCopyable {
   /// The /metrics families about the service (service_metrics.h): refusals, budgets,
   /// engine busy time, queue depths, the process.
   std::string service_metrics() const;
+  /// Host CPU so far, by stage and of all of fqd's threads (fq_stage_cpu_seconds_total and
+  /// fq_cpu_seconds_total on /metrics).
+  CpuUsage cpu_usage() const;
 
  private:
   struct Sockets;  // made and bound by start(), then handed to their threads

@@ -135,6 +135,7 @@ void Pipeline::recycle(FrameJob& f) {
 
 void run_decode_worker(Pipeline& p) {
   while (auto item = p.decode_queue.pop()) {
+    const CpuScope cpu(p.stage_cpu[CpuStage::kDecode]);
     FramePtr f = std::move(*item);
     // Decoding a frame that is already too old would be wasted work under overload.
     if (is_stale(f->receive_ns, wall_ns(), f->settings.budget_ms)) {
@@ -170,6 +171,7 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
   int64_t last_frame_ns = wall_ns();
   bool holding = false;  // the engine keeps a frame's buffers
   while (p.slots.take(f, stale, std::chrono::seconds(1))) {
+    const CpuScope cpu(p.stage_cpu[CpuStage::kEngine]);
     // Idle as long as the pools: the engine's buffers (host or device) go back too.
     const auto idle_ns = static_cast<int64_t>(p.caps.get()->pool_idle_s * 1e9);
     if (!f && stale.empty() && holding && wall_ns() - last_frame_ns >= idle_ns) {
@@ -203,6 +205,7 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
 
 void run_encode_worker(Pipeline& p) {
   while (auto item = p.encode_queue.pop()) {
+    const CpuScope cpu(p.stage_cpu[CpuStage::kEncode]);
     FramePtr f = std::move(*item);
     const MeshView view{f->result.positions.data(), f->mesh.num_vertices(), f->mesh.triangles.data(),
                         f->mesh.num_triangles()};
@@ -224,6 +227,7 @@ void run_encode_worker(Pipeline& p) {
       for (size_t job = begin; job < end; ++job) {
         const auto t0 = std::chrono::steady_clock::now();
         if (job == 0) {
+          const CpuScope track_cpu(p.stage_cpu[CpuStage::kTrackIds]);
           tracked = guarded("track_ids", [&] {
             track_labels(*f, hardware_threads());
             return Status{};

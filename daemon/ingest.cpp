@@ -171,6 +171,8 @@ bool ingest_one(zmq::socket_t& socket, Pipeline& p, zmq::recv_flags flags, const
 void run_ingest(zmq::socket_t socket, Pipeline& p) {
   LogLimiter errors;
   for (;;) {
+    // Per message, so the account stays current; a blocked receive costs no CPU time.
+    const CpuScope cpu(p.stage_cpu[CpuStage::kIngest]);
     expire_idle_streams(p);
     try {
       ingest_one(socket, p, zmq::recv_flags::none);  // nothing after the receive timeout

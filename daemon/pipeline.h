@@ -17,6 +17,7 @@
 #include "daemon/live_caps.h"
 #include "daemon/log_limiter.h"
 #include "daemon/object_pool.h"
+#include "daemon/stage_cpu.h"
 #include "daemon/stream_admission.h"
 #include "daemon/stream_registry.h"
 #include "daemon/work_queue.h"
@@ -74,6 +75,7 @@ struct Pipeline {
   ObjectPool<Mesh> meshes;
   LatestResults latest;    ///< each watched stream's last result (HTTP viewer)
   EngineBusy engine_busy;  ///< time on frames per engine (/metrics)
+  StageCpu stage_cpu;      ///< host CPU per stage (/metrics, fqstreambench)
   /// Set when a stopping daemon's grace (caps.stop_grace_s) has passed: every engine run
   /// ends at its next check, and frames still waiting get an error result at once.
   std::atomic<bool> cancel_engines{false};

@@ -66,6 +66,7 @@ void Publisher::run() {
     // Wakes once a second without results to read the subscriptions that came in.
     bool idle = false;
     auto item = p_.publish_queue.pop_for(std::chrono::seconds(1), idle);
+    const CpuScope cpu(p_.stage_cpu[CpuStage::kPublish]);
     socket_.drain_subscriptions();
     if (item)
       accept(std::move(*item));

@@ -1,7 +1,11 @@
 #include "kernels/engine.h"
 
 #include <chrono>
+#include <thread>
+#include <utility>
 
+#include "common/pair_table.h"
+#include "kernels/copy_engine.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/fq_features.h"
 
@@ -31,12 +35,15 @@ bool valid_cuda_team(int team) {
          team == 16 || team == 32;
 }
 
+namespace {
+constexpr std::pair<EngineKind, const char*> kEngineKindNames[] = {
+    {EngineKind::kAuto, "auto"}, {EngineKind::kCpu, "cpu"}, {EngineKind::kCuda, "cuda"}, {EngineKind::kCopy, "copy"}};
+}  // namespace
+
 bool parse_engine_kind(const std::string& s, EngineKind& out) {
-  if (s == "auto") out = EngineKind::kAuto;
-  else if (s == "cpu") out = EngineKind::kCpu;
-  else if (s == "cuda") out = EngineKind::kCuda;
-  else return false;
-  return true;
+  const std::optional<EngineKind> k = first_of(kEngineKindNames, s);
+  if (k) out = *k;
+  return k.has_value();
 }
 
 void Engine::follow_stream_history(const MeshView& mesh, const Params& params, FrameResult& out, int threads) {
@@ -53,8 +60,11 @@ void Engine::follow_stream_history(const MeshView& mesh, const Params& params, F
       {"temporal", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()});
 }
 
+const char* engine_kind_name(EngineKind kind) { return second_of(kEngineKindNames, kind).value_or("auto"); }
+
 StatusOr<std::unique_ptr<Engine>> make_engine(const EngineOptions& options) {
   if (options.kind == EngineKind::kCpu) return std::make_unique<CpuEngine>(options.threads);
+  if (options.kind == EngineKind::kCopy) return std::make_unique<CopyEngine>();
 #if FQ_WITH_CUDA
   Status s;
   if (auto e = make_cuda_engine(options.device, &s, options.cuda)) return e;

@@ -122,7 +122,9 @@ class Engine {
   ClusterRuns cluster_runs_;
 };
 
-enum class EngineKind { kAuto, kCpu, kCuda };
+/// kCopy: the copy engine (copy_engine.h), which returns its input, for measuring the host
+/// path around an engine.
+enum class EngineKind { kAuto, kCpu, kCuda, kCopy };
 
 /// Kernel choices of the CUDA engine (docs/BENCHMARKS.md has the measurements behind the
 /// defaults). Fixed for an engine's lifetime.
@@ -147,8 +149,10 @@ struct EngineOptions {
 /// True for the team values CudaTuning accepts.
 bool valid_cuda_team(int team);
 
-/// Parses "auto" | "cpu" | "cuda".
+/// Parses "auto" | "cpu" | "cuda" | "copy".
 bool parse_engine_kind(const std::string& s, EngineKind& out);
+/// "auto", "cpu", "cuda" or "copy".
+const char* engine_kind_name(EngineKind kind);
 
 /// CUDA when asked for or (auto) when a device is present, the CPU engine otherwise.
 /// kUnavailable (with the reason) when an explicitly requested engine is not present.
