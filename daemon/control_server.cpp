@@ -86,6 +86,8 @@ wire::ControlReply get_counters(const wire::GetCounters& q, StreamRegistry& regi
     c->set_time_limited(s.counters.time_limited);
     c->set_subscriber_overflows(s.counters.subscriber_overflows);
     c->set_bad_send_time(s.counters.bad_send_time);
+    c->set_untracked(s.counters.untracked);
+    c->set_preempted(s.counters.preempted);
     for (const auto& [name, pc] : s.stages) {
       wire::StagePercentiles* sp = c->add_stages();
       sp->set_name(name);

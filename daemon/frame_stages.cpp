@@ -100,6 +100,7 @@ Status run_engine(Pipeline& p, Engine& engine, FrameJob& f) {
   const auto deadline = limit_s > 0 ? CancelToken::Clock::now() + std::chrono::duration_cast<CancelToken::Clock::duration>(
                                                                        std::chrono::duration<double>(limit_s))
                                     : CancelToken::Clock::time_point::max();
+  f.deadline = deadline;
   const CancelToken token(&p.cancel_engines, deadline);
   engine.set_cancel_token(&token);
   const Status s = guarded("engine", [&] { return engine.process(f.mesh.view(), f.settings.params, f.result); });
@@ -218,8 +219,18 @@ void run_encode_worker(Pipeline& p) {
       for (size_t job = begin; job < end; ++job) {
         const auto t0 = std::chrono::steady_clock::now();
         if (job == 0) {
+          // Under the frame's own time limit and the stop: a frame whose tracking is cut is
+          // published with the engine's numbering (its clusters are right, their ids are not
+          // the previous frame's), counted `untracked`, rather than lost.
+          const CancelToken token(&p.cancel_engines, f->deadline);
           tracked = guarded("track_ids", [&] {
-            p.label_tracks.apply(*f, hardware_threads());
+            if (Status cut = p.label_tracks.apply(*f, hardware_threads(), token); !cut.ok()) {
+              p.registry.count(f->stream_id, Counter::kUntracked);
+              p.fail_log.log(spdlog::level::warn, "stream '{}' frame {}: published with untracked cluster ids: {}",
+                             f->stream_id, f->header.sequence(),
+                             token.stopped() ? std::string("fqd is stopping")
+                                             : "tracking passed caps.engine_time_limit_s");
+            }
             return Status{};
           });
           track_ms = ms_since(t0);

@@ -9,7 +9,7 @@ LabelTracks::Track& LabelTracks::track_of(const std::string& stream_id) {
   return *t;
 }
 
-void LabelTracks::apply(FrameJob& f, int threads) {
+Status LabelTracks::apply(FrameJob& f, int threads, const CancelToken& token) {
   FrameResult& r = f.result;
   f.distinct_clusters = r.num_clusters;
   Track& t = track_of(f.stream_id);
@@ -17,7 +17,7 @@ void LabelTracks::apply(FrameJob& f, int threads) {
   const ClusterParams& c = f.settings.params.clustering;
   if (!f.settings.params.cluster || !c.track_ids || r.labels.empty()) {
     t.tracker.reset();
-    return;
+    return {};
   }
   // Frames of one stream may finish out of order on several engines: each is matched with
   // the frame tracked just before it, which is at worst a frame or two older.
@@ -28,7 +28,8 @@ void LabelTracks::apply(FrameJob& f, int threads) {
   o.triangles = f.mesh.triangles.data();
   o.num_triangles = f.mesh.num_triangles();
   o.sticky_rings = static_cast<int>(c.sticky_rings);
-  r.num_clusters = t.tracker.track(r.positions.data(), f.mesh.num_vertices(), r.labels, r.num_clusters, o);
+  return t.tracker.track_until(token, r.positions.data(), f.mesh.num_vertices(), r.labels, r.num_clusters, o,
+                               r.num_clusters);
 }
 
 }  // namespace fq::daemon

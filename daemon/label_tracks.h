@@ -18,7 +18,9 @@ class LabelTracks {
   /// For a clustered frame of a stream with track_ids on: replaces the labels by the
   /// stream's stable ids and result.num_clusters by their bound (f.distinct_clusters keeps
   /// the count). Otherwise forgets the stream's previous frame, so tracking restarts cleanly.
-  void apply(FrameJob& f, int threads);
+  /// kCancelled when `token` expired first: the frame keeps the engine's numbering and the
+  /// stream's next frame is matched with the last one tracked.
+  Status apply(FrameJob& f, int threads, const CancelToken& token);
 
  private:
   struct Track {

@@ -40,6 +40,14 @@ constexpr CounterFamily kCounters[] = {
     {"fq_bad_send_time_total",
      "Results whose producer send time was over an hour before publish or after it (left out of send_to_publish).",
      &StreamCounters::bad_send_time},
+    {"fq_untracked_total",
+     "Results published with the engine's cluster numbering because id tracking passed the time limit or fqd was "
+     "stopping.",
+     &StreamCounters::untracked},
+    {"fq_preempted_total",
+     "Frames stopped on the engine so that a stream within its share of engine time was served (also in "
+     "fq_errors_total).",
+     &StreamCounters::preempted},
 };
 
 void histograms(std::string& out, const std::vector<StreamSnapshot>& streams) {

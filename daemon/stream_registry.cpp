@@ -92,8 +92,9 @@ void StreamRegistry::count(const std::string& stream_id, Counter c, uint64_t n) 
   static constexpr uint64_t StreamCounters::*kFields[] = {
       &StreamCounters::frames_in,     &StreamCounters::frames_out, &StreamCounters::superseded,
       &StreamCounters::dropped_stale, &StreamCounters::late,       &StreamCounters::errors,
-      &StreamCounters::time_limited,  &StreamCounters::subscriber_overflows, &StreamCounters::bad_send_time};
-  static_assert(std::size(kFields) == static_cast<size_t>(Counter::kBadSendTime) + 1, "one field per Counter");
+      &StreamCounters::time_limited,  &StreamCounters::subscriber_overflows, &StreamCounters::bad_send_time,
+      &StreamCounters::untracked,     &StreamCounters::preempted};
+  static_assert(std::size(kFields) == static_cast<size_t>(Counter::kPreempted) + 1, "one field per Counter");
   e->counters.*kFields[static_cast<size_t>(c)] += n;
 }
 

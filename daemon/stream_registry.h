@@ -34,6 +34,12 @@ struct StreamCounters {
   /// wrong or forged clock): their send_to_publish is left out of the metrics, not folded
   /// into the histograms. Not part of the sum above.
   uint64_t bad_send_time = 0;
+  /// Results published with the engine's cluster numbering because id tracking was cut by
+  /// the frame's time limit or the stop (also in frames_out).
+  uint64_t untracked = 0;
+  /// Frames stopped on the engine to serve a stream within its share of engine time (also in
+  /// errors; see latency_policy.h).
+  uint64_t preempted = 0;
 };
 
 enum class Counter {
@@ -45,7 +51,9 @@ enum class Counter {
   kErrors,
   kTimeLimited,
   kSubscriberOverflows,
-  kBadSendTime
+  kBadSendTime,
+  kUntracked,
+  kPreempted
 };
 
 struct StreamSnapshot {
