@@ -204,6 +204,7 @@ Status Daemon::start() {
       });
   for (int i = 0; i < config_.encode_threads; ++i)
     encoders_.emplace_back([this] { run_encode_worker(pipeline_); });
+  pipeline_.slots.set_engines(static_cast<int>(engines_.size()));
   for (auto& e : engines_)
     workers_.emplace_back([this, eng = e.get()] { run_engine_worker(pipeline_, *eng); });
   for (int i = 0; i < config_.decode_threads; ++i)

@@ -1,6 +1,26 @@
 #include "daemon/latency_policy.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 namespace fq::daemon {
+
+namespace {
+
+int64_t steady_ns() { return CancelToken::Clock::now().time_since_epoch().count(); }
+
+constexpr double kWindowNs = FrameSlots::kShareWindowS * 1e9;
+
+}  // namespace
+
+double FrameSlots::usage_at(Stream& s, int64_t now_ns) {
+  if (now_ns > s.usage_ns) {
+    s.usage_s *= std::exp(-double(now_ns - s.usage_ns) / kWindowNs);
+    s.usage_ns = now_ns;
+  }
+  return s.usage_s;
+}
 
 FramePtr FrameSlots::offer(FramePtr frame) {
   FramePtr loser;
@@ -14,30 +34,47 @@ FramePtr FrameSlots::offer(FramePtr frame) {
     else
       ++waiting_;
     s.waiting = std::move(frame);
+    s.offered_ns = steady_ns();
+    review_runs(s.offered_ns);
   }
   ready_.notify_one();
   return loser;
 }
 
-bool FrameSlots::take(FramePtr& out, std::vector<FramePtr>& stale, std::chrono::milliseconds wait) {
+bool FrameSlots::take(FramePtr& out, std::vector<FramePtr>& stale, std::chrono::milliseconds wait,
+                      YieldRequest* yield) {
   std::unique_lock<std::mutex> lock(mutex_);
   const auto ready = [&] { return closed_ || waiting_ > 0; };
-  if (wait == std::chrono::milliseconds::max())
+  ++idle_takers_;
+  if (wait == std::chrono::milliseconds::max()) {
     ready_.wait(lock, ready);
-  else if (!ready_.wait_for(lock, wait, ready))
+  } else if (!ready_.wait_for(lock, wait, ready)) {
+    --idle_takers_;
     return true;  // nothing came: the caller does its idle work
+  }
+  --idle_takers_;
   if (waiting_ == 0) return false;
+  const int64_t now = steady_ns();
   while (waiting_ > 0) {
-    // Round robin: the stream served least recently goes first (oldest frame among equals).
-    // Oldest-frame-first alone starves a stream under overload: when its waiting frame is
-    // superseded while the engine is busy, the replacement is always younger than the other
-    // stream's, which then wins every time.
+    // Least recent engine time first; among equals the stream served least recently (round
+    // robin), then the oldest frame. Oldest-frame-first alone starves a stream under overload:
+    // when its waiting frame is superseded while the engine is busy, the replacement is always
+    // younger than the other stream's, which then wins every time. Round robin by frames alone
+    // let a stream whose frames take seconds hold the engine against one whose frames take
+    // milliseconds.
     Stream* best = nullptr;
+    const char* best_id = nullptr;
+    double best_usage = 0;
     for (auto& [id, s] : streams_) {
       if (!s.waiting) continue;
-      if (!best || s.served < best->served ||
-          (s.served == best->served && s.waiting->receive_ns < best->waiting->receive_ns))
+      const double u = usage_at(s, now);
+      if (!best || u < best_usage ||
+          (u == best_usage && (s.served < best->served || (s.served == best->served &&
+                                                           s.waiting->receive_ns < best->waiting->receive_ns)))) {
         best = &s;
+        best_id = id.c_str();
+        best_usage = u;
+      }
     }
     best->served = ++served_;
     FramePtr f = std::move(best->waiting);
@@ -50,10 +87,80 @@ bool FrameSlots::take(FramePtr& out, std::vector<FramePtr>& stale, std::chrono::
     }
     f->ticket = best->next_ticket++;
     f->ticketed = true;
+    if (yield != nullptr) {
+      yield->requested.store(false);
+      runs_.push_back({best_id, yield, now, best_usage});
+    }
     out = std::move(f);
+    review_runs(now);
     return true;
   }
   return true;  // only stale frames this time
+}
+
+void FrameSlots::finish(YieldRequest* yield, double seconds) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto run = std::find_if(runs_.begin(), runs_.end(), [&](const Run& r) { return r.yield == yield; });
+  if (run == runs_.end()) return;
+  const auto s = streams_.find(run->stream_id);
+  if (s != streams_.end()) {
+    usage_at(s->second, steady_ns());
+    s->second.usage_s += seconds;
+  }
+  runs_.erase(run);
+}
+
+void FrameSlots::charge(const std::string& stream_id, double seconds) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto s = streams_.find(stream_id);
+  if (s == streams_.end()) return;
+  usage_at(s->second, steady_ns());
+  s->second.usage_s += seconds;
+}
+
+void FrameSlots::set_engines(int engines) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  engines_ = std::max(1, engines);
+}
+
+void FrameSlots::review_runs(int64_t now_ns) {
+  if (runs_.empty()) return;
+  // The waiting stream of least usage, and how many streams are active.
+  const std::string* waiting_id = nullptr;
+  double waiting_usage = 0;
+  int active = 0;
+  for (auto& [id, s] : streams_) {
+    const bool running = std::any_of(runs_.begin(), runs_.end(), [&](const Run& r) { return r.stream_id == id; });
+    if (running || s.waiting || (s.offered_ns != 0 && double(now_ns - s.offered_ns) < kWindowNs)) ++active;
+    if (!s.waiting) continue;
+    const double u = usage_at(s, now_ns);
+    if (!waiting_id || u < waiting_usage) {
+      waiting_id = &id;
+      waiting_usage = u;
+    }
+  }
+  const double share = kShareWindowS * engines_ / std::max(1, active);
+  // The run to stop, if any: the one whose stream had used most when it started.
+  Run* to_stop = nullptr;
+  if (idle_takers_ == 0 && waiting_id != nullptr && waiting_usage < 0.5 * share) {
+    for (Run& r : runs_) {
+      if (r.stream_id == *waiting_id) continue;
+      if (!to_stop || r.usage_at_start_s > to_stop->usage_at_start_s) to_stop = &r;
+    }
+  }
+  for (Run& r : runs_) {
+    if (&r != to_stop) {
+      r.yield->requested.store(false);
+      continue;
+    }
+    // Due once the stream's usage with this run's time passes its share, or, after a slice,
+    // twice the waiting stream's usage and a slice.
+    const double over_share_s = std::max(0.0, share - r.usage_at_start_s);
+    const double over_waiting_s = std::max(kSliceS, 2.0 * waiting_usage + kSliceS - r.usage_at_start_s);
+    const double after_s = std::min(over_share_s, over_waiting_s);
+    r.yield->after_ns.store(r.start_ns + static_cast<int64_t>(after_s * 1e9));
+    r.yield->requested.store(true);
+  }
 }
 
 void FrameSlots::close() {
