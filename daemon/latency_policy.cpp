@@ -106,6 +106,8 @@ void FrameSlots::finish(YieldRequest* yield, double seconds) {
   if (s != streams_.end()) {
     usage_at(s->second, steady_ns());
     s->second.usage_s += seconds;
+    double& cost = s->second.cost_s;
+    cost = cost > 0 ? 0.7 * cost + 0.3 * seconds : seconds;
   }
   runs_.erase(run);
 }
@@ -127,7 +129,7 @@ void FrameSlots::review_runs(int64_t now_ns) {
   if (runs_.empty()) return;
   // The waiting stream of least usage, and how many streams are active.
   const std::string* waiting_id = nullptr;
-  double waiting_usage = 0;
+  double waiting_usage = 0, waiting_cost = 0;
   int active = 0;
   for (auto& [id, s] : streams_) {
     const bool running = std::any_of(runs_.begin(), runs_.end(), [&](const Run& r) { return r.stream_id == id; });
@@ -137,6 +139,7 @@ void FrameSlots::review_runs(int64_t now_ns) {
     if (!waiting_id || u < waiting_usage) {
       waiting_id = &id;
       waiting_usage = u;
+      waiting_cost = s.cost_s;
     }
   }
   const double share = kShareWindowS * engines_ / std::max(1, active);
@@ -153,11 +156,10 @@ void FrameSlots::review_runs(int64_t now_ns) {
       r.yield->requested.store(false);
       continue;
     }
-    // Due once the stream's usage with this run's time passes its share, or, after a slice,
-    // twice the waiting stream's usage and a slice.
-    const double over_share_s = std::max(0.0, share - r.usage_at_start_s);
-    const double over_waiting_s = std::max(kSliceS, 2.0 * waiting_usage + kSliceS - r.usage_at_start_s);
-    const double after_s = std::min(over_share_s, over_waiting_s);
+    // Due after a slice and four of the waiting stream's frames, once the stream's usage with
+    // this run's time passes twice the waiting stream's and a slice.
+    const double frames_s = waiting_cost > 0 ? 4.0 * waiting_cost : kColdSliceS;
+    const double after_s = std::max({kSliceS, frames_s, 2.0 * waiting_usage + kSliceS - r.usage_at_start_s});
     r.yield->after_ns.store(r.start_ns + static_cast<int64_t>(after_s * 1e9));
     r.yield->requested.store(true);
   }

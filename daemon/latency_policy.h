@@ -11,10 +11,11 @@
 // more a stream whose frames run for seconds would still hold the engine while a light stream's
 // frames were superseded behind it (one waiting slot); so a frame on an engine is stopped (error
 // result, counted `preempted`) when no engine is free, a stream under half its share is waiting,
-// and the running frame's stream, with this frame's time so far, has used either more than its
-// share, or (once the frame has run kSliceS) more than twice the waiting stream's usage plus
-// kSliceS. A lone stream is never stopped (nobody waits); streams of like cost do not stop each
-// other while their frames are short beside kShareWindowS (none falls under half its share).
+// the frame has run kSliceS and four of the waiting stream's frames (its moving average of
+// engine time; kColdSliceS while none of its frames has run), and its stream, with this
+// frame's time so far, has used more than twice the waiting stream's usage plus kSliceS.
+// Frames of like cost do not stop each other (a frame runs four of the other's frames), and a
+// lone stream is never stopped (nobody waits).
 #pragma once
 
 #include <chrono>
@@ -64,6 +65,7 @@ class FrameSlots {
 
   static constexpr double kShareWindowS = 6.0;
   static constexpr double kSliceS = 0.1;
+  static constexpr double kColdSliceS = 1.0;
 
   /// Wakes every waiting worker; waiting frames are still handed out.
   void close();
@@ -84,6 +86,7 @@ class FrameSlots {
     double usage_s = 0;   ///< recent engine time, decayed to usage_ns
     int64_t usage_ns = 0;
     int64_t offered_ns = 0;  ///< last frame offered (steady clock); 0 = never
+    double cost_s = 0;       ///< engine time of its frames (moving average); 0 = none seen yet
   };
   /// A frame on an engine, taken with a YieldRequest.
   struct Run {

@@ -49,10 +49,12 @@ TEST(FrameSlots, TheStreamOfLeastEngineTimeGoesFirstAndAHogYieldsToALightStream)
   slots.finish(&run, 2.0);
   ASSERT_EQ(slots.offer(frame("hog", 1, now)), nullptr);
   ASSERT_EQ(slots.offer(frame("light", 2, now)), nullptr);
-  ASSERT_TRUE(slots.take(out, stale));
+  YieldRequest light_run;
+  ASSERT_TRUE(slots.take(out, stale, std::chrono::milliseconds::max(), &light_run));
   EXPECT_EQ(out->stream_id, "light");
   ASSERT_TRUE(slots.take(out, stale, std::chrono::milliseconds::max(), &run));
   EXPECT_EQ(out->stream_id, "hog");
+  slots.finish(&light_run, 0.01);
   EXPECT_FALSE(run.requested) << "nobody waits";
   // The light stream's next frame, with the one engine busy on the hog: the hog's run is asked
   // to yield after a slice (it is over twice the light stream's usage plus a slice).
@@ -71,9 +73,19 @@ TEST(FrameSlots, TheStreamOfLeastEngineTimeGoesFirstAndAHogYieldsToALightStream)
   ASSERT_TRUE(even.take(out, stale, std::chrono::milliseconds::max(), &a_run));
   even.charge("a", 1.0);
   ASSERT_EQ(even.offer(frame("b", 2, now)), nullptr);
-  // a may run on until it has used twice b's time and a slice: 2.1 s, not at once.
+  // a may run on for four of b's frames (4 s), not at once.
   const int64_t due_in_ns = a_run.after_ns - CancelToken::Clock::now().time_since_epoch().count();
-  EXPECT_TRUE(!a_run.requested || due_in_ns > 1'500'000'000) << due_in_ns;
+  EXPECT_TRUE(!a_run.requested || due_in_ns > 3'000'000'000) << due_in_ns;
+  // A waiting stream whose frames were never seen to cost (streams that start together) lets
+  // a run go on for a second.
+  FrameSlots cold;
+  YieldRequest c_run;
+  ASSERT_EQ(cold.offer(frame("c", 0, now)), nullptr);
+  ASSERT_TRUE(cold.take(out, stale, std::chrono::milliseconds::max(), &c_run));
+  cold.charge("c", 5.0);
+  ASSERT_EQ(cold.offer(frame("d", 1, now)), nullptr);
+  EXPECT_TRUE(!c_run.requested ||
+              c_run.after_ns - CancelToken::Clock::now().time_since_epoch().count() > 900'000'000);
 }
 
 TEST(FrameSlots, AnOlderFrameDecodedLateLosesToTheNewerOne) {
