@@ -1,5 +1,6 @@
 # Install rules: the tools, the libraries with their headers, a CMake package (find_package(fq)
-# gives fq::kernels, fq::meshio, fq::eval, fq::proto, with fq::common under them) and a pkg-config file (fq.pc).
+# gives fq::kernels, fq::io, fq::eval, fq::wire, with fq::core and fq::common under them) and
+# pkg-config files (fq.pc: everything; fq-wire.pc: the wire format alone, without the engines).
 #
 # Headers go to <prefix>/include/fq/<folder>/, so the installed targets carry include/fq (the
 # root-relative "kernels/engine.h" of the source tree keeps working) and include (for
@@ -14,7 +15,7 @@ target_include_directories(fq_options INTERFACE
   "$<INSTALL_INTERFACE:${FQ_INSTALL_INCLUDEDIR}>"
   "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
 
-set(fq_installed_libraries fq_common fq_kernels fq_eval fq_meshio fq_proto)
+set(fq_installed_libraries fq_common fq_core fq_kernels fq_eval fq_io fq_wire)
 foreach(lib ${fq_installed_libraries})
   string(REPLACE "fq_" "" short "${lib}")
   set_target_properties(${lib} PROPERTIES EXPORT_NAME ${short})
@@ -27,7 +28,7 @@ install(TARGETS fq_options ${fq_installed_libraries} EXPORT fqTargets
 install(TARGETS ${FQ_TOOLS} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
 # Public headers, folder by folder (kernels/cuda/ holds device code only and stays private).
-foreach(folder common kernels eval proto)
+foreach(folder common core kernels eval io wire)
   install(DIRECTORY "${PROJECT_SOURCE_DIR}/${folder}/" DESTINATION "${FQ_INSTALL_INCLUDEDIR}/${folder}"
     FILES_MATCHING PATTERN "*.h" PATTERN "cuda" EXCLUDE)
 endforeach()
@@ -59,5 +60,7 @@ if(FQ_WITH_CUDA)
 endif()
 file(RELATIVE_PATH FQ_PC_TO_PREFIX "/p/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/p")
 configure_file(cmake/fq.pc.in "${PROJECT_BINARY_DIR}/fq.pc" @ONLY)
-install(FILES "${PROJECT_BINARY_DIR}/fq.pc" DESTINATION "${CMAKE_INSTALL_LIBDIR}/pkgconfig")
+configure_file(cmake/fq-wire.pc.in "${PROJECT_BINARY_DIR}/fq-wire.pc" @ONLY)
+install(FILES "${PROJECT_BINARY_DIR}/fq.pc" "${PROJECT_BINARY_DIR}/fq-wire.pc"
+  DESTINATION "${CMAKE_INSTALL_LIBDIR}/pkgconfig")
 install(FILES "${PROJECT_SOURCE_DIR}/LICENSE" DESTINATION "${CMAKE_INSTALL_DATAROOTDIR}/doc/fq")

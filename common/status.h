@@ -13,10 +13,12 @@ enum class StatusCode {
   kUnavailable,      ///< a requested engine or device is not present
   kInternal,         ///< a fault caught at the frame boundary (e.g. a CUDA error)
   kIoError,          ///< a file that cannot be found, opened, read or written
-  kCancelled,        ///< work stopped by its time limit or a shutdown (kernels/cancel_token.h)
+  kCancelled,        ///< work stopped by its time limit or a shutdown (core/cancel_token.h)
 };
 
-class Status {
+/// [[nodiscard]]: a dropped Status is a dropped error, so the compiler names every call that
+/// ignores one; `(void)` marks the few that mean to (a fuzzer that only looks for crashes).
+class [[nodiscard]] Status {
  public:
   Status() = default;
   Status(StatusCode code, std::string message) : code_(code), message_(std::move(message)) {}

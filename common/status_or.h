@@ -11,7 +11,7 @@
 namespace fq {
 
 template <typename T>
-class StatusOr {
+class [[nodiscard]] StatusOr {
  public:
   /// An error. An ok status carries no value, so it becomes an internal error rather than
   /// a StatusOr whose value() would be missing.

@@ -1,9 +1,13 @@
 #include "common/thread_pool.h"
 
+#include <pthread.h>
+
 #include <algorithm>
 #include <atomic>
 #include <exception>
 #include <system_error>
+
+#include "common/thread_cpu.h"
 
 namespace fq {
 
@@ -14,6 +18,7 @@ struct ThreadPool::Job {
   void* ctx;
   size_t count, grain;
   size_t max_workers;
+  CpuAccount* account;  ///< the caller's CpuScope: pool threads charge their share to it
   std::atomic<size_t> next{0};
   size_t joined = 1;  ///< worker ids handed out (the caller is 0); under the pool mutex
   size_t inside = 0;  ///< workers working on it; under the pool mutex
@@ -62,7 +67,7 @@ void ThreadPool::run_ranges(size_t count, int max_workers, size_t grain, RangeFn
     fn(ctx, 0, count, 0);
     return;
   }
-  Job job{fn, ctx, count, grain, workers};
+  Job job{fn, ctx, count, grain, workers, CpuScope::current()};
   {
     std::lock_guard lock(mutex_);
     jobs_.push_back(&job);
@@ -82,6 +87,7 @@ void ThreadPool::run_ranges(size_t count, int max_workers, size_t grain, RangeFn
 }
 
 void ThreadPool::worker_loop() {
+  pthread_setname_np(pthread_self(), "fq-pool");  // perf and top -H show whose threads these are
   std::unique_lock lock(mutex_);
   for (;;) {
     work_.wait(lock, [&] { return stop_ || !jobs_.empty(); });
@@ -95,7 +101,12 @@ void ThreadPool::worker_loop() {
     if (job->joined == job->max_workers) jobs_.pop_front();
     ++job->inside;
     lock.unlock();
-    job->work(worker);
+    if (job->account != nullptr) {
+      const CpuScope scope(*job->account);
+      job->work(worker);
+    } else {
+      job->work(worker);
+    }
     lock.lock();
     if (--job->inside == 0) done_.notify_all();
   }

@@ -16,8 +16,8 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
   app.add_option("--log-format", out.log_format, "text (default) or json: one JSON object a line, for log collectors")
       ->check(CLI::IsMember({"text", "json"}));
-  app.add_option("--engine", out.engine, "override engine.kind: auto, cuda or cpu")
-      ->check(CLI::IsMember({"auto", "cuda", "cpu"}));
+  app.add_option("--engine", out.engine, "override engine.kind: auto, cuda, cpu or copy (returns its input: measures the host path)")
+      ->check(CLI::IsMember({"auto", "cuda", "cpu", "copy"}));
   app.add_option("--http-listen", out.http_listen,
                  "override http.listen: HOST:PORT (port 0: any free port), or \"\" for no HTTP listener");
   app.add_option("--shard", out.shard,
@@ -43,7 +43,7 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
 Status apply_command_line(const CommandLine& cl, DaemonConfig& config, std::vector<std::string>* shard_streams) {
   if (cl.log_level) config.log_level = *cl.log_level;
   if (cl.engine && !parse_engine_kind(*cl.engine, config.engine.kind))
-    return invalid_argument("--engine must be auto, cuda or cpu (got \"" + *cl.engine + "\")");
+    return invalid_argument("--engine must be auto, cuda, cpu or copy (got \"" + *cl.engine + "\")");
   if (config.engine.kind == EngineKind::kCuda && config.engine.gpus.empty())
     return invalid_argument("--engine cuda needs at least one entry in engine.gpus");
   if (cl.http_listen) {

@@ -13,7 +13,7 @@ namespace {
 
 constexpr int64_t kMaxThreads = 256;
 
-// "method" by its name (kernels/params.h), FilterMethod or ClusterMethod.
+// "method" by its name (core/params.h), FilterMethod or ClusterMethod.
 template <typename Method>
 void read_method(TomlReader& r, Method& m) {
   std::string name = method_name(m);
@@ -35,6 +35,7 @@ void read_filter(TomlReader& r, FilterParams& f) {
   r.read("tikhonov", f.tikhonov);
   r.read("known_noise", f.refine.known_noise);
   r.read("strength", f.refine.strength);
+  r.read("temporal", f.temporal);
 }
 
 void read_cluster(TomlReader& r, ClusterParams& c) {
@@ -125,10 +126,10 @@ Status read_engine(TomlReader& root, EngineConfig& e) {
   const toml::table* t = root.table("engine");
   if (!t) return {};
   TomlReader r(*t, root.source(), "engine");
-  std::string kind = e.kind == EngineKind::kCpu ? "cpu" : e.kind == EngineKind::kCuda ? "cuda" : "auto";
+  std::string kind = engine_kind_name(e.kind);
   r.read("kind", kind);
   if (!parse_engine_kind(kind, e.kind))
-    r.fail("kind", "must be \"auto\", \"cuda\" or \"cpu\" (got \"" + kind + "\")");
+    r.fail("kind", "must be \"auto\", \"cuda\", \"cpu\" or \"copy\" (got \"" + kind + "\")");
   r.read("gpus", e.gpus, 0, 63);
   r.read("cpu_alongside_gpus", e.cpu_alongside_gpus);
   r.read("cpu_threads", e.cpu_threads, 0, kMaxThreads);

@@ -5,7 +5,7 @@
 #include "daemon/bounded_receive.h"
 #include "daemon/log_limiter.h"
 #include "daemon/settings_audit.h"
-#include "proto/header_codec.h"
+#include "wire/header_codec.h"
 
 namespace fq::daemon {
 namespace {
@@ -84,6 +84,7 @@ wire::ControlReply get_counters(const wire::GetCounters& q, StreamRegistry& regi
     c->set_late(s.counters.late);
     c->set_errors(s.counters.errors);
     c->set_time_limited(s.counters.time_limited);
+    c->set_temporal_resets(s.counters.temporal_resets);
     c->set_subscriber_overflows(s.counters.subscriber_overflows);
     c->set_bad_send_time(s.counters.bad_send_time);
     c->set_untracked(s.counters.untracked);

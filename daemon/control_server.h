@@ -1,14 +1,14 @@
 // The control socket (REP): get/set a stream's parameters at run time, list streams,
 // read counters and latency percentiles. Requests and replies are protobuf messages
-// (ControlRequest / ControlReply in proto/fq.proto); a bad request gets ok = false.
+// (ControlRequest / ControlReply in wire/fq.proto); a bad request gets ok = false.
 #pragma once
 
 #include <string_view>
 #include <zmq.hpp>
 
-#include "proto/fq.pb.h"
 #include "daemon/curve_auth.h"
 #include "daemon/live_caps.h"
+#include "wire/fq.pb.h"
 #include "daemon/stream_registry.h"
 
 namespace fq::daemon {

@@ -5,12 +5,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "proto/fq.pb.h"
+#include "wire/fq.pb.h"
 
 namespace fq::daemon {
 
 /// One stream: {"stream", "frames_in", "frames_out", "superseded", "dropped_stale", "late",
-/// "errors", "time_limited", "subscriber_overflows",
+/// "errors", "time_limited", "subscriber_overflows", "temporal_resets",
 /// "stages": {name: {"p50_ms", "p95_ms", "p99_ms", "count"}}}.
 nlohmann::json counters_json(const wire::StreamCounters& c);
 

@@ -9,6 +9,7 @@
 #include "common/non_copyable.h"
 #include "daemon/config_reload.h"
 #include "daemon/control_server.h"
+#include "daemon/daemon_threads.h"
 #include "daemon/ingest.h"
 #include "daemon/publisher.h"
 #include "daemon/result_socket.h"
@@ -66,15 +67,19 @@ Status bind_one(zmq::socket_t& s, const std::string& endpoint, const char* role,
 
 }  // namespace
 
-Status make_engines(const EngineConfig& c, std::vector<std::unique_ptr<Engine>>& out) {
-  out.clear();
+StatusOr<std::vector<std::unique_ptr<Engine>>> make_engines(const EngineConfig& c) {
+  std::vector<std::unique_ptr<Engine>> out;
+  if (c.kind == EngineKind::kCopy) {  // as many as CPU engines would be: a free engine per worker
+    for (int i = 0; i < c.cpu_engines; ++i) out.push_back(make_engine({EngineKind::kCopy, 0, 0, {}}).value());
+    return out;
+  }
   if (c.kind != EngineKind::kCpu) {
     for (int gpu : c.gpus) {
       StatusOr<std::unique_ptr<Engine>> e = make_engine({EngineKind::kCuda, c.cpu_threads, gpu, {}});
       if (e.ok())
         out.push_back(std::move(e).value());
       else if (c.kind == EngineKind::kCuda)
-        return {StatusCode::kUnavailable, "GPU " + std::to_string(gpu) + ": " + e.status().message()};
+        return Status{StatusCode::kUnavailable, "GPU " + std::to_string(gpu) + ": " + e.status().message()};
       else
         spdlog::info("engine auto: no CUDA engine on GPU {} ({})", gpu, e.status().message());
     }
@@ -84,7 +89,7 @@ Status make_engines(const EngineConfig& c, std::vector<std::unique_ptr<Engine>>&
     for (int i = 0; i < c.cpu_engines; ++i)
       out.push_back(make_engine({EngineKind::kCpu, c.cpu_threads, 0, {}}).value());
   }
-  return {};
+  return out;
 }
 
 Daemon::Daemon(DaemonConfig config)
@@ -95,6 +100,8 @@ Daemon::Daemon(DaemonConfig config)
       input_context_(1),
       output_context_(1) {
   config_.resolve_auto_threads();
+  tag_zmq_threads(input_context_);
+  tag_zmq_threads(output_context_);
   // An engine that outruns the encoders waits instead of queueing results: frames then wait
   // in their streams' slots, where newer ones supersede them, and latency stays bounded.
   pipeline_.encode_queue.set_capacity(static_cast<size_t>(config_.encode_threads));
@@ -107,6 +114,14 @@ std::vector<std::string> Daemon::engine_names() const {
   std::vector<std::string> names;
   for (const auto& e : engines_) names.push_back(e->name());
   return names;
+}
+
+CpuUsage Daemon::cpu_usage() const {
+  CpuUsage u;
+  for (size_t s = 0; s < u.stage_seconds.size(); ++s)
+    u.stage_seconds[s] = pipeline_.stage_cpu.seconds(static_cast<CpuStage>(s));
+  u.threads_seconds = daemon_threads_cpu_seconds();  // after the stages: never below their sum
+  return u;
 }
 
 std::string Daemon::service_metrics() const {
@@ -124,7 +139,7 @@ std::string Daemon::service_metrics() const {
                {"encode", pipeline_.encode_queue.size()},
                {"publish", pipeline_.publish_queue.size()}};
   in.process = read_process_stats();
-  return service_metrics_text(in);
+  return service_metrics_text(in) + stage_cpu_metrics_text(pipeline_.stage_cpu, daemon_threads_cpu_seconds());
 }
 
 struct Daemon::Sockets {
@@ -181,7 +196,7 @@ Status Daemon::bind_sockets(Sockets& s) {
 
 Status Daemon::start() {
   if (running_) return {};
-  FQ_RETURN_IF_ERROR(make_engines(config_.engine, engines_));
+  FQ_ASSIGN_OR_RETURN(engines_, make_engines(config_.engine));
   Sockets sockets;
   FQ_RETURN_IF_ERROR(make_sockets(sockets));
   FQ_RETURN_IF_ERROR(bind_sockets(sockets));
@@ -198,29 +213,44 @@ Status Daemon::start() {
   const SubscriptionCaps subscription_caps{config_.caps.max_subscriptions, config_.caps.max_subscription_bytes};
   publisher_thread_ = std::thread(
       [this, s = std::move(sockets.publish), m = std::move(sockets.publish_monitor), subscription_caps]() mutable {
+        name_this_thread("publish");
         Publisher(ResultSocket(std::move(s), std::move(m), subscription_caps, registry_.refusals(), client_keys_.get()),
                   pipeline_)
             .run();
       });
   for (int i = 0; i < config_.encode_threads; ++i)
-    encoders_.emplace_back([this] { run_encode_worker(pipeline_); });
+    encoders_.emplace_back([this] {
+      name_this_thread("encode");
+      run_encode_worker(pipeline_);
+    });
   pipeline_.slots.set_engines(static_cast<int>(engines_.size()));
   for (auto& e : engines_)
-    workers_.emplace_back([this, eng = e.get()] { run_engine_worker(pipeline_, *eng); });
+    workers_.emplace_back([this, eng = e.get()] {
+      name_this_thread("engine");
+      run_engine_worker(pipeline_, *eng);
+    });
   for (int i = 0; i < config_.decode_threads; ++i)
-    decoders_.emplace_back([this] { run_decode_worker(pipeline_); });
-  control_thread_ =
-      std::thread([this, s = std::move(sockets.control)]() mutable { run_control(std::move(s), registry_, caps_, client_keys_.get()); });
+    decoders_.emplace_back([this] {
+      name_this_thread("decode");
+      run_decode_worker(pipeline_);
+    });
+  control_thread_ = std::thread([this, s = std::move(sockets.control)]() mutable {
+    name_this_thread("control");
+    run_control(std::move(s), registry_, caps_, client_keys_.get());
+  });
   if (sockets.sub) {
     ingest_thread_ = std::thread([this, pull = std::move(sockets.ingest), sub = std::move(sockets.sub),
                                   reconnector = std::move(sockets.sub_reconnector)]() mutable {
+      name_this_thread("ingest");
       const auto& ids = config_.sub_ingest.streams;
       run_sub_ingest(std::move(pull), std::move(sub), *reconnector, pipeline_,
                      std::set<std::string>(ids.begin(), ids.end()));
     });
   } else {
-    ingest_thread_ =
-        std::thread([this, s = std::move(sockets.ingest)]() mutable { run_ingest(std::move(s), pipeline_); });
+    ingest_thread_ = std::thread([this, s = std::move(sockets.ingest)]() mutable {
+      name_this_thread("ingest");
+      run_ingest(std::move(s), pipeline_);
+    });
   }
   running_ = true;
   healthy_ = true;

@@ -27,7 +27,7 @@ struct BoundEndpoints {
 
 /// One engine per listed GPU (CUDA), plus or else `cpu_engines` CPU engines, as the config says.
 /// kUnavailable when an explicitly requested CUDA engine cannot be made.
-Status make_engines(const EngineConfig& config, std::vector<std::unique_ptr<Engine>>& out);
+StatusOr<std::vector<std::unique_ptr<Engine>>> make_engines(const EngineConfig& config);
 
 class Daemon : NonCopyable {
  public:
@@ -52,6 +52,9 @@ class Daemon : NonCopyable {
   /// The /metrics families about the service (service_metrics.h): refusals, budgets,
   /// engine busy time, queue depths, the process.
   std::string service_metrics() const;
+  /// Host CPU so far, by stage and of all of fqd's threads (fq_stage_cpu_seconds_total and
+  /// fq_cpu_seconds_total on /metrics).
+  CpuUsage cpu_usage() const;
 
  private:
   struct Sockets;  // made and bound by start(), then handed to their threads

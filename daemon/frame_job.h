@@ -10,7 +10,7 @@
 #include <zmq.hpp>
 
 #include "kernels/engine.h"
-#include "proto/fq.pb.h"
+#include "wire/fq.pb.h"
 #include "common/status.h"
 #include "daemon/stream_settings.h"
 
@@ -29,8 +29,13 @@ inline double ms_between(int64_t from_ns, int64_t to_ns) {
   return static_cast<double>(to_ns - from_ns) * 1e-6;
 }
 
+class Stream;
+
 struct FrameJob {
   std::string stream_id;
+  /// The stream's state (stream.h), shared with the registry; null for a message refused
+  /// before it had a stream. A stream that expires lives on until its last frame is done.
+  std::shared_ptr<Stream> stream;
   uint64_t arrival = 0;                ///< arrival index (ingest order, increasing within a stream)
   uint64_t ticket = 0;                 ///< per-stream publish order, given when a worker takes it
   bool ticketed = false;               ///< the publisher orders ticketed results per stream

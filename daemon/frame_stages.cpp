@@ -5,14 +5,17 @@
 #include <chrono>
 #include <exception>
 
-#include "proto/draco_budget.h"
-#include "proto/frame_codec.h"
-#include "kernels/frame_prep.h"
-#include "proto/header_codec.h"
-#include "daemon/pipeline.h"
-#include "daemon/work_budget.h"
-#include "kernels/parallel_for.h"
 #include "common/thread_pool.h"
+#include "core/mesh_checks.h"
+#include "core/parallel_for.h"
+#include "daemon/label_tracks.h"
+#include "daemon/pipeline.h"
+#include "daemon/stream.h"
+#include "daemon/stream_history.h"
+#include "daemon/work_budget.h"
+#include "wire/draco_budget.h"
+#include "wire/frame_codec.h"
+#include "wire/header_codec.h"
 
 namespace fq::daemon {
 namespace {
@@ -103,18 +106,21 @@ Status run_engine(Pipeline& p, Engine& engine, FrameJob& f, const YieldRequest& 
   f.deadline = deadline;
   const CancelToken token(&p.cancel_engines, deadline, &yield);
   engine.set_cancel_token(&token);
-  const Status s = guarded("engine", [&] { return engine.process(f.mesh.view(), f.settings.params, f.result); });
+  Status s = with_history(*f.stream, f.arrival, f.settings.params, engine, [&] {
+    return guarded("engine", [&] { return engine.process(f.mesh.view(), f.settings.params, f.result); });
+  });
   engine.set_cancel_token(nullptr);
+  if (s.ok() && f.result.history_reset) f.stream->count(Counter::kTemporalResets);
   if (s.code() != StatusCode::kCancelled) return s;
   if (token.stopped())
     return {StatusCode::kCancelled, "cancelled: fqd is stopping (caps.stop_grace_s passed before the frame finished)"};
   if (token.yield_due()) {
-    p.registry.count(f.stream_id, Counter::kPreempted);
+    f.stream->count(Counter::kPreempted);
     return {StatusCode::kCancelled,
             "preempted: the engine stopped the frame to serve a stream within its share of engine time (this stream "
             "had used more than its share; see fqd's fairness rule in docs/DAEMON.md)"};
   }
-  p.registry.count(f.stream_id, Counter::kTimeLimited);
+  f.stream->count(Counter::kTimeLimited);
   return {StatusCode::kCancelled, fmt::format("time_limit: the engine stopped the frame after caps.engine_time_limit_s "
                                               "= {} s (its parameters fit max_neighbour_work but it ran too long)",
                                               limit_s)};
@@ -136,10 +142,11 @@ void Pipeline::recycle(FrameJob& f) {
 
 void run_decode_worker(Pipeline& p) {
   while (auto item = p.decode_queue.pop()) {
+    const CpuScope cpu(p.stage_cpu[CpuStage::kDecode]);
     FramePtr f = std::move(*item);
     // Decoding a frame that is already too old would be wasted work under overload.
     if (is_stale(f->receive_ns, wall_ns(), f->settings.budget_ms)) {
-      p.registry.count(f->stream_id, Counter::kDroppedStale);
+      f->stream->count(Counter::kDroppedStale);
       p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: stale before decode", f->stream_id,
                      f->header.sequence());
       continue;
@@ -157,7 +164,7 @@ void run_decode_worker(Pipeline& p) {
     }
     f->decoded_ns = wall_ns();
     if (FramePtr loser = p.slots.offer(std::move(f))) {
-      p.registry.count(loser->stream_id, Counter::kSuperseded);
+      loser->stream->count(Counter::kSuperseded);
       p.recycle(*loser);
       p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: superseded", loser->stream_id,
                      loser->header.sequence());
@@ -172,6 +179,7 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
   bool holding = false;  // the engine keeps a frame's buffers
   YieldRequest yield;    // set by the slots while a frame of this worker's runs
   while (p.slots.take(f, stale, std::chrono::seconds(1), &yield)) {
+    const CpuScope cpu(p.stage_cpu[CpuStage::kEngine]);
     // Idle as long as the pools: the engine's buffers (host or device) go back too.
     const auto idle_ns = static_cast<int64_t>(p.caps.get()->pool_idle_s * 1e9);
     if (!f && stale.empty() && holding && wall_ns() - last_frame_ns >= idle_ns) {
@@ -179,7 +187,7 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
       holding = false;
     }
     for (FramePtr& s : stale) {
-      p.registry.count(s->stream_id, Counter::kDroppedStale);
+      s->stream->count(Counter::kDroppedStale);
       p.recycle(*s);
       p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: dropped stale", s->stream_id, s->header.sequence());
     }
@@ -206,6 +214,7 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
 
 void run_encode_worker(Pipeline& p) {
   while (auto item = p.encode_queue.pop()) {
+    const CpuScope cpu(p.stage_cpu[CpuStage::kEncode]);
     FramePtr f = std::move(*item);
     const MeshView view{f->result.positions.data(), f->mesh.num_vertices(), f->mesh.triangles.data(),
                         f->mesh.num_triangles()};
@@ -230,10 +239,11 @@ void run_encode_worker(Pipeline& p) {
           // Under the frame's own time limit and the stop: a frame whose tracking is cut is
           // published with the engine's numbering (its clusters are right, their ids are not
           // the previous frame's), counted `untracked`, rather than lost.
+          const CpuScope track_cpu(p.stage_cpu[CpuStage::kTrackIds]);
           const CancelToken token(&p.cancel_engines, f->deadline);
           tracked = guarded("track_ids", [&] {
-            if (Status cut = p.label_tracks.apply(*f, hardware_threads(), token); !cut.ok()) {
-              p.registry.count(f->stream_id, Counter::kUntracked);
+            if (Status cut = track_labels(*f, hardware_threads(), token); !cut.ok()) {
+              f->stream->count(Counter::kUntracked);
               p.fail_log.log(spdlog::level::warn, "stream '{}' frame {}: published with untracked cluster ids: {}",
                              f->stream_id, f->header.sequence(),
                              token.stopped() ? std::string("fqd is stopping")
@@ -259,7 +269,7 @@ void run_encode_worker(Pipeline& p) {
       }
     });
     if (s.ok()) s = tracked;
-    p.slots.charge(f->stream_id, track_ms * 1e-3);  // tracking is engine time of the stream too
+    p.slots.charge(*f->stream, track_ms * 1e-3);  // tracking is engine time of the stream too
     if (f->settings.params.cluster) f->timings.push_back({"track_ids", track_ms});
     f->timings.push_back({"encode", encode_ms});
     if (!s.ok())

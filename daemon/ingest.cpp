@@ -6,8 +6,8 @@
 #include <zmq_addon.hpp>
 
 #include "daemon/bounded_receive.h"
-#include "proto/frame_codec.h"
-#include "proto/header_codec.h"
+#include "wire/frame_codec.h"
+#include "wire/header_codec.h"
 
 namespace fq::daemon {
 namespace {
@@ -69,6 +69,11 @@ void expire_idle_streams(Pipeline& p) {
   p.results.trim(now, idle_ns);
   p.meshes.trim(now, idle_ns);
   hand_back_free_pages(p, now);
+  // The codec's buffers (kept per use, not per thread) go back once frames have stopped as
+  // long; their pages at the next trim.
+  if (now - p.arrival_seen_ns >= idle_ns) wire::release_memory();
+  // One erase each: what the pipeline keeps for a stream lives in its Stream, freed with the
+  // last of its frames still in flight.
   for (const std::string& id : p.registry.expire_idle(now, caps->stream_idle_s)) {
     p.expiry_log.log(spdlog::level::info, "stream '{}' expired after {} s without frames", id,
                      caps->stream_idle_s);
@@ -92,8 +97,9 @@ FramePtr refuse(FramePtr f, Refusal why, Status message, Pipeline& p) {
 // A message that failed a check: a stream that exists already gets the error counted as its
 // own; otherwise it is refused before any state is made for it.
 FramePtr reject(FramePtr f, const std::string& topic, Refusal why, Status s, Pipeline& p) {
-  if (p.registry.find(topic, f->settings)) {
-    p.registry.count(topic, Counter::kIn);
+  if ((f->stream = p.registry.find(topic))) {
+    f->settings = f->stream->settings();
+    f->stream->count(Counter::kIn);
     f->arrival = p.next_arrival++;
     f->error = std::move(s);
     return f;
@@ -118,11 +124,13 @@ FramePtr admit_message(std::vector<zmq::message_t>& parts, Pipeline& p) {
   if (s.ok()) s = wire::parse_frame_header(std::string_view(parts[1].data<char>(), parts[1].size()), f->header);
   if (s.ok()) s = check_header(f->header, f->stream_id, parts.size() - 2, caps);
   if (!s.ok()) return reject(std::move(f), topic, Refusal::kMalformed, std::move(s), p);
-  if (!p.registry.settings(topic, f->settings, f->receive_ns))
+  f->stream = p.registry.admit(topic, f->receive_ns);
+  if (!f->stream)
     return refuse(std::move(f), Refusal::kTooManyStreams,
                   invalid_input("too many streams (caps.max_streams = " + std::to_string(caps.max_streams) + ")"), p);
+  f->settings = f->stream->settings();
   f->arrival = p.next_arrival++;
-  p.registry.count(f->stream_id, Counter::kIn);
+  f->stream->count(Counter::kIn);
   for (size_t i = 2; i < parts.size(); ++i) f->chunks.push_back(std::move(parts[i]));
   return f;
 }
@@ -163,6 +171,8 @@ bool ingest_one(zmq::socket_t& socket, Pipeline& p, zmq::recv_flags flags, const
 void run_ingest(zmq::socket_t socket, Pipeline& p) {
   LogLimiter errors;
   for (;;) {
+    // Per message, so the account stays current; a blocked receive costs no CPU time.
+    const CpuScope cpu(p.stage_cpu[CpuStage::kIngest]);
     expire_idle_streams(p);
     try {
       ingest_one(socket, p, zmq::recv_flags::none);  // nothing after the receive timeout
@@ -186,7 +196,7 @@ void queue_admitted(FramePtr f, Pipeline& p) {
     FramePtr older;
     p.decode_queue.push(std::move(f), older);
     if (older) {
-      p.registry.count(older->stream_id, Counter::kSuperseded);
+      older->stream->count(Counter::kSuperseded);
       p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: superseded before decode", older->stream_id,
                      older->header.sequence());
     }

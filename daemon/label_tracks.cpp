@@ -1,18 +1,13 @@
 #include "daemon/label_tracks.h"
 
+#include "daemon/stream.h"
+
 namespace fq::daemon {
 
-LabelTracks::Track& LabelTracks::track_of(const std::string& stream_id) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  std::unique_ptr<Track>& t = tracks_[stream_id];
-  if (!t) t = std::make_unique<Track>();
-  return *t;
-}
-
-Status LabelTracks::apply(FrameJob& f, int threads, const CancelToken& token) {
+Status track_labels(FrameJob& f, int threads, const CancelToken& token) {
   FrameResult& r = f.result;
   f.distinct_clusters = r.num_clusters;
-  Track& t = track_of(f.stream_id);
+  LabelTrack& t = f.stream->track;
   std::lock_guard<std::mutex> lock(t.mutex);
   const ClusterParams& c = f.settings.params.clustering;
   if (!f.settings.params.cluster || !c.track_ids || r.labels.empty()) {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
+#include <utility>
 
 namespace fq::daemon {
 
@@ -14,7 +14,7 @@ constexpr double kWindowNs = FrameSlots::kShareWindowS * 1e9;
 
 }  // namespace
 
-double FrameSlots::usage_at(Stream& s, int64_t now_ns) {
+double FrameSlots::usage_at(SlotState& s, int64_t now_ns) {
   if (now_ns > s.usage_ns) {
     s.usage_s *= std::exp(-double(now_ns - s.usage_ns) / kWindowNs);
     s.usage_ns = now_ns;
@@ -26,16 +26,18 @@ FramePtr FrameSlots::offer(FramePtr frame) {
   FramePtr loser;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    Stream& s = streams_[frame->stream_id];
+    Stream& stream = *frame->stream;
+    SlotState& s = stream.slot;
     const bool behind_taken = s.taken_any && frame->arrival <= s.last_taken_arrival;
     if (behind_taken || (s.waiting && s.waiting->arrival > frame->arrival)) return frame;
     if (s.waiting)
       loser = std::move(s.waiting);
     else
-      ++waiting_;
+      waiting_.push_back(&stream);
     s.waiting = std::move(frame);
-    s.offered_ns = steady_ns();
-    review_runs(s.offered_ns);
+    const int64_t now = steady_ns();
+    offered_[stream.id()] = now;
+    review_runs(now);
   }
   ready_.notify_one();
   return loser;
@@ -44,7 +46,7 @@ FramePtr FrameSlots::offer(FramePtr frame) {
 bool FrameSlots::take(FramePtr& out, std::vector<FramePtr>& stale, std::chrono::milliseconds wait,
                       YieldRequest* yield) {
   std::unique_lock<std::mutex> lock(mutex_);
-  const auto ready = [&] { return closed_ || waiting_ > 0; };
+  const auto ready = [&] { return closed_ || !waiting_.empty(); };
   ++idle_takers_;
   if (wait == std::chrono::milliseconds::max()) {
     ready_.wait(lock, ready);
@@ -53,43 +55,44 @@ bool FrameSlots::take(FramePtr& out, std::vector<FramePtr>& stale, std::chrono::
     return true;  // nothing came: the caller does its idle work
   }
   --idle_takers_;
-  if (waiting_ == 0) return false;
+  if (waiting_.empty()) return false;
   const int64_t now = steady_ns();
-  while (waiting_ > 0) {
+  while (!waiting_.empty()) {
     // Least recent engine time first; among equals the stream served least recently (round
     // robin), then the oldest frame. Oldest-frame-first alone starves a stream under overload:
     // when its waiting frame is superseded while the engine is busy, the replacement is always
     // younger than the other stream's, which then wins every time. Round robin by frames alone
     // let a stream whose frames take seconds hold the engine against one whose frames take
     // milliseconds.
-    Stream* best = nullptr;
-    const char* best_id = nullptr;
-    double best_usage = 0;
-    for (auto& [id, s] : streams_) {
-      if (!s.waiting) continue;
+    auto best = waiting_.begin();
+    double best_usage = usage_at((*best)->slot, now);
+    for (auto it = std::next(waiting_.begin()); it != waiting_.end(); ++it) {
+      SlotState& s = (*it)->slot;
+      const SlotState& b = (*best)->slot;
       const double u = usage_at(s, now);
-      if (!best || u < best_usage ||
-          (u == best_usage && (s.served < best->served || (s.served == best->served &&
-                                                           s.waiting->receive_ns < best->waiting->receive_ns)))) {
-        best = &s;
-        best_id = id.c_str();
+      if (u < best_usage ||
+          (u == best_usage &&
+           (s.served < b.served || (s.served == b.served && s.waiting->receive_ns < b.waiting->receive_ns)))) {
+        best = it;
         best_usage = u;
       }
     }
-    best->served = ++served_;
-    FramePtr f = std::move(best->waiting);
-    --waiting_;
-    best->last_taken_arrival = f->arrival;
-    best->taken_any = true;
+    SlotState& s = (*best)->slot;
+    *best = waiting_.back();
+    waiting_.pop_back();
+    s.served = ++served_;
+    FramePtr f = std::move(s.waiting);  // f holds the stream now
+    s.last_taken_arrival = f->arrival;
+    s.taken_any = true;
     if (is_stale(f->receive_ns, wall_ns(), f->settings.budget_ms)) {
       stale.push_back(std::move(f));
       continue;
     }
-    f->ticket = best->next_ticket++;
+    f->ticket = s.next_ticket++;
     f->ticketed = true;
     if (yield != nullptr) {
       yield->requested.store(false);
-      runs_.push_back({best_id, yield, now, best_usage});
+      runs_.push_back({f->stream, yield, now, best_usage});
     }
     out = std::move(f);
     review_runs(now);
@@ -99,25 +102,22 @@ bool FrameSlots::take(FramePtr& out, std::vector<FramePtr>& stale, std::chrono::
 }
 
 void FrameSlots::finish(YieldRequest* yield, double seconds) {
+  StreamPtr stream;  // released after the lock: the slots never end a stream under their lock
   std::lock_guard<std::mutex> lock(mutex_);
   const auto run = std::find_if(runs_.begin(), runs_.end(), [&](const Run& r) { return r.yield == yield; });
   if (run == runs_.end()) return;
-  const auto s = streams_.find(run->stream_id);
-  if (s != streams_.end()) {
-    usage_at(s->second, steady_ns());
-    s->second.usage_s += seconds;
-    double& cost = s->second.cost_s;
-    cost = cost > 0 ? 0.7 * cost + 0.3 * seconds : seconds;
-  }
+  stream = std::move(run->stream);
+  SlotState& s = stream->slot;
+  usage_at(s, steady_ns());
+  s.usage_s += seconds;
+  s.cost_s = s.cost_s > 0 ? 0.7 * s.cost_s + 0.3 * seconds : seconds;
   runs_.erase(run);
 }
 
-void FrameSlots::charge(const std::string& stream_id, double seconds) {
+void FrameSlots::charge(Stream& stream, double seconds) {
   std::lock_guard<std::mutex> lock(mutex_);
-  const auto s = streams_.find(stream_id);
-  if (s == streams_.end()) return;
-  usage_at(s->second, steady_ns());
-  s->second.usage_s += seconds;
+  usage_at(stream.slot, steady_ns());
+  stream.slot.usage_s += seconds;
 }
 
 void FrameSlots::set_engines(int engines) {
@@ -126,28 +126,37 @@ void FrameSlots::set_engines(int engines) {
 }
 
 void FrameSlots::review_runs(int64_t now_ns) {
+  for (auto it = offered_.begin(); it != offered_.end();)
+    it = double(now_ns - it->second) < kWindowNs ? std::next(it) : offered_.erase(it);
   if (runs_.empty()) return;
-  // The waiting stream of least usage, and how many streams are active.
-  const std::string* waiting_id = nullptr;
-  double waiting_usage = 0, waiting_cost = 0;
-  int active = 0;
-  for (auto& [id, s] : streams_) {
-    const bool running = std::any_of(runs_.begin(), runs_.end(), [&](const Run& r) { return r.stream_id == id; });
-    if (running || s.waiting || (s.offered_ns != 0 && double(now_ns - s.offered_ns) < kWindowNs)) ++active;
-    if (!s.waiting) continue;
-    const double u = usage_at(s, now_ns);
-    if (!waiting_id || u < waiting_usage) {
-      waiting_id = &id;
+  // How many streams are active: offered a frame within the window, waiting or running.
+  int active = static_cast<int>(offered_.size());
+  const auto recent = [&](const Stream& s) { return offered_.count(s.id()) != 0; };
+  for (const Stream* s : waiting_)
+    if (!recent(*s)) ++active;
+  for (size_t i = 0; i < runs_.size(); ++i) {
+    const Stream& s = *runs_[i].stream;
+    const bool counted = recent(s) || s.slot.waiting ||
+                         std::any_of(runs_.begin(), runs_.begin() + i, [&](const Run& r) { return r.stream.get() == &s; });
+    if (!counted) ++active;
+  }
+  // The waiting stream of least usage.
+  Stream* waiting = nullptr;
+  double waiting_usage = 0;
+  for (Stream* s : waiting_) {
+    const double u = usage_at(s->slot, now_ns);
+    if (!waiting || u < waiting_usage) {
+      waiting = s;
       waiting_usage = u;
-      waiting_cost = s.cost_s;
     }
   }
+  const double waiting_cost = waiting ? waiting->slot.cost_s : 0;
   const double share = kShareWindowS * engines_ / std::max(1, active);
   // The run to stop, if any: the one whose stream had used most when it started.
   Run* to_stop = nullptr;
-  if (idle_takers_ == 0 && waiting_id != nullptr && waiting_usage < 0.5 * share) {
+  if (idle_takers_ == 0 && waiting != nullptr && waiting_usage < 0.5 * share) {
     for (Run& r : runs_) {
-      if (r.stream_id == *waiting_id) continue;
+      if (r.stream.get() == waiting) continue;
       if (!to_stop || r.usage_at_start_s > to_stop->usage_at_start_s) to_stop = &r;
     }
   }

@@ -2,10 +2,11 @@
 // A newer frame replaces a waiting older one (superseded); a frame already older than its
 // stream's budget when a worker is free is dropped (stale). Every frame that leaves the
 // slots gets a per-stream ticket so results publish in arrival order even with several
-// engines. Thread-safe.
+// engines. Thread-safe. A stream's slot and ticket counter live in its Stream (stream.h),
+// under this object's lock; only the streams with a frame waiting are listed here.
 //
 // Fairness by engine time. Each stream's recent engine time (seconds of engine and cluster-id
-// tracking, decayed with time constant kShareWindowS) is its usage; a free engine takes the
+// tracking, decayed with time constant kShareWindowS, kept in its slot) is its usage; a free engine takes the
 // waiting stream of least usage. A stream's share is kShareWindowS x engines / active streams
 // (those with a frame in the last kShareWindowS). Engines do not interleave frames, so without
 // more a stream whose frames run for seconds would still hold the engine while a light stream's
@@ -26,8 +27,9 @@
 #include <string>
 #include <vector>
 
+#include "core/cancel_token.h"
 #include "daemon/frame_job.h"
-#include "kernels/cancel_token.h"
+#include "daemon/stream.h"
 
 namespace fq::daemon {
 
@@ -38,9 +40,9 @@ inline bool is_stale(int64_t receive_ns, int64_t now_ns, double budget_ms) {
 
 class FrameSlots {
  public:
-  /// Puts a decoded frame in its stream's slot. Returns the frame that lost: the older
-  /// frame it replaced, or the frame itself when a newer one of its stream is already
-  /// waiting or taken (decode finished out of order); null when nothing was replaced.
+  /// Puts a decoded frame (one with a stream) in its stream's slot. Returns the frame that
+  /// lost: the older frame it replaced, or the frame itself when a newer one of its stream is
+  /// already waiting or taken (decode finished out of order); null when nothing was replaced.
   FramePtr offer(FramePtr frame);
 
   /// Blocks until a frame is waiting, then hands one out to the calling worker in `out`,
@@ -58,7 +60,7 @@ class FrameSlots {
   void finish(YieldRequest* yield, double seconds);
 
   /// Charges `seconds` of other work of a frame (cluster-id tracking) to its stream.
-  void charge(const std::string& stream_id, double seconds);
+  void charge(Stream& stream, double seconds);
 
   /// Engines that take from the slots (the share of each stream is in engines' time).
   void set_engines(int engines);
@@ -73,39 +75,31 @@ class FrameSlots {
   /// Frames waiting in the slots now (fq_queue_depth{queue="slots"}).
   size_t waiting() const {
     std::lock_guard<std::mutex> lock(mutex_);
-    return waiting_;
+    return waiting_.size();
   }
 
  private:
-  struct Stream {
-    FramePtr waiting;
-    uint64_t last_taken_arrival = 0;
-    bool taken_any = false;
-    uint64_t next_ticket = 0;
-    uint64_t served = 0;  ///< when it was last handed out (served_ at the time); 0 = never
-    double usage_s = 0;   ///< recent engine time, decayed to usage_ns
-    int64_t usage_ns = 0;
-    int64_t offered_ns = 0;  ///< last frame offered (steady clock); 0 = never
-    double cost_s = 0;       ///< engine time of its frames (moving average); 0 = none seen yet
-  };
-  /// A frame on an engine, taken with a YieldRequest.
+  /// A frame on an engine, taken with a YieldRequest; `stream` is the frame's.
   struct Run {
-    std::string stream_id;
+    StreamPtr stream;
     YieldRequest* yield;
     int64_t start_ns;
     double usage_at_start_s;
   };
 
-  /// The stream's usage decayed to `now_ns` (steady clock).
-  static double usage_at(Stream& s, int64_t now_ns);
+  /// The slot's usage decayed to `now_ns` (steady clock).
+  static double usage_at(SlotState& s, int64_t now_ns);
   /// Sets or withdraws the yield requests of the runs (see above). Under mutex_.
   void review_runs(int64_t now_ns);
 
   mutable std::mutex mutex_;
   std::condition_variable ready_;
-  std::map<std::string, Stream> streams_;
+  /// The streams whose slot holds a frame; that frame keeps its stream alive.
+  std::vector<Stream*> waiting_;
   std::vector<Run> runs_;
-  size_t waiting_ = 0;
+  /// When each stream last offered a frame (steady clock), for the count of active streams;
+  /// entries older than kShareWindowS are dropped, so it holds only recent stream ids.
+  std::map<std::string, int64_t> offered_;
   uint64_t served_ = 0;
   int engines_ = 1;
   int idle_takers_ = 0;  ///< workers blocked in take()

@@ -1,18 +1,20 @@
 #include "daemon/latest_results.h"
 
+#include "daemon/stream_registry.h"
+
 namespace fq::daemon {
 
-void LatestResults::offer(const wire::ResultHeader& header, const std::vector<std::string>& chunks,
+void LatestResults::offer(Stream& stream, const wire::ResultHeader& header, const std::vector<std::string>& chunks,
                           const std::vector<uint32_t>& triangles) {
   if (header.status() == wire::ERROR) return;
+  LatestSlot& e = stream.latest;
   std::shared_ptr<const std::vector<uint32_t>> faces;
   uint64_t faces_id = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    auto it = streams_.find(header.stream_id());
-    if (it == streams_.end() || std::chrono::steady_clock::now() > it->second.watched_until) return;
-    faces = it->second.faces;
-    faces_id = it->second.faces_id;
+    if (std::chrono::steady_clock::now() > e.watched_until) return;
+    faces = e.faces;
+    faces_id = e.faces_id;
   }
   // The copies (and the faces comparison) are made outside the lock: viewers waiting on
   // other streams are not held up.
@@ -25,7 +27,6 @@ void LatestResults::offer(const wire::ResultHeader& header, const std::vector<st
     faces_id = 0;  // new faces: a new id, given below
   }
   std::lock_guard<std::mutex> lock(mutex_);
-  Entry& e = streams_[header.stream_id()];
   if (positions) {
     if (faces_id == 0) faces_id = ++faces_ids_;
     e.faces = r->faces = faces;
@@ -38,8 +39,11 @@ void LatestResults::offer(const wire::ResultHeader& header, const std::vector<st
 
 std::shared_ptr<const LatestResult> LatestResults::wait_newer(const std::string& stream, uint64_t after,
                                                               std::chrono::milliseconds timeout) {
+  // The viewer's stream is held for the wait: it may expire meanwhile, and is freed after.
+  const StreamPtr s = registry_.find(stream);
+  if (!s) return nullptr;
+  LatestSlot& e = s->latest;
   std::unique_lock<std::mutex> lock(mutex_);
-  Entry& e = streams_[stream];
   e.watched_until = std::chrono::steady_clock::now() + std::chrono::seconds(kWatchSeconds);
   changed_.wait_for(lock, timeout, [&] { return closed_ || (e.latest && e.latest->index > after); });
   if (closed_ || !e.latest || e.latest->index <= after) return nullptr;

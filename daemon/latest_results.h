@@ -4,19 +4,20 @@
 // after frame, so they are kept once and shared (with an id the viewer can cache them by)
 // until they change. Copying a result costs a memcpy of its chunks (about 0.5 MB for igea in
 // the POSITIONS form, 3 MB as a MESH), so a stream's results are kept only while someone has
-// asked for them in the last kWatchSeconds; otherwise offer() returns at once.
+// asked for them in the last kWatchSeconds; otherwise offer() returns at once. What is kept
+// for a stream lives in its Stream (stream.h, under this object's lock) and goes with it.
 #pragma once
 
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 
-#include "proto/fq.pb.h"
+#include "daemon/stream.h"
+#include "wire/fq.pb.h"
 
 namespace fq::daemon {
 
@@ -29,32 +30,29 @@ struct LatestResult {
   uint64_t faces_id = 0;  ///< changes exactly when `faces` change (0 for MESH)
 };
 
+class StreamRegistry;
+
 class LatestResults {
  public:
   static constexpr int kWatchSeconds = 10;
 
-  /// Keeps a copy of an OK or LATE result when its stream is being watched (publisher thread).
-  /// `triangles` are the input frame's (kept for POSITIONS results only).
-  void offer(const wire::ResultHeader& header, const std::vector<std::string>& chunks,
+  explicit LatestResults(const StreamRegistry& registry) : registry_(registry) {}
+
+  /// Keeps a copy of an OK or LATE result of `stream` when it is being watched (publisher
+  /// thread). `triangles` are the input frame's (kept for POSITIONS results only).
+  void offer(Stream& stream, const wire::ResultHeader& header, const std::vector<std::string>& chunks,
              const std::vector<uint32_t>& triangles);
   /// Marks the stream watched and waits up to `timeout` for a result with index > `after`;
-  /// null when none came (or close() was called).
+  /// null when none came, when the stream is not registered, or once close() was called.
   std::shared_ptr<const LatestResult> wait_newer(const std::string& stream, uint64_t after,
                                                  std::chrono::milliseconds timeout);
   /// Wakes every waiter and makes later waits return at once (daemon stopping).
   void close();
 
  private:
-  struct Entry {
-    std::shared_ptr<const LatestResult> latest;
-    uint64_t index = 0;
-    std::chrono::steady_clock::time_point watched_until;
-    std::shared_ptr<const std::vector<uint32_t>> faces;  ///< the last POSITIONS result's
-    uint64_t faces_id = 0;
-  };
-  std::mutex mutex_;
+  const StreamRegistry& registry_;
+  std::mutex mutex_;  ///< every stream's LatestSlot, and the members below
   std::condition_variable changed_;
-  std::map<std::string, Entry> streams_;
   uint64_t faces_ids_ = 0;  ///< unique over all streams, so a switched viewer never mixes them
   bool closed_ = false;
 };

@@ -6,19 +6,18 @@
 #pragma once
 
 #include <atomic>
-#include <string>
 
 #include "daemon/config.h"
 #include "daemon/curve_auth.h"
 #include "daemon/decode_queue.h"
 #include "daemon/engine_busy.h"
 #include "daemon/frame_job.h"
-#include "daemon/label_tracks.h"
 #include "daemon/latency_policy.h"
 #include "daemon/latest_results.h"
 #include "daemon/live_caps.h"
 #include "daemon/log_limiter.h"
 #include "daemon/object_pool.h"
+#include "daemon/stage_cpu.h"
 #include "daemon/stream_admission.h"
 #include "daemon/stream_registry.h"
 #include "daemon/work_queue.h"
@@ -42,7 +41,8 @@ struct Pipeline {
         results(8, [](const FrameResult& x) { return bytes_held(x.positions) + bytes_held(x.labels); },
                 [](const FrameResult& x) { return bytes_used(x.positions) + bytes_used(x.labels); }),
         meshes(8, [](const Mesh& m) { return bytes_held(m.positions) + bytes_held(m.triangles); },
-               [](const Mesh& m) { return bytes_used(m.positions) + bytes_used(m.triangles); }) {}
+               [](const Mesh& m) { return bytes_used(m.positions) + bytes_used(m.triangles); }),
+        latest(r) {}
 
   const DaemonConfig& config;  ///< as started; the caps that SIGHUP changes are in `caps`
   StreamRegistry& registry;
@@ -73,9 +73,9 @@ struct Pipeline {
   /// Decoded input meshes, reused: decode_frame keeps their capacity, so a steady stream
   /// stops allocating (and faulting in) tens of MB per frame for 4M-triangle frames.
   ObjectPool<Mesh> meshes;
-  LatestResults latest;                      ///< each watched stream's last result (HTTP viewer)
-  LabelTracks label_tracks;                  ///< stable cluster ids per stream
-  EngineBusy engine_busy;                    ///< time on frames per engine (/metrics)
+  LatestResults latest;    ///< each watched stream's last result (HTTP viewer)
+  EngineBusy engine_busy;  ///< time on frames per engine (/metrics)
+  StageCpu stage_cpu;      ///< host CPU per stage (/metrics, fqstreambench)
   /// Set when a stopping daemon's grace (caps.stop_grace_s) has passed: every engine run
   /// ends at its next check, and frames still waiting get an error result at once.
   std::atomic<bool> cancel_engines{false};

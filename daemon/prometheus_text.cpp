@@ -40,6 +40,8 @@ constexpr CounterFamily kCounters[] = {
     {"fq_bad_send_time_total",
      "Results whose producer send time was over an hour before publish or after it (left out of send_to_publish).",
      &StreamCounters::bad_send_time},
+    {"fq_temporal_resets_total", "Scene cuts of a stream filtered across frames: its temporal history restarted.",
+     &StreamCounters::temporal_resets},
     {"fq_untracked_total",
      "Results published with the engine's cluster numbering because id tracking passed the time limit or fqd was "
      "stopping.",

@@ -4,7 +4,7 @@
 
 #include <chrono>
 
-#include "proto/header_codec.h"
+#include "wire/header_codec.h"
 
 namespace fq::daemon {
 namespace {
@@ -66,6 +66,7 @@ void Publisher::run() {
     // Wakes once a second without results to read the subscriptions that came in.
     bool idle = false;
     auto item = p_.publish_queue.pop_for(std::chrono::seconds(1), idle);
+    const CpuScope cpu(p_.stage_cpu[CpuStage::kPublish]);
     socket_.drain_subscriptions();
     if (item)
       accept(std::move(*item));
@@ -73,22 +74,27 @@ void Publisher::run() {
       break;  // closed and drained
   }
   // Everything ticketed has arrived by now; anything still held would be a bug upstream.
-  for (auto& [id, o] : order_)
-    for (auto& [t, f] : o.held) publish(*f);
+  for (Stream* s : holding_) {
+    std::map<uint64_t, FramePtr> held = std::move(s->order.held);  // frees s with the last frame
+    for (auto& [t, f] : held) publish(*f);
+  }
   socket_.close();
 }
 
 void Publisher::accept(FramePtr f) {
   if (!f->ticketed) return publish(*f);
-  Order& o = order_[f->stream_id];
+  Stream& s = *f->stream;
+  PublishOrder& o = s.order;
   if (f->ticket != o.next) {
     o.held.emplace(f->ticket, std::move(f));
+    holding_.insert(&s);
     return;
   }
-  publish(*f);
+  publish(*f);  // f keeps the stream alive while its held frames go
   ++o.next;
   for (auto it = o.held.begin(); it != o.held.end() && it->first == o.next; it = o.held.erase(it), ++o.next)
     publish(*it->second);
+  if (o.held.empty()) holding_.erase(&s);
 }
 
 void Publisher::publish(FrameJob& f) {
@@ -100,9 +106,9 @@ void Publisher::publish(FrameJob& f) {
   for (const std::string& c : f.out_chunks) parts.push_back(zmq::buffer(c));
   // Counted before sending, so that a consumer who got the result sees it in the counters.
   account(f, h);
-  p_.latest.offer(h, f.out_chunks, f.mesh.triangles);
+  if (f.stream) p_.latest.offer(*f.stream, h, f.out_chunks, f.mesh.triangles);
   try {
-    if (!socket_.send(parts)) p_.registry.count(f.stream_id, Counter::kSubscriberOverflows);
+    if (!socket_.send(parts) && f.stream) f.stream->count(Counter::kSubscriberOverflows);
   } catch (const zmq::error_t& e) {
     send_errors().log(spdlog::level::err, "publish of stream '{}' frame {} failed: {}", f.stream_id, h.sequence(),
                       e.what());
@@ -111,23 +117,24 @@ void Publisher::publish(FrameJob& f) {
 }
 
 void Publisher::account(const FrameJob& f, const wire::ResultHeader& h) {
-  StreamRegistry& r = p_.registry;
+  if (!f.stream) return;  // refused before it had a stream: counted with the refusals
+  Stream& s = *f.stream;
   if (h.status() == wire::ERROR) {
-    r.count(f.stream_id, Counter::kErrors);
+    s.count(Counter::kErrors);
     return;
   }
-  r.count(f.stream_id, Counter::kOut);
-  if (h.status() == wire::LATE) r.count(f.stream_id, Counter::kLate);
-  for (const PassTiming& t : f.timings) r.record(f.stream_id, t.name, t.ms);
-  r.record(f.stream_id, "receive_to_publish", h.latency_ms());
+  s.count(Counter::kOut);
+  if (h.status() == wire::LATE) s.count(Counter::kLate);
+  for (const PassTiming& t : f.timings) s.record(t.name, t.ms);
+  s.record("receive_to_publish", h.latency_ms());
   if (h.send_time_ns() > 0) {
     // The producer's clock: a time in the future or far in the past (a wrong clock, or a forged
     // one) would drive the histograms' sums negative or off the scale; it is counted instead.
     const double ms = ms_between(h.send_time_ns(), h.publish_time_ns());
     if (ms >= 0 && ms <= kMaxSendToPublishMs)
-      r.record(f.stream_id, "send_to_publish", ms);
+      s.record("send_to_publish", ms);
     else
-      r.count(f.stream_id, Counter::kBadSendTime);
+      s.count(Counter::kBadSendTime);
   }
 }
 

@@ -1,10 +1,11 @@
 // The publisher thread: owns the publish socket (an XPUB, result_socket.h), stamps each result's publish time and
 // latency, publishes [stream id][ResultHeader][chunks...] and keeps each stream's results
-// in arrival order (ticketed frames can finish out of order on several engines).
+// in arrival order (ticketed frames can finish out of order on several engines; a stream's
+// order is its Stream's, stream.h).
 #pragma once
 
 #include <cstdint>
-#include <map>
+#include <set>
 #include <string>
 #include <zmq.hpp>
 
@@ -21,17 +22,14 @@ class Publisher {
   void run();
 
  private:
-  struct Order {
-    uint64_t next = 0;
-    std::map<uint64_t, FramePtr> held;
-  };
   void accept(FramePtr f);
   void publish(FrameJob& f);
   void account(const FrameJob& f, const wire::ResultHeader& h);
 
   ResultSocket socket_;
   Pipeline& p_;
-  std::map<std::string, Order> order_;
+  /// The streams holding results back for an earlier ticket; each held frame keeps its stream.
+  std::set<Stream*> holding_;
 };
 
 /// The ResultHeader of `f` as published at `publish_ns`.

@@ -8,7 +8,7 @@
 #include <cctype>
 
 #include "daemon/stream_admission.h"
-#include "proto/header_codec.h"
+#include "wire/header_codec.h"
 
 namespace fq::daemon {
 namespace {

@@ -30,7 +30,8 @@ std::string cuda_line(const EngineConfig& engine, const std::vector<std::string>
   for (const std::string& n : names)
     if (n.rfind("cuda", 0) == 0) return "";
   if (!built_with_cuda()) return "fqd: CUDA absent: this build has no CUDA engine, frames run on the CPU engine";
-  if (engine.kind == EngineKind::kCpu) return "fqd: CUDA off: engine.kind = cpu";
+  if (engine.kind == EngineKind::kCpu || engine.kind == EngineKind::kCopy)
+    return std::string("fqd: CUDA off: engine.kind = ") + engine_kind_name(engine.kind);
   return fmt::format("fqd: CUDA absent: no GPU engine could be made on engine.gpus [{}], frames run on the CPU engine",
                      fmt::join(engine.gpus, ", "));
 }

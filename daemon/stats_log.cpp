@@ -26,10 +26,14 @@ void StatsLog::stop() {
 std::vector<std::string> StatsLog::lines(const std::vector<StreamSnapshot>& now, double seconds,
                                          std::map<std::string, StreamCounters>& previous) {
   std::vector<std::string> out;
+  // Only the streams of this snapshot are kept for the next interval: an expired stream's
+  // counters go with it.
+  std::map<std::string, StreamCounters> current;
   for (const StreamSnapshot& s : now) {
-    const StreamCounters before = previous[s.stream_id];
+    auto was = previous.find(s.stream_id);
+    const StreamCounters before = was != previous.end() ? was->second : StreamCounters{};
     const StreamCounters& c = s.counters;
-    previous[s.stream_id] = c;
+    current.emplace(s.stream_id, c);
     if (c.frames_in == before.frames_in) continue;
     auto it = s.stages.find("receive_to_publish");
     const double p99 = it == s.stages.end() ? 0.0 : it->second.p99_ms;
@@ -42,6 +46,7 @@ std::vector<std::string> StatsLog::lines(const std::vector<StreamSnapshot>& now,
                   static_cast<unsigned long long>(c.errors - before.errors));
     out.push_back(line);
   }
+  previous.swap(current);
   return out;
 }
 

@@ -24,8 +24,9 @@ class StatsLog : NonCopyable {
   /// Stops the thread (no final line); idempotent.
   void stop();
 
-  /// The lines for one interval of `seconds`, given the counters at its start (updated to
-  /// the current ones). Streams without a frame in the interval are left out.
+  /// The lines for one interval of `seconds`, given the counters at its start (replaced by
+  /// the current ones, of the streams in `now` only). Streams without a frame in the
+  /// interval are left out.
   static std::vector<std::string> lines(const std::vector<StreamSnapshot>& now, double seconds,
                                         std::map<std::string, StreamCounters>& previous);
 

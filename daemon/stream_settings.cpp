@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "common/pair_table.h"
-#include "proto/header_codec.h"
+#include "wire/header_codec.h"
 
 namespace fq::daemon {
 

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string>
 
-#include "kernels/params.h"
-#include "proto/fq.pb.h"
+#include "core/params.h"
+#include "wire/fq.pb.h"
 #include "common/status.h"
 
 namespace fq::daemon {

@@ -38,6 +38,7 @@ void run_sub_ingest(zmq::socket_t pull, zmq::socket_t sub, SubReconnector& recon
   LogLimiter errors;
   zmq::pollitem_t items[] = {{pull.handle(), 0, ZMQ_POLLIN, 0}, {sub.handle(), 0, ZMQ_POLLIN, 0}};
   for (;;) {
+    const CpuScope cpu(p.stage_cpu[CpuStage::kIngest]);
     try {
       expire_idle_streams(p);
       reconnector.check(sub);

@@ -9,7 +9,7 @@
 #include <cstdint>
 
 #include "common/status.h"
-#include "kernels/params.h"
+#include "core/params.h"
 
 namespace fq::daemon {
 

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 #include "common/status.h"
 
 namespace fq {

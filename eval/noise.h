@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 
 namespace fq {
 

@@ -4,7 +4,7 @@
 // together separate "left the surface" from "moved along it".
 #pragma once
 
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 
 namespace fq {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 
 namespace fq {
 

@@ -50,16 +50,6 @@ struct TargetSearch {
   }
 };
 
-// Buffers of the extra engine runs; per thread, so each engine worker reuses its own frame
-// after frame.
-struct ExtraRuns {
-  FrameResult geometry, clusters;
-};
-ExtraRuns& extra_runs() {
-  thread_local ExtraRuns runs;
-  return runs;
-}
-
 void append_timings(const char* prefix, const FrameResult& from, FrameResult& to) {
   for (const PassTiming& t : from.timings) to.timings.push_back({std::string(prefix) + t.name, t.ms});
 }
@@ -71,6 +61,8 @@ Params geometry_filter(const Params& plain) {
   g.filter = true;
   g.cluster = false;
   g.filtering.constrained = true;
+  // The labels' geometry leaves the stream's history to the output's filter (one update a frame).
+  g.filtering.temporal = 0.f;
   return g;
 }
 
@@ -95,8 +87,8 @@ bool same_filter(const Params& a, const Params& b) {
 
 /// Clusters the filtered geometry: the user's filter (when filtering) for the output, the
 /// geometry filter (the same run when they agree), then the clustering pass on its result.
-Status cluster_filtered(Engine& engine, const MeshView& mesh, const Params& plain, FrameResult& out) {
-  ExtraRuns& runs = extra_runs();
+Status cluster_filtered(Engine& engine, ClusterRuns& runs, const MeshView& mesh, const Params& plain,
+                        FrameResult& out) {
   const Params geometry = geometry_filter(plain);
   const FrameResult* shape = &out;
   if (plain.filter) {
@@ -146,7 +138,8 @@ Status process_with_cluster_control(Engine& engine, const MeshView& mesh, const 
     plain.clustering.theta = 1.0f;  // cut nothing: the forest gives every other theta
     plain.clustering.keep_links = true;
   }
-  const Status s = on_filtered ? cluster_filtered(engine, mesh, plain, out) : engine.process(mesh, plain, out);
+  const Status s =
+      on_filtered ? cluster_filtered(engine, engine.cluster_runs_, mesh, plain, out) : engine.process(mesh, plain, out);
   if (!s.ok()) return s;
   const auto t0 = std::chrono::steady_clock::now();
   if (p.clustering.target_clusters > 0) {

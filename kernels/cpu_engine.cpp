@@ -5,7 +5,7 @@
 
 #include "kernels/cluster_control.h"
 #include "kernels/cpu_stages.h"
-#include "kernels/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace fq {
 
@@ -32,7 +32,7 @@ class PassClock {
 
 }  // namespace
 
-CpuEngine::CpuEngine(int threads) : threads_(threads > 0 ? threads : hardware_threads()) {}
+CpuEngine::CpuEngine(int threads) : threads_(threads_or_all(threads)) {}
 
 Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResult& out) {
   // The loops of this run skip their remaining chunks once the token expires; the check
@@ -53,6 +53,9 @@ Status CpuEngine::run(const MeshView& mesh, const Params& params, FrameResult& o
   out.link_p.clear();
   out.noise_estimate = 0.f;
   out.filter_noise = 0.f;
+  out.prior_coverage = 0.f;
+  out.prior_share = 0.f;
+  out.history_reset = false;
   FQ_RETURN_IF_ERROR(validate(params));
   if (needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
   PassClock clock(out.timings, observer_);
@@ -63,7 +66,7 @@ Status CpuEngine::run(const MeshView& mesh, const Params& params, FrameResult& o
     return check_cancel();
   };
   // A frame far smaller than the largest one so far gives that one's scratch back.
-  if (far_smaller(mesh.num_vertices, f_.points.capacity())) release_memory();
+  if (far_smaller(mesh.num_vertices, f_.points.capacity())) release_scratch();
   FQ_RETURN_IF_ERROR(check_mesh(mesh, threads_));
   FQ_RETURN_IF_ERROR(check_cancel());
   FQ_RETURN_IF_ERROR(compute_normalization(mesh, f_.norm, threads_));
@@ -120,6 +123,10 @@ Status CpuEngine::run(const MeshView& mesh, const Params& params, FrameResult& o
     std::copy(mesh.positions, mesh.positions + 3 * size_t(n), out.positions.begin());
   }
   clock.lap("output");
+  FQ_RETURN_IF_ERROR(check_cancel());  // a stopped frame must not become the stream's history
+  const size_t passes = out.timings.size();
+  follow_stream_history(mesh, params, out, threads_);
+  if (observer_ && out.timings.size() > passes) observer_(out.timings.back());
   return {};
 }
 

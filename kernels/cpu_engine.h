@@ -15,10 +15,13 @@ class CpuEngine final : public Engine {
   explicit CpuEngine(int threads = 0);
   std::string name() const override { return "cpu"; }
   Status process(const MeshView& mesh, const Params& params, FrameResult& out) override;
-  void release_memory() override { f_ = CpuFrame{}; }
   int threads() const { return threads_; }
 
  private:
+  void release_scratch() override {
+    f_ = CpuFrame{};
+    temporal_scratch_ = TemporalScratch{};
+  }
   Status run(const MeshView& mesh, const Params& params, FrameResult& out);
 
   int threads_;

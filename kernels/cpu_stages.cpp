@@ -8,7 +8,7 @@
 #include "kernels/filter_math.h"
 #include "kernels/gaussian.h"
 #include "kernels/link_export.h"
-#include "kernels/parallel_for.h"
+#include "core/parallel_for.h"
 #include "kernels/refine_math.h"
 #include "kernels/refine_plan.h"
 

@@ -2,8 +2,8 @@
 #pragma once
 
 #include "kernels/cpu_frame.h"
-#include "kernels/mesh_view.h"
-#include "kernels/params.h"
+#include "core/mesh_view.h"
+#include "core/params.h"
 #include "kernels/refine_plan.h"
 
 namespace fq::cpu {

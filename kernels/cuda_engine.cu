@@ -8,6 +8,7 @@
 #include <string>
 #include <thread>
 
+#include "core/parallel_for.h"
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/device_frame.cuh"
 #include "kernels/cuda/frame_checks.cuh"
@@ -52,7 +53,7 @@ class CudaEngine final : public Engine {
   }
   std::string name() const override { return name_; }
   Status process(const MeshView& mesh, const Params& params, FrameResult& out) override;
-  void release_memory() override;
+  void release_scratch() override;
 
  private:
   static constexpr int kMaxMarks = 16;
@@ -89,6 +90,9 @@ Status CudaEngine::process(const MeshView& mesh, const Params& params, FrameResu
   out.link_p.clear();
   out.noise_estimate = 0.f;
   out.filter_noise = 0.f;
+  out.prior_coverage = 0.f;
+  out.prior_share = 0.f;
+  out.history_reset = false;
   Status st = validate(params);
   if (st.ok() && needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
   if (st.ok()) st = check_mesh_counts(mesh);
@@ -104,10 +108,12 @@ Status CudaEngine::process(const MeshView& mesh, const Params& params, FrameResu
     }
   }
   if (!st.ok() || !params.cluster) out.labels.clear();
+  // The temporal step runs on the host, on the downloaded result (kernels/temporal.h).
+  if (st.ok()) follow_stream_history(mesh, params, out, hardware_threads());
   return st;
 }
 
-void CudaEngine::release_memory() {
+void CudaEngine::release_scratch() {
   // The frees must be made on this engine's device; the destructors log a failed free.
   if (cudaSetDevice(device_.id) != cudaSuccess) {
     (void)cudaGetLastError();
@@ -115,6 +121,7 @@ void CudaEngine::release_memory() {
   }
   f_ = cuda::DeviceFrame{};
   refine_ = cuda::RefineBuffers{};
+  temporal_scratch_ = TemporalScratch{};
 }
 
 // A bad launch is cleared by reading it; a fault inside a kernel is sticky and leaves the
@@ -271,7 +278,7 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
   FQ_CUDA_CHECK(cudaSetDevice(device_.id));
   const cudaStream_t s = stream_.get();
   // A frame far smaller than the largest one so far gives that one's buffers back.
-  if (far_smaller(mesh.num_vertices, f_.points.capacity())) release_memory();
+  if (far_smaller(mesh.num_vertices, f_.points.capacity())) release_scratch();
   f_.n = mesh.num_vertices;
   f_.m = mesh.num_triangles;
   const uint32_t n = f_.n;

@@ -1,10 +1,13 @@
 #include "kernels/engine.h"
 
+#include <chrono>
 #include <thread>
+#include <utility>
 
+#include "common/pair_table.h"
+#include "kernels/copy_engine.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/fq_features.h"
-#include "kernels/parallel_for.h"
 
 #if FQ_WITH_CUDA
 #include "kernels/cuda_engine.h"
@@ -12,15 +15,19 @@
 
 namespace fq {
 
+size_t ClusterRuns::bytes() const {
+  size_t n = 0;
+  for (const FrameResult* r : {&geometry, &clusters}) {
+    n += r->positions.capacity() * sizeof(float) + r->labels.capacity() * sizeof(uint32_t) +
+         r->link_parent.capacity() * sizeof(uint32_t) + r->link_p.capacity() * sizeof(float);
+  }
+  return n;
+}
+
 double FrameResult::total_ms() const {
   double t = 0.0;
   for (const PassTiming& p : timings) t += p.ms;
   return t;
-}
-
-int hardware_threads() {
-  const unsigned n = std::thread::hardware_concurrency();
-  return n > 0 ? static_cast<int>(n) : 1;
 }
 
 bool valid_cuda_team(int team) {
@@ -28,16 +35,36 @@ bool valid_cuda_team(int team) {
          team == 16 || team == 32;
 }
 
+namespace {
+constexpr std::pair<EngineKind, const char*> kEngineKindNames[] = {
+    {EngineKind::kAuto, "auto"}, {EngineKind::kCpu, "cpu"}, {EngineKind::kCuda, "cuda"}, {EngineKind::kCopy, "copy"}};
+}  // namespace
+
 bool parse_engine_kind(const std::string& s, EngineKind& out) {
-  if (s == "auto") out = EngineKind::kAuto;
-  else if (s == "cpu") out = EngineKind::kCpu;
-  else if (s == "cuda") out = EngineKind::kCuda;
-  else return false;
-  return true;
+  const std::optional<EngineKind> k = first_of(kEngineKindNames, s);
+  if (k) out = *k;
+  return k.has_value();
 }
+
+void Engine::follow_stream_history(const MeshView& mesh, const Params& params, FrameResult& out, int threads) {
+  const FilterParams& f = params.filtering;
+  if (history_ == nullptr || !params.filter || f.method != FilterMethod::kQuadricRefined || !(f.temporal > 0.f))
+    return;
+  const auto start = std::chrono::steady_clock::now();
+  const TemporalStep step = follow_history(mesh, out.positions, out.mean_edge, out.noise_estimate, f.temporal,
+                                           *history_, temporal_scratch_, threads);
+  out.prior_coverage = step.coverage;
+  out.prior_share = step.share;
+  out.history_reset = step.reset;
+  out.timings.push_back(
+      {"temporal", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()});
+}
+
+const char* engine_kind_name(EngineKind kind) { return second_of(kEngineKindNames, kind).value_or("auto"); }
 
 StatusOr<std::unique_ptr<Engine>> make_engine(const EngineOptions& options) {
   if (options.kind == EngineKind::kCpu) return std::make_unique<CpuEngine>(options.threads);
+  if (options.kind == EngineKind::kCopy) return std::make_unique<CopyEngine>();
 #if FQ_WITH_CUDA
   Status s;
   if (auto e = make_cuda_engine(options.device, &s, options.cuda)) return e;

@@ -11,9 +11,10 @@
 
 #include "common/status.h"
 #include "common/status_or.h"
-#include "kernels/cancel_token.h"
-#include "kernels/mesh_view.h"
-#include "kernels/params.h"
+#include "core/cancel_token.h"
+#include "core/mesh_view.h"
+#include "core/params.h"
+#include "kernels/temporal.h"
 
 namespace fq {
 
@@ -39,9 +40,24 @@ struct FrameResult {
   /// edge lengths; 0 for the other methods.
   float noise_estimate = 0.f;
   float filter_noise = 0.f;
+  /// Temporal filtering: the share of vertices that found a prior in the stream's last result,
+  /// the mean pull towards it, and whether this frame reset the history (a scene cut).
+  float prior_coverage = 0.f;
+  float prior_share = 0.f;
+  bool history_reset = false;
   std::vector<PassTiming> timings;
 
   double total_ms() const;
+};
+
+/// Buffers of the extra engine runs that cluster control makes (kernels/cluster_control.h): the
+/// clustering geometry and the clustering pass on it. Kept by the engine for its next frame,
+/// like its own scratch, and given back by Engine::release_memory().
+struct ClusterRuns {
+  FrameResult geometry, clusters;
+
+  /// Bytes their buffers hold.
+  size_t bytes() const;
 };
 
 /// Told about each pass as it ends (progress displays).
@@ -57,16 +73,31 @@ class Engine {
   /// loops) and returns kCancelled once it has expired. It must outlive the runs that use
   /// it; null: none. Frames that finish are computed exactly as without a token.
   void set_cancel_token(const CancelToken* token) { cancel_ = token; }
+  /// The stream history "qf+" filters the next frames with when FilterParams::temporal > 0
+  /// (kernels/temporal.h): read and updated by process(); null: every frame alone. Like the
+  /// token, it must outlive the runs that use it; a stream's frames must come in order.
+  void set_history(TemporalHistory* history) { history_ = history; }
   /// "cpu" or "cuda:<device name>".
   virtual std::string name() const = 0;
   /// Processes one frame. Bad parameters or a bad mesh give a non-ok status and leave the
   /// engine usable for the next frame, as does a run stopped by the cancel token.
   virtual Status process(const MeshView& mesh, const Params& params, FrameResult& out) = 0;
   /// Gives back the buffers kept for the next frame (an idle engine: fqd calls it after
-  /// caps.pool_idle_s without frames); the next frame allocates them again.
-  virtual void release_memory() {}
+  /// caps.pool_idle_s without frames): the engine's own scratch and cluster control's runs;
+  /// the next frame allocates them again.
+  void release_memory() {
+    cluster_runs_ = {};
+    release_scratch();
+  }
+  /// The extra runs' buffers kept for the next frame (what release_memory() gives back besides
+  /// the engine's own scratch).
+  const ClusterRuns& cluster_runs() const { return cluster_runs_; }
 
  protected:
+  /// The engine's own scratch (host or device), given back by release_memory() and when a
+  /// frame is far smaller than the largest so far (far_smaller). Not cluster_runs(): a frame
+  /// may be one of those runs.
+  virtual void release_scratch() {}
   /// Ok, or kCancelled once the cancel token has expired.
   Status check_cancel() const { return cancel_ != nullptr ? cancel_->check() : Status{}; }
   /// Whether a frame of `vertices` should first give back scratch sized for `capacity`
@@ -75,11 +106,25 @@ class Engine {
     return size_t(vertices) * 4 < capacity && capacity > (size_t(1) << 16);
   }
 
+  /// The temporal step (kernels/temporal.h) of a "qf+" result in `out` (input order), when a
+  /// history is set and params ask for it; timed as the pass "temporal" in out.timings.
+  void follow_stream_history(const MeshView& mesh, const Params& params, FrameResult& out, int threads);
+
   PassObserver observer_;
   const CancelToken* cancel_ = nullptr;
+  TemporalHistory* history_ = nullptr;
+  TemporalScratch temporal_scratch_;  ///< the engine's scratch: release_scratch() gives it back
+
+ private:
+  // Cluster control runs the engine again with these as outputs.
+  friend Status process_with_cluster_control(Engine& engine, const MeshView& mesh, const Params& p,
+                                             FrameResult& out);
+  ClusterRuns cluster_runs_;
 };
 
-enum class EngineKind { kAuto, kCpu, kCuda };
+/// kCopy: the copy engine (copy_engine.h), which returns its input, for measuring the host
+/// path around an engine.
+enum class EngineKind { kAuto, kCpu, kCuda, kCopy };
 
 /// Kernel choices of the CUDA engine (docs/BENCHMARKS.md has the measurements behind the
 /// defaults). Fixed for an engine's lifetime.
@@ -104,8 +149,10 @@ struct EngineOptions {
 /// True for the team values CudaTuning accepts.
 bool valid_cuda_team(int team);
 
-/// Parses "auto" | "cpu" | "cuda".
+/// Parses "auto" | "cpu" | "cuda" | "copy".
 bool parse_engine_kind(const std::string& s, EngineKind& out);
+/// "auto", "cpu", "cuda" or "copy".
+const char* engine_kind_name(EngineKind kind);
 
 /// CUDA when asked for or (auto) when a device is present, the CPU engine otherwise.
 /// kUnavailable (with the reason) when an explicitly requested engine is not present.

@@ -1,4 +1,4 @@
-// Host-side checks and normalization shared by the engines: a frame is validated, then
+// Host-side normalization shared by the engines: a frame is checked (core/mesh_checks.h), then
 // moved to normalized units (bounding-box centre at the origin, mean edge length = 1) so
 // that every sigma is a plain number and float32 keeps its precision.
 #pragma once
@@ -11,7 +11,8 @@
 
 #include "common/status.h"
 #include "kernels/hd.h"
-#include "kernels/mesh_view.h"
+#include "core/mesh_checks.h"
+#include "core/mesh_view.h"
 #include "kernels/vec3.h"
 
 namespace fq {
@@ -32,22 +33,6 @@ struct Normalization {
     out[2] = float(center[2] + q.z * mean_edge);
   }
 };
-
-/// Non-empty, finite coordinates, every index in range, at least one triangle.
-Status check_mesh(const MeshView& mesh, int threads = 0);
-
-/// Index of the first non-finite value of values[0, count), or count; on `threads` threads
-/// (0 = all), the same answer for any thread count.
-uint64_t first_non_finite(const float* values, uint64_t count, int threads = 0);
-
-/// check_mesh's first part: at least one vertex and one triangle.
-Status check_mesh_counts(const MeshView& mesh);
-
-/// check_mesh's verdict from the first non-finite coordinate (index into positions) and the
-/// first out-of-range index (into triangles), each kNone when there is none, however they
-/// were found (the CUDA engine searches on the device).
-inline constexpr uint64_t kNone = ~uint64_t(0);
-Status mesh_faults(const MeshView& mesh, uint64_t bad_coordinate, uint64_t bad_index);
 
 /// Largest bounding-box extent, in mean edge lengths, that a frame may span. float32
 /// coordinates at 1e6 edges from the centre resolve about 0.06 edge; beyond that (or with a

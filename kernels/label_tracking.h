@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "common/status.h"
-#include "kernels/cancel_token.h"
+#include "core/cancel_token.h"
 #include "kernels/nearest_vertex.h"
 
 namespace fq {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <utility>
 
-#include "kernels/cancel_token.h"
-#include "kernels/parallel_for.h"
+#include "core/cancel_token.h"
+#include "core/parallel_for.h"
 
 namespace fq {
 

@@ -207,17 +207,19 @@ FQ_HD Vec3 tangential_move(Vec3 in, Vec3 out, Vec3 n) {
 
 /// Mean of e over v and the other corners of its triangles (each neighbour counted once per
 /// triangle it shares with v): the local level of a per-vertex quantity.
-FQ_HD float ring_mean(const FanView& m, const float* e, uint32_t v) {
-  float sum = e[v], count = 1.f;
+template <class T>
+FQ_HD T ring_mean(const FanView& m, const T* e, uint32_t v) {
+  T sum = e[v];
+  float count = 1.f;
   for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
     const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[k]);
     for (int c = 0; c < 3; ++c) {
       if (tri[c] == v) continue;
-      sum += e[tri[c]];
+      sum = sum + e[tri[c]];
       count += 1.f;
     }
   }
-  return sum / count;
+  return (1.f / count) * sum;
 }
 
 /// ring_mean passes that make a vertex's tangential energy a local level (two rings).

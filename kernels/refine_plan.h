@@ -25,7 +25,7 @@
 #include <cmath>
 
 #include "kernels/gaussian.h"
-#include "kernels/params.h"
+#include "core/params.h"
 
 namespace fq {
 

@@ -8,6 +8,9 @@ namespace fq::py {
 /// filter, cluster, engine_name: the engines on numpy meshes.
 void bind_engine_functions(pybind11::module_& m);
 
+/// Stream: one stream's frames filtered in order with its history.
+void bind_stream(pybind11::module_& m);
+
 /// read_mesh, write_mesh, add_noise, metrics: files, noise and error measures.
 void bind_mesh_functions(pybind11::module_& m);
 

@@ -5,8 +5,9 @@
 
 #include <string>
 
-#include "kernels/params.h"
+#include "core/params.h"
 #include "python/bindings.h"
+#include "python/engine_options.h"
 #include "python/interruptible.h"
 #include "python/keywords.h"
 #include "python/numpy_mesh.h"
@@ -18,15 +19,6 @@ namespace {
 
 namespace pyb = pybind11;
 using namespace pybind11::literals;
-
-EngineOptions engine_options(const std::string& engine, int threads) {
-  EngineOptions o;
-  if (!parse_engine_kind(engine, o.kind))
-    throw pyb::value_error("engine must be 'auto', 'cpu' or 'cuda', got '" + engine + "'");
-  if (threads < 0) throw pyb::value_error("threads must be >= 0 (0: all hardware threads)");
-  o.threads = threads;
-  return o;
-}
 
 FrameResult run(const pyb::handle& v, const pyb::handle& f, const Params& params, const EngineOptions& o) {
   const Mesh mesh = to_mesh(v, f);

@@ -26,7 +26,7 @@ Slot& slot_for(const EngineOptions& options) {
 }  // namespace
 
 Status run_cached_engine(const EngineOptions& options, const MeshView& mesh, const Params& params,
-                         FrameResult& out, const std::atomic<bool>* stop) {
+                         FrameResult& out, const std::atomic<bool>* stop, TemporalHistory* history) {
   Slot& slot = slot_for(options);
   const std::lock_guard<std::mutex> lock(slot.busy);
   if (!slot.engine) {
@@ -34,7 +34,9 @@ Status run_cached_engine(const EngineOptions& options, const MeshView& mesh, con
   }
   const CancelToken token(stop);
   slot.engine->set_cancel_token(&token);
+  slot.engine->set_history(history);
   Status s = slot.engine->process(mesh, params, out);
+  slot.engine->set_history(nullptr);
   slot.engine->set_cancel_token(nullptr);
   return s;
 }

@@ -8,4 +8,5 @@ PYBIND11_MODULE(_fq, m) {
   m.attr("built_with_cuda") = fq::built_with_cuda();
   fq::py::bind_engine_functions(m);
   fq::py::bind_mesh_functions(m);
+  fq::py::bind_stream(m);
 }

@@ -20,10 +20,10 @@ constexpr std::chrono::milliseconds kSignalPoll{50};
 }  // namespace
 
 Status run_interruptible(const EngineOptions& options, const MeshView& mesh, const Params& params,
-                         FrameResult& out) {
+                         FrameResult& out, TemporalHistory* history) {
   std::atomic<bool> stop{false};
   std::future<Status> run = std::async(std::launch::async, [&] {
-    return run_cached_engine(options, mesh, params, out, &stop);
+    return run_cached_engine(options, mesh, params, out, &stop, history);
   });
   for (;;) {
     {

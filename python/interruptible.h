@@ -12,8 +12,9 @@ namespace fq::py {
 /// Runs `params` on `mesh` with the cached engine for `options`; call with the GIL held. A
 /// signal handler that raises while the engine runs (KeyboardInterrupt on Ctrl-C) stops the
 /// engine through its cancel token, and the exception propagates once the engine has
-/// returned (pybind11::error_already_set). Otherwise: the engine's status.
+/// returned (pybind11::error_already_set). Otherwise: the engine's status. `history` (may be
+/// null): the stream history of the run (fq.Stream).
 Status run_interruptible(const EngineOptions& options, const MeshView& mesh, const Params& params,
-                         FrameResult& out);
+                         FrameResult& out, TemporalHistory* history = nullptr);
 
 }  // namespace fq::py

@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "kernels/params.h"
+#include "core/params.h"
 
 namespace fq::py {
 

@@ -3,7 +3,8 @@
 The stub is made from the package itself, not written by hand: filter's and cluster's keywords
 come from fq's C++ parameter structs at import time (fq/_engine.py), so only the built package
 knows them. Every public function becomes a `def` with its signature's annotations and
-defaults; Mesh is re-exported from fq.mesh, which carries its own annotations (py.typed).
+defaults; Mesh and Stream are re-exported from fq.mesh and fq._stream, which carry their own
+annotations (py.typed).
 
 Usage: python3 make_stub.py OUT.pyi   (with the built package on PYTHONPATH)
 """
@@ -22,6 +23,7 @@ from typing import Any, Literal, Optional, Union
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from fq._stream import Stream as Stream
 from fq.mesh import Mesh as Mesh
 
 PathLike = Union[str, os.PathLike[str]]

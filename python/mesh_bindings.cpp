@@ -11,7 +11,7 @@
 #include "eval/error_metrics.h"
 #include "eval/noise.h"
 #include "eval/surface_distance.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 #include "python/bindings.h"
 #include "python/mesh_dict.h"
 #include "python/numpy_mesh.h"

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "kernels/mesh_view.h"
-#include "proto/mesh_attributes.h"
+#include "core/mesh_view.h"
+#include "io/mesh_attributes.h"
 
 namespace fq::py {
 

@@ -17,7 +17,7 @@ void throw_if_error(const Status& s) {
 }
 
 void throw_if_file_error(const Status& s) {
-  // fq_meshio reports files it cannot find, open, read or write as kIoError (and a few file
+  // fq_io reports files it cannot find, open, read or write as kIoError (and a few file
   // problems as invalid arguments), content it cannot decode as invalid input.
   if (s.code() == StatusCode::kIoError || s.code() == StatusCode::kInvalidArgument) {
     PyErr_SetString(PyExc_OSError, s.message().c_str());

@@ -112,7 +112,7 @@ export function decodeFrame(M, buffer, meta, faces) {
   }
 }
 
-// The colour of a cluster label, as fq's PLY writer gives it (proto/cluster_colors.cpp):
+// The colour of a cluster label, as fq's PLY writer gives it (io/cluster_colors.cpp):
 // golden-ratio hues with three saturation/value levels, so a viewer and a saved PLY agree.
 export function clusterColor(label, out, offset) {
   const x = label * 0.6180339887498949;

@@ -1,6 +1,6 @@
 #include "clients/common/control_client.h"
 
-#include "proto/header_codec.h"
+#include "wire/header_codec.h"
 
 namespace fq::client {
 

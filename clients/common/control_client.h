@@ -4,7 +4,7 @@
 #include <string>
 #include <zmq.hpp>
 
-#include "proto/fq.pb.h"
+#include "wire/fq.pb.h"
 #include "common/status.h"
 
 namespace fq::client {

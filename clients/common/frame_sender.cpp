@@ -3,7 +3,7 @@
 #include <chrono>
 #include <zmq_addon.hpp>
 
-#include "proto/header_codec.h"
+#include "wire/header_codec.h"
 
 namespace fq::client {
 

@@ -7,9 +7,9 @@
 #include <vector>
 #include <zmq.hpp>
 
-#include "proto/fq.pb.h"
-#include "proto/frame_codec.h"
-#include "kernels/mesh_view.h"
+#include "wire/fq.pb.h"
+#include "wire/frame_codec.h"
+#include "core/mesh_view.h"
 #include "common/status.h"
 
 namespace fq::client {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 #include "eval/noise.h"
 
 namespace fq::client {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 #include "common/status.h"
 
 namespace fq::client {

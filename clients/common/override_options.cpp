@@ -2,8 +2,8 @@
 
 #include <optional>
 
-#include "kernels/params.h"
-#include "proto/header_codec.h"
+#include "core/params.h"
+#include "wire/header_codec.h"
 
 namespace fq::client {
 
@@ -31,6 +31,7 @@ void add_override_options(CLI::App& app, OverrideArgs& a) {
   add_field(app, g, "--tikhonov", &P::set_tikhonov, o, "pull toward the current position");
   add_field(app, g, "--known-noise", &P::set_known_noise, o, "qf+: noise to filter for, mean edges (0 = estimated)");
   add_field(app, g, "--strength", &P::set_strength, o, "qf+: factor on the noise the strengths come from");
+  add_field(app, g, "--temporal", &P::set_temporal, o, "qf+: pull towards the stream's last result, [0, 1]");
   app.add_option("--mode", a.mode, "filter: " + join_names(method_names<FilterMethod>(), " | "))->group(g);
   add_field(app, g, "--sigma-d", &P::set_sigma_d, o, "clustering spatial extent");
   add_field(app, g, "--sigma-q", &P::set_sigma_q, o, "clustering range extent");

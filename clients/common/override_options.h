@@ -5,7 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "proto/fq.pb.h"
+#include "wire/fq.pb.h"
 #include "common/status.h"
 
 namespace fq::client {

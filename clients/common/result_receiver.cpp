@@ -3,9 +3,9 @@
 #include <cmath>
 #include <zmq_addon.hpp>
 
-#include "proto/frame_codec.h"
+#include "wire/frame_codec.h"
 #include "clients/common/frame_sender.h"
-#include "proto/header_codec.h"
+#include "wire/header_codec.h"
 
 namespace fq::client {
 

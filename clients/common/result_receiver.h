@@ -9,8 +9,8 @@
 
 #include "common/status.h"
 #include "common/status_or.h"
-#include "kernels/mesh_view.h"
-#include "proto/fq.pb.h"
+#include "core/mesh_view.h"
+#include "wire/fq.pb.h"
 
 namespace fq::client {
 

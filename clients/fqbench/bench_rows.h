@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "kernels/params.h"
+#include "core/params.h"
 
 namespace fq::bench {
 

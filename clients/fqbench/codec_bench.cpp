@@ -1,14 +1,8 @@
-// The floor is what a chunked codec built on Draco's own coder pays: draco::Encoder and
-// draco::Decoder on the frame's chunks as draco::Mesh objects, positions only, one task per
-// chunk on the same threads. It leaves out what fq adds around Draco: input checks, the split,
-// the ids, reading the decoded meshes back and merging them. The floor's chunk meshes are built
-// once, untimed. fq writes its sequentially coded chunks itself (proto/draco_sequential.h: the
-// same bytes draco::Encoder writes, without a draco::Mesh copy), so its encode can come in
-// under this floor; the bytes column shows what the ids add.
+// The floor (clients/common/draco_floor.h) is what a chunked codec built on Draco's own coder
+// pays, on the same chunks and threads. fq writes its sequentially coded chunks itself
+// (wire/draco_sequential.h: the same bytes draco::Encoder writes, without a draco::Mesh copy),
+// so its encode can come in under this floor; the bytes column shows what the ids add.
 #include "clients/fqbench/codec_bench.h"
-
-#include <draco/compression/decode.h>
-#include <draco/mesh/mesh.h>
 
 #include <algorithm>
 #include <chrono>
@@ -16,22 +10,20 @@
 #include <ctime>
 #include <filesystem>
 #include <functional>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "clients/common/draco_floor.h"
 #include "clients/fqbench/bench_stats.h"
-#include "proto/frame_chunk.h"
-#include "proto/frame_codec.h"
-#include "proto/frame_split.h"
-#include "proto/mesh_io.h"
+#include "wire/frame_chunk.h"
+#include "wire/frame_codec.h"
+#include "wire/frame_split.h"
+#include "io/mesh_io.h"
 
 namespace fq::bench {
 namespace {
-
-namespace wd = fq::wire::detail;
 
 /// CPU time of the whole process (all threads), in ms: the work done, less sensitive than wall
 /// time to other jobs on a shared machine.
@@ -56,44 +48,9 @@ size_t total_bytes(const std::vector<std::string>& parts) {
   return n;
 }
 
-/// The frame's chunks as position-only Draco meshes: the same split and points as encode_frame.
-struct FloorChunks {
-  wd::Box box;
-  std::vector<std::unique_ptr<draco::Mesh>> meshes;
-  std::vector<uint8_t> sequential;  ///< per chunk: coded with Draco's sequential coder
-};
-
-FloorChunks floor_chunks(const MeshView& mesh, uint32_t chunks, const wire::CodecOptions& opt) {
-  FloorChunks f;
-  f.box = wd::bounding_box(mesh, opt.threads);
-  const auto parts = wd::split_parts(mesh, f.box, std::min(chunks, mesh.num_triangles), opt.threads);
-  wd::ChunkScratch scratch;
-  for (const auto& part : parts) {
-    f.meshes.push_back(std::make_unique<draco::Mesh>());
-    f.sequential.push_back(wd::build_chunk(mesh, nullptr, false, opt, part, scratch, *f.meshes.back()));
-  }
-  return f;
-}
-
-bool floor_encode(const FloorChunks& f, const wire::CodecOptions& opt, std::vector<std::string>& out) {
-  out.assign(f.meshes.size(), {});
-  std::vector<uint8_t> ok(f.meshes.size(), 0);
-  wd::for_each_chunk(f.meshes.size(), opt.threads, [&](size_t i, size_t) {
-    ok[i] = wd::encode_chunk(*f.meshes[i], f.sequential[i] != 0, opt, f.box, out[i]).ok();
-  });
-  return std::all_of(ok.begin(), ok.end(), [](uint8_t b) { return b != 0; });
-}
-
-bool floor_decode(const std::vector<std::string>& encoded, int threads) {
-  std::vector<uint8_t> ok(encoded.size(), 0);
-  wd::for_each_chunk(encoded.size(), threads, [&](size_t i, size_t) {
-    draco::DecoderBuffer buf;
-    buf.Init(encoded[i].data(), encoded[i].size());
-    draco::Decoder dec;
-    ok[i] = dec.DecodeMeshFromBuffer(&buf).ok();
-  });
-  return std::all_of(ok.begin(), ok.end(), [](uint8_t b) { return b != 0; });
-}
+using client::floor_decode;
+using client::floor_encode;
+using client::FloorChunks;
 
 struct Samples {
   std::vector<double> encode, decode, result_encode, floor_encode, floor_decode;  // wall ms
@@ -192,7 +149,7 @@ int run_codec_bench(const CodecBenchOptions& o) {
   opt.threads = o.threads;
   opt.encode_speed = opt.decode_speed = o.speed;
   opt.position_bits = o.position_bits;
-  const FloorChunks f = floor_chunks(mesh.view(), o.chunks, opt);
+  const FloorChunks f = client::floor_chunks(mesh.view(), o.chunks, opt);
   Samples warm, s;
   Mesh back;
   if (!one_round(mesh, f, o.chunks, opt, back, warm)) {

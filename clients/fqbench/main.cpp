@@ -21,7 +21,7 @@
 #include "common/tool_main.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/engine.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 
 #include "kernels/frame_prep.h"
 #include "kernels/grid_build.h"
-#include "kernels/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace fq::bench {
 

@@ -3,8 +3,8 @@
 // visitor as the engines).
 #pragma once
 
-#include "kernels/mesh_view.h"
-#include "kernels/params.h"
+#include "core/mesh_view.h"
+#include "core/params.h"
 
 namespace fq::bench {
 

@@ -6,7 +6,7 @@
 #include <map>
 #include <string>
 
-#include "proto/fq.pb.h"
+#include "wire/fq.pb.h"
 
 namespace fq::client {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "common/status.h"
-#include "proto/fq.pb.h"
+#include "wire/fq.pb.h"
 
 namespace fq::client {
 

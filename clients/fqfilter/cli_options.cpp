@@ -1,6 +1,7 @@
 #include "clients/fqfilter/cli_options.h"
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
 
 #include "clients/common/defaulted_option.h"
@@ -49,6 +50,19 @@ void add_filter_options(CLI::App& app, Options& o, std::string& mode) {
 void add_refine_options(CLI::App& app, RefineParams& r) {
   app.option_defaults()->group("Noise (--mode qf+)");
   add_member_options(app, r, kRefineOptions);
+}
+
+/// Filtering across frames; the default strength applies with --sequence only.
+void add_sequence_options(CLI::App& app, Options& o, float& temporal) {
+  app.option_defaults()->group("Sequence (--mode qf+)");
+  app.add_flag("--sequence", o.sequence,
+               "IN is a folder of one stream's frames: filter them in name order, each with the last "
+               "result as evidence (as fqd does with temporal > 0), noise seeded by --seed + frame index, "
+               "flicker reported");
+  app.add_option("--temporal", temporal,
+                 "With --sequence: how far a vertex may be pulled to the last result's surface where "
+                 "that surface did not move, in [0, 1]; 0 = each frame alone")
+      ->check(CLI::Range(0.0, 1.0));
 }
 
 void add_cluster_control_options(CLI::App& app, Options& o, std::string& geometry) {
@@ -117,6 +131,18 @@ constexpr const char* kExamples = R"(Examples:
 /// in (0, 1], nothing to compute); the message, empty when valid.
 std::string check_params(const Options& o) { return validate(o.params).message(); }
 
+/// What --sequence and --temporal need of the other options; the message, empty when fine.
+std::string check_sequence(const Options& o, bool temporal_given) {
+  if (temporal_given && !o.sequence) return "--temporal needs --sequence (frames of one stream)";
+  if (!o.sequence) return "";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(o.input, ec)) return "--sequence needs a folder of frames as IN";
+  if (o.params.filter && o.params.filtering.method != FilterMethod::kQuadricRefined)
+    return "--sequence filters across frames with --mode qf+ only";
+  if (o.repeat > 1) return "--sequence runs each frame once (--repeat would filter a frame with its own result)";
+  return "";
+}
+
 }  // namespace
 
 ParseOutcome parse_options(int argc, char** argv, Options& o) {
@@ -132,6 +158,8 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
   app.option_defaults()->always_capture_default();
   add_filter_options(app, o, mode);
   add_refine_options(app, o.params.filtering.refine);
+  float temporal = kDefaultTemporal;
+  add_sequence_options(app, o, temporal);
   add_cluster_options(app, o, method, no_filter);
   add_cluster_control_options(app, o, geometry);
   try {
@@ -152,6 +180,11 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
     o.params.filter = false;
     o.params.cluster = true;
   }
+  if (const std::string why = check_sequence(o, app.count("--temporal") > 0); !why.empty()) {
+    std::cerr << "fqfilter: error: " << why << "\n";
+    return {false, 2};
+  }
+  if (o.sequence) o.params.filtering.temporal = temporal;
   if (const std::string why = check_params(o); !why.empty()) {
     std::cerr << "fqfilter: error: " << why << "\n";
     return {false, 2};

@@ -11,8 +11,9 @@
 #include "eval/noise.h"
 #include "eval/sharp_edge_recall.h"
 #include "eval/surface_distance.h"
+#include "io/mesh_io.h"
 #include "kernels/cpu_engine.h"
-#include "proto/mesh_io.h"
+#include "kernels/frame_prep.h"
 
 namespace fq::cli {
 
@@ -50,6 +51,11 @@ Status run_engine(const Options& o, Engine& engine, const MeshView& view, FrameR
   if (o.params.filter && o.params.filtering.method == FilterMethod::kQuadricRefined) {
     report.noise_estimate = result.noise_estimate;
     report.filter_noise = result.filter_noise;
+  }
+  if (o.sequence) {  // also at --temporal 0: the per-frame baseline's flicker
+    report.prior_coverage = result.prior_coverage;
+    report.prior_share = result.prior_share;
+    report.history_reset = result.history_reset;
   }
   if (o.params.cluster) {
     report.clusters = result.num_clusters;
@@ -122,7 +128,7 @@ Status write_output(const Options& o, const std::string& output, const MeshView&
 }  // namespace
 
 Status run_file_job(const std::string& input, const std::string& output, const Options& o, Engine& engine,
-                    FileReport& r) {
+                    FileReport& r, FramePositions* kept) {
   describe(input, o, engine, r);
   Progress progress(!o.json && !o.quiet, input);
   progress.show("reading");
@@ -140,9 +146,11 @@ Status run_file_job(const std::string& input, const std::string& output, const O
       add_normal_noise(mesh, o.noise_sigma, o.seed);
     else
       add_gaussian_noise(mesh, o.noise_sigma, o.seed);
-    if (!o.noisy_out.empty()) {
-      if (Status s = io::write_mesh(o.noisy_out, mesh.view(), nullptr, 0, 0); !s.ok()) return fail(r, s);
-    }
+  }
+  // With --noise 0 the "noisy" input is the input itself: written all the same, so that a
+  // sweep over noise levels that starts at 0 finds every file it asked for.
+  if (!o.noisy_out.empty()) {
+    if (Status s = io::write_mesh(o.noisy_out, mesh.view(), nullptr, 0, 0); !s.ok()) return fail(r, s);
   }
   if (!r.reference.empty()) {
     if (Status s = check_same_connectivity(clean.view(), mesh.view()); !s.ok())
@@ -156,6 +164,12 @@ Status run_file_job(const std::string& input, const std::string& output, const O
     r.input_error = measure(clean.view(), mesh.positions.data());
     if (o.params.filter) r.output_error = measure(clean.view(), result.positions.data());
     if (o.params.cluster) r.sharp_edges = sharp_edge_recall(clean.view(), result.labels.data());
+    if (kept && o.params.filter) {
+      kept->reference = clean.positions;
+      kept->result = result.positions;
+      kept->reference_mean_edge = mean_edge_length(clean.view());
+      kept->triangles = mesh.triangles;
+    }
   }
   if (!output.empty()) {
     progress.show("writing " + output);

@@ -52,6 +52,7 @@ nlohmann::json params_json(const Params& p) {
           {"sigma_n", as_typed(f.effective_sigma_n())},
           {"constrained", f.constrained},
           {"tikhonov", as_typed(f.tikhonov)},
+          {"temporal", as_typed(f.temporal)},
           {"cluster_method", method_name(p.clustering.method)},
           {"sigma_d", as_typed(p.clustering.sigma_d)},
           {"sigma_q", as_typed(p.clustering.sigma_q)},
@@ -137,6 +138,11 @@ nlohmann::json to_json(const FileReport& r) {
             {"clusters", r.clusters ? nlohmann::json(*r.clusters) : nlohmann::json(nullptr)},
             {"theta_used", r.theta_used ? nlohmann::json(as_typed(*r.theta_used)) : nlohmann::json(nullptr)},
             {"warnings", r.warnings}});
+  if (r.prior_coverage)
+    j["temporal"] = {{"prior_coverage", *r.prior_coverage},
+                     {"prior_share", *r.prior_share},
+                     {"history_reset", r.history_reset},
+                     {"flicker", r.flicker ? nlohmann::json(*r.flicker) : nlohmann::json(nullptr)}};
   if (r.reference.empty()) {
     j["metrics"] = nullptr;
   } else {
@@ -170,6 +176,13 @@ void print_human(const FileReport& r, std::ostream& os) {
     os << "\n";
     if (*r.noise_estimate < kLooksCleanBelow && r.params.filtering.refine.known_noise == 0.f)
       os << "  input looks clean: filtered lightly (--known-noise 0.1 filters it as 0.1 mean edges of noise)\n";
+  }
+  if (r.prior_coverage) {
+    os << std::setprecision(3) << "  temporal: " << *r.prior_coverage << " of vertices near the last result, pull "
+       << *r.prior_share;
+    if (r.history_reset) os << " (scene cut: history reset)";
+    if (r.flicker) os << ", flicker " << *r.flicker << " mean edges";
+    os << "\n";
   }
   if (r.clusters) {
     os << "  clusters: " << *r.clusters;

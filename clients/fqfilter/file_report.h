@@ -10,7 +10,7 @@
 
 #include "kernels/engine.h"
 #include "eval/error_metrics.h"
-#include "kernels/params.h"
+#include "core/params.h"
 #include "eval/sharp_edge_recall.h"
 #include "eval/surface_distance.h"
 
@@ -40,6 +40,12 @@ struct FileReport {
   double total_ms = 0.0;           ///< median of the per-run totals
   /// "qf+": the noise estimated from the mesh and the noise filtered for (mean edge lengths).
   std::optional<float> noise_estimate, filter_noise;
+  /// --sequence: the share of vertices that found a prior in the last result, the mean pull
+  /// towards it, whether this frame reset the stream's history (a scene cut), and the flicker
+  /// against the last frame (eval/flicker.h; with a reference of the same vertices).
+  std::optional<float> prior_coverage, prior_share;
+  bool history_reset = false;
+  std::optional<double> flicker;
   std::optional<uint32_t> clusters;
   std::optional<float> theta_used;        ///< the theta that gave the labels (found with a target)
   std::optional<SharpEdgeRecall> sharp_edges;  ///< labels vs the reference's creases

@@ -4,9 +4,12 @@
 #include <cmath>
 #include <iostream>
 #include <map>
+#include <optional>
 
 #include "clients/fqfilter/file_job.h"
-#include "proto/mesh_io.h"
+#include "eval/flicker.h"
+#include "io/mesh_io.h"
+#include "kernels/temporal.h"
 
 namespace fq::cli {
 
@@ -54,6 +57,45 @@ std::vector<fs::path> list_mesh_files(const fs::path& folder) {
   return files;
 }
 
+namespace {
+
+/// --sequence: what the closing line says about the whole stream.
+struct SequenceSummary {
+  double mfne_sum = 0.0, flicker_sum = 0.0;
+  size_t mfne_frames = 0, flicker_frames = 0, resets = 0;
+
+  void add(const FileReport& r) {
+    if (r.output_error && std::isfinite(r.output_error->mfne.mean_radians)) {
+      mfne_sum += r.output_error->mfne.mean_radians;
+      ++mfne_frames;
+    }
+    if (r.flicker) {
+      flicker_sum += *r.flicker;
+      ++flicker_frames;
+    }
+    resets += r.history_reset ? 1 : 0;
+  }
+  void print(std::ostream& os) const {
+    os << "fqfilter: sequence: " << resets << " scene cut" << (resets == 1 ? "" : "s");
+    if (mfne_frames) os << ", mean MFNE " << mfne_sum / double(mfne_frames) << " rad";
+    if (flicker_frames) os << ", mean flicker " << flicker_sum / double(flicker_frames) << " mean edges";
+    os << "\n";
+  }
+};
+
+/// Flicker of `now` against the frame before (eval/flicker.h), when both have a reference and
+/// a result and the same triangles (so vertex i is the same surface point in both; a re-meshed
+/// sequence has no flicker by vertex).
+std::optional<double> flicker_between(const FramePositions& before, const FramePositions& now) {
+  if (now.result.empty() || before.result.size() != now.result.size() ||
+      now.reference.size() != now.result.size() || before.triangles != now.triangles)
+    return std::nullopt;
+  return flicker(now.result.data(), before.result.data(), now.reference.data(), before.reference.data(),
+                 static_cast<uint32_t>(now.result.size() / 3), now.reference_mean_edge);
+}
+
+}  // namespace
+
 int run_folder(const Options& o, Engine& engine) {
   if (!o.output.empty() && !prepare_output_folder(o)) return 2;
   const std::vector<fs::path> files = list_mesh_files(o.input);
@@ -61,6 +103,12 @@ int run_folder(const Options& o, Engine& engine) {
     std::cerr << "fqfilter: error: no .ply, .obj, .stl or .drc files in '" << o.input << "'\n";
     return 1;
   }
+  // --sequence: the files are one stream's frames; the engine keeps its history across them
+  // and every frame gets noise of its own (seed + frame index), as a capture would.
+  TemporalHistory history;
+  if (o.sequence) engine.set_history(&history);
+  SequenceSummary summary;
+  FramePositions before, now;
   std::map<std::string, std::string> claimed;  // output name -> input that writes it
   size_t failed = 0;
   for (size_t i = 0; i < files.size(); ++i) {
@@ -75,9 +123,17 @@ int run_folder(const Options& o, Engine& engine) {
       report.error = s.message();
     } else {
       claimed[out_name] = name;
-      s = run_file_job(files[i].string(), output, o, engine, report);
+      Options frame = o;
+      if (o.sequence) frame.seed = o.seed + i;
+      now = FramePositions{};
+      s = run_file_job(files[i].string(), output, frame, engine, report, o.sequence ? &now : nullptr);
     }
     if (!s.ok()) ++failed;
+    if (o.sequence && s.ok()) {
+      report.flicker = flicker_between(before, now);
+      summary.add(report);
+      std::swap(before, now);
+    }
     if (!s.ok() || !o.quiet) {
       std::cerr << "[" << (i + 1) << "/" << files.size() << "] " << name << ": ";
       if (s.ok())
@@ -87,9 +143,11 @@ int run_folder(const Options& o, Engine& engine) {
     }
     print_report(o, report);
   }
+  engine.set_history(nullptr);
   std::cerr << "fqfilter: " << (files.size() - failed) << " of " << files.size() << " files done";
   if (failed) std::cerr << ", " << failed << " failed";
   std::cerr << "\n";
+  if (o.sequence) summary.print(std::cerr);
   return failed ? 1 : 0;
 }
 

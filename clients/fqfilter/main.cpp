@@ -8,7 +8,7 @@
 #include "clients/fqfilter/folder_mode.h"
 #include "common/tool_main.h"
 #include "kernels/engine.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 
 namespace {
 

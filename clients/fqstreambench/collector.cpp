@@ -2,6 +2,7 @@
 
 #include "clients/common/frame_sender.h"
 #include "clients/common/result_receiver.h"
+#include "common/thread_cpu.h"
 
 namespace fq::bench {
 
@@ -32,7 +33,8 @@ Status Collector::connect(zmq::context_t& ctx, const std::string& publish, const
   return {StatusCode::kUnavailable, "no result from fqd at " + publish + " within 30 s"};
 }
 
-void Collector::run(const std::atomic<bool>& stop, int64_t measure_from_ns, bool decode) {
+double Collector::run(const std::atomic<bool>& stop, int64_t measure_from_ns, bool decode) {
+  const int64_t cpu0 = thread_cpu_ns();
   while (!stop) {
     client::ReceivedResult r;
     const StatusOr<bool> got = client::receive_result(sub_, r);
@@ -47,6 +49,7 @@ void Collector::run(const std::atomic<bool>& stop, int64_t measure_from_ns, bool
     overall_.add(r, why.ok());
   }
   sub_.close();
+  return static_cast<double>(thread_cpu_ns() - cpu0) * 1e-6;
 }
 
 uint64_t Collector::received(const std::string& stream) const {

@@ -9,7 +9,7 @@
 #include <string>
 #include <zmq.hpp>
 
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 #include "common/status.h"
 #include "clients/common/stream_stats.h"
 
@@ -22,7 +22,8 @@ class Collector {
   Status connect(zmq::context_t& ctx, const std::string& publish, const std::string& ingest);
 
   /// Receives until `stop`; results of frames sent at or after `measure_from_ns` count.
-  void run(const std::atomic<bool>& stop, int64_t measure_from_ns, bool decode);
+  /// Returns the receiving thread's CPU ms.
+  double run(const std::atomic<bool>& stop, int64_t measure_from_ns, bool decode);
 
   /// Results received per stream (warm-up included), for draining.
   uint64_t received(const std::string& stream) const;

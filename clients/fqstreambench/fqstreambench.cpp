@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -14,14 +15,16 @@
 
 #include "clients/common/control_client.h"
 #include "clients/common/defaulted_option.h"
+#include "clients/common/draco_floor.h"
 #include "clients/common/override_options.h"
 #include "clients/common/tool_app.h"
 #include "clients/fqstreambench/collector.h"
 #include "clients/fqstreambench/producer.h"
 #include "clients/fqstreambench/report.h"
 #include "daemon/daemon.h"
-#include "proto/header_codec.h"
-#include "proto/mesh_io.h"
+#include "core/parallel_for.h"
+#include "wire/header_codec.h"
+#include "io/mesh_io.h"
 
 namespace {
 
@@ -56,7 +59,7 @@ fq::Status start_daemon(const Args& a, std::unique_ptr<fq::daemon::Daemon>& d, E
     FQ_RETURN_IF_ERROR(fq::daemon::load_config(a.config, c));
   } else {
     if (!fq::parse_engine_kind(a.engine, c.engine.kind))
-      return fq::invalid_argument("--engine must be auto, cuda or cpu");
+      return fq::invalid_argument("--engine must be auto, cuda, cpu or copy");
     c.engine.gpus = a.gpus;
     c.engine.cpu_threads = a.cpu_threads;
     c.decode_threads = a.decode_threads;
@@ -122,7 +125,29 @@ bool settled(const fq::bench::RunInfo& run, const std::map<std::string, fq::wire
   return true;
 }
 
-fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep, fq::bench::RunInfo& run) {
+// Plain Draco's decode + encode CPU of one frame of the run (the floor fqd's CPU is set beside),
+// on fqd's codec threads for its chunks.
+void measure_floor(const Args& a, const fq::Mesh& frame, fq::bench::CpuInfo& cpu) {
+  fq::wire::CodecOptions opt;
+  opt.threads = std::max(1, std::min<int>(fq::hardware_threads(), static_cast<int>(a.producer.spec.chunks)));
+  opt.encode_speed = opt.decode_speed = a.encode_speed;
+  opt.position_bits = a.producer.spec.position_bits;
+  const fq::client::FloorCpu f = fq::client::floor_cpu(frame.view(), a.producer.spec.chunks, opt, 5);
+  cpu.floor_decode_ms = f.decode_ms;
+  cpu.floor_encode_ms = f.encode_ms;
+}
+
+// fqd's CPU between two readings, by stage name.
+void cpu_delta(const fq::daemon::CpuUsage& before, const fq::daemon::CpuUsage& after, fq::bench::CpuInfo& cpu) {
+  cpu.measured = true;
+  for (size_t s = 0; s < before.stage_seconds.size(); ++s)
+    cpu.stage_seconds[fq::daemon::cpu_stage_name(static_cast<fq::daemon::CpuStage>(s))] =
+        after.stage_seconds[s] - before.stage_seconds[s];
+  cpu.threads_seconds = after.threads_seconds - before.threads_seconds;
+}
+
+fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep, const fq::daemon::Daemon* daemon,
+                       fq::bench::RunInfo& run) {
   zmq::context_t ctx(1);
   fq::bench::Collector col;
   FQ_RETURN_IF_ERROR(col.connect(ctx, ep.publish, ep.ingest));
@@ -133,10 +158,12 @@ fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep,
     o.seed += static_cast<uint64_t>(i) * 1000;
     FQ_RETURN_IF_ERROR(producers[size_t(i)].prepare(mesh, o));
   }
+  if (daemon) measure_floor(a, producers[0].frame_mesh(mesh, 0), run.cpu);
   run.before = counters(ctx, ep.control);
+  const fq::daemon::CpuUsage cpu_before = daemon ? daemon->cpu_usage() : fq::daemon::CpuUsage{};
   std::atomic<bool> stop_sending{false}, stop_collecting{false};
   const int64_t measure_from = fq::client::now_ns() + static_cast<int64_t>(a.warmup * 1e9);
-  std::thread collector([&] { col.run(stop_collecting, measure_from, a.decode); });
+  std::thread collector([&] { run.cpu.collector_ms = col.run(stop_collecting, measure_from, a.decode); });
   std::vector<std::thread> senders;
   std::vector<fq::bench::Producer::Sent> sent(producers.size());
   for (size_t i = 0; i < producers.size(); ++i)
@@ -145,6 +172,7 @@ fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep,
   for (int i = 0; i < a.streams; ++i) {
     run.sent[a.stream_prefix + std::to_string(i)] = sent[size_t(i)].all;
     run.sent_measured[a.stream_prefix + std::to_string(i)] = sent[size_t(i)].measured;
+    run.cpu.producers_ms += sent[size_t(i)].cpu_ms;
   }
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(a.drain);
   while (!settled(run, counters(ctx, ep.control), col) && std::chrono::steady_clock::now() < deadline)
@@ -152,6 +180,7 @@ fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep,
   stop_collecting = true;
   collector.join();
   run.after = counters(ctx, ep.control);
+  if (daemon) cpu_delta(cpu_before, daemon->cpu_usage(), run.cpu);
   stream_settings(ctx, ep.control, a.stream_prefix + "0", run);
   if (!a.overrides.compute.empty()) run.compute = a.overrides.compute;
   run.per_stream = col.per_stream();
@@ -179,7 +208,8 @@ void add_options(CLI::App& app, Args& a) {
   fq::client::add_defaulted(app, "--variants", a.producer.variants, "distinct noisy frames per stream");
   app.add_option("--budget-ms", a.budget_ms,
                  "latency budget of the streams (in-process fqd; 0 = default/config)");
-  fq::client::add_defaulted(app, "--engine", a.engine, "in-process engine: auto | cuda | cpu");
+  fq::client::add_defaulted(app, "--engine", a.engine,
+                            "in-process engine: auto | cuda | cpu | copy (returns its input: fqd's host path alone)");
   app.add_option("--gpus", a.gpus, "GPUs of the in-process fqd, one engine each (e.g. 0,1)")->delimiter(',');
   app.add_option("--cpu-threads", a.cpu_threads, "CPU engine threads (0 = all)");
   fq::client::add_defaulted(app, "--decode-threads", a.decode_threads,
@@ -228,7 +258,7 @@ int run(Args& a) {
   } else if (fq::Status s = start_daemon(a, daemon, ep, run.engine); !s.ok()) {
     return fail(s);
   }
-  if (fq::Status s = run_streams(a, mesh, ep, run); !s.ok()) return fail(s);
+  if (fq::Status s = run_streams(a, mesh, ep, daemon.get(), run); !s.ok()) return fail(s);
   if (daemon) daemon->stop();
   if (a.json)
     std::printf("%s\n", fq::bench::report_json(run).dump(2).c_str());

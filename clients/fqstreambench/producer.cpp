@@ -3,6 +3,7 @@
 #include <chrono>
 #include <thread>
 
+#include "common/thread_cpu.h"
 #include "eval/noise.h"
 
 namespace fq::bench {
@@ -13,8 +14,7 @@ Status Producer::prepare(const Mesh& mesh, const ProducerOptions& o) {
   const int n = o.noise > 0 ? std::max(1, o.variants) : 1;
   const auto t0 = std::chrono::steady_clock::now();
   for (int i = 0; i < n; ++i) {
-    Mesh m = mesh;
-    if (o.noise > 0) add_gaussian_noise(m, o.noise, o.seed + static_cast<uint64_t>(i));
+    const Mesh m = frame_mesh(mesh, i);
     std::vector<std::string> parts;
     FQ_RETURN_IF_ERROR(client::build_frame(m.view(), o.spec, 0, parts));
     frames_.push_back(std::move(parts));
@@ -23,12 +23,19 @@ Status Producer::prepare(const Mesh& mesh, const ProducerOptions& o) {
   return {};
 }
 
+Mesh Producer::frame_mesh(const Mesh& mesh, int i) const {
+  Mesh m = mesh;
+  if (options_.noise > 0) add_gaussian_noise(m, options_.noise, options_.seed + static_cast<uint64_t>(i));
+  return m;
+}
+
 Producer::Sent Producer::run(zmq::context_t& ctx, const std::string& endpoint, const std::atomic<bool>& stop,
                              int64_t measure_from_ns) {
   zmq::socket_t push(ctx, zmq::socket_type::push);
   push.set(zmq::sockopt::linger, 2000);
   push.connect(endpoint);
   using clock = std::chrono::steady_clock;
+  const int64_t cpu0 = thread_cpu_ns();
   const auto start = clock::now();
   const auto period = std::chrono::duration<double>(1.0 / options_.fps);
   Sent sent;
@@ -43,6 +50,7 @@ Producer::Sent Producer::run(zmq::context_t& ctx, const std::string& endpoint, c
     if (now >= measure_from_ns) ++sent.measured;
   }
   push.close();
+  sent.cpu_ms = static_cast<double>(thread_cpu_ns() - cpu0) * 1e-6;
   return sent;
 }
 

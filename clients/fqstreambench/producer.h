@@ -9,7 +9,7 @@
 #include <zmq.hpp>
 
 #include "clients/common/frame_sender.h"
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 #include "common/status.h"
 
 namespace fq::bench {
@@ -25,17 +25,21 @@ struct ProducerOptions {
 
 class Producer {
  public:
-  /// Encodes the frames of the run from `mesh`.
+  /// Encodes the frames of the run from `mesh`: during the run they are replayed (the same
+  /// bytes under a new header), so the producers cost fqd's host almost nothing.
   Status prepare(const Mesh& mesh, const ProducerOptions& options);
   struct Sent {
     uint64_t all = 0;
     uint64_t measured = 0;  ///< sent at or after measure_from_ns
+    double cpu_ms = 0;      ///< the sending thread's CPU time (re-stamping and sending)
   };
   /// Sends at the frame rate until the time is up or `stop`.
   Sent run(zmq::context_t& ctx, const std::string& endpoint, const std::atomic<bool>& stop,
            int64_t measure_from_ns);
 
   double encode_ms() const { return encode_ms_; }
+  /// The mesh of frame `i` (its noise drawn as prepare drew it).
+  Mesh frame_mesh(const Mesh& mesh, int i) const;
 
  private:
   ProducerOptions options_;

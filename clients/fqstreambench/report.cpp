@@ -1,5 +1,6 @@
 #include "clients/fqstreambench/report.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace fq::bench {
@@ -44,6 +45,30 @@ double achieved_fps(const RunInfo& r) {
                       : 0.0;
 }
 
+// fqd's CPU per published frame, by stage, beside the floor; "other" is what fqd's threads
+// used outside the stages (ZeroMQ I/O threads, queue hand-offs, the control socket).
+void add_cpu(const RunInfo& r, const Deltas& d, nlohmann::json& fqd) {
+  if (!r.cpu.measured || d.out == 0) return;
+  const double per_frame = 1e3 / static_cast<double>(d.out);
+  nlohmann::json stages = nlohmann::json::object();
+  double staged = 0;
+  for (const auto& [name, s] : r.cpu.stage_seconds) {
+    stages[name] = s * per_frame;
+    staged += s;
+  }
+  stages["other"] = std::max(0.0, r.cpu.threads_seconds - staged) * per_frame;
+  const double cpu = r.cpu.threads_seconds * per_frame;
+  const double floor = r.cpu.floor_decode_ms + r.cpu.floor_encode_ms;
+  fqd["cpu_ms_per_frame"] = cpu;
+  fqd["stage_cpu_ms_per_frame"] = stages;
+  if (r.cpu.floor_decode_ms >= 0 && r.cpu.floor_encode_ms >= 0) {
+    fqd["floor_cpu_ms_per_frame"] = floor;
+    fqd["floor_decode_cpu_ms"] = r.cpu.floor_decode_ms;
+    fqd["floor_encode_cpu_ms"] = r.cpu.floor_encode_ms;
+    fqd["cpu_over_floor"] = floor > 0 ? cpu / floor : 0.0;
+  }
+}
+
 }  // namespace
 
 nlohmann::json report_json(const RunInfo& r) {
@@ -51,6 +76,14 @@ nlohmann::json report_json(const RunInfo& r) {
   nlohmann::json streams = nlohmann::json::object();
   for (const auto& [id, s] : r.per_stream) streams[id] = s.to_json();
   const uint64_t measured = total(r.sent_measured);
+  nlohmann::json fqd = {{"frames_in", d.in},           {"frames_out", d.out}, {"superseded", d.superseded},
+                        {"dropped_stale", d.stale},    {"late", d.late},      {"errors", d.errors}};
+  add_cpu(r, d, fqd);
+  nlohmann::json bench = nlohmann::json::object();
+  if (r.cpu.measured && total(r.sent) > 0) {
+    bench["producers_cpu_ms_per_frame"] = r.cpu.producers_ms / static_cast<double>(total(r.sent));
+    bench["collector_cpu_ms_per_frame"] = r.cpu.collector_ms / static_cast<double>(total(r.sent));
+  }
   return {{"mesh", r.mesh_name},
           {"vertices", r.vertices},
           {"triangles", r.triangles},
@@ -66,13 +99,8 @@ nlohmann::json report_json(const RunInfo& r) {
           {"frames_sent_measured", measured},
           {"achieved_fps_per_stream", achieved_fps(r)},
           {"drops_measured", measured > r.overall.results() ? measured - r.overall.results() : 0},
-          {"fqd",
-           {{"frames_in", d.in},
-            {"frames_out", d.out},
-            {"superseded", d.superseded},
-            {"dropped_stale", d.stale},
-            {"late", d.late},
-            {"errors", d.errors}}},
+          {"fqd", fqd},
+          {"bench", bench},
           {"overall", r.overall.to_json()},
           {"per_stream", streams}};
 }
@@ -104,6 +132,23 @@ std::string report_text(const RunInfo& r) {
   s += b;
   s += "  receive->publish p50/p95/p99 ms: " + triple(o["receive_to_publish"]) + "\n";
   s += "  send->receive    p50/p95/p99 ms: " + triple(o["send_to_receive"]) + "\n";
+  if (j["fqd"].contains("cpu_ms_per_frame")) {
+    const nlohmann::json& f = j["fqd"];
+    std::snprintf(b, sizeof b, "  fqd CPU per frame: %.2f ms", f["cpu_ms_per_frame"].get<double>());
+    s += b;
+    if (f.contains("floor_cpu_ms_per_frame")) {
+      std::snprintf(b, sizeof b, " = %.2f x the floor (plain Draco decode %.2f + encode %.2f ms)",
+                    f["cpu_over_floor"].get<double>(), f["floor_decode_cpu_ms"].get<double>(),
+                    f["floor_encode_cpu_ms"].get<double>());
+      s += b;
+    }
+    s += "\n   ";
+    for (const auto& [name, ms] : f["stage_cpu_ms_per_frame"].items()) {
+      std::snprintf(b, sizeof b, " %s %.2f", name.c_str(), ms.get<double>());
+      s += b;
+    }
+    s += "\n";
+  }
   s += "  stages p50/p95/p99 ms:\n";
   for (const auto& [name, st] : o["stages"].items()) s += "    " + name + ": " + triple(st) + "\n";
   return s;

@@ -8,10 +8,19 @@
 #include <string>
 #include <vector>
 
-#include "proto/fq.pb.h"
+#include "wire/fq.pb.h"
 #include "clients/common/stream_stats.h"
 
 namespace fq::bench {
+
+/// fqd's host CPU over the measured run (in-process fqd only) and the floor it is set beside.
+struct CpuInfo {
+  bool measured = false;                        ///< false with --connect
+  std::map<std::string, double> stage_seconds;  ///< fq_stage_cpu_seconds_total's deltas
+  double threads_seconds = 0;                   ///< fq_cpu_seconds_total's delta
+  double floor_decode_ms = -1, floor_encode_ms = -1;  ///< plain Draco on one frame's chunks
+  double producers_ms = 0, collector_ms = 0;    ///< the benchmark's own threads, in total
+};
 
 struct RunInfo {
   std::string mesh_name;
@@ -27,6 +36,7 @@ struct RunInfo {
   std::map<std::string, wire::StreamCounters> before, after;  ///< fqd's counters
   std::map<std::string, client::StreamStats> per_stream;
   client::StreamStats overall;
+  CpuInfo cpu;
 };
 
 nlohmann::json report_json(const RunInfo& r);

@@ -18,7 +18,7 @@
 #include "clients/common/stream_stats.h"
 #include "clients/common/tool_app.h"
 #include "common/tool_main.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 
 namespace {
 

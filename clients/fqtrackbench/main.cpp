@@ -17,8 +17,8 @@
 #include "kernels/engine.h"
 #include "kernels/frame_prep.h"
 #include "kernels/label_tracking.h"
-#include "kernels/parallel_for.h"
-#include "proto/mesh_io.h"
+#include "core/parallel_for.h"
+#include "io/mesh_io.h"
 
 namespace {
 
@@ -79,7 +79,7 @@ int run(int argc, char** argv) {
   fq::TrackingOptions to;
   to.cell = cell;
   to.max_distance = 8 * cell;
-  to.threads = threads > 0 ? threads : fq::hardware_threads();
+  to.threads = fq::threads_or_all(threads);
   to.sticky_rings = to_rings;
   to.vote_frames = ids_only ? 1 : vote_frames;
   fq::LabelTracker tracker;

@@ -9,7 +9,7 @@
 #endif
 
 #include "kernels/cuda/cuda_check.cuh"
-#include "kernels/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace fq::cuda {
 

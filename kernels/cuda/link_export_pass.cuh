@@ -5,7 +5,7 @@
 #include <cuda_runtime.h>
 
 #include "kernels/cuda/device_frame.cuh"
-#include "kernels/params.h"
+#include "core/params.h"
 
 namespace fq::cuda {
 

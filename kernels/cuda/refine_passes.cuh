@@ -6,6 +6,7 @@
 #include <cuda_runtime.h>
 
 #include "kernels/cuda/device_frame.cuh"
+#include "core/params.h"
 #include "kernels/noise_estimate.h"
 #include "kernels/refine_math.h"
 #include "kernels/refine_plan.h"

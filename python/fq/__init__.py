@@ -10,7 +10,8 @@ from ._engine import cluster, engine_name, filter
 from ._fq import __version__, built_with_cuda
 from ._files import read_mesh, write_mesh
 from ._measures import add_noise, metrics
+from ._stream import Stream
 from .mesh import Mesh
 
-__all__ = ["Mesh", "add_noise", "built_with_cuda", "cluster", "engine_name", "filter", "metrics", "read_mesh",
+__all__ = ["Mesh", "Stream", "add_noise", "built_with_cuda", "cluster", "engine_name", "filter", "metrics", "read_mesh",
            "write_mesh"]

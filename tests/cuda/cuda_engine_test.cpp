@@ -352,7 +352,7 @@ TEST_F(CudaEngineTest, DeviceMemoryReturnsWhenASmallFrameFollowsAHugeOne) {
   expect_parity(p, params);
 }
 
-// Cancellation (kernels/cancel_token.h) between the device passes: a token that never
+// Cancellation (core/cancel_token.h) between the device passes: a token that never
 // expires leaves the results as they are, a stopped one ends the frame with kCancelled, a
 // deadline ends a frame with minutes of neighbour work, and the engine goes on.
 TEST_F(CudaEngineTest, CancelTokenStopsFramesAndLeavesFinishedOnesAlone) {

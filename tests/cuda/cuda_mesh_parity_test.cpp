@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 #include "tests/cuda/parity.h"
 #include "tests/support/mesh_dir.h"
 

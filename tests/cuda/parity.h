@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "kernels/engine.h"
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 
 namespace fq::test {
 

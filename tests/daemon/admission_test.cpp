@@ -13,7 +13,7 @@
 #include <thread>
 
 #include "eval/noise.h"
-#include "proto/ply_reader.h"
+#include "io/ply_reader.h"
 #include "tests/daemon/daemon_harness.h"
 #include "tests/support/test_meshes.h"
 
@@ -65,6 +65,46 @@ TEST(DaemonAdmission, TwentyThousandJunkTopicsLeaveNoStateAndFlatMemory) {
   EXPECT_LT(after, before + (16u << 20)) << "RSS grew from " << before << " to " << after;
   h.send(noisy_sphere(), spec_for("cam"), 1);
   EXPECT_EQ(h.receive("cam").header.status(), wire::OK);
+}
+
+// Stream ids that come and go, as a capture farm's cameras do: each stream's state lives in
+// its Stream object, so expiry frees all of it. Before, the slots, the publish order, the
+// newest-queued arrivals and the label tracks (the previous frame's positions and ids) each
+// kept an entry for every id ever seen.
+TEST(DaemonAdmission, FiveThousandStreamIdsComeAndGoWithFlatMemory) {
+  constexpr int kWave = 50;  // ids at a time; each sends one frame and goes idle
+  daemon::DaemonConfig c = test_config();
+  c.caps.stream_idle_s = 0.5;
+  c.caps.max_streams = 8192;                 // never the limit, however fast ids come on this machine
+  c.caps.max_subscriber_results = 2 * kWave;  // a wave's results all wait for the test's reads
+  c.defaults.params.cluster = true;  // with track_ids: a stream keeps its previous frame's ids
+  DaemonHarness h(c);
+  daemon::StreamRegistry& r = h.daemon()->registry();
+  const Mesh mesh = noisy_sphere(7, 2);  // 162 vertices
+  size_t most_streams = 0;
+  auto churn = [&](int from, int to) {
+    for (int i = from; i < to; i += kWave) {
+      const int end = std::min(to, i + kWave);
+      for (int k = i; k < end; ++k) h.send(mesh, spec_for("churn-" + std::to_string(k)), 0);
+      for (int k = i; k < end; ++k) ASSERT_EQ(h.receive("churn-" + std::to_string(k)).header.status(), wire::OK);
+      most_streams = std::max(most_streams, r.list().size());
+    }
+  };
+  auto settled_rss = [&] {
+    EXPECT_TRUE(eventually([&] { return r.list().size() <= 1; }, std::chrono::seconds(30)))
+        << r.list().size() << " streams left";  // the harness's probe stream may be there
+    h.sync_results();
+    malloc_trim(0);
+    return rss_bytes();
+  };
+  churn(0, 1000);  // warm-up: queues, pools, allocator arenas
+  const size_t before = settled_rss();
+  churn(1000, 5000);
+  const size_t after = settled_rss();
+  EXPECT_EQ(r.refusals().get(daemon::Refusal::kTooManyStreams), 0u);
+  EXPECT_LT(after, before + (16u << 20)) << "RSS grew from " << before << " to " << after;
+  std::printf("RSS %zu -> %zu MiB over 4,000 stream ids, at most %zu streams at once\n", before >> 20, after >> 20,
+              most_streams);
 }
 
 TEST(DaemonAdmission, SquattedSlotsComeBackWhenTheSquattersGoIdle) {

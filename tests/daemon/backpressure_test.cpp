@@ -10,7 +10,7 @@
 #include <zmq.hpp>
 
 #include "clients/common/frame_sender.h"
-#include "proto/header_codec.h"
+#include "wire/header_codec.h"
 #include "tests/daemon/daemon_harness.h"
 #include "tests/daemon/fqd_process.h"
 #include "tests/support/test_meshes.h"

@@ -8,8 +8,8 @@
 
 #include "tests/daemon/daemon_harness.h"
 #include "tests/daemon/draco_plain.h"
-#include "proto/header_codec.h"
-#include "tests/proto/proto_test_meshes.h"
+#include "wire/header_codec.h"
+#include "tests/wire/wire_test_meshes.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq::test {
@@ -99,7 +99,7 @@ const std::vector<BadCase>& bad_cases() {
       {"decode bomb", "declares",
        [](const Mesh& m) {
          auto p = good_parts(m);
-         p[2] = test_proto::forge_face_count(p[2], 300'000'000);
+         p[2] = test_wire::forge_face_count(p[2], 300'000'000);
          return p;
        }},
       {"invalid parameters", "theta",

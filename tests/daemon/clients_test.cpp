@@ -12,7 +12,7 @@
 
 #include "tests/daemon/child_process.h"
 #include "tests/daemon/daemon_harness.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 
 namespace fq::test {
 namespace {

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 #include "tests/daemon/child_process.h"
 #include "tests/daemon/daemon_harness.h"
 

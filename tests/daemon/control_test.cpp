@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "daemon/control_server.h"
-#include "proto/header_codec.h"
+#include "wire/header_codec.h"
 
 namespace fq::daemon {
 namespace {

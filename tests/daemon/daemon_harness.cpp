@@ -123,6 +123,7 @@ client::ReceivedResult DaemonHarness::receive(const std::string& stream) {
   if (auto it = pending_.find(stream); it != pending_.end() && !it->second.empty()) {
     r = std::move(it->second.front());
     it->second.pop_front();
+    if (it->second.empty()) pending_.erase(it);  // tests with thousands of streams stay flat
     return r;
   }
   for (;;) {

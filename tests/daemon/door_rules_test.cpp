@@ -8,7 +8,7 @@
 #include <cmath>
 #include <thread>
 
-#include "proto/header_codec.h"
+#include "wire/header_codec.h"
 #include "tests/daemon/daemon_harness.h"
 #include "tests/daemon/log_capture.h"
 #include "tests/daemon/test_keys.h"

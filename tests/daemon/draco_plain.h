@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 
 namespace fq::test {
 

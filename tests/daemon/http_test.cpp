@@ -10,8 +10,8 @@
 #include <optional>
 #include <thread>
 
-#include "proto/frame_codec.h"
-#include "proto/ply_reader.h"
+#include "wire/frame_codec.h"
+#include "io/ply_reader.h"
 #include "tests/daemon/fqd_process.h"
 
 namespace fq::test {

@@ -4,28 +4,40 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <map>
+#include <memory>
 #include <thread>
 
 #include "daemon/stage_metrics.h"
+#include "daemon/stream.h"
 #include "daemon/work_queue.h"
 
 namespace fq::daemon {
 namespace {
 
-FramePtr frame(const std::string& stream, uint64_t arrival, int64_t receive_ns, double budget_ms = 1e6) {
-  auto f = std::make_unique<FrameJob>();
-  f->stream_id = stream;
-  f->arrival = arrival;
-  f->receive_ns = receive_ns;
-  f->settings.budget_ms = budget_ms;
-  return f;
-}
+// One test's streams: a frame goes to the slots with its stream (the slot lives in it).
+struct Streams {
+  std::map<std::string, StreamPtr> by_id;
+
+  FramePtr frame(const std::string& stream, uint64_t arrival, int64_t receive_ns, double budget_ms = 1e6) {
+    StreamPtr& s = by_id[stream];
+    if (!s) s = std::make_shared<Stream>(stream, StreamSettings{}, receive_ns);
+    auto f = std::make_unique<FrameJob>();
+    f->stream_id = stream;
+    f->stream = s;
+    f->arrival = arrival;
+    f->receive_ns = receive_ns;
+    f->settings.budget_ms = budget_ms;
+    return f;
+  }
+};
 
 TEST(FrameSlots, NewerFrameReplacesTheWaitingOne) {
+  Streams streams;
   FrameSlots slots;
   const int64_t now = wall_ns();
-  EXPECT_EQ(slots.offer(frame("a", 0, now)), nullptr);
-  FramePtr loser = slots.offer(frame("a", 1, now));
+  EXPECT_EQ(slots.offer(streams.frame("a", 0, now)), nullptr);
+  FramePtr loser = slots.offer(streams.frame("a", 1, now));
   ASSERT_NE(loser, nullptr);
   EXPECT_EQ(loser->arrival, 0u);
   FramePtr out;
@@ -38,17 +50,18 @@ TEST(FrameSlots, NewerFrameReplacesTheWaitingOne) {
 }
 
 TEST(FrameSlots, TheStreamOfLeastEngineTimeGoesFirstAndAHogYieldsToALightStream) {
+  Streams streams;
   FrameSlots slots;
   const int64_t now = wall_ns();
   // "hog" has used two seconds of engine time; it is served after "light" though it came first.
   YieldRequest run;
-  ASSERT_EQ(slots.offer(frame("hog", 0, now)), nullptr);
+  ASSERT_EQ(slots.offer(streams.frame("hog", 0, now)), nullptr);
   FramePtr out;
   std::vector<FramePtr> stale;
   ASSERT_TRUE(slots.take(out, stale, std::chrono::milliseconds::max(), &run));
   slots.finish(&run, 2.0);
-  ASSERT_EQ(slots.offer(frame("hog", 1, now)), nullptr);
-  ASSERT_EQ(slots.offer(frame("light", 2, now)), nullptr);
+  ASSERT_EQ(slots.offer(streams.frame("hog", 1, now)), nullptr);
+  ASSERT_EQ(slots.offer(streams.frame("light", 2, now)), nullptr);
   YieldRequest light_run;
   ASSERT_TRUE(slots.take(out, stale, std::chrono::milliseconds::max(), &light_run));
   EXPECT_EQ(out->stream_id, "light");
@@ -58,7 +71,7 @@ TEST(FrameSlots, TheStreamOfLeastEngineTimeGoesFirstAndAHogYieldsToALightStream)
   EXPECT_FALSE(run.requested) << "nobody waits";
   // The light stream's next frame, with the one engine busy on the hog: the hog's run is asked
   // to yield after a slice (it is over twice the light stream's usage plus a slice).
-  ASSERT_EQ(slots.offer(frame("light", 3, now)), nullptr);
+  ASSERT_EQ(slots.offer(streams.frame("light", 3, now)), nullptr);
   EXPECT_TRUE(run.requested);
   const int64_t slice_ns = static_cast<int64_t>(FrameSlots::kSliceS * 1e9);
   EXPECT_LE(run.after_ns, CancelToken::Clock::now().time_since_epoch().count() + slice_ns);
@@ -66,13 +79,13 @@ TEST(FrameSlots, TheStreamOfLeastEngineTimeGoesFirstAndAHogYieldsToALightStream)
   // Streams of like usage: "b" has used as much as "a" when its frame comes while a's runs.
   FrameSlots even;
   YieldRequest a_run, b_run;
-  ASSERT_EQ(even.offer(frame("b", 0, now)), nullptr);
+  ASSERT_EQ(even.offer(streams.frame("b", 0, now)), nullptr);
   ASSERT_TRUE(even.take(out, stale, std::chrono::milliseconds::max(), &b_run));
   even.finish(&b_run, 1.0);
-  ASSERT_EQ(even.offer(frame("a", 1, now)), nullptr);
+  ASSERT_EQ(even.offer(streams.frame("a", 1, now)), nullptr);
   ASSERT_TRUE(even.take(out, stale, std::chrono::milliseconds::max(), &a_run));
-  even.charge("a", 1.0);
-  ASSERT_EQ(even.offer(frame("b", 2, now)), nullptr);
+  even.charge(*streams.by_id["a"], 1.0);
+  ASSERT_EQ(even.offer(streams.frame("b", 2, now)), nullptr);
   // a may run on for four of b's frames (4 s), not at once.
   const int64_t due_in_ns = a_run.after_ns - CancelToken::Clock::now().time_since_epoch().count();
   EXPECT_TRUE(!a_run.requested || due_in_ns > 3'000'000'000) << due_in_ns;
@@ -80,19 +93,20 @@ TEST(FrameSlots, TheStreamOfLeastEngineTimeGoesFirstAndAHogYieldsToALightStream)
   // a run go on for a second.
   FrameSlots cold;
   YieldRequest c_run;
-  ASSERT_EQ(cold.offer(frame("c", 0, now)), nullptr);
+  ASSERT_EQ(cold.offer(streams.frame("c", 0, now)), nullptr);
   ASSERT_TRUE(cold.take(out, stale, std::chrono::milliseconds::max(), &c_run));
-  cold.charge("c", 5.0);
-  ASSERT_EQ(cold.offer(frame("d", 1, now)), nullptr);
+  cold.charge(*streams.by_id["c"], 5.0);
+  ASSERT_EQ(cold.offer(streams.frame("d", 1, now)), nullptr);
   EXPECT_TRUE(!c_run.requested ||
               c_run.after_ns - CancelToken::Clock::now().time_since_epoch().count() > 900'000'000);
 }
 
 TEST(FrameSlots, AnOlderFrameDecodedLateLosesToTheNewerOne) {
+  Streams streams;
   FrameSlots slots;
   const int64_t now = wall_ns();
-  EXPECT_EQ(slots.offer(frame("a", 5, now)), nullptr);
-  FramePtr loser = slots.offer(frame("a", 4, now));
+  EXPECT_EQ(slots.offer(streams.frame("a", 5, now)), nullptr);
+  FramePtr loser = slots.offer(streams.frame("a", 4, now));
   ASSERT_NE(loser, nullptr);
   EXPECT_EQ(loser->arrival, 4u);
   FramePtr out;
@@ -100,17 +114,18 @@ TEST(FrameSlots, AnOlderFrameDecodedLateLosesToTheNewerOne) {
   ASSERT_TRUE(slots.take(out, stale));
   EXPECT_EQ(out->arrival, 5u);
   // Once 5 was taken, 3 is behind it as well.
-  FramePtr late = slots.offer(frame("a", 3, now));
+  FramePtr late = slots.offer(streams.frame("a", 3, now));
   ASSERT_NE(late, nullptr);
   EXPECT_EQ(late->arrival, 3u);
 }
 
 TEST(FrameSlots, StaleFramesAreSetAsideAndOldestStreamGoesFirstWithTickets) {
+  Streams streams;
   FrameSlots slots;
   const int64_t now = wall_ns();
-  slots.offer(frame("old", 0, now - 50'000'000, 10.0));  // 50 ms old, 10 ms budget
-  slots.offer(frame("b", 0, now - 2'000'000));
-  slots.offer(frame("c", 0, now - 1'000'000));
+  slots.offer(streams.frame("old", 0, now - 50'000'000, 10.0));  // 50 ms old, 10 ms budget
+  slots.offer(streams.frame("b", 0, now - 2'000'000));
+  slots.offer(streams.frame("c", 0, now - 1'000'000));
   FramePtr out;
   std::vector<FramePtr> stale;
   ASSERT_TRUE(slots.take(out, stale));
@@ -119,7 +134,7 @@ TEST(FrameSlots, StaleFramesAreSetAsideAndOldestStreamGoesFirstWithTickets) {
   ASSERT_NE(out, nullptr);
   EXPECT_EQ(out->stream_id, "b");
   EXPECT_TRUE(out->ticketed);
-  slots.offer(frame("b", 1, now));
+  slots.offer(streams.frame("b", 1, now));
   FramePtr next;
   stale.clear();
   ASSERT_TRUE(slots.take(next, stale));
@@ -130,8 +145,9 @@ TEST(FrameSlots, StaleFramesAreSetAsideAndOldestStreamGoesFirstWithTickets) {
 }
 
 TEST(FrameSlots, CloseHandsOutWhatIsWaitingThenStops) {
+  Streams streams;
   FrameSlots slots;
-  slots.offer(frame("a", 0, wall_ns()));
+  slots.offer(streams.frame("a", 0, wall_ns()));
   slots.close();
   FramePtr out;
   std::vector<FramePtr> stale;
@@ -143,13 +159,14 @@ TEST(FrameSlots, CloseHandsOutWhatIsWaitingThenStops) {
 
 // The engine workers wake without frames (to give idle engines' buffers back).
 TEST(FrameSlots, ATakeWithAWaitReturnsEmptyHandedWhenNothingComes) {
+  Streams streams;
   FrameSlots slots;
   FramePtr out;
   std::vector<FramePtr> stale;
   EXPECT_TRUE(slots.take(out, stale, std::chrono::milliseconds(10)));
   EXPECT_EQ(out, nullptr);
   EXPECT_TRUE(stale.empty());
-  slots.offer(frame("a", 0, wall_ns()));
+  slots.offer(streams.frame("a", 0, wall_ns()));
   EXPECT_TRUE(slots.take(out, stale, std::chrono::milliseconds(10)));
   EXPECT_NE(out, nullptr);
   slots.close();

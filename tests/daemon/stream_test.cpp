@@ -7,9 +7,9 @@
 
 #include "clients/common/frame_sender.h"
 #include "kernels/cpu_engine.h"
-#include "kernels/parallel_for.h"
+#include "core/parallel_for.h"
 #include "tests/daemon/daemon_harness.h"
-#include "proto/frame_codec.h"
+#include "wire/frame_codec.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq::test {
@@ -17,14 +17,26 @@ namespace {
 
 // What fqd should publish for `mesh` under `params`: the same Draco round trips around
 // the same engine (the CPU engine gives the same result whatever its thread count).
-std::vector<float> expected_positions(const Mesh& mesh, const Params& params) {
+wire::CodecOptions codec_options() {
   wire::CodecOptions opt;  // the producer's and fqd's default Draco settings
   opt.encode_speed = client::FrameSpec{}.encode_speed;
   opt.decode_speed = client::FrameSpec{}.decode_speed;
+  return opt;
+}
+
+// `mesh` as fqd decodes it from a producer's frame.
+Mesh seen_by_fqd(const Mesh& mesh) {
   std::vector<std::string> chunks;
-  EXPECT_TRUE(wire::encode_frame(mesh.view(), nullptr, 1, opt, chunks).ok());
+  EXPECT_TRUE(wire::encode_frame(mesh.view(), nullptr, 1, codec_options(), chunks).ok());
   Mesh seen;
-  EXPECT_TRUE(wire::decode_frame({chunks[0]}, mesh.num_vertices(), opt, seen, nullptr).ok());
+  EXPECT_TRUE(wire::decode_frame({chunks[0]}, mesh.num_vertices(), codec_options(), seen, nullptr).ok());
+  return seen;
+}
+
+std::vector<float> expected_positions(const Mesh& mesh, const Params& params) {
+  const wire::CodecOptions opt = codec_options();
+  std::vector<std::string> chunks;
+  const Mesh seen = seen_by_fqd(mesh);
   CpuEngine engine(1);
   FrameResult result;
   EXPECT_TRUE(engine.process(seen.view(), params, result).ok());
@@ -126,6 +138,42 @@ TEST(DaemonStream, TwoStreamsWithDifferentParametersGiveDifferentResults) {
   EXPECT_LT(max_displacement(soft.mesh.positions, expected_positions(mesh, ps)), 1e-6);
   EXPECT_LT(max_displacement(strong.mesh.positions, expected_positions(mesh, pg)), 1e-6);
   EXPECT_GT(max_displacement(soft.mesh.positions, strong.mesh.positions), 1e-3);
+}
+
+// A stream with temporal > 0: each frame after the first is filtered with the stream's last
+// result, as a CPU engine with a history gives on the same decoded frames; a frame far from the
+// last one is a scene cut, counted, and filtered alone.
+TEST(DaemonStream, TemporalStreamFollowsItsHistoryAndCountsSceneCuts) {
+  daemon::DaemonConfig c = test_config();
+  c.defaults.params.cluster = false;
+  c.streams["still"] = c.defaults;
+  c.streams["still"].params.filtering.temporal = 0.75f;
+  DaemonHarness h(c);
+  const Params p = c.streams["still"].params;
+  Params alone = p;
+  alone.filtering.temporal = 0.f;
+  // The engine fqd runs, replayed on the frames as fqd decodes them.
+  CpuEngine replay(1);
+  TemporalHistory history;
+  replay.set_history(&history);
+  Mesh far = noisy_sphere(40);
+  for (size_t i = 0; i < far.positions.size(); i += 3) far.positions[i] += 20.f;
+  const std::vector<Mesh> frames = {noisy_sphere(31), noisy_sphere(32), noisy_sphere(33), far};
+  for (uint64_t i = 0; i < frames.size(); ++i) {
+    h.send(frames[i], spec_for("still"), i);
+    const client::ReceivedResult r = h.receive_decoded("still", &frames[i]);
+    ASSERT_EQ(r.header.status(), wire::OK) << r.header.error();
+    FrameResult want;
+    ASSERT_TRUE(replay.process(seen_by_fqd(frames[i]).view(), p, want).ok());
+    EXPECT_LT(max_displacement(r.mesh.positions, want.positions), 1e-4) << "frame " << i;
+    const double from_alone = max_displacement(r.mesh.positions, expected_positions(frames[i], alone));
+    if (i == 0 || i == 3)
+      EXPECT_LT(from_alone, 1e-6) << "frame " << i << " has no history to follow";
+    else
+      EXPECT_GT(from_alone, 1e-4) << "frame " << i << " followed nothing";
+  }
+  EXPECT_EQ(history.resets, 1u);
+  EXPECT_EQ(h.counters("still").temporal_resets(), 1u);
 }
 
 TEST(DaemonStream, RuntimeParameterChangeTakesEffectOnTheNextFrame) {

@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "eval/noise.h"
-#include "proto/ply_reader.h"
+#include "io/ply_reader.h"
 #include "tests/daemon/daemon_harness.h"
 #include "tests/daemon/fqd_process.h"
 #include "tests/support/test_meshes.h"

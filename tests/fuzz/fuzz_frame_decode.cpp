@@ -7,9 +7,9 @@
 #include <string_view>
 #include <vector>
 
-#include "kernels/frame_prep.h"
-#include "proto/draco_budget.h"
-#include "proto/frame_codec.h"
+#include "core/mesh_checks.h"
+#include "wire/draco_budget.h"
+#include "wire/frame_codec.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "clients/common/frame_sender.h"
-#include "proto/frame_codec.h"
-#include "proto/header_codec.h"
-#include "proto/mesh_io.h"
+#include "wire/frame_codec.h"
+#include "wire/header_codec.h"
+#include "io/mesh_io.h"
 
 namespace fs = std::filesystem;
 

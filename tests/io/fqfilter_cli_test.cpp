@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 #include "tests/io/fqfilter_run.h"
 #include "tests/io/io_test_util.h"
 #include "tests/support/mesh_dir.h"
@@ -123,6 +123,20 @@ TEST(FqfilterCli, DefaultRefinementAndNormalNoise) {
   const nlohmann::json c = nlohmann::json::parse(again.out);
   EXPECT_NEAR(c.at("metrics").at("input").at("mfne_rad").get<double>(),
               a.at("metrics").at("input").at("mfne_rad").get<double>(), 1e-6);
+}
+
+// --noise 0 with --noisy-out writes the input as the "noisy" file (a sweep starting at 0
+// finds every file it asked for), the same vertices in the same order.
+TEST(FqfilterCli, NoisyOutAtNoiseZeroIsTheInput) {
+  fq::test::ScratchDir dir;
+  const std::string noisy = dir.file("zero.ply");
+  const RunResult r = run_fqfilter({kFandisk, "--noise", "0", "--noisy-out", noisy, "--quiet"}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  fq::Mesh in, out;
+  ASSERT_TRUE(fq::io::read_mesh(kFandisk, in).ok());
+  ASSERT_TRUE(fq::io::read_mesh(noisy, out).ok()) << "nothing written at noise 0";
+  EXPECT_EQ(out.positions, in.positions);
+  EXPECT_EQ(out.triangles, in.triangles);
 }
 
 // The default filter on CAD input: fandisk at isotropic noise 0.2 (seed 7) well under the best
@@ -255,6 +269,67 @@ TEST(FqfilterCli, FolderOutputMustNotBeTheInput) {
   const RunResult r = run_fqfilter({dir.path().string(), dir.path().string()}, dir);
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("OUT must differ from IN"), std::string::npos) << r.err;
+}
+
+// A still part seen four times with fresh noise: one stream with --sequence, against each frame
+// alone (--temporal 0) on the same noisy frames.
+TEST(FqfilterCli, SequenceFiltersAcrossFramesAndReportsFlicker) {
+  fq::test::ScratchDir dir;
+  const fs::path in = dir.path() / "frames";
+  fs::create_directories(in);
+  for (int i = 0; i < 4; ++i) fs::copy_file(kFandisk, in / ("f" + std::to_string(i) + ".ply"));
+  const auto run = [&](const char* temporal) {
+    const RunResult r = run_fqfilter({in.string(), "--sequence", "--noise", "0.2", "--temporal", temporal, "--json",
+                                      "--quiet", "--engine", "cpu", "--threads", "2"},
+                                     dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::vector<nlohmann::json> frames;
+    for (size_t at = 0, end; (end = r.out.find('\n', at)) != std::string::npos; at = end + 1)
+      frames.push_back(nlohmann::json::parse(r.out.substr(at, end - at)));
+    EXPECT_NE(r.err.find("sequence: 0 scene cuts, mean MFNE"), std::string::npos) << r.err;
+    return frames;
+  };
+  const std::vector<nlohmann::json> stream = run("0.75"), alone = run("0");
+  ASSERT_EQ(stream.size(), 4u);
+  ASSERT_EQ(alone.size(), 4u);
+  double stream_mfne = 0, alone_mfne = 0;
+  for (size_t i = 0; i < 4; ++i) {
+    const nlohmann::json& t = stream[i].at("temporal");
+    EXPECT_EQ(stream[i].at("noise").at("seed").get<int>(), int(1 + i)) << "fresh noise every frame";
+    EXPECT_EQ(stream[i].at("params").at("temporal").get<double>(), 0.75);
+    EXPECT_FALSE(t.at("history_reset").get<bool>());
+    if (i == 0) {
+      EXPECT_EQ(t.at("prior_coverage").get<double>(), 0.0);
+      EXPECT_TRUE(t.at("flicker").is_null());
+    } else {
+      EXPECT_GT(t.at("prior_coverage").get<double>(), 0.9);
+      EXPECT_GT(t.at("prior_share").get<double>(), 0.1);
+      EXPECT_GT(t.at("flicker").get<double>(), 0.0);
+    }
+    if (i > 0) EXPECT_GT(alone[i].at("temporal").at("flicker").get<double>(), 0.0) << "the baseline's flicker";
+    if (i >= 2) {
+      stream_mfne += stream[i].at("metrics").at("output").at("mfne_rad").get<double>();
+      alone_mfne += alone[i].at("metrics").at("output").at("mfne_rad").get<double>();
+    }
+  }
+  EXPECT_LT(stream_mfne, alone_mfne) << "the history helps a part that did not move";
+}
+
+TEST(FqfilterCli, SequenceOptionsAreChecked) {
+  fq::test::ScratchDir dir;
+  fs::copy_file(kFandisk, dir.path() / "a.ply");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{kFandisk, "--sequence"}, "folder of frames"},
+      {{dir.path().string(), "--temporal", "0.5"}, "--temporal needs --sequence"},
+      {{dir.path().string(), "--sequence", "--mode", "qf"}, "qf+ only"},
+      {{dir.path().string(), "--sequence", "--repeat", "2"}, "--repeat"},
+      {{dir.path().string(), "--sequence", "--temporal", "1.5"}, "--temporal"}};
+  for (const auto& [args, says] : cases) {
+    const RunResult r = run_fqfilter(args, dir);
+    EXPECT_EQ(r.exit_code, 2) << args[1];
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+    EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  }
 }
 
 }  // namespace

@@ -15,7 +15,7 @@
 #include "draco/core/decoder_buffer.h"
 #include "draco/io/ply_property_reader.h"
 #include "draco/io/ply_reader.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 #include "tests/io/fqfilter_run.h"
 #include "tests/io/io_test_util.h"
 

@@ -1,4 +1,4 @@
-// fq_meshio on bad input: every failure is a one-line status naming the file, never a crash.
+// fq_io on bad input: every failure is a one-line status naming the file, never a crash.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -8,7 +8,7 @@
 #include "draco/compression/encode.h"
 #include "draco/point_cloud/point_cloud.h"
 #include "tests/io/io_test_util.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq::io {

@@ -1,6 +1,6 @@
-// fq_meshio round trips: our PLY writer, Draco .drc with labels, and real meshes read
+// fq_io round trips: our PLY writer, Draco .drc with labels, and real meshes read
 // with their vertex count and order intact.
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <sstream>
 #include <vector>
 
-#include "proto/cluster_colors.h"
+#include "io/cluster_colors.h"
 #include "draco/compression/decode.h"
 #include "tests/io/io_test_util.h"
 #include "tests/support/mesh_dir.h"

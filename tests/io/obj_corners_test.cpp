@@ -13,7 +13,7 @@
 #include <sstream>
 #include <string>
 
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 #include "tests/io/io_test_util.h"
 
 namespace fq::io {

@@ -1,4 +1,4 @@
-// Cooperative cancellation of the CPU engine (kernels/cancel_token.h): a token that never
+// Cooperative cancellation of the CPU engine (core/cancel_token.h): a token that never
 // expires changes no result bit; an expired one ends the run with kCancelled, also part way
 // through a long parallel loop, and the engine serves the next frame exactly as a fresh one.
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <string>
 
 #include "kernels/cpu_engine.h"
-#include "kernels/parallel_for.h"
+#include "core/parallel_for.h"
 #include "tests/kernels/frame_result_checks.h"
 #include "tests/support/test_meshes.h"
 

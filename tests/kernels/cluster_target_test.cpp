@@ -11,7 +11,7 @@
 #include "kernels/cluster_control.h"
 #include "kernels/cluster_forest.h"
 #include "kernels/cpu_engine.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
@@ -131,6 +131,25 @@ TEST(KernelClusterTarget, FilteredGeometryKeepsTheOutputPositions) {
   const bool has_cluster_pass = std::any_of(both.timings.begin(), both.timings.end(),
                                             [](const PassTiming& t) { return t.name.starts_with("cluster."); });
   EXPECT_TRUE(has_cluster_pass);
+}
+
+// The extra runs' buffers belong to the engine (they were the calling thread's, out of reach
+// of release_memory and alive as long as the thread): an idle engine gives them back.
+TEST(KernelClusterTarget, ReleaseMemoryGivesBackTheExtraRuns) {
+  const Mesh m = noisy_cube();
+  Params p = clustering();
+  p.clustering.geometry = ClusterGeometry::kFiltered;
+  CpuEngine engine(2);
+  FrameResult out;
+  ASSERT_TRUE(engine.process(m.view(), p, out).ok());
+  EXPECT_GE(engine.cluster_runs().bytes(), 2 * sizeof(float) * m.positions.size()) << "both runs kept for the next frame";
+  engine.release_memory();
+  EXPECT_EQ(engine.cluster_runs().bytes(), 0u);
+  FrameResult again;
+  ASSERT_TRUE(engine.process(m.view(), p, again).ok());
+  EXPECT_EQ(again.labels, out.labels);
+  CpuEngine other(2);
+  EXPECT_EQ(other.cluster_runs().bytes(), 0u) << "another engine on the same thread shares nothing";
 }
 
 TEST(KernelClusterTarget, AutoGeometryIsThePapersWithoutATarget) {

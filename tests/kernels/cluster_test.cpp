@@ -14,7 +14,7 @@
 #include "kernels/cpu_frame.h"
 #include "kernels/cpu_stages.h"
 #include "kernels/frame_prep.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 #include "eval/noise.h"
 #include "tests/support/mesh_dir.h"
 #include "tests/support/test_meshes.h"

@@ -1,7 +1,7 @@
-// Parameter validation (kernels/params.h): every bad value is an kInvalidArgument whose
+// Parameter validation (core/params.h): every bad value is an kInvalidArgument whose
 // message names the parameter, both from validate() and from the engine, and the engine
 // stays usable afterwards.
-#include "kernels/params.h"
+#include "core/params.h"
 
 #include <gtest/gtest.h>
 

@@ -14,7 +14,7 @@
 #include "kernels/frame_prep.h"
 #include "kernels/refine_math.h"
 #include "kernels/refine_plan.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {

@@ -24,7 +24,7 @@ def test_filter_denoises_and_keeps_the_input(fandisk):
 
 def test_filter_follows_the_input_dtype_and_parameters(fandisk):
     V, F = fandisk
-    V = fq.add_noise(V, F, 0.3, seed=3)  # qf+ keeps a clean input as it is
+    V = fq.add_noise(V, F, 0.3, seed=3)  # qf+ filters a clean input only lightly
     as64 = fq.filter(V.astype(np.float64), F.astype(np.int32), engine="cpu")
     assert as64.dtype == np.float64
     np.testing.assert_allclose(as64, fq.filter(V, F, engine="cpu"), rtol=0, atol=1e-6)

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "kernels/mesh_view.h"
+#include "core/mesh_view.h"
 #include "kernels/vec3.h"
 
 namespace fq::test {

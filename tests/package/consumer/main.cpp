@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "common/version.h"
-#include "proto/mesh_io.h"
+#include "io/mesh_io.h"
 
 int main(int argc, char** argv) {
   if (argc != 2) {

@@ -1,0 +1,52 @@
+// Per-vertex math of temporal filtering ("qf+" with a stream history, kernels/temporal.h),
+// written once for the CPU and the CUDA engine, in the frame's normalized units (mean edges).
+//
+// A frame's filtered surface is pulled along the normal towards the stream's last result
+// where the two agree once the motion between them is taken out:
+//  1. motion: each vertex's offset to its nearest prior vertex, averaged over kMotionPasses
+//     rings, is the local motion m (the frame's own error and the prior's average out over the
+//     rings); the nearest vertex is looked up again at x + m (kMotionIterations rounds);
+//  2. detail: o = n·(p − x − m), with p, n the matched prior vertex and its normal, is what is
+//     left once the motion is out: the two frames' independent errors, along the normal;
+//  3. agreement: where the local mean of o² is within the frame's noise the match is right and
+//     x moves by strength·o along n; where it is far larger the match is wrong (a limb moved
+//     past another, a tangential motion the rings cannot see) and the frame stays alone.
+// Tangential positions are left to the frame: a surface prior says nothing about where along
+// the surface a vertex sits (docs/ALGORITHM.md, "Temporal filtering", says what was tried).
+#pragma once
+
+#include <cmath>
+
+#include "kernels/hd.h"
+#include "kernels/vec3.h"
+
+namespace fq {
+
+/// A prior vertex farther than this (mean edges of the new frame, after the motion estimate)
+/// is another part of the surface.
+constexpr float kPriorReach = 3.f;
+/// Under this share of vertices with a prior within reach, the frame is a scene cut: the
+/// history is dropped and the frame filtered alone.
+constexpr float kMinPriorCoverage = 0.5f;
+/// Ring means of the offsets that make the motion estimate (four rings: about 60 vertices on a
+/// regular mesh, so a frame's error leaves an eighth of itself in the mean).
+constexpr int kMotionPasses = 4;
+/// Rounds of lookup and motion estimate before the final lookup from x + m (a second round
+/// gained 0.3 % MFNE on crane for 40 % more time in this step).
+constexpr int kMotionIterations = 1;
+/// Ring means of o² that make the agreement's local level.
+constexpr int kAgreementPasses = 2;
+/// The agreement's scale, in units of the frame's estimated noise: exp(-1/2) where the local
+/// RMS of o is this many noise sigmas.
+constexpr float kPriorTolerance = 0.5f;
+
+/// How far the detail o of a vertex whose local mean of o² is `level` may be trusted.
+FQ_HD float prior_agreement(float level, float tolerance) {
+  return tolerance > 0.f ? std::exp(-level / (2.f * tolerance * tolerance)) : 0.f;
+}
+
+/// The detail left between x (moved by the motion estimate m) and its prior vertex p with
+/// unit normal n: signed, along n.
+FQ_HD float prior_detail(Vec3 x, Vec3 m, Vec3 p, Vec3 n) { return dot(n, p - (x + m)); }
+
+}  // namespace fq
