@@ -87,6 +87,8 @@ wire::ControlReply get_counters(const wire::GetCounters& q, StreamRegistry& regi
     c->set_temporal_resets(s.counters.temporal_resets);
     c->set_subscriber_overflows(s.counters.subscriber_overflows);
     c->set_bad_send_time(s.counters.bad_send_time);
+    c->set_untracked(s.counters.untracked);
+    c->set_preempted(s.counters.preempted);
     for (const auto& [name, pc] : s.stages) {
       wire::StagePercentiles* sp = c->add_stages();
       sp->set_name(name);

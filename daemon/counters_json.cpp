@@ -12,6 +12,7 @@ nlohmann::json counters_json(const wire::StreamCounters& c) {
           {"errors", c.errors()},          {"time_limited", c.time_limited()},
           {"subscriber_overflows", c.subscriber_overflows()}, {"bad_send_time", c.bad_send_time()},
           {"temporal_resets", c.temporal_resets()},
+          {"untracked", c.untracked()},    {"preempted", c.preempted()},
           {"stages", std::move(stages)}};
 }
 

@@ -223,6 +223,7 @@ Status Daemon::start() {
       name_this_thread("encode");
       run_encode_worker(pipeline_);
     });
+  pipeline_.slots.set_engines(static_cast<int>(engines_.size()));
   for (auto& e : engines_)
     workers_.emplace_back([this, eng = e.get()] {
       name_this_thread("engine");

@@ -54,6 +54,9 @@ struct FrameJob {
   std::vector<PassTiming> timings;      ///< decode, wait, engine.<pass>..., encode
   std::vector<std::string> out_chunks;  ///< encoded result
   int64_t decoded_ns = 0;
+  /// When its time limit (caps.engine_time_limit_s from the engine's start) ends: the engine
+  /// and the cluster-id tracking after it both stop there (max(): no limit).
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   Status error;  ///< non-ok: published as an ERROR result
   bool refused = false;  ///< refused at admission: no stream state, counted in the refusals
 };

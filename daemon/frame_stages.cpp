@@ -96,14 +96,15 @@ Status decode(FrameJob& f, const Caps& caps) {
   return mesh_faults(f.mesh.view(), bad == coordinates ? kNone : bad, kNone);
 }
 
-// One frame on `engine` under the time limit and the stop flag; a stopped frame's error
-// says which of the two stopped it.
-Status run_engine(Pipeline& p, Engine& engine, FrameJob& f) {
+// One frame on `engine` under the time limit, the stop flag and the slots' yield request; a
+// stopped frame's error says which of the three stopped it.
+Status run_engine(Pipeline& p, Engine& engine, FrameJob& f, const YieldRequest& yield) {
   const double limit_s = p.caps.get()->engine_time_limit_s;
   const auto deadline = limit_s > 0 ? CancelToken::Clock::now() + std::chrono::duration_cast<CancelToken::Clock::duration>(
                                                                        std::chrono::duration<double>(limit_s))
                                     : CancelToken::Clock::time_point::max();
-  const CancelToken token(&p.cancel_engines, deadline);
+  f.deadline = deadline;
+  const CancelToken token(&p.cancel_engines, deadline, &yield);
   engine.set_cancel_token(&token);
   Status s = with_history(*f.stream, f.arrival, f.settings.params, engine, [&] {
     return guarded("engine", [&] { return engine.process(f.mesh.view(), f.settings.params, f.result); });
@@ -113,6 +114,12 @@ Status run_engine(Pipeline& p, Engine& engine, FrameJob& f) {
   if (s.code() != StatusCode::kCancelled) return s;
   if (token.stopped())
     return {StatusCode::kCancelled, "cancelled: fqd is stopping (caps.stop_grace_s passed before the frame finished)"};
+  if (token.yield_due()) {
+    f.stream->count(Counter::kPreempted);
+    return {StatusCode::kCancelled,
+            "preempted: the engine stopped the frame to serve a stream within its share of engine time (this stream "
+            "had used more than its share; see fqd's fairness rule in docs/DAEMON.md)"};
+  }
   f.stream->count(Counter::kTimeLimited);
   return {StatusCode::kCancelled, fmt::format("time_limit: the engine stopped the frame after caps.engine_time_limit_s "
                                               "= {} s (its parameters fit max_neighbour_work but it ran too long)",
@@ -170,7 +177,8 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
   std::vector<FramePtr> stale;
   int64_t last_frame_ns = wall_ns();
   bool holding = false;  // the engine keeps a frame's buffers
-  while (p.slots.take(f, stale, std::chrono::seconds(1))) {
+  YieldRequest yield;    // set by the slots while a frame of this worker's runs
+  while (p.slots.take(f, stale, std::chrono::seconds(1), &yield)) {
     const CpuScope cpu(p.stage_cpu[CpuStage::kEngine]);
     // Idle as long as the pools: the engine's buffers (host or device) go back too.
     const auto idle_ns = static_cast<int64_t>(p.caps.get()->pool_idle_s * 1e9);
@@ -189,8 +197,9 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
     f->engine = engine.name();
     f->result = p.results.acquire(wall_ns());
     const auto t0 = std::chrono::steady_clock::now();
-    const Status s = run_engine(p, engine, *f);
+    const Status s = run_engine(p, engine, *f, yield);
     const double total = ms_since(t0);
+    p.slots.finish(&yield, total * 1e-3);
     p.engine_busy.add(&engine, static_cast<uint64_t>(total * 1e6));
     last_frame_ns = wall_ns();
     holding = true;
@@ -227,9 +236,19 @@ void run_encode_worker(Pipeline& p) {
       for (size_t job = begin; job < end; ++job) {
         const auto t0 = std::chrono::steady_clock::now();
         if (job == 0) {
+          // Under the frame's own time limit and the stop: a frame whose tracking is cut is
+          // published with the engine's numbering (its clusters are right, their ids are not
+          // the previous frame's), counted `untracked`, rather than lost.
           const CpuScope track_cpu(p.stage_cpu[CpuStage::kTrackIds]);
+          const CancelToken token(&p.cancel_engines, f->deadline);
           tracked = guarded("track_ids", [&] {
-            track_labels(*f, hardware_threads());
+            if (Status cut = track_labels(*f, hardware_threads(), token); !cut.ok()) {
+              f->stream->count(Counter::kUntracked);
+              p.fail_log.log(spdlog::level::warn, "stream '{}' frame {}: published with untracked cluster ids: {}",
+                             f->stream_id, f->header.sequence(),
+                             token.stopped() ? std::string("fqd is stopping")
+                                             : "tracking passed caps.engine_time_limit_s");
+            }
             return Status{};
           });
           track_ms = ms_since(t0);
@@ -250,6 +269,7 @@ void run_encode_worker(Pipeline& p) {
       }
     });
     if (s.ok()) s = tracked;
+    p.slots.charge(*f->stream, track_ms * 1e-3);  // tracking is engine time of the stream too
     if (f->settings.params.cluster) f->timings.push_back({"track_ids", track_ms});
     f->timings.push_back({"encode", encode_ms});
     if (!s.ok())

@@ -4,7 +4,7 @@
 
 namespace fq::daemon {
 
-void track_labels(FrameJob& f, int threads) {
+Status track_labels(FrameJob& f, int threads, const CancelToken& token) {
   FrameResult& r = f.result;
   f.distinct_clusters = r.num_clusters;
   LabelTrack& t = f.stream->track;
@@ -12,7 +12,7 @@ void track_labels(FrameJob& f, int threads) {
   const ClusterParams& c = f.settings.params.clustering;
   if (!f.settings.params.cluster || !c.track_ids || r.labels.empty()) {
     t.tracker.reset();
-    return;
+    return {};
   }
   // Frames of one stream may finish out of order on several engines: each is matched with
   // the frame tracked just before it, which is at worst a frame or two older.
@@ -23,7 +23,8 @@ void track_labels(FrameJob& f, int threads) {
   o.triangles = f.mesh.triangles.data();
   o.num_triangles = f.mesh.num_triangles();
   o.sticky_rings = static_cast<int>(c.sticky_rings);
-  r.num_clusters = t.tracker.track(r.positions.data(), f.mesh.num_vertices(), r.labels, r.num_clusters, o);
+  return t.tracker.track_until(token, r.positions.data(), f.mesh.num_vertices(), r.labels, r.num_clusters, o,
+                               r.num_clusters);
 }
 
 }  // namespace fq::daemon

@@ -4,6 +4,7 @@
 // not wait on each other; the track goes with its stream.
 #pragma once
 
+#include "core/cancel_token.h"
 #include "daemon/frame_job.h"
 
 namespace fq::daemon {
@@ -11,6 +12,8 @@ namespace fq::daemon {
 /// For a clustered frame of a stream with track_ids on: replaces the labels by the stream's
 /// stable ids and result.num_clusters by their bound (f.distinct_clusters keeps the count).
 /// Otherwise forgets the stream's previous frame, so tracking restarts cleanly.
-void track_labels(FrameJob& f, int threads);
+/// kCancelled when `token` expired first: the frame keeps the engine's numbering and the
+/// stream's next frame is matched with the last one tracked.
+Status track_labels(FrameJob& f, int threads, const CancelToken& token);
 
 }  // namespace fq::daemon

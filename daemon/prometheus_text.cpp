@@ -42,6 +42,14 @@ constexpr CounterFamily kCounters[] = {
      &StreamCounters::bad_send_time},
     {"fq_temporal_resets_total", "Scene cuts of a stream filtered across frames: its temporal history restarted.",
      &StreamCounters::temporal_resets},
+    {"fq_untracked_total",
+     "Results published with the engine's cluster numbering because id tracking passed the time limit or fqd was "
+     "stopping.",
+     &StreamCounters::untracked},
+    {"fq_preempted_total",
+     "Frames stopped on the engine so that a stream within its share of engine time was served (also in "
+     "fq_errors_total).",
+     &StreamCounters::preempted},
 };
 
 void histograms(std::string& out, const std::vector<StreamSnapshot>& streams) {

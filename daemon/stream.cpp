@@ -28,8 +28,8 @@ void Stream::count(Counter c, uint64_t n) {
       &StreamCounters::frames_in,     &StreamCounters::frames_out, &StreamCounters::superseded,
       &StreamCounters::dropped_stale, &StreamCounters::late,       &StreamCounters::errors,
       &StreamCounters::time_limited,  &StreamCounters::subscriber_overflows, &StreamCounters::bad_send_time,
-      &StreamCounters::temporal_resets};
-  static_assert(std::size(kFields) == static_cast<size_t>(Counter::kTemporalResets) + 1, "one field per Counter");
+      &StreamCounters::temporal_resets, &StreamCounters::untracked, &StreamCounters::preempted};
+  static_assert(std::size(kFields) == static_cast<size_t>(Counter::kPreempted) + 1, "one field per Counter");
   std::lock_guard<std::mutex> lock(mutex_);
   counters_.*kFields[static_cast<size_t>(c)] += n;
 }

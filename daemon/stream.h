@@ -46,6 +46,12 @@ struct StreamCounters {
   /// Scene cuts of a stream filtered across frames (temporal > 0): frames that found under half
   /// their vertices near the stream's last result, so its history restarted. Not in the sum.
   uint64_t temporal_resets = 0;
+  /// Results published with the engine's cluster numbering because id tracking was cut by
+  /// the frame's time limit or the stop (also in frames_out).
+  uint64_t untracked = 0;
+  /// Frames stopped on the engine to serve a stream within its share of engine time (also in
+  /// errors; see latency_policy.h).
+  uint64_t preempted = 0;
 };
 
 enum class Counter {
@@ -58,7 +64,9 @@ enum class Counter {
   kTimeLimited,
   kSubscriberOverflows,
   kBadSendTime,
-  kTemporalResets
+  kTemporalResets,
+  kUntracked,
+  kPreempted
 };
 
 struct StreamSnapshot {
@@ -85,6 +93,9 @@ struct SlotState {
   bool taken_any = false;
   uint64_t next_ticket = 0;
   uint64_t served = 0;  ///< when it was last handed out (FrameSlots' count then); 0 = never
+  double usage_s = 0;   ///< recent engine time, decayed to usage_ns (steady clock)
+  int64_t usage_ns = 0;
+  double cost_s = 0;  ///< engine time of its frames (moving average); 0 = none seen yet
 };
 
 /// Results held back until the earlier tickets are published (publisher.h); publisher thread only.

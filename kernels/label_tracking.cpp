@@ -112,9 +112,24 @@ std::vector<uint32_t> match_cluster_ids(const std::vector<uint32_t>& labels, uin
 uint32_t LabelTracker::track(const float* positions, uint32_t n, std::vector<uint32_t>& labels,
                              uint32_t num_clusters, const TrackingOptions& o) {
   uint32_t bound = num_clusters;
+  const Status s = track_until(CancelToken{}, positions, n, labels, num_clusters, o, bound);
+  (void)s;  // a token that never expires: always ok
+  return bound;
+}
+
+Status LabelTracker::track_until(const CancelToken& token, const float* positions, uint32_t n,
+                                 std::vector<uint32_t>& labels, uint32_t num_clusters, const TrackingOptions& o,
+                                 uint32_t& bound) {
+  const CancelScope scope(&token);
+  // Everything is computed aside and kept only once the whole frame is tracked.
+  std::vector<uint32_t> ids = labels;
+  std::vector<uint32_t> history;
+  int window = 1;
+  uint32_t new_bound = num_clusters;
   if (has_previous()) {
     std::vector<uint32_t> nearest, votes(n);
     prev_.nearest_all(positions, n, o.max_distance, nearest, o.threads);
+    FQ_RETURN_IF_ERROR(token.check());
     for (uint32_t v = 0; v < n; ++v) votes[v] = nearest[v] == kNone ? kNone : prev_ids_[nearest[v]];
     // Ids still in a vertex's vote window count as used: a new cluster must not take one.
     std::vector<bool> prev_used(prev_bound_, false);
@@ -122,30 +137,35 @@ uint32_t LabelTracker::track(const float* positions, uint32_t n, std::vector<uin
     for (uint32_t id : prev_history_) {
       if (id != kNone) prev_used[id] = true;
     }
-    const std::vector<uint32_t> id = match_cluster_ids(labels, num_clusters, votes, prev_used);
-    for (uint32_t& l : labels) l = id[l];
+    const std::vector<uint32_t> id = match_cluster_ids(ids, num_clusters, votes, prev_used);
+    for (uint32_t& l : ids) l = id[l];
     if (o.triangles) {
-      for (int ring = 0; ring < o.sticky_rings; ++ring) stick_to_previous_side(o, votes, labels);
+      for (int ring = 0; ring < o.sticky_rings; ++ring) {
+        FQ_RETURN_IF_ERROR(token.check());
+        stick_to_previous_side(o, votes, ids);
+      }
     }
-    const int window = std::max(o.vote_frames, 1);
-    std::vector<uint32_t> history;
-    vote_over_frames(nearest, prev_history_, prev_window_, window, votes, history, labels);
-    prev_history_.swap(history);
-    prev_window_ = window;
-    bound = 0;
-    for (uint32_t l : labels) bound = std::max(bound, l + 1);
-    for (uint32_t l : prev_history_) {
-      if (l != kNone) bound = std::max(bound, l + 1);
+    window = std::max(o.vote_frames, 1);
+    vote_over_frames(nearest, prev_history_, prev_window_, window, votes, history, ids);
+    new_bound = 0;
+    for (uint32_t l : ids) new_bound = std::max(new_bound, l + 1);
+    for (uint32_t l : history) {
+      if (l != kNone) new_bound = std::max(new_bound, l + 1);
     }
+  } else {
+    history = ids;
   }
-  if (!has_previous()) {
-    prev_history_ = labels;
-    prev_window_ = 1;
-  }
-  prev_.build(positions, n, o.cell);
-  prev_ids_ = labels;
-  prev_bound_ = bound;
-  return bound;
+  NearestVertexIndex index;
+  index.build(positions, n, o.cell);
+  FQ_RETURN_IF_ERROR(token.check());
+  prev_ = std::move(index);
+  prev_history_.swap(history);
+  prev_window_ = window;
+  prev_ids_ = ids;
+  prev_bound_ = new_bound;
+  labels.swap(ids);
+  bound = new_bound;
+  return {};
 }
 
 void LabelTracker::reset() {

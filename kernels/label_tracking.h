@@ -17,6 +17,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/status.h"
+#include "core/cancel_token.h"
 #include "kernels/nearest_vertex.h"
 
 namespace fq {
@@ -45,6 +47,12 @@ class LabelTracker {
   /// The first frame keeps its labels.
   uint32_t track(const float* positions, uint32_t n, std::vector<uint32_t>& labels, uint32_t num_clusters,
                  const TrackingOptions& options);
+  /// track() under `token` (its parallel loops stop at their next chunk once it expires):
+  /// kCancelled when it expired before the frame was tracked, and then `labels`, `bound` and
+  /// the remembered frame are as they were, so the next frame is matched with the last one
+  /// tracked. Every step is O(n log n) or less in the frame's vertices and triangles.
+  Status track_until(const CancelToken& token, const float* positions, uint32_t n, std::vector<uint32_t>& labels,
+                     uint32_t num_clusters, const TrackingOptions& options, uint32_t& bound);
   /// Forgets the previous frame (the next one starts afresh).
   void reset();
   bool has_previous() const { return prev_.size() > 0; }

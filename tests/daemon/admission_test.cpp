@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "eval/noise.h"
+#include "io/ply_reader.h"
 #include "tests/daemon/daemon_harness.h"
 #include "tests/support/test_meshes.h"
 
@@ -218,6 +219,46 @@ TEST(DaemonAdmission, IdenticalStreamsShareAnOverloadedEngineFairly) {
                       << out[2];
   // Within 10% (or one frame, the granularity of a round robin).
   EXPECT_LE(double(*hi - *lo), std::max(1.0, 0.10 * double(*hi))) << out[0] << " / " << out[1] << " / " << out[2];
+}
+
+TEST(DaemonAdmission, AStreamOfHeavyFramesCannotStarveALightOne) {
+  // One engine thread. The hog's frames (the fandisk with a neighbourhood as wide as the mesh:
+  // seconds each, inside the work budget and the time limit) always have one waiting; the
+  // victim sends a small frame every 200 ms. Round robin by frames gave the victim one result
+  // per hog frame.
+  daemon::DaemonConfig c = test_config();
+  c.engine.cpu_threads = 1;
+  DaemonHarness h(c);
+  Mesh fandisk;
+  ASSERT_TRUE(io::read_ply(std::string(FQ_SOURCE_DIR) + "/data/fandisk.ply", fandisk).ok());
+  client::FrameSpec hog = spec_for("hog");
+  hog.overrides.set_sigma_s(40.f);
+  hog.overrides.set_sigma_d(40.f);
+  std::vector<std::string> hog_frame, victim_frame;
+  ASSERT_TRUE(client::build_frame(fandisk.view(), hog, 0, hog_frame).ok());
+  ASSERT_TRUE(client::build_frame(noisy_sphere().view(), spec_for("victim"), 0, victim_frame).ok());
+  const int victim_frames = 100;  // 20 s
+  for (int i = 0; i < victim_frames; ++i) {
+    if (i % 2 == 0) h.send_parts(hog_frame);
+    h.send_parts(victim_frame);
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  for (const char* id : {"hog", "victim"}) {
+    ASSERT_TRUE(eventually([&] {
+      const wire::StreamCounters k = h.counters(id);
+      return k.frames_in() == k.frames_out() + k.errors() + k.superseded() + k.dropped_stale();
+    }));
+  }
+  const wire::StreamCounters v = h.counters("victim"), g = h.counters("hog");
+  std::printf("victim: %llu of %d results (%llu superseded, %llu stale); hog: %llu results, %llu preempted, %llu "
+              "superseded\n",
+              static_cast<unsigned long long>(v.frames_out()), victim_frames,
+              static_cast<unsigned long long>(v.superseded()), static_cast<unsigned long long>(v.dropped_stale()),
+              static_cast<unsigned long long>(g.frames_out()), static_cast<unsigned long long>(g.preempted()),
+              static_cast<unsigned long long>(g.superseded()));
+  EXPECT_GE(double(v.frames_out()), 0.8 * victim_frames);
+  EXPECT_GT(g.preempted(), 0u);
+  EXPECT_EQ(v.preempted(), 0u);
 }
 
 }  // namespace

@@ -49,6 +49,58 @@ TEST(FrameSlots, NewerFrameReplacesTheWaitingOne) {
   EXPECT_TRUE(stale.empty());
 }
 
+TEST(FrameSlots, TheStreamOfLeastEngineTimeGoesFirstAndAHogYieldsToALightStream) {
+  Streams streams;
+  FrameSlots slots;
+  const int64_t now = wall_ns();
+  // "hog" has used two seconds of engine time; it is served after "light" though it came first.
+  YieldRequest run;
+  ASSERT_EQ(slots.offer(streams.frame("hog", 0, now)), nullptr);
+  FramePtr out;
+  std::vector<FramePtr> stale;
+  ASSERT_TRUE(slots.take(out, stale, std::chrono::milliseconds::max(), &run));
+  slots.finish(&run, 2.0);
+  ASSERT_EQ(slots.offer(streams.frame("hog", 1, now)), nullptr);
+  ASSERT_EQ(slots.offer(streams.frame("light", 2, now)), nullptr);
+  YieldRequest light_run;
+  ASSERT_TRUE(slots.take(out, stale, std::chrono::milliseconds::max(), &light_run));
+  EXPECT_EQ(out->stream_id, "light");
+  ASSERT_TRUE(slots.take(out, stale, std::chrono::milliseconds::max(), &run));
+  EXPECT_EQ(out->stream_id, "hog");
+  slots.finish(&light_run, 0.01);
+  EXPECT_FALSE(run.requested) << "nobody waits";
+  // The light stream's next frame, with the one engine busy on the hog: the hog's run is asked
+  // to yield after a slice (it is over twice the light stream's usage plus a slice).
+  ASSERT_EQ(slots.offer(streams.frame("light", 3, now)), nullptr);
+  EXPECT_TRUE(run.requested);
+  const int64_t slice_ns = static_cast<int64_t>(FrameSlots::kSliceS * 1e9);
+  EXPECT_LE(run.after_ns, CancelToken::Clock::now().time_since_epoch().count() + slice_ns);
+  slots.finish(&run, 0.1);
+  // Streams of like usage: "b" has used as much as "a" when its frame comes while a's runs.
+  FrameSlots even;
+  YieldRequest a_run, b_run;
+  ASSERT_EQ(even.offer(streams.frame("b", 0, now)), nullptr);
+  ASSERT_TRUE(even.take(out, stale, std::chrono::milliseconds::max(), &b_run));
+  even.finish(&b_run, 1.0);
+  ASSERT_EQ(even.offer(streams.frame("a", 1, now)), nullptr);
+  ASSERT_TRUE(even.take(out, stale, std::chrono::milliseconds::max(), &a_run));
+  even.charge(*streams.by_id["a"], 1.0);
+  ASSERT_EQ(even.offer(streams.frame("b", 2, now)), nullptr);
+  // a may run on for four of b's frames (4 s), not at once.
+  const int64_t due_in_ns = a_run.after_ns - CancelToken::Clock::now().time_since_epoch().count();
+  EXPECT_TRUE(!a_run.requested || due_in_ns > 3'000'000'000) << due_in_ns;
+  // A waiting stream whose frames were never seen to cost (streams that start together) lets
+  // a run go on for a second.
+  FrameSlots cold;
+  YieldRequest c_run;
+  ASSERT_EQ(cold.offer(streams.frame("c", 0, now)), nullptr);
+  ASSERT_TRUE(cold.take(out, stale, std::chrono::milliseconds::max(), &c_run));
+  cold.charge(*streams.by_id["c"], 5.0);
+  ASSERT_EQ(cold.offer(streams.frame("d", 1, now)), nullptr);
+  EXPECT_TRUE(!c_run.requested ||
+              c_run.after_ns - CancelToken::Clock::now().time_since_epoch().count() > 900'000'000);
+}
+
 TEST(FrameSlots, AnOlderFrameDecodedLateLosesToTheNewerOne) {
   Streams streams;
   FrameSlots slots;
