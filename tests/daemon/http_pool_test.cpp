@@ -90,13 +90,18 @@ TEST(HttpPool, ConnectionsAndLongPollsPastTheirBoundsGet503) {
   const int port = http_port(fqd.endpoint("http"));
   ASSERT_GT(port, 0);
   Connections polls = connect(port, 4, kLongPoll);
+  // The four must be waiting in fqd before the next two come (on a loaded machine its HTTP
+  // threads read the four requests a while after they were sent).
+  std::this_thread::sleep_for(seconds(1));
   // Two more polls while four wait: answered at once.
   for (int i = 0; i < 2; ++i)
     EXPECT_EQ(get_status(port, "/streams/cam0/latest?after=0&wait_ms=5000", seconds(2)), 503);
   Connections idle = connect(port, 20);  // 24 open now
+  // fqd accepts in the order the connections came; on a loaded machine its accept loop may
+  // trail the 20 by a while, so the 25th gets up to 10 s for its refusal.
   RawConnection over(port);
   EXPECT_TRUE(over.send("GET /healthz HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"));
-  EXPECT_EQ(status_of(over.receive(seconds(2))), 503);
+  EXPECT_EQ(status_of(over.receive(seconds(10))), 503);
   idle.clear();  // the holders leave: room again
   int health = 0;
   for (int i = 0; i < 50 && health != 200; ++i) {
