@@ -11,6 +11,7 @@
 #include "core/parallel_for.h"
 #include "kernels/refine_math.h"
 #include "kernels/refine_plan.h"
+#include "kernels/vertex_faces.h"
 
 namespace fq::cpu {
 
@@ -31,24 +32,6 @@ void sort_into_grid(const MeshView& mesh, float cell, CpuFrame& f) {
   for (size_t t = 0; t < 3 * size_t(m); ++t) f.tris[t] = f.rank[mesh.triangles[t]];
 }
 
-namespace {
-
-// Vertex -> incident triangles by counting sort; triangles stay in increasing order per
-// vertex, so per-vertex sums are reproducible.
-void build_vertex_faces(CpuFrame& f, uint32_t n) {
-  const size_t m = f.tris.size() / 3;
-  f.vf_offsets.assign(n + 1, 0);
-  for (uint32_t v : f.tris) ++f.vf_offsets[v + 1];
-  for (uint32_t i = 0; i < n; ++i) f.vf_offsets[i + 1] += f.vf_offsets[i];
-  f.vf_faces.resize(f.tris.size());
-  std::vector<uint32_t> cursor(f.vf_offsets.begin(), f.vf_offsets.end() - 1);
-  for (size_t t = 0; t < m; ++t) {
-    for (int k = 0; k < 3; ++k) f.vf_faces[cursor[f.tris[3 * t + k]]++] = static_cast<uint32_t>(t);
-  }
-}
-
-}  // namespace
-
 void base_quadrics(CpuFrame& f, int threads) {
   const uint32_t n = static_cast<uint32_t>(f.points.size());
   const uint32_t m = static_cast<uint32_t>(f.tris.size() / 3);
@@ -57,7 +40,7 @@ void base_quadrics(CpuFrame& f, int threads) {
     const uint32_t* tri = &f.tris[3 * size_t(t)];
     f.tri_geom[t] = triangle_geom(xyz(f.points[tri[0]]), xyz(f.points[tri[1]]), xyz(f.points[tri[2]]));
   });
-  build_vertex_faces(f, n);
+  build_vertex_faces(f.tris.data(), f.tris.size() / 3, n, f.vf_offsets, f.vf_faces);
   f.base.resize(n);
   f.vnormal.resize(n);
   parallel_for(n, threads, [&](uint32_t v) {

@@ -6,6 +6,7 @@
 #include "core/parallel_for.h"
 #include "kernels/refine_math.h"
 #include "kernels/temporal_math.h"
+#include "kernels/vertex_faces.h"
 
 namespace fq {
 
@@ -21,17 +22,9 @@ void ring_means(const FanView& fan, std::vector<T>& a, std::vector<T>& spare, in
   }
 }
 
-/// Vertex -> incident triangles (CSR) of the mesh, for the ring means.
+/// Vertex -> incident triangles of the mesh, for the ring means.
 FanView fan_of(const MeshView& mesh, TemporalScratch& s) {
-  const uint32_t n = mesh.num_vertices, m = mesh.num_triangles;
-  s.vf_offsets.assign(size_t(n) + 1, 0);
-  for (size_t i = 0; i < 3 * size_t(m); ++i) ++s.vf_offsets[mesh.triangles[i] + 1];
-  for (uint32_t v = 0; v < n; ++v) s.vf_offsets[v + 1] += s.vf_offsets[v];
-  s.vf_faces.resize(3 * size_t(m));
-  std::vector<uint32_t>& fill = s.match;  // free until the lookups
-  fill.assign(s.vf_offsets.begin(), s.vf_offsets.end() - 1);
-  for (uint32_t t = 0; t < m; ++t)
-    for (int c = 0; c < 3; ++c) s.vf_faces[fill[mesh.triangles[3 * size_t(t) + c]]++] = t;
+  build_vertex_faces(mesh.triangles, mesh.num_triangles, mesh.num_vertices, s.vf_offsets, s.vf_faces);
   return FanView{mesh.triangles, s.vf_offsets.data(), s.vf_faces.data()};
 }
 
