@@ -83,15 +83,21 @@ def _with_keywords(function_name: str, returns: str) -> Callable[[Callable[..., 
     return decorate
 
 
-def _split(function_name: str, V: Any, F: Any, keywords: dict[str, Any],
-           defaults: dict[str, Any]) -> tuple[Any, Any, dict[str, Any], str, int]:
-    """(V, F, parameter keywords, engine, threads) of a call; V, F taken from a mesh."""
+def _engine_keywords(function_name: str, keywords: dict[str, Any], defaults: dict[str, Any],
+                     also: tuple[str, ...] = ()) -> tuple[str, int]:
+    """Checks `keywords` against `defaults` (TypeError naming the first unknown one; `also`:
+    the caller's own keywords, named in the message) and pops engine and threads from them."""
     unknown = sorted(set(keywords) - set(defaults))
     if unknown:
         raise TypeError(f"{function_name}() got an unexpected keyword argument '{unknown[0]}' "
-                        f"(it takes {', '.join(defaults)})")
-    engine = keywords.pop("engine", defaults["engine"])
-    threads = keywords.pop("threads", defaults["threads"])
+                        f"(it takes {', '.join((*also, *defaults))})")
+    return keywords.pop("engine", defaults["engine"]), keywords.pop("threads", defaults["threads"])
+
+
+def _split(function_name: str, V: Any, F: Any, keywords: dict[str, Any],
+           defaults: dict[str, Any]) -> tuple[Any, Any, dict[str, Any], str, int]:
+    """(V, F, parameter keywords, engine, threads) of a call; V, F taken from a mesh."""
+    engine, threads = _engine_keywords(function_name, keywords, defaults)
     if F is None:
         if not is_mesh(V):
             raise TypeError(f"{function_name}() needs F with an array V (or a mesh as V)")

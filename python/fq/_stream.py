@@ -4,7 +4,7 @@ from __future__ import annotations
 from typing import Any
 
 from . import _fq
-from ._engine import _split, filter as _filter
+from ._engine import _engine_keywords, _split, filter as _filter
 from .mesh import moved_like
 
 
@@ -36,13 +36,8 @@ class Stream:
     def __init__(self, temporal: float = 0.75, **keywords: Any) -> None:
         if isinstance(temporal, bool) or not isinstance(temporal, (int, float)):
             raise TypeError(f"temporal must be a number, got {type(temporal).__name__}")
-        defaults = _filter.defaults  # type: ignore[attr-defined]
-        unknown = sorted(set(keywords) - set(defaults))
-        if unknown:
-            raise TypeError(f"Stream() got an unexpected keyword argument '{unknown[0]}' (it takes temporal, "
-                            f"{', '.join(defaults)})")
-        engine = keywords.pop("engine", defaults["engine"])
-        threads = keywords.pop("threads", defaults["threads"])
+        engine, threads = _engine_keywords("Stream", keywords, _filter.defaults,  # type: ignore[attr-defined]
+                                           also=("temporal",))
         self._stream = _fq.Stream(keywords, float(temporal), engine, threads)
 
     def filter(self, V: Any, F: Any = None) -> Any:
