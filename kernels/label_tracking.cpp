@@ -126,9 +126,14 @@ Status LabelTracker::track_until(const CancelToken& token, const float* position
   std::vector<uint32_t> history;
   int window = 1;
   uint32_t new_bound = num_clusters;
+  // This frame's index first: the next frame is matched against it, and this frame's queries
+  // go to the previous one in its cell order (NearestVertexIndex::nearest_all).
+  NearestVertexIndex index;
+  index.build(positions, n, o.cell);
+  FQ_RETURN_IF_ERROR(token.check());
   if (has_previous()) {
     std::vector<uint32_t> nearest, votes(n);
-    prev_.nearest_all(positions, n, o.max_distance, nearest, o.threads);
+    prev_.nearest_all(index, o.max_distance, nearest, o.threads);
     FQ_RETURN_IF_ERROR(token.check());
     for (uint32_t v = 0; v < n; ++v) votes[v] = nearest[v] == kNone ? kNone : prev_ids_[nearest[v]];
     // Ids still in a vertex's vote window count as used: a new cluster must not take one.
@@ -155,9 +160,6 @@ Status LabelTracker::track_until(const CancelToken& token, const float* position
   } else {
     history = ids;
   }
-  NearestVertexIndex index;
-  index.build(positions, n, o.cell);
-  FQ_RETURN_IF_ERROR(token.check());
   prev_ = std::move(index);
   prev_history_.swap(history);
   prev_window_ = window;

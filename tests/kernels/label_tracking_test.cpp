@@ -47,6 +47,25 @@ TEST(KernelNearestVertex, MatchesBruteForce) {
   EXPECT_EQ(index.nearest({100.f, 0.f, 0.f}, 1.f), NearestVertexIndex::kNone) << "beyond max_radius";
 }
 
+// Queries asked in their own index's cell order get each point's own answer, in the points' order.
+TEST(KernelNearestVertex, QueriesInCellOrderGiveEachPointItsAnswer) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-5.f, 5.f);
+  std::vector<float> pts(3 * 800), queries(3 * 600);
+  for (float& x : pts) x = u(rng);
+  for (float& x : queries) x = 1.2f * u(rng);
+  NearestVertexIndex index, asked;
+  index.build(pts.data(), 800, 0.5f);
+  asked.build(queries.data(), 600, 0.3f);
+  for (float reach : {0.4f, 1e9f}) {
+    std::vector<uint32_t> in_order, by_cell;
+    index.nearest_all(queries.data(), 600, reach, in_order, 2);
+    index.nearest_all(asked, reach, by_cell, 2);
+    EXPECT_EQ(by_cell, in_order) << "reach " << reach;
+    EXPECT_NE(std::count(in_order.begin(), in_order.end(), NearestVertexIndex::kNone), reach < 1.f ? 0 : 600);
+  }
+}
+
 // The same surface as a new capture: vertices shuffled, jittered, clusters renumbered.
 struct Frame {
   std::vector<float> positions;
