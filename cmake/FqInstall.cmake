@@ -51,10 +51,6 @@ install(FILES "${PROJECT_BINARY_DIR}/fqConfig.cmake" "${PROJECT_BINARY_DIR}/fqCo
 # pkg-config: the libraries are static, so Libs lists what they need too.
 set(FQ_PC_CFLAGS "-std=c++20")
 set(FQ_PC_LIBS "")
-if(OpenMP_CXX_FOUND)
-  string(APPEND FQ_PC_CFLAGS " -DFQ_HAVE_OPENMP=1 ${OpenMP_CXX_FLAGS}")
-  string(APPEND FQ_PC_LIBS " ${OpenMP_CXX_FLAGS}")
-endif()
 if(FQ_WITH_CUDA)
   string(APPEND FQ_PC_LIBS " -L${CUDAToolkit_LIBRARY_DIR} -lcudart_static -ldl -lrt")
 endif()

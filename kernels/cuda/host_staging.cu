@@ -9,6 +9,7 @@
 #endif
 
 #include "kernels/cuda/cuda_check.cuh"
+#include "common/thread_pool.h"
 #include "core/parallel_for.h"
 
 namespace fq::cuda {
@@ -58,9 +59,18 @@ void stream_copy(unsigned char* dst, const unsigned char* src, size_t len) {
 #endif
 }
 
-void copy_piece(unsigned char* dst, const unsigned char* src, size_t bytes, size_t p) {
-  const size_t begin = p * kPiece;
-  stream_copy(dst + begin, src + begin, std::min(kPiece, bytes - begin));
+// dst = src in pieces of kPiece on the caller and staging_threads() - 1 threads of fq's shared
+// pool. Not OpenMP: its runtime spins between regions next to the codec pool (thread_pool.h
+// says why fqd avoids it), and the pool charges its helpers' CPU time to the stage that
+// started the copy (common/thread_cpu.h), which OpenMP's threads escaped. Not parallel_for:
+// a frame's cancel token must not cut a copy short.
+void copy_pieces(unsigned char* dst, const unsigned char* src, size_t bytes) {
+  ThreadPool::shared().run(pieces_of(bytes), staging_threads(), [&](size_t first, size_t last, size_t) {
+    for (size_t p = first; p < last; ++p) {
+      const size_t begin = p * kPiece;
+      stream_copy(dst + begin, src + begin, std::min(kPiece, bytes - begin));
+    }
+  });
 }
 
 }  // namespace
@@ -68,30 +78,13 @@ void copy_piece(unsigned char* dst, const unsigned char* src, size_t bytes, size
 void upload_staged(const void* src, void* dst, size_t bytes, unsigned char* staging, cudaStream_t s) {
   const auto* in = static_cast<const unsigned char*>(src);
   auto* out = static_cast<unsigned char*>(dst);
-  const int64_t chunks = static_cast<int64_t>((bytes + kChunk - 1) / kChunk);
-  // Exceptions cannot leave a parallel region: the first failed enqueue is kept and thrown after.
-  cudaError_t failed = cudaSuccess;
-#if defined(FQ_HAVE_OPENMP)
-#pragma omp parallel num_threads(staging_threads())
-#endif
-  for (int64_t c = 0; c < chunks; ++c) {
-    const size_t begin = size_t(c) * kChunk, len = std::min(kChunk, bytes - begin);
-    const int64_t pieces = static_cast<int64_t>(pieces_of(len));
-#if defined(FQ_HAVE_OPENMP)
-#pragma omp for schedule(static)
-#endif
-    for (int64_t p = 0; p < pieces; ++p) copy_piece(staging + begin, in + begin, len, size_t(p));
-    // The loop's barrier has passed: chunk c is staged. The calling thread (which holds the
-    // engine's device) enqueues it while the others go on to chunk c + 1.
-#if defined(FQ_HAVE_OPENMP)
-#pragma omp master
-#endif
-    {
-      const cudaError_t e = cudaMemcpyAsync(out + begin, staging + begin, len, cudaMemcpyHostToDevice, s);
-      if (e != cudaSuccess && failed == cudaSuccess) failed = e;
-    }
+  for (size_t begin = 0; begin < bytes; begin += kChunk) {
+    const size_t len = std::min(kChunk, bytes - begin);
+    copy_pieces(staging + begin, in + begin, len);
+    // Chunk c is staged: the calling thread (which holds the engine's device) enqueues it
+    // before staging chunk c + 1, so the link copies one chunk while the host stages the next.
+    FQ_CUDA_CHECK(cudaMemcpyAsync(out + begin, staging + begin, len, cudaMemcpyHostToDevice, s));
   }
-  check(failed, "cudaMemcpyAsync (staged upload)", __FILE__, __LINE__);
 }
 
 StagedDownload enqueue_download(const void* src, void* dst, size_t bytes, unsigned char* staging,
@@ -108,40 +101,14 @@ StagedDownload enqueue_download(const void* src, void* dst, size_t bytes, unsign
 }
 
 void complete_download(const StagedDownload& d) {
-  const int64_t chunks = static_cast<int64_t>((d.bytes + d.chunk - 1) / d.chunk);
-  cudaError_t failed = cudaSuccess;
-#if defined(FQ_HAVE_OPENMP)
-#pragma omp parallel num_threads(staging_threads())
-#endif
-  for (int64_t c = 0; c < chunks; ++c) {
-#if defined(FQ_HAVE_OPENMP)
-#pragma omp master
-#endif
-    {
-      if (failed == cudaSuccess) failed = cudaEventSynchronize(d.done[c]);
-    }
-#if defined(FQ_HAVE_OPENMP)
-#pragma omp barrier
-#endif
-    if (failed != cudaSuccess) break;  // every thread sees the same value after the barrier
-    const size_t begin = size_t(c) * d.chunk, len = std::min(d.chunk, d.bytes - begin);
-    const int64_t pieces = static_cast<int64_t>(pieces_of(len));
-#if defined(FQ_HAVE_OPENMP)
-#pragma omp for schedule(static)
-#endif
-    for (int64_t p = 0; p < pieces; ++p) copy_piece(d.dst + begin, d.staging + begin, len, size_t(p));
+  for (size_t begin = 0, k = 0; begin < d.bytes; begin += d.chunk, ++k) {
+    FQ_CUDA_CHECK(cudaEventSynchronize(d.done[k]));
+    copy_pieces(d.dst + begin, d.staging + begin, std::min(d.chunk, d.bytes - begin));
   }
-  check(failed, "cudaEventSynchronize (staged download)", __FILE__, __LINE__);
 }
 
 void parallel_copy(void* dst, const void* src, size_t bytes) {
-  const auto* in = static_cast<const unsigned char*>(src);
-  auto* out = static_cast<unsigned char*>(dst);
-  const int64_t pieces = static_cast<int64_t>(pieces_of(bytes));
-#if defined(FQ_HAVE_OPENMP)
-#pragma omp parallel for schedule(static) num_threads(staging_threads())
-#endif
-  for (int64_t p = 0; p < pieces; ++p) copy_piece(out, in, bytes, size_t(p));
+  copy_pieces(static_cast<unsigned char*>(dst), static_cast<const unsigned char*>(src), bytes);
 }
 
 }  // namespace fq::cuda

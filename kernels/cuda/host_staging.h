@@ -1,4 +1,4 @@
-// Host side of a CUDA frame's transfers, on all host threads: the caller's arrays go up
+// Host side of a CUDA frame's transfers, on a few threads of fq's shared pool: the caller's arrays go up
 // through pinned staging in chunks, so that copying chunk k into pinned memory overlaps
 // the copy engine's transfer of chunk k-1; results come back out of pinned memory by a
 // parallel copy.
@@ -29,10 +29,10 @@ StagedDownload enqueue_download(const void* src, void* dst, size_t bytes, unsign
                                 const cudaEvent_t* done, int events, cudaStream_t s);
 
 /// Waits for the chunks in turn and copies each out of pinned memory on all host threads
-/// while the next one is still in flight.
+/// while the next one is still in flight (a few threads of the shared pool).
 void complete_download(const StagedDownload& d);
 
-/// dst = src, `bytes` long, on all host threads.
+/// dst = src, `bytes` long, on a few threads of the shared pool.
 void parallel_copy(void* dst, const void* src, size_t bytes);
 
 }  // namespace fq::cuda
