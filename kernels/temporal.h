@@ -4,7 +4,9 @@
 // capture system may re-mesh every frame), so a frame finds its prior in space: each vertex
 // looks up the nearest vertex of the last result, from a local estimate of the motion.
 //
-// Both engines run this step on the host, on their result in input order: one copy of the code.
+// The CPU engine runs this step on its result in input order; the CUDA engine runs the same
+// per-vertex math (kernels/temporal_math.h) on the device (kernels/cuda/temporal_pass.cuh) and
+// leaves the history in the same state, so a stream may move between engines.
 #pragma once
 
 #include <cstdint>
@@ -26,8 +28,8 @@ struct TemporalHistory {
   /// Which write of a history this is: new (next_history_stamp) whenever a frame becomes the
   /// history, so an engine that keeps a device copy knows whether it is still this one.
   uint64_t stamp = 0;
-  /// The host index over `positions` and the stamp it was built for: built by the step when
-  /// the next frame needs it, so an engine that matches elsewhere need not build it.
+  /// The host index over `positions` and the stamp it was built for; built by the CPU
+  /// engine's step when it needs it (the CUDA engine matches on the device and leaves it).
   NearestVertexIndex index;
   uint64_t index_stamp = 0;
 
@@ -66,8 +68,8 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
 uint64_t next_history_stamp();
 
 /// Area-weighted unit vertex normals (3 floats a vertex in `out`) of the positions `x`: each
-/// vertex's sum over its fan (kernels/refine_math.h, vertex_normal, which the CUDA engine can
-/// call too); in parallel, and the same sums in the same order as a scatter over the
+/// vertex's sum over its fan (kernels/refine_math.h, vertex_normal), as the CUDA engine
+/// computes them; in parallel, and the same sums in the same order as a scatter over the
 /// triangles in index order.
 void vertex_normals(const FanView& fan, const std::vector<Vec3>& x, std::vector<float>& out, int threads);
 
