@@ -8,7 +8,6 @@
 #include <string>
 #include <thread>
 
-#include "core/parallel_for.h"
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/device_frame.cuh"
 #include "kernels/cuda/frame_checks.cuh"
@@ -19,6 +18,7 @@
 #include "kernels/cuda/refine_passes.cuh"
 #include "kernels/cuda/stream.cuh"
 #include "kernels/cuda/team_passes.cuh"
+#include "kernels/cuda/temporal_pass.cuh"
 #include "kernels/cluster_control.h"
 #include "kernels/cuda_engine.h"
 #include "kernels/frame_prep.h"
@@ -74,6 +74,7 @@ class CudaEngine final : public Engine {
   cuda::SyncEvents downloads_{2 * kDownloadChunks};
   cuda::DeviceFrame f_;
   cuda::RefineBuffers refine_;
+  cuda::TemporalPass temporal_;  ///< the temporal step, and the device copies of histories it wrote
   std::string name_;
   int sm_count_ = 1;
   bool usable_ = true;
@@ -108,8 +109,6 @@ Status CudaEngine::process(const MeshView& mesh, const Params& params, FrameResu
     }
   }
   if (!st.ok() || !params.cluster) out.labels.clear();
-  // The temporal step runs on the host, on the downloaded result (kernels/temporal.h).
-  if (st.ok()) follow_stream_history(mesh, params, out, hardware_threads());
   return st;
 }
 
@@ -121,7 +120,7 @@ void CudaEngine::release_scratch() {
   }
   f_ = cuda::DeviceFrame{};
   refine_ = cuda::RefineBuffers{};
-  temporal_scratch_ = TemporalScratch{};
+  temporal_ = cuda::TemporalPass{};
 }
 
 // A bad launch is cleared by reading it; a fault inside a kernel is sticky and leaves the
@@ -291,6 +290,12 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
   out.mean_edge = norm.mean_edge;
   FQ_RETURN_IF_ERROR(stop_if_cancelled());
   FQ_RETURN_IF_ERROR(enqueue_passes(params, out));
+  // The temporal step (kernels/cuda/temporal_pass.cuh) on the result before it leaves the device.
+  const bool temporal = follows_history(params);
+  if (temporal) {
+    temporal_.follow(f_, norm, *history_, params.filtering.temporal, out.noise_estimate, s);
+    FQ_RETURN_IF_ERROR(mark("temporal"));
+  }
   if (params.filter) {
     cuda::positions_to_input(f_, norm, s);
     FQ_RETURN_IF_ERROR(mark("output"));
@@ -312,6 +317,7 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
                                     reinterpret_cast<unsigned char*>(staging), downloads_.data() + half, half, s);
     FQ_CUDA_CHECK(cudaMemcpyAsync(staging + n, f_.labels.data() + n, sizeof(uint32_t), cudaMemcpyDeviceToHost, s));
   }
+  if (temporal) temporal_.keep(f_, s);
   events_.mark("download", s);
   if (!params.filter) {  // the input positions, copied while the device works
     out.positions.resize(3 * size_t(n));
@@ -334,6 +340,11 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
   events_.collect([&](const char* name, double ms) { out.timings.push_back({name, ms}); });
   // Host: results out of pinned memory from the first downloaded chunk on (overlaps the download).
   out.timings.push_back({"finish", ms_since(t1)});
+  if (temporal) {  // the stream's history takes the result on the host
+    const Clock::time_point t2 = Clock::now();
+    report_step(temporal_.finish(out.positions, out.mean_edge, *history_), out);
+    out.timings.push_back({"temporal_host", ms_since(t2)});
+  }
   return {};
 }
 

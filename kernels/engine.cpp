@@ -46,16 +46,23 @@ bool parse_engine_kind(const std::string& s, EngineKind& out) {
   return k.has_value();
 }
 
-void Engine::follow_stream_history(const MeshView& mesh, const Params& params, FrameResult& out, int threads) {
+bool Engine::follows_history(const Params& params) const {
   const FilterParams& f = params.filtering;
-  if (history_ == nullptr || !params.filter || f.method != FilterMethod::kQuadricRefined || !(f.temporal > 0.f))
-    return;
-  const auto start = std::chrono::steady_clock::now();
-  const TemporalStep step = follow_history(mesh, out.positions, out.mean_edge, out.noise_estimate, f.temporal,
-                                           *history_, temporal_scratch_, threads);
+  return history_ != nullptr && params.filter && f.method == FilterMethod::kQuadricRefined && f.temporal > 0.f;
+}
+
+void Engine::report_step(const TemporalStep& step, FrameResult& out) {
   out.prior_coverage = step.coverage;
   out.prior_share = step.share;
   out.history_reset = step.reset;
+}
+
+void Engine::follow_stream_history(const MeshView& mesh, const Params& params, FrameResult& out, int threads) {
+  if (!follows_history(params)) return;
+  const auto start = std::chrono::steady_clock::now();
+  report_step(follow_history(mesh, out.positions, out.mean_edge, out.noise_estimate, params.filtering.temporal,
+                             *history_, temporal_scratch_, threads),
+              out);
   out.timings.push_back(
       {"temporal", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()});
 }

@@ -109,6 +109,10 @@ class Engine {
   /// The temporal step (kernels/temporal.h) of a "qf+" result in `out` (input order), when a
   /// history is set and params ask for it; timed as the pass "temporal" in out.timings.
   void follow_stream_history(const MeshView& mesh, const Params& params, FrameResult& out, int threads);
+  /// Whether this frame takes the temporal step: a history is set and params ask for it.
+  bool follows_history(const Params& params) const;
+  /// The step's report in `out`.
+  static void report_step(const TemporalStep& step, FrameResult& out);
 
   PassObserver observer_;
   const CancelToken* cancel_ = nullptr;

@@ -1,6 +1,7 @@
 #include "kernels/temporal.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "core/parallel_for.h"
@@ -32,22 +33,16 @@ Vec3 at(const float* xyz, uint32_t v) { return {xyz[3 * size_t(v)], xyz[3 * size
 
 }  // namespace
 
-void vertex_normals(const MeshView& mesh, const float* xyz, std::vector<float>& out, int threads) {
-  const uint32_t n = mesh.num_vertices;
-  out.assign(3 * size_t(n), 0.f);
-  // Serial accumulation: a parallel loop over triangles would race on shared vertices.
-  for (uint32_t t = 0; t < mesh.num_triangles; ++t) {
-    const uint32_t* tri = mesh.triangles + 3 * size_t(t);
-    const Vec3 w = cross(at(xyz, tri[1]) - at(xyz, tri[0]), at(xyz, tri[2]) - at(xyz, tri[0]));
-    for (int k = 0; k < 3; ++k) {
-      float* o = &out[3 * size_t(tri[k])];
-      o[0] += w.x;
-      o[1] += w.y;
-      o[2] += w.z;
-    }
-  }
+uint64_t next_history_stamp() {
+  static std::atomic<uint64_t> next{1};
+  return next.fetch_add(1, std::memory_order_relaxed);
+}
+
+void vertex_normals(const FanView& fan, const std::vector<Vec3>& x, std::vector<float>& out, int threads) {
+  const auto n = static_cast<uint32_t>(x.size());
+  out.resize(3 * size_t(n));
   parallel_for(n, threads, [&](uint32_t v) {
-    const Vec3 u = normalized_or_zero(at(out.data(), v));
+    const Vec3 u = vertex_normal(fan, x.data(), v);
     out[3 * size_t(v)] = u.x;
     out[3 * size_t(v) + 1] = u.y;
     out[3 * size_t(v) + 2] = u.z;
@@ -58,14 +53,18 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
                             float strength, TemporalHistory& history, TemporalScratch& s, int threads) {
   const uint32_t n = mesh.num_vertices;
   TemporalStep step;
+  const FanView fan = fan_of(mesh, s);
   if (!history.empty() && n > 0 && mean_edge > 0.0) {
+    if (history.index_stamp != history.stamp) {  // the last frame's engine left no host index
+      history.index.build(history.positions.data(), uint32_t(history.positions.size() / 3), float(history.mean_edge));
+      history.index_stamp = history.stamp;
+    }
     // The math runs in mean edges about the first vertex (floats keep their precision there).
     const Vec3 origin = at(positions.data(), 0);
     const float unit = float(1.0 / mean_edge);
     const auto normalized = [&](const float* p) { return unit * (Vec3{p[0], p[1], p[2]} - origin); };
     const auto prior_at = [&](uint32_t q) { return normalized(&history.positions[3 * size_t(q)]); };
     const auto normal_at = [&](uint32_t q) { return at(history.normals.data(), q); };
-    const FanView fan = fan_of(mesh, s);
     s.x.resize(n);
     parallel_for(n, threads, [&](uint32_t v) { s.x[v] = normalized(&positions[3 * size_t(v)]); });
     s.motion.assign(n, Vec3{0.f, 0.f, 0.f});
@@ -88,8 +87,8 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
     look_up();
     const uint64_t covered = uint64_t(std::count_if(s.match.begin(), s.match.end(),
                                                     [](uint32_t q) { return q != NearestVertexIndex::kNone; }));
-    step.coverage = float(double(covered) / n);
-    if (step.coverage < kMinPriorCoverage) {
+    step.coverage = prior_coverage(covered, n);
+    if (scene_cut(step.coverage)) {
       history.clear();
       ++history.resets;
       step.reset = true;
@@ -102,12 +101,11 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
         s.level[v] = s.detail[v] * s.detail[v];
       });
       ring_means(fan, s.level, s.spare_level, kAgreementPasses, threads);
-      const float tolerance = kPriorTolerance * noise;
       double pulled = 0.0;
       for (uint32_t v = 0; v < n; ++v) {  // serial: the sum, and so the report, is reproducible
         const uint32_t q = s.match[v];
         if (q == NearestVertexIndex::kNone) continue;
-        const float share = strength * prior_agreement(s.level[v], tolerance);
+        const float share = prior_share(s.level[v], strength, noise);
         const Vec3 move = (share * s.detail[v] * float(mean_edge)) * normal_at(q);
         positions[3 * size_t(v)] += move.x;
         positions[3 * size_t(v) + 1] += move.y;
@@ -117,10 +115,13 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
       step.share = float(pulled / n);
     }
   }
-  vertex_normals(mesh, positions.data(), s.normals, threads);
+  s.spare.resize(n);  // the result as Vec3, in input units: the CPU's normals are as before bit for bit
+  parallel_for(n, threads, [&](uint32_t v) { s.spare[v] = at(positions.data(), v); });
+  vertex_normals(fan, s.spare, s.normals, threads);
   history.positions.assign(positions.begin(), positions.begin() + 3 * size_t(n));
   history.normals.swap(s.normals);
-  history.index.build(history.positions.data(), n, float(mean_edge));
+  history.mean_edge = mean_edge;
+  history.stamp = next_history_stamp();  // the index is built when the next frame needs it
   ++history.frames;
   return step;
 }

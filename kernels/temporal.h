@@ -4,7 +4,9 @@
 // capture system may re-mesh every frame), so a frame finds its prior in space: each vertex
 // looks up the nearest vertex of the last result, from a local estimate of the motion.
 //
-// Both engines run this step on the host, on their result in input order: one copy of the code.
+// The CPU engine runs this step on its result in input order; the CUDA engine runs the same
+// per-vertex math (kernels/temporal_math.h) on the device (kernels/cuda/temporal_pass.cuh) and
+// leaves the history in the same state, so a stream may move between engines.
 #pragma once
 
 #include <cstdint>
@@ -12,6 +14,7 @@
 
 #include "core/mesh_view.h"
 #include "kernels/nearest_vertex.h"
+#include "kernels/refine_math.h"
 #include "kernels/vec3.h"
 
 namespace fq {
@@ -19,9 +22,16 @@ namespace fq {
 struct TemporalHistory {
   std::vector<float> positions;  ///< the last result, 3 floats a vertex, input units
   std::vector<float> normals;    ///< its unit area-weighted vertex normals
-  NearestVertexIndex index;      ///< over `positions`, cells of one mean edge
+  double mean_edge = 0.0;        ///< the last result's frame's mean edge (input units)
   uint64_t frames = 0;           ///< frames filtered since the last reset (0: nothing kept)
   uint64_t resets = 0;           ///< scene cuts: frames that found no prior where they are
+  /// Which write of a history this is: new (next_history_stamp) whenever a frame becomes the
+  /// history, so an engine that keeps a device copy knows whether it is still this one.
+  uint64_t stamp = 0;
+  /// The host index over `positions` and the stamp it was built for; built by the CPU
+  /// engine's step when it needs it (the CUDA engine matches on the device and leaves it).
+  NearestVertexIndex index;
+  uint64_t index_stamp = 0;
 
   bool empty() const { return frames == 0; }
   /// Forgets the last result (a new stream, a restart, a scene cut); the reset count stays.
@@ -54,7 +64,13 @@ struct TemporalScratch {
 TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions, double mean_edge, float noise,
                             float strength, TemporalHistory& history, TemporalScratch& scratch, int threads);
 
-/// Area-weighted unit vertex normals of `xyz` (3 floats a vertex) over the mesh's triangles.
-void vertex_normals(const MeshView& mesh, const float* xyz, std::vector<float>& out, int threads);
+/// A stamp no history has had yet (never 0).
+uint64_t next_history_stamp();
+
+/// Area-weighted unit vertex normals (3 floats a vertex in `out`) of the positions `x`: each
+/// vertex's sum over its fan (kernels/refine_math.h, vertex_normal), as the CUDA engine
+/// computes them; in parallel, and the same sums in the same order as a scatter over the
+/// triangles in index order.
+void vertex_normals(const FanView& fan, const std::vector<Vec3>& x, std::vector<float>& out, int threads);
 
 }  // namespace fq

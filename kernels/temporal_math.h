@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 
 #include "kernels/hd.h"
 #include "kernels/vec3.h"
@@ -44,6 +45,17 @@ constexpr float kPriorTolerance = 0.5f;
 FQ_HD float prior_agreement(float level, float tolerance) {
   return tolerance > 0.f ? std::exp(-level / (2.f * tolerance * tolerance)) : 0.f;
 }
+
+/// The pull of a vertex towards its prior: strength × the agreement of its local level of o².
+FQ_HD float prior_share(float level, float strength, float noise) {
+  return strength * prior_agreement(level, kPriorTolerance * noise);
+}
+
+/// The share of a frame's n vertices that found a prior vertex (`covered` of them).
+FQ_HD float prior_coverage(uint64_t covered, uint32_t n) { return n > 0 ? float(double(covered) / double(n)) : 0.f; }
+
+/// Whether a frame whose prior coverage is `coverage` is a scene cut (the history restarts).
+FQ_HD bool scene_cut(float coverage) { return coverage < kMinPriorCoverage; }
 
 /// The detail left between x (moved by the motion estimate m) and its prior vertex p with
 /// unit normal n: signed, along n.

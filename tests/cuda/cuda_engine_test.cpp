@@ -224,6 +224,27 @@ TEST_F(CudaEngineTest, NoDeviceAllocationAfterWarmUp) {
   EXPECT_EQ(cuda_allocation_count(), after_bf);
 }
 
+// A stream with its history (temporal filtering on the device): after its first two frames
+// (the first has no history to follow) the device copy of the history and the step's buffers
+// are reused, the copy the frame read and the one it wrote taking turns.
+TEST_F(CudaEngineTest, NoDeviceAllocationOnAStreamWithItsHistoryAfterWarmUp) {
+  const Mesh m = noisy_sphere();
+  Params params;  // qf+
+  params.filtering.temporal = 0.75f;
+  TemporalHistory history;
+  gpu_->set_history(&history);
+  FrameResult r;
+  for (int k = 0; k < 2; ++k) ASSERT_TRUE(gpu_->process(m.view(), params, r).ok());
+  const uint64_t warm = cuda_allocation_count();
+  for (int k = 0; k < 5; ++k) {
+    ASSERT_TRUE(gpu_->process(m.view(), params, r).ok());
+    EXPECT_GT(r.prior_share, 0.5f) << "the same frame again agrees with its history";
+  }
+  gpu_->set_history(nullptr);
+  EXPECT_EQ(cuda_allocation_count(), warm);
+  EXPECT_EQ(history.frames, 7u);
+}
+
 TEST_F(CudaEngineTest, LaunchFailureIsReportedAndEngineRecovers) {
   const Mesh m = noisy_cube();
   const Params params = clustering(4.f, 1.f, 0.9f);

@@ -6,9 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
 
+#include "eval/capture_sequence.h"
 #include "eval/noise.h"
 #include "io/mesh_io.h"
+#include "kernels/cpu_engine.h"
 #include "tests/cuda/parity.h"
 #include "tests/support/mesh_dir.h"
 #include "tests/support/test_meshes.h"
@@ -82,9 +87,9 @@ TEST_F(CudaRefineParity, RealMeshesWithNoise) {
   }
 }
 
-// Temporal filtering (kernels/temporal.h) runs on the host after either engine: a stream of
-// frames through each engine with its own history gives the same results within the stated
-// tolerances, frame after frame, with the same pull towards the history.
+// Temporal filtering (kernels/temporal.h): the CPU engine's step on the host and the CUDA
+// engine's on the device (kernels/cuda/temporal_pass.cuh) give the same results within the
+// stated tolerances, frame after frame, with the same pull towards the history.
 TEST_F(CudaRefineParity, TemporalSequence) {
   const Mesh sphere = make_icosphere(5);
   Params p;
@@ -99,11 +104,106 @@ TEST_F(CudaRefineParity, TemporalSequence) {
     run_both(*cpu_, *gpu_, frame.view(), p, r);
     expect_parity(r, p);
     EXPECT_NEAR(r.gpu.prior_share, r.cpu.prior_share, 0.01f) << "frame " << seed;
+    EXPECT_NEAR(r.gpu.prior_coverage, r.cpu.prior_coverage, 0.001f) << "frame " << seed;
     EXPECT_EQ(r.gpu.prior_coverage > 0.f, seed > 1);
   }
   cpu_->set_history(nullptr);
   gpu_->set_history(nullptr);
   EXPECT_EQ(gpu_history.frames, 4u);
+  EXPECT_EQ(gpu_history.normals.size(), gpu_history.positions.size()) << "the host history is whole";
+}
+
+// A frame far from the last (a scene cut) restarts the history on the device too, and is left
+// exactly as the CUDA engine filters it alone.
+TEST_F(CudaRefineParity, TemporalSceneCutLeavesTheFrameAlone) {
+  const Mesh sphere = make_icosphere(4);
+  Params p;
+  p.filtering.temporal = 0.75f;
+  Mesh first = sphere, elsewhere = sphere;
+  add_gaussian_noise(first, 0.2, 1);
+  for (uint32_t v = 0; v < elsewhere.num_vertices(); ++v) elsewhere.positions[3 * size_t(v)] += 10.f;
+  add_gaussian_noise(elsewhere, 0.2, 2);
+  TemporalHistory history;
+  FrameResult r, cut, single;
+  gpu_->set_history(&history);
+  ASSERT_TRUE(gpu_->process(first.view(), p, r).ok());
+  ASSERT_TRUE(gpu_->process(elsewhere.view(), p, cut).ok());
+  gpu_->set_history(nullptr);
+  const std::unique_ptr<Engine> alone = cuda_engine_with({});
+  ASSERT_TRUE(alone);
+  ASSERT_TRUE(alone->process(elsewhere.view(), p, single).ok());
+  EXPECT_TRUE(cut.history_reset);
+  EXPECT_EQ(cut.prior_coverage, 0.f);
+  EXPECT_EQ(history.resets, 1u);
+  EXPECT_EQ(history.frames, 1u) << "the cut frame starts the history again";
+  EXPECT_EQ(cut.positions, single.positions);
+}
+
+// Frame t of a stream: `sphere` shifted by `offset` and moved by 0.007 a frame (a third of its
+// mean edge), turned by a degree a frame, with fresh noise and its vertices renumbered, as a
+// capture system re-meshes (eval/capture_sequence.h).
+Mesh stream_frame(const Mesh& sphere, int t, float offset, uint64_t seed) {
+  Mesh m = sphere;
+  for (uint32_t v = 0; v < m.num_vertices(); ++v) m.positions[3 * size_t(v)] += offset + 0.007f * float(t);
+  return capture_frame(m, double(t), 0.2, seed);
+}
+
+// One frame through `engine` with `history`, beside the CPU engine with `reference`.
+void expect_temporal_parity(Engine& cpu, TemporalHistory& reference, Engine& engine, TemporalHistory& history,
+                            const Mesh& frame, const Params& p) {
+  Parity r;
+  cpu.set_history(&reference);
+  const Status sc = cpu.process(frame.view(), p, r.cpu);
+  cpu.set_history(nullptr);
+  ASSERT_TRUE(sc.ok()) << sc.message();
+  engine.set_history(&history);
+  const Status se = engine.process(frame.view(), p, r.gpu);
+  engine.set_history(nullptr);
+  ASSERT_TRUE(se.ok()) << se.message();
+  r.pos = position_error(r.cpu.positions, r.gpu.positions);
+  expect_parity(r, p);
+  EXPECT_NEAR(r.gpu.prior_share, r.cpu.prior_share, 0.01f);
+  EXPECT_FALSE(r.gpu.history_reset);
+}
+
+// A stream may move between engines (fqd hands its history to whichever runs the frame): the
+// history the CUDA engine leaves on the host is the CPU engine's to follow and the other way
+// round, as if one engine ran every frame; runs of the CUDA engine read its device copy.
+TEST_F(CudaRefineParity, TemporalHistoryMovesBetweenEngines) {
+  const Mesh sphere = make_icosphere(5);
+  Params p;
+  p.filtering.temporal = 0.75f;
+  CpuEngine other;
+  TemporalHistory reference, moving;
+  const char* engines = "GCGGCCG";  // every hand-over: to and from the device, and staying
+  for (int t = 0; engines[t] != 0; ++t) {
+    SCOPED_TRACE("frame " + std::to_string(t) + " on " + engines[t]);
+    Engine& engine = engines[t] == 'G' ? *gpu_ : static_cast<Engine&>(other);
+    expect_temporal_parity(*cpu_, reference, engine, moving, stream_frame(sphere, t, 0.f, 10 + t), p);
+  }
+  EXPECT_EQ(moving.frames, 7u);
+  EXPECT_EQ(moving.resets, 0u);
+}
+
+// Streams whose frames take turns on one CUDA engine each follow their own history: from the
+// engine's device copies while they are as few as its copies, uploaded from the host when more
+// streams push each other's copies out.
+TEST_F(CudaRefineParity, TemporalStreamsTakeTurnsOnOneEngine) {
+  const Mesh sphere = make_icosphere(4);
+  Params p;
+  p.filtering.temporal = 0.75f;
+  for (int streams : {2, 6}) {
+    SCOPED_TRACE(std::to_string(streams) + " streams");
+    std::vector<TemporalHistory> reference(streams), history(streams);
+    for (int t = 0; t < 4; ++t) {
+      for (int k = 0; k < streams; ++k) {
+        SCOPED_TRACE("stream " + std::to_string(k) + " frame " + std::to_string(t));
+        const Mesh frame = stream_frame(sphere, t, 0.5f * float(k), 100 * k + t);
+        expect_temporal_parity(*cpu_, reference[k], *gpu_, history[k], frame, p);
+      }
+    }
+    for (const TemporalHistory& h : history) EXPECT_EQ(h.frames, 4u);
+  }
 }
 
 }  // namespace

@@ -1,0 +1,217 @@
+// The temporal step on the device: one thread per vertex, each calling the math of
+// kernels/temporal_math.h, refine_math.h and grid_nearest.h as kernels/temporal.cpp does.
+#include <cub/block/block_reduce.cuh>
+#include <utility>
+
+#include "kernels/cuda/cuda_check.cuh"
+#include "kernels/cuda/device_grid.cuh"
+#include "kernels/cuda/host_staging.h"
+#include "kernels/cuda/launch.cuh"
+#include "kernels/cuda/temporal_pass.cuh"
+#include "kernels/grid_build.h"
+#include "kernels/grid_nearest.h"
+#include "kernels/refine_math.h"
+#include "kernels/temporal_math.h"
+
+namespace fq::cuda {
+
+namespace {
+
+/// The first sphere a match looks in, in mean edges: the host index's (half its cell).
+constexpr float kFirstRadius = 0.5f;
+/// Cells of the history's grid, in mean edges: a match then looks at a few cells.
+constexpr float kPriorCell = 1.f;
+/// Threads per block of the pull, fixed for its per-block sums.
+constexpr unsigned kPullBlock = 256;
+
+__global__ void prior_points_kernel(uint32_t n, const float* positions, Normalization norm, Point4* out) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const Vec3 p = norm.to_normalized(positions + 3 * size_t(i));
+  out[i] = {p.x, p.y, p.z, 0.f};
+}
+
+// Each vertex's offset to the prior vertex nearest to x + motion (none found: no offset).
+__global__ void offset_kernel(uint32_t n, GridView prior, const Vec3* x, const Vec3* motion, Vec3* offset) {
+  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  if (v >= n) return;
+  const Vec3 q = motion != nullptr ? x[v] + motion[v] : x[v];
+  const uint32_t j = nearest_in_grid(prior, q, kPriorReach, kFirstRadius);
+  offset[v] = j == kNoNearest ? Vec3{0.f, 0.f, 0.f} : xyz(prior.points[j]) - x[v];
+}
+
+template <class T>
+__global__ void ring_mean_kernel(uint32_t n, FanView fan, const T* in, T* out) {
+  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  if (v < n) out[v] = ring_mean(fan, in, v);
+}
+
+// The final match from x + motion, its detail o along the prior normal and o²; the vertices
+// with a match are counted (one atomic a warp: the count does not depend on their order).
+__global__ void detail_kernel(uint32_t n, GridView prior, const uint32_t* prior_order, const Vec3* prior_normals,
+                              const Vec3* x, const Vec3* motion, uint32_t* match, float* detail, float* level,
+                              uint32_t* covered) {
+  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  bool found = false;
+  if (v < n) {
+    const uint32_t j = nearest_in_grid(prior, x[v] + motion[v], kPriorReach, kFirstRadius);
+    found = j != kNoNearest;
+    const float o = found ? prior_detail(x[v], motion[v], xyz(prior.points[j]), prior_normals[prior_order[j]]) : 0.f;
+    match[v] = j;
+    detail[v] = o;
+    level[v] = o * o;
+  }
+  const unsigned ballot = __ballot_sync(0xffffffffu, found);  // every lane gets here: blocks are whole warps
+  if ((threadIdx.x & 31u) == 0 && ballot != 0) atomicAdd(covered, unsigned(__popc(ballot)));
+}
+
+// x pulled along the prior normal by share × o, unless the frame is a scene cut; the shares'
+// sum per block (a fixed tree: reproducible).
+__global__ void pull_kernel(uint32_t n, const uint32_t* prior_order, const Vec3* prior_normals, const uint32_t* match,
+                            const float* detail, const float* level, float strength, float noise,
+                            const uint32_t* covered, Vec3* x, float* partials) {
+  using Reduce = cub::BlockReduce<float, kPullBlock>;
+  __shared__ typename Reduce::TempStorage temp;
+  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  float share = 0.f;
+  if (v < n && match[v] != kNoNearest && !scene_cut(prior_coverage(*covered, n))) {
+    share = prior_share(level[v], strength, noise);
+    x[v] = x[v] + (share * detail[v]) * prior_normals[prior_order[match[v]]];
+  }
+  const float sum = Reduce(temp).Sum(share);
+  if (threadIdx.x == 0) partials[blockIdx.x] = sum;
+}
+
+// The result's vertex normals, in input order (rank: input -> grid order).
+__global__ void normals_kernel(uint32_t n, FanView fan, const Vec3* x, const uint32_t* rank, Vec3* normals) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) normals[i] = vertex_normal(fan, x, rank[i]);
+}
+
+/// `passes` ring means of a (b the other buffer); returns the buffer that holds the last.
+template <class T>
+T* ring_means(const FanView& fan, T* a, T* b, int passes, uint32_t n, cudaStream_t s) {
+  for (int p = 0; p < passes; ++p) {
+    ring_mean_kernel<T><<<blocks_for(n), block_size(), 0, s>>>(n, fan, a, b);
+    FQ_CUDA_CHECK_LAUNCH("ring_mean_kernel");
+    std::swap(a, b);
+  }
+  return a;
+}
+
+}  // namespace
+
+DeviceHistory& TemporalPass::copy_of(const TemporalHistory& history, cudaStream_t s) {
+  DeviceHistory* oldest = &copies_[0];
+  for (DeviceHistory& c : copies_) {
+    if (!history.empty() && c.stamp != 0 && c.stamp == history.stamp) return c;
+    if (c.used < oldest->used) oldest = &c;
+  }
+  DeviceHistory& c = *oldest;
+  c.stamp = 0;
+  c.n = static_cast<uint32_t>(history.positions.size() / 3);
+  if (!history.empty() && c.n > 0) {  // written by another engine, or pushed out of this one's copies
+    const size_t bytes = 3 * size_t(c.n) * sizeof(float);
+    unsigned char* staging = h_upload_.reserve(2 * bytes);
+    upload_staged(history.positions.data(), c.positions.reserve(3 * size_t(c.n)), bytes, staging, s);
+    upload_staged(history.normals.data(), c.normals.reserve(c.n), bytes, staging + bytes, s);
+  }
+  return c;
+}
+
+void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const TemporalHistory& history, float strength,
+                          float noise, cudaStream_t s) {
+  const uint32_t n = f.n;
+  n_ = n;
+  prior_ = !history.empty();
+  target_ = &copy_of(history, s);
+  target_->stamp = 0;  // this frame's result replaces it: a frame stopped from here leaves no valid copy
+  target_->used = ++frames_;
+  const FanView fan{f.tris.data(), f.vf_start.data(), f.vf_faces.data()};
+  Vec3* x = f.moved.data();
+  uint32_t* covered = covered_.reserve(1);
+  FQ_CUDA_CHECK(cudaMemsetAsync(covered, 0, sizeof(uint32_t), s));
+  if (prior_) {
+    const uint32_t m = target_->n;
+    GridView prior{};  // no points: no vertex finds a prior
+    if (m > 0) {
+      Point4* in = prior_in_.reserve(m);
+      prior_points_kernel<<<blocks_for(m), block_size(), 0, s>>>(m, target_->positions.data(), norm, in);
+      FQ_CUDA_CHECK_LAUNCH("prior_points_kernel");
+      // Over the frame's bounds: the history's points outside them go to the open edge cells.
+      const GridLayout& frame = f.grid.layout;
+      const Vec3 lo = frame.origin;
+      const Vec3 hi{lo.x + frame.cell * float(frame.nx), lo.y + frame.cell * float(frame.ny),
+                    lo.z + frame.cell * float(frame.nz)};
+      build_device_grid(choose_grid_layout(lo, hi, kPriorCell, m), in, m, grid_, prior_sorted_.reserve(m), s);
+      prior = grid_.view(prior_sorted_.data());
+    }
+    Vec3* buffers[2] = {motion_[0].reserve(n), motion_[1].reserve(n)};
+    const Vec3* motion = nullptr;  // none yet: the first lookups are from x
+    for (int it = 0; it < kMotionIterations; ++it) {
+      Vec3* offset = motion == buffers[0] ? buffers[1] : buffers[0];
+      offset_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, prior, x, motion, offset);
+      FQ_CUDA_CHECK_LAUNCH("offset_kernel");
+      motion = ring_means(fan, offset, offset == buffers[0] ? buffers[1] : buffers[0], kMotionPasses, n, s);
+    }
+    uint32_t* match = match_.reserve(n);
+    float* detail = detail_.reserve(n);
+    float* level = level_[0].reserve(n);
+    detail_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, prior, grid_.order.data(), target_->normals.data(), x,
+                                                         motion, match, detail, level, covered);
+    FQ_CUDA_CHECK_LAUNCH("detail_kernel");
+    const float* local = ring_means(fan, level, level_[1].reserve(n), kAgreementPasses, n, s);
+    partials_ = (n + kPullBlock - 1) / kPullBlock;
+    pull_kernel<<<partials_, kPullBlock, 0, s>>>(n, grid_.order.data(), target_->normals.data(), match, detail,
+                                                 local, strength, noise, covered, x,
+                                                 share_partials_.reserve(partials_));
+    FQ_CUDA_CHECK_LAUNCH("pull_kernel");
+  }
+  normals_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, fan, x, f.grid.rank.data(), next_.normals.reserve(n));
+  FQ_CUDA_CHECK_LAUNCH("normals_kernel");
+}
+
+void TemporalPass::keep(const DeviceFrame& f, cudaStream_t s) {
+  const uint32_t n = n_;
+  FQ_CUDA_CHECK(cudaMemcpyAsync(next_.positions.reserve(3 * size_t(n)), f.out_coords.data(),
+                                3 * size_t(n) * sizeof(float), cudaMemcpyDeviceToDevice, s));
+  FQ_CUDA_CHECK(cudaMemcpyAsync(h_normals_.reserve(n), next_.normals.data(), n * sizeof(Vec3), cudaMemcpyDeviceToHost, s));
+  FQ_CUDA_CHECK(cudaMemcpyAsync(h_covered_.reserve(1), covered_.data(), sizeof(uint32_t), cudaMemcpyDeviceToHost, s));
+  if (prior_) {
+    FQ_CUDA_CHECK(cudaMemcpyAsync(h_partials_.reserve(partials_), share_partials_.data(), partials_ * sizeof(float),
+                                  cudaMemcpyDeviceToHost, s));
+  }
+  // The result's buffers become the copy (the ones it replaces are the next frame's to write).
+  std::swap(target_->positions, next_.positions);
+  std::swap(target_->normals, next_.normals);
+  target_->n = n;
+}
+
+TemporalStep TemporalPass::finish(const std::vector<float>& positions, double mean_edge, TemporalHistory& history) {
+  const uint32_t n = n_;
+  TemporalStep step;
+  if (prior_) {
+    step.coverage = prior_coverage(*h_covered_.data(), n);
+    if (scene_cut(step.coverage)) {
+      history.clear();
+      ++history.resets;
+      step.reset = true;
+    } else {
+      double pulled = 0.0;
+      for (uint32_t k = 0; k < partials_; ++k) pulled += h_partials_.data()[k];
+      step.share = float(pulled / n);
+    }
+  }
+  const size_t bytes = 3 * size_t(n) * sizeof(float);
+  history.positions.resize(3 * size_t(n));
+  parallel_copy(history.positions.data(), positions.data(), bytes);
+  history.normals.resize(3 * size_t(n));
+  parallel_copy(history.normals.data(), h_normals_.data(), bytes);
+  history.mean_edge = mean_edge;
+  history.stamp = next_history_stamp();
+  ++history.frames;
+  target_->stamp = history.stamp;
+  return step;
+}
+
+}  // namespace fq::cuda
