@@ -68,20 +68,20 @@ GridLayout centroid_layout(DeviceFrame& f, float cell, cudaStream_t s) {
 
 }  // namespace
 
-void bilateral_filter(DeviceFrame& f, const FilterParams& p, cudaStream_t s) {
-  const GridLayout layout = centroid_layout(f, p.sigma_s, s);
+void bilateral_filter(DeviceFrame& f, const RunPlan& run, cudaStream_t s) {
+  const GridLayout layout = centroid_layout(f, run.grid_cell, s);
   build_device_grid(layout, f.tri_in.data(), f.m, f.tri_grid, f.tri_points.reserve(f.m), s);
   sorted_normals<<<blocks_for(f.m), block_size(), 0, s>>>(f.m, f.tri_grid.order.data(), f.tri_geom.data(),
                                                           f.tri_normals.reserve(f.m));
   FQ_CUDA_CHECK_LAUNCH("sorted_normals");
   const GridView tg = f.tri_grid.view(f.tri_points.data());
-  const float sm = 0.5f * p.sigma_s;  // Jones et al.: normals mollified with sigma_s / 2
-  mollify_kernel<<<blocks_for(f.m), block_size(), 0, s>>>(tg, f.tri_normals.data(), Gaussian::with_sigma(sm),
-                                                          2.f * sm, f.tri_mollified.reserve(f.m));
+  mollify_kernel<<<blocks_for(f.m), block_size(), 0, s>>>(tg, f.tri_normals.data(),
+                                                          Gaussian::with_sigma(run.mollify.sigma),
+                                                          run.mollify.radius, f.tri_mollified.reserve(f.m));
   FQ_CUDA_CHECK_LAUNCH("mollify_kernel");
   jones_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(
-      f.n, f.points.data(), tg, f.tri_mollified.data(), Gaussian::with_sigma(p.sigma_s),
-      Gaussian::with_sigma(p.sigma_r), 2.f * p.sigma_s, f.moved.reserve(f.n));
+      f.n, f.points.data(), tg, f.tri_mollified.data(), Gaussian::with_sigma(run.sigma_s.sigma),
+      Gaussian::with_sigma(run.sigma_r), run.sigma_s.radius, f.moved.reserve(f.n));
   FQ_CUDA_CHECK_LAUNCH("jones_kernel");
 }
 

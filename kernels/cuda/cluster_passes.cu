@@ -54,19 +54,21 @@ __global__ void label_kernel(uint32_t n, const uint32_t* rank, const uint32_t* o
 
 }  // namespace
 
-void cluster_scores(DeviceFrame& f, const ClusterParams& p, cudaStream_t s) {
+void cluster_scores(DeviceFrame& f, const RunPlan& run, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
+  const ClusterParams& p = run.params.clustering;
   score_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(
-      g, f.bl.data(), Gaussian::with_sigma(p.sigma_d), Gaussian::with_sigma(p.sigma_q), 2.f * p.sigma_d,
+      g, f.bl.data(), Gaussian::with_sigma(run.sigma_d.sigma), Gaussian::with_sigma(run.sigma_q), run.sigma_d.radius,
       p.method == ClusterMethod::kEuclidean, f.score.reserve(f.n));
   FQ_CUDA_CHECK_LAUNCH("score_kernel");
 }
 
-void cluster_links(DeviceFrame& f, const ClusterParams& p, cudaStream_t s) {
+void cluster_links(DeviceFrame& f, const RunPlan& run, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
+  const ClusterParams& p = run.params.clustering;
   link_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(
-      g, f.bl.data(), f.score.data(), Gaussian::with_sigma(p.sigma_d), Gaussian::with_sigma(p.sigma_q),
-      2.f * p.sigma_d, p.method == ClusterMethod::kEuclidean, 1.0f - p.theta, f.next.reserve(f.n));
+      g, f.bl.data(), f.score.data(), Gaussian::with_sigma(run.sigma_d.sigma), Gaussian::with_sigma(run.sigma_q),
+      run.sigma_d.radius, p.method == ClusterMethod::kEuclidean, 1.0f - p.theta, f.next.reserve(f.n));
   FQ_CUDA_CHECK_LAUNCH("link_kernel");
 }
 

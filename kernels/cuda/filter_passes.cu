@@ -45,26 +45,27 @@ void sort_into_grid(DeviceFrame& f, const GridLayout& layout, cudaStream_t s) {
   FQ_CUDA_CHECK_LAUNCH("renumber_triangles");
 }
 
-void neighbourhood_quadrics(DeviceFrame& f, float sigma_b, cudaStream_t s) {
+void neighbourhood_quadrics(DeviceFrame& f, Extent sigma_b, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
   neighbourhood_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(
-      g, f.base.data(), Gaussian::with_sigma(sigma_b), 2.f * sigma_b, f.nbhd.reserve(f.n));
+      g, f.base.data(), Gaussian::with_sigma(sigma_b.sigma), sigma_b.radius, f.nbhd.reserve(f.n));
   FQ_CUDA_CHECK_LAUNCH("neighbourhood_kernel");
 }
 
-void diffuse_quadrics(DeviceFrame& f, const FilterParams& p, cudaStream_t s) {
+void diffuse_quadrics(DeviceFrame& f, const RunPlan& run, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
-  diffusion_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(g, f.nbhd.data(), Gaussian::with_sigma(p.sigma_s),
-                                                            Gaussian::with_sigma(p.sigma_r), 2.f * p.sigma_s,
+  diffusion_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(g, f.nbhd.data(), Gaussian::with_sigma(run.sigma_s.sigma),
+                                                            Gaussian::with_sigma(run.sigma_r), run.sigma_s.radius,
                                                             f.bl.reserve(f.n));
   FQ_CUDA_CHECK_LAUNCH("diffusion_kernel");
 }
 
-void update_positions(DeviceFrame& f, const FilterParams& p, cudaStream_t s) {
+void update_positions(DeviceFrame& f, const RunPlan& run, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
-  const float sn = p.effective_sigma_n();
+  const FilterParams& p = run.params.filtering;
   update_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(g, f.bl.data(), f.vnormal.data(), p.constrained,
-                                                         Gaussian::with_sigma(sn), 2.f * sn, p.tikhonov,
+                                                         Gaussian::with_sigma(run.sigma_n.sigma), run.sigma_n.radius,
+                                                         p.tikhonov,
                                                          f.moved.reserve(f.n));
   FQ_CUDA_CHECK_LAUNCH("update_kernel");
 }
