@@ -83,10 +83,10 @@ Params clustering_pass(const Params& plain) {
   return c;
 }
 
-bool same_filter(const Params& a, const Params& b) {
-  const FilterParams &x = a.filtering, &y = b.filtering;
-  return x.method == y.method && x.sigma_s == y.sigma_s && x.sigma_r == y.sigma_r && x.sigma_b == y.sigma_b &&
-         x.sigma_n == y.sigma_n && x.constrained == y.constrained && x.tikhonov == y.tikhonov;
+/// Whether the frame's own filter moves the vertices as the geometry filter would: they differ
+/// only in `constrained` (and the temporal step, which follows the runs), which only "qf" reads.
+bool frame_filter_is_geometry(const Params& plain) {
+  return plain.filtering.constrained || !plain.filtering.uses_quadrics();
 }
 
 }  // namespace
@@ -143,13 +143,13 @@ FramePlan plan_frame(const Params& params) {
   }
   // The filtered geometry: the user's filter (when filtering) for the output, the geometry
   // filter (the same run when they agree), then the clustering pass on its result.
-  const Params geometry = geometry_filter(plain);
   if (plain.filter) {
     Params user = plain;
     user.cluster = false;
     plan.runs.push_back(plan_run(RunRole::kFrame, user));
   }
-  if (!plain.filter || !same_filter(plain, geometry)) plan.runs.push_back(plan_run(RunRole::kGeometry, geometry));
+  if (!plain.filter || !frame_filter_is_geometry(plain))
+    plan.runs.push_back(plan_run(RunRole::kGeometry, geometry_filter(plain)));
   plan.runs.push_back(plan_run(RunRole::kClustering, clustering_pass(plain)));
   return plan;
 }

@@ -86,7 +86,8 @@ struct RunPlan {
 struct FramePlan {
   Params params;  ///< as asked for (validated)
   /// One run, or with clustering on the filtered mesh: the frame's own filter when filtering,
-  /// the geometry filter unless it is that same filter, then the clustering run.
+  /// the geometry filter unless the frame's filter already moves the vertices as it would
+  /// ("qf+", "bf", constrained "qf": only "qf" reads `constrained`), then the clustering run.
   std::vector<RunPlan> runs;
   /// The labels come from a target count, connected clusters or the filtered mesh: the runs
   /// are followed by cluster control's step (kernels/cluster_control.h).

@@ -139,6 +139,15 @@ TEST(KernelFramePlan, FilteredGeometryAddsTheGeometryAndClusteringRuns) {
   ASSERT_EQ(shared.runs.size(), 2u);
   EXPECT_EQ(shared.runs[1].role, RunRole::kClustering);
 
+  for (FilterMethod m : {FilterMethod::kQuadricRefined, FilterMethod::kBilateral}) {
+    p.filtering.constrained = false;  // read by "qf" only: these filters are the geometry filter
+    p.filtering.method = m;
+    const FramePlan two = plan_frame(p);
+    ASSERT_EQ(two.runs.size(), 2u) << filter_method_name(m);
+    EXPECT_EQ(two.runs[0].role, RunRole::kFrame);
+    EXPECT_EQ(two.runs[1].role, RunRole::kClustering);
+  }
+
   p.filter = false;  // labels only: the geometry run, then the clustering run
   const FramePlan labels = plan_frame(p);
   ASSERT_EQ(labels.runs.size(), 2u);
