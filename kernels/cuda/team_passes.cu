@@ -47,7 +47,7 @@ struct Slot {
 
 template <int T>
 __device__ Slot slot_of(uint32_t count) {
-  const uint64_t t = uint64_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  const uint64_t t = item_index();
   const uint32_t i = static_cast<uint32_t>(t / T);
   return {i, static_cast<unsigned>(t % T), i < count};
 }
