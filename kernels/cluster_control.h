@@ -1,11 +1,12 @@
 // The clustering options that sit on top of an engine's passes, the same code for every
 // engine: a target cluster count (theta found per frame from the link forest), clustering on
-// the filtered mesh's quadrics (a second engine run on the filtered positions), and connected
-// clusters (cluster_connect.h). An engine's process() hands such frames here first; this
-// calls the engine back with plain parameters.
+// the filtered mesh's quadrics (a geometry run and a clustering run on its positions, which
+// plan_frame adds to the frame's runs: kernels/frame_plan.h), and connected clusters
+// (cluster_connect.h). Engine::process runs the plan's runs, then the step below.
 #pragma once
 
-#include "common/status.h"
+#include "core/mesh_view.h"
+#include "core/params.h"
 #include "kernels/engine.h"
 
 namespace fq {
@@ -13,8 +14,9 @@ namespace fq {
 /// True when `p` asks for any of the options above.
 bool needs_cluster_control(const Params& p);
 
-/// Processes one frame with `engine` and the options above; `out` as Engine::process gives
-/// it, with theta the value used (found, with a target) and num_clusters the count achieved.
-Status process_with_cluster_control(Engine& engine, const MeshView& mesh, const Params& p, FrameResult& out);
+/// The step after a frame's runs: the plain labels in `out` (with the link forest, for a
+/// target count) become those `asked` for; theta the value used (found, with a target) and
+/// num_clusters the count achieved. Timed as the pass "cluster_control".
+void finish_cluster_control(const MeshView& mesh, const ClusterParams& asked, FrameResult& out);
 
 }  // namespace fq

@@ -2,7 +2,7 @@
 // cluster 0 and the mean edge when clustering is asked for). It stands in for an engine that costs the host
 // nothing, so that fqd's own host path (ingest, decode, checks, tracking, encode, publish)
 // can be measured and profiled at full load on a machine without a GPU (docs/BENCHMARKS.md).
-// Not a filter: its results are not filtered.
+// Not a filter: its results are not filtered, and it has no temporal step.
 #pragma once
 
 #include "kernels/engine.h"
@@ -12,7 +12,10 @@ namespace fq {
 class CopyEngine final : public Engine {
  public:
   std::string name() const override { return "copy"; }
-  Status process(const MeshView& mesh, const Params& params, FrameResult& out) override;
+
+ private:
+  Status run_plan(const MeshView& mesh, const RunPlan& run, FrameResult& out) override;
+  void temporal_step(const MeshView&, const Params&, FrameResult&) override {}
 };
 
 }  // namespace fq

@@ -3,7 +3,6 @@
 #include <chrono>
 #include <exception>
 
-#include "kernels/cluster_control.h"
 #include "kernels/cpu_stages.h"
 #include "core/parallel_for.h"
 
@@ -34,100 +33,78 @@ class PassClock {
 
 CpuEngine::CpuEngine(int threads) : threads_(threads_or_all(threads)) {}
 
-Status CpuEngine::process(const MeshView& mesh, const Params& params, FrameResult& out) {
+Status CpuEngine::run_plan(const MeshView& mesh, const RunPlan& run, FrameResult& out) {
   // The loops of this run skip their remaining chunks once the token expires; the check
   // after the last loop makes such a run an error, never a result.
   // A stopped run may also have failed on its garbage: the cancellation is the cause then.
   CancelScope scope(cancel_);
-  const Status s = run(mesh, params, out);
+  const Status s = run_passes(mesh, run, out);
   FQ_RETURN_IF_ERROR(check_cancel());
   return s;
 }
 
-Status CpuEngine::run(const MeshView& mesh, const Params& params, FrameResult& out) {
-  out.timings.clear();
-  out.labels.clear();
-  out.num_clusters = 0;
-  out.theta = 0.f;
-  out.link_parent.clear();
-  out.link_p.clear();
-  out.noise_estimate = 0.f;
-  out.filter_noise = 0.f;
-  out.prior_coverage = 0.f;
-  out.prior_share = 0.f;
-  out.history_reset = false;
-  FQ_RETURN_IF_ERROR(validate(params));
-  if (needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
+void CpuEngine::temporal_step(const MeshView& mesh, const Params& params, FrameResult& out) {
+  const size_t passes = out.timings.size();
+  Engine::temporal_step(mesh, params, out);
+  if (observer_ && out.timings.size() > passes) observer_(out.timings.back());
+}
+
+Status CpuEngine::run_passes(const MeshView& mesh, const RunPlan& run, FrameResult& out) {
   PassClock clock(out.timings, observer_);
-  // Ends a pass: its time, then the cancel check (a stopped pass leaves garbage that the
-  // serial code of the next one must not read).
-  auto pass_done = [&](const char* name) {
-    clock.lap(name);
-    return check_cancel();
-  };
   // A frame far smaller than the largest one so far gives that one's scratch back.
   if (far_smaller(mesh.num_vertices, f_.points.capacity())) release_scratch();
   FQ_RETURN_IF_ERROR(check_mesh(mesh, threads_));
   FQ_RETURN_IF_ERROR(check_cancel());
   FQ_RETURN_IF_ERROR(compute_normalization(mesh, f_.norm, threads_));
   out.mean_edge = f_.norm.mean_edge;
-  FQ_RETURN_IF_ERROR(pass_done("normalize"));
-  const FilterParams& fp = params.filtering;
-  const bool need_quadrics = params.cluster || fp.uses_quadrics();
-
-  cpu::sort_into_grid(mesh, fp.sigma_s, f_);
-  FQ_RETURN_IF_ERROR(pass_done("grid"));
-  cpu::base_quadrics(f_, threads_);
-  FQ_RETURN_IF_ERROR(pass_done("base_quadrics"));
-  if (need_quadrics) {
-    cpu::neighbourhood_quadrics(f_, fp.effective_sigma_b(), threads_);
-    FQ_RETURN_IF_ERROR(pass_done("neighbourhood_quadrics"));
-    cpu::diffuse_quadrics(f_, fp, threads_);
-    FQ_RETURN_IF_ERROR(pass_done("diffusion"));
-  }
-  if (params.filter) {
-    if (fp.method == FilterMethod::kQuadricRefined) {
-      const NoiseEstimate noise = cpu::estimate_noise(f_, threads_);
-      FQ_RETURN_IF_ERROR(pass_done("noise"));
-      const RefinePlan plan = plan_refinement(fp.refine, noise.noise);
-      cpu::refine_positions(f_, plan, threads_);
-      out.noise_estimate = noise.noise;
-      out.filter_noise = plan.noise;
-      FQ_RETURN_IF_ERROR(pass_done("refine"));
-    } else if (fp.uses_quadrics()) {
-      cpu::update_positions(f_, fp, threads_);
-      FQ_RETURN_IF_ERROR(pass_done("update"));
+  clock.lap("normalize");
+  FQ_RETURN_IF_ERROR(check_cancel());
+  for (PassKind pass : run.passes) {
+    if (pass == PassKind::kGrid) {
+      cpu::sort_into_grid(mesh, run.grid_cell, f_);
     } else {
-      cpu::bilateral_filter(f_, fp, threads_);
-      FQ_RETURN_IF_ERROR(pass_done("bilateral_filter"));
+      run_pass(pass, run, out);
     }
-  }
-  if (params.cluster) {
-    cpu::cluster_scores(f_, params.clustering, threads_);
-    FQ_RETURN_IF_ERROR(pass_done("score"));
-    cpu::cluster_links(f_, params.clustering, threads_);
-    FQ_RETURN_IF_ERROR(pass_done("link"));
-    out.num_clusters = cpu::cluster_labels(f_, out.labels, threads_);
-    out.theta = params.clustering.theta;
-    FQ_RETURN_IF_ERROR(pass_done("modes"));
-    if (params.clustering.keep_links) {
-      cpu::export_links(f_, params.clustering, out.link_parent, out.link_p, threads_);
-      FQ_RETURN_IF_ERROR(pass_done("export_links"));
-    }
+    // Each pass's time, then the cancel check (a stopped pass leaves garbage that the serial
+    // code of the next one must not read).
+    clock.lap(pass_name(pass));
+    FQ_RETURN_IF_ERROR(check_cancel());
   }
   const uint32_t n = mesh.num_vertices;
   out.positions.resize(3 * size_t(n));
-  if (params.filter) {
+  if (run.params.filter) {
     parallel_for(n, threads_, [&](uint32_t i) { f_.norm.to_input(f_.moved[f_.rank[i]], &out.positions[3 * size_t(i)]); });
   } else {
     std::copy(mesh.positions, mesh.positions + 3 * size_t(n), out.positions.begin());
   }
   clock.lap("output");
-  FQ_RETURN_IF_ERROR(check_cancel());  // a stopped frame must not become the stream's history
-  const size_t passes = out.timings.size();
-  follow_stream_history(mesh, params, out, threads_);
-  if (observer_ && out.timings.size() > passes) observer_(out.timings.back());
   return {};
+}
+
+void CpuEngine::run_pass(PassKind pass, const RunPlan& run, FrameResult& out) {
+  const ClusterParams& cp = run.params.clustering;
+  switch (pass) {
+    case PassKind::kGrid: break;  // needs the mesh: run_passes
+    case PassKind::kBaseQuadrics: cpu::base_quadrics(f_, threads_); break;
+    case PassKind::kNeighbourhoodQuadrics: cpu::neighbourhood_quadrics(f_, run.sigma_b, threads_); break;
+    case PassKind::kDiffusion: cpu::diffuse_quadrics(f_, run, threads_); break;
+    case PassKind::kNoise: out.noise_estimate = cpu::estimate_noise(f_, threads_).noise; break;
+    case PassKind::kRefine: {
+      const RefinePlan plan = run.refinement(out.noise_estimate);
+      cpu::refine_positions(f_, plan, threads_);
+      out.filter_noise = plan.noise;
+      break;
+    }
+    case PassKind::kUpdate: cpu::update_positions(f_, run, threads_); break;
+    case PassKind::kBilateralFilter: cpu::bilateral_filter(f_, run, threads_); break;
+    case PassKind::kScore: cpu::cluster_scores(f_, run, threads_); break;
+    case PassKind::kLink: cpu::cluster_links(f_, run, threads_); break;
+    case PassKind::kModes:
+      out.num_clusters = cpu::cluster_labels(f_, out.labels, threads_);
+      out.theta = cp.theta;
+      break;
+    case PassKind::kExportLinks: cpu::export_links(f_, cp, out.link_parent, out.link_p, threads_); break;
+  }
 }
 
 }  // namespace fq

@@ -14,15 +14,19 @@ class CpuEngine final : public Engine {
   /// threads <= 0: all hardware threads.
   explicit CpuEngine(int threads = 0);
   std::string name() const override { return "cpu"; }
-  Status process(const MeshView& mesh, const Params& params, FrameResult& out) override;
   int threads() const { return threads_; }
 
  private:
+  Status run_plan(const MeshView& mesh, const RunPlan& run, FrameResult& out) override;
+  void temporal_step(const MeshView& mesh, const Params& params, FrameResult& out) override;
+  int host_threads() const override { return threads_; }
   void release_scratch() override {
     f_ = CpuFrame{};
     temporal_scratch_ = TemporalScratch{};
   }
-  Status run(const MeshView& mesh, const Params& params, FrameResult& out);
+  Status run_passes(const MeshView& mesh, const RunPlan& run, FrameResult& out);
+  /// One pass of `run` on f_ (the passes before it done); `out` for the passes that write it.
+  void run_pass(PassKind pass, const RunPlan& run, FrameResult& out);
 
   int threads_;
   CpuFrame f_;

@@ -53,31 +53,31 @@ void base_quadrics(CpuFrame& f, int threads) {
   });
 }
 
-void neighbourhood_quadrics(CpuFrame& f, float sigma_b, int threads) {
+void neighbourhood_quadrics(CpuFrame& f, Extent sigma_b, int threads) {
   const GridView g = f.grid.view(f.points.data());
-  const Gaussian gb = Gaussian::with_sigma(sigma_b);
+  const Gaussian gb = Gaussian::with_sigma(sigma_b.sigma);
   f.nbhd.resize(g.count);
   parallel_for(g.count, threads, [&](uint32_t i) {
-    f.nbhd[i] = neighbourhood_quadric(g, f.base.data(), i, gb, 2.f * sigma_b);
+    f.nbhd[i] = neighbourhood_quadric(g, f.base.data(), i, gb, sigma_b.radius);
   });
 }
 
-void diffuse_quadrics(CpuFrame& f, const FilterParams& p, int threads) {
+void diffuse_quadrics(CpuFrame& f, const RunPlan& run, int threads) {
   const GridView g = f.grid.view(f.points.data());
-  const Gaussian gs = Gaussian::with_sigma(p.sigma_s), gr = Gaussian::with_sigma(p.sigma_r);
+  const Gaussian gs = Gaussian::with_sigma(run.sigma_s.sigma), gr = Gaussian::with_sigma(run.sigma_r);
   f.bl.resize(g.count);
   parallel_for(g.count, threads, [&](uint32_t i) {
-    f.bl[i] = bilateral_quadric(g, f.nbhd.data(), i, gs, gr, 2.f * p.sigma_s);
+    f.bl[i] = bilateral_quadric(g, f.nbhd.data(), i, gs, gr, run.sigma_s.radius);
   });
 }
 
-void update_positions(CpuFrame& f, const FilterParams& p, int threads) {
+void update_positions(CpuFrame& f, const RunPlan& run, int threads) {
   const GridView g = f.grid.view(f.points.data());
-  const float sn = p.effective_sigma_n();
-  const Gaussian gn = Gaussian::with_sigma(sn);
+  const FilterParams& p = run.params.filtering;
+  const Gaussian gn = Gaussian::with_sigma(run.sigma_n.sigma);
   f.moved.resize(g.count);
   parallel_for(g.count, threads, [&](uint32_t i) {
-    const Vec3 n = p.constrained ? smoothed_normal(g, f.vnormal.data(), i, gn, 2.f * sn) : Vec3{0, 0, 0};
+    const Vec3 n = p.constrained ? smoothed_normal(g, f.vnormal.data(), i, gn, run.sigma_n.radius) : Vec3{0, 0, 0};
     f.moved[i] = updated_position(xyz(f.points[i]), f.bl[i], p.constrained, n, p.tikhonov);
   });
 }
@@ -156,11 +156,11 @@ void refine_positions(CpuFrame& f, const RefinePlan& plan, int threads) {
   });
 }
 
-void bilateral_filter(CpuFrame& f, const FilterParams& p, int threads) {
+void bilateral_filter(CpuFrame& f, const RunPlan& run, int threads) {
   const uint32_t m = static_cast<uint32_t>(f.tri_geom.size());
   std::vector<Vec3> centroids(m);
   for (uint32_t t = 0; t < m; ++t) centroids[t] = f.tri_geom[t].centroid;
-  build_grid(centroids.data(), m, p.sigma_s, f.tri_grid);
+  build_grid(centroids.data(), m, run.grid_cell, f.tri_grid);
   f.tri_points.resize(m);
   f.tri_normals.resize(m);
   for (uint32_t k = 0; k < m; ++k) {
@@ -169,37 +169,36 @@ void bilateral_filter(CpuFrame& f, const FilterParams& p, int threads) {
     f.tri_normals[k] = t.normal;
   }
   const GridView tg = f.tri_grid.view(f.tri_points.data());
-  const float sm = 0.5f * p.sigma_s;  // Jones et al.: normals mollified with sigma_s / 2
-  const Gaussian gm = Gaussian::with_sigma(sm);
+  const Gaussian gm = Gaussian::with_sigma(run.mollify.sigma);
   f.tri_mollified.resize(m);
   parallel_for(m, threads, [&](uint32_t t) {
-    f.tri_mollified[t] = mollified_face_normal(tg, f.tri_normals.data(), t, gm, 2.f * sm);
+    f.tri_mollified[t] = mollified_face_normal(tg, f.tri_normals.data(), t, gm, run.mollify.radius);
   });
-  const Gaussian gs = Gaussian::with_sigma(p.sigma_s), gr = Gaussian::with_sigma(p.sigma_r);
+  const Gaussian gs = Gaussian::with_sigma(run.sigma_s.sigma), gr = Gaussian::with_sigma(run.sigma_r);
   f.moved.resize(f.points.size());
   parallel_for(static_cast<uint32_t>(f.points.size()), threads, [&](uint32_t i) {
-    f.moved[i] = jones_bilateral_position(tg, f.tri_mollified.data(), xyz(f.points[i]), gs, gr, 2.f * p.sigma_s);
+    f.moved[i] = jones_bilateral_position(tg, f.tri_mollified.data(), xyz(f.points[i]), gs, gr, run.sigma_s.radius);
   });
 }
 
-void cluster_scores(CpuFrame& f, const ClusterParams& p, int threads) {
+void cluster_scores(CpuFrame& f, const RunPlan& run, int threads) {
   const GridView g = f.grid.view(f.points.data());
-  const Gaussian gd = Gaussian::with_sigma(p.sigma_d), gq = Gaussian::with_sigma(p.sigma_q);
-  const bool euclid = p.method == ClusterMethod::kEuclidean;
+  const Gaussian gd = Gaussian::with_sigma(run.sigma_d.sigma), gq = Gaussian::with_sigma(run.sigma_q);
+  const bool euclid = run.params.clustering.method == ClusterMethod::kEuclidean;
   f.score.resize(g.count);
   parallel_for(g.count, threads, [&](uint32_t i) {
-    f.score[i] = representativity(g, f.bl.data(), i, gd, gq, 2.f * p.sigma_d, euclid);
+    f.score[i] = representativity(g, f.bl.data(), i, gd, gq, run.sigma_d.radius, euclid);
   });
 }
 
-void cluster_links(CpuFrame& f, const ClusterParams& p, int threads) {
+void cluster_links(CpuFrame& f, const RunPlan& run, int threads) {
   const GridView g = f.grid.view(f.points.data());
-  const Gaussian gd = Gaussian::with_sigma(p.sigma_d), gq = Gaussian::with_sigma(p.sigma_q);
-  const bool euclid = p.method == ClusterMethod::kEuclidean;
-  const float cut = 1.0f - p.theta;
+  const Gaussian gd = Gaussian::with_sigma(run.sigma_d.sigma), gq = Gaussian::with_sigma(run.sigma_q);
+  const bool euclid = run.params.clustering.method == ClusterMethod::kEuclidean;
+  const float cut = 1.0f - run.params.clustering.theta;
   f.next.resize(g.count);
   parallel_for(g.count, threads, [&](uint32_t i) {
-    f.next[i] = quick_shift_link(g, f.bl.data(), f.score.data(), i, gd, gq, 2.f * p.sigma_d, euclid, cut);
+    f.next[i] = quick_shift_link(g, f.bl.data(), f.score.data(), i, gd, gq, run.sigma_d.radius, euclid, cut);
   });
 }
 

@@ -19,7 +19,6 @@
 #include "kernels/cuda/stream.cuh"
 #include "kernels/cuda/team_passes.cuh"
 #include "kernels/cuda/temporal_pass.cuh"
-#include "kernels/cluster_control.h"
 #include "kernels/cuda_engine.h"
 #include "kernels/frame_prep.h"
 #include "kernels/grid_build.h"
@@ -52,16 +51,19 @@ class CudaEngine final : public Engine {
     sm_count_ = prop.multiProcessorCount;
   }
   std::string name() const override { return name_; }
-  Status process(const MeshView& mesh, const Params& params, FrameResult& out) override;
+  Status run_plan(const MeshView& mesh, const RunPlan& run, FrameResult& out) override;
+  void temporal_step(const MeshView& mesh, const Params& params, FrameResult& out) override;
   void release_scratch() override;
 
  private:
   static constexpr int kMaxMarks = 16;
   static constexpr int kDownloadChunks = 8;  ///< most chunks of one download
-  Status run_frame(const MeshView& mesh, const Params& params, FrameResult& out);
+  Status run_frame(const MeshView& mesh, const RunPlan& run, FrameResult& out);
   void upload(const MeshView& mesh);
   Status normalize(const MeshView& mesh, float cell, Normalization& norm);
-  Status enqueue_passes(const Params& params, FrameResult& out);
+  Status enqueue_passes(const RunPlan& run, FrameResult& out);
+  /// One pass of `run` (the passes before it enqueued); reads the noise estimate back for kRefine.
+  void enqueue_pass(PassKind pass, const RunPlan& run, FrameResult& out);
   Status mark(const char* pass);
   Status stop_if_cancelled();
   int team_size() const;
@@ -75,41 +77,34 @@ class CudaEngine final : public Engine {
   cuda::DeviceFrame f_;
   cuda::RefineBuffers refine_;
   cuda::TemporalPass temporal_;  ///< the temporal step, and the device copies of histories it wrote
+  bool temporal_pending_ = false;  ///< the frame's own run took the step: temporal_step() finishes it
   std::string name_;
   int sm_count_ = 1;
   bool usable_ = true;
   std::string fault_;
 };
 
-// Labels are left in place (and only resized) for clustering frames, so that a stream of
-// same-sized frames does not zero them every time; any failed frame leaves them empty.
-Status CudaEngine::process(const MeshView& mesh, const Params& params, FrameResult& out) {
-  out.timings.clear();
-  out.num_clusters = 0;
-  out.theta = 0.f;
-  out.link_parent.clear();
-  out.link_p.clear();
-  out.noise_estimate = 0.f;
-  out.filter_noise = 0.f;
-  out.prior_coverage = 0.f;
-  out.prior_share = 0.f;
-  out.history_reset = false;
-  Status st = validate(params);
-  if (st.ok() && needs_cluster_control(params)) return process_with_cluster_control(*this, mesh, params, out);
-  if (st.ok()) st = check_mesh_counts(mesh);
-  if (st.ok() && !usable_)
-    st = {StatusCode::kInternal, "the CUDA engine is unusable after an earlier device fault: " + fault_};
-  if (st.ok()) {
-    try {
-      st = run_frame(mesh, params, out);
-    } catch (const cuda::CudaError& e) {
-      st = fail(e.what(), out);
-    } catch (const std::bad_alloc&) {
-      st = fail("out of host memory (pinned staging)", out);
-    }
+Status CudaEngine::run_plan(const MeshView& mesh, const RunPlan& run, FrameResult& out) {
+  if (Status st = check_mesh_counts(mesh); !st.ok()) return st;
+  if (!usable_) return {StatusCode::kInternal, "the CUDA engine is unusable after an earlier device fault: " + fault_};
+  try {
+    return run_frame(mesh, run, out);
+  } catch (const cuda::CudaError& e) {
+    return fail(e.what(), out);
+  } catch (const std::bad_alloc&) {
+    return fail("out of host memory (pinned staging)", out);
   }
-  if (!st.ok() || !params.cluster) out.labels.clear();
-  return st;
+}
+
+// The device step ran in the frame's own run (run_frame); the stream's history takes the
+// result here, once Engine::process has seen the frame through (a stopped frame's result
+// must not become the history).
+void CudaEngine::temporal_step(const MeshView&, const Params& params, FrameResult& out) {
+  if (!temporal_pending_ || !follows_history(params)) return;
+  temporal_pending_ = false;
+  const Clock::time_point t = Clock::now();
+  report_step(temporal_.finish(out.positions, out.mean_edge, *history_), out);
+  out.timings.push_back({"temporal_host", ms_since(t)});
 }
 
 void CudaEngine::release_scratch() {
@@ -121,6 +116,7 @@ void CudaEngine::release_scratch() {
   f_ = cuda::DeviceFrame{};
   refine_ = cuda::RefineBuffers{};
   temporal_ = cuda::TemporalPass{};
+  temporal_pending_ = false;
 }
 
 // A bad launch is cleared by reading it; a fault inside a kernel is sticky and leaves the
@@ -213,67 +209,56 @@ int CudaEngine::team_size() const {
   return per_sm <= 512 ? 8 : (per_sm <= 12288 ? 4 : 1);
 }
 
-Status CudaEngine::enqueue_passes(const Params& params, FrameResult& out) {
-  const cudaStream_t s = stream_.get();
-  const FilterParams& fp = params.filtering;
-  const int team = team_size();
-  const bool fast_exp = tuning_.fast_exp;
-  cuda::sort_into_grid(f_, f_.grid.layout, s);
-  FQ_RETURN_IF_ERROR(mark("grid"));
-  const bool refine = params.filter && fp.method == FilterMethod::kQuadricRefined;
-  cuda::base_quadrics(f_, s);  // also the vertex -> triangle table that "qf+" reads
-  FQ_RETURN_IF_ERROR(mark("base_quadrics"));
-  if (params.cluster || fp.uses_quadrics()) {
-    if (team)
-      cuda::team_neighbourhood_quadrics(f_, fp.effective_sigma_b(), team, fast_exp, s);
-    else
-      cuda::neighbourhood_quadrics(f_, fp.effective_sigma_b(), s);
-    FQ_RETURN_IF_ERROR(mark("neighbourhood_quadrics"));
-    if (team)
-      cuda::team_diffuse_quadrics(f_, fp, team, fast_exp, s);
-    else
-      cuda::diffuse_quadrics(f_, fp, s);
-    FQ_RETURN_IF_ERROR(mark("diffusion"));
-  }
-  if (params.filter) {
-    if (refine) {
-      const NoiseEstimate noise = cuda::estimate_noise(f_, refine_, s);
-      FQ_RETURN_IF_ERROR(mark("noise"));
-      const RefinePlan plan = plan_refinement(fp.refine, noise.noise);
-      cuda::refine_positions(f_, refine_, plan, s);
-      out.noise_estimate = noise.noise;
-      out.filter_noise = plan.noise;
-      FQ_RETURN_IF_ERROR(mark("refine"));
-    } else if (fp.uses_quadrics()) {
-      cuda::update_positions(f_, fp, s);
-      FQ_RETURN_IF_ERROR(mark("update"));
+Status CudaEngine::enqueue_passes(const RunPlan& run, FrameResult& out) {
+  for (PassKind pass : run.passes) {
+    if (pass == PassKind::kGrid) {
+      cuda::sort_into_grid(f_, f_.grid.layout, stream_.get());
     } else {
-      cuda::bilateral_filter(f_, fp, s);
-      FQ_RETURN_IF_ERROR(mark("bilateral_filter"));
+      enqueue_pass(pass, run, out);
     }
-  }
-  if (params.cluster) {
-    if (team)
-      cuda::team_cluster_scores(f_, params.clustering, team, fast_exp, s);
-    else
-      cuda::cluster_scores(f_, params.clustering, s);
-    FQ_RETURN_IF_ERROR(mark("score"));
-    if (team)
-      cuda::team_cluster_links(f_, params.clustering, team, fast_exp, s);
-    else
-      cuda::cluster_links(f_, params.clustering, s);
-    FQ_RETURN_IF_ERROR(mark("link"));
-    cuda::cluster_labels(f_, s);
-    FQ_RETURN_IF_ERROR(mark("modes"));
-    if (params.clustering.keep_links) {
-      cuda::export_links(f_, params.clustering, s);  // downloads too
-      FQ_RETURN_IF_ERROR(mark("export_links"));
-    }
+    FQ_RETURN_IF_ERROR(mark(pass_name(pass)));
   }
   return {};
 }
 
-Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameResult& out) {
+void CudaEngine::enqueue_pass(PassKind pass, const RunPlan& run, FrameResult& out) {
+  const cudaStream_t s = stream_.get();
+  const int team = team_size();
+  const bool fast_exp = tuning_.fast_exp;
+  switch (pass) {
+    case PassKind::kGrid: break;  // needs the layout: enqueue_passes
+    case PassKind::kBaseQuadrics: cuda::base_quadrics(f_, s); break;  // also the vertex -> triangle table "qf+" reads
+    // The team kernels, or with team 0 the one-thread-per-vertex ones.
+    case PassKind::kNeighbourhoodQuadrics:
+      team ? cuda::team_neighbourhood_quadrics(f_, run.sigma_b, team, fast_exp, s)
+           : cuda::neighbourhood_quadrics(f_, run.sigma_b, s);
+      break;
+    case PassKind::kDiffusion:
+      team ? cuda::team_diffuse_quadrics(f_, run, team, fast_exp, s) : cuda::diffuse_quadrics(f_, run, s);
+      break;
+    case PassKind::kNoise: out.noise_estimate = cuda::estimate_noise(f_, refine_, s).noise; break;
+    case PassKind::kRefine: {
+      const RefinePlan plan = run.refinement(out.noise_estimate);
+      cuda::refine_positions(f_, refine_, plan, s);
+      out.filter_noise = plan.noise;
+      break;
+    }
+    case PassKind::kUpdate: cuda::update_positions(f_, run, s); break;
+    case PassKind::kBilateralFilter: cuda::bilateral_filter(f_, run, s); break;
+    case PassKind::kScore:
+      team ? cuda::team_cluster_scores(f_, run, team, fast_exp, s) : cuda::cluster_scores(f_, run, s);
+      break;
+    case PassKind::kLink:
+      team ? cuda::team_cluster_links(f_, run, team, fast_exp, s) : cuda::cluster_links(f_, run, s);
+      break;
+    case PassKind::kModes: cuda::cluster_labels(f_, s); break;
+    case PassKind::kExportLinks: cuda::export_links(f_, run.params.clustering, s); break;  // downloads too
+  }
+}
+
+Status CudaEngine::run_frame(const MeshView& mesh, const RunPlan& run, FrameResult& out) {
+  const Params& params = run.params;
+  if (run.role == RunRole::kFrame) temporal_pending_ = false;  // a stopped frame's step is dropped
   FQ_CUDA_CHECK(cudaSetDevice(device_.id));
   const cudaStream_t s = stream_.get();
   // A frame far smaller than the largest one so far gives that one's buffers back.
@@ -286,12 +271,13 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
   upload(mesh);
   events_.mark("upload", s);
   Normalization norm;
-  if (Status st = normalize(mesh, params.filtering.sigma_s, norm); !st.ok()) return st;
+  if (Status st = normalize(mesh, run.grid_cell, norm); !st.ok()) return st;
   out.mean_edge = norm.mean_edge;
   FQ_RETURN_IF_ERROR(stop_if_cancelled());
-  FQ_RETURN_IF_ERROR(enqueue_passes(params, out));
-  // The temporal step (kernels/cuda/temporal_pass.cuh) on the result before it leaves the device.
-  const bool temporal = follows_history(params);
+  FQ_RETURN_IF_ERROR(enqueue_passes(run, out));
+  // The temporal step (kernels/cuda/temporal_pass.cuh) on the frame's own result, before it
+  // leaves the device; temporal_step() hands it to the history once the frame is through.
+  const bool temporal = run.role == RunRole::kFrame && follows_history(params);
   if (temporal) {
     temporal_.follow(f_, norm, *history_, params.filtering.temporal, out.noise_estimate, s);
     FQ_RETURN_IF_ERROR(mark("temporal"));
@@ -340,11 +326,7 @@ Status CudaEngine::run_frame(const MeshView& mesh, const Params& params, FrameRe
   events_.collect([&](const char* name, double ms) { out.timings.push_back({name, ms}); });
   // Host: results out of pinned memory from the first downloaded chunk on (overlaps the download).
   out.timings.push_back({"finish", ms_since(t1)});
-  if (temporal) {  // the stream's history takes the result on the host
-    const Clock::time_point t2 = Clock::now();
-    report_step(temporal_.finish(out.positions, out.mean_edge, *history_), out);
-    out.timings.push_back({"temporal_host", ms_since(t2)});
-  }
+  temporal_pending_ = temporal;
   return {};
 }
 

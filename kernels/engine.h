@@ -14,6 +14,7 @@
 #include "core/cancel_token.h"
 #include "core/mesh_view.h"
 #include "core/params.h"
+#include "kernels/frame_plan.h"
 #include "kernels/temporal.h"
 
 namespace fq {
@@ -63,6 +64,11 @@ struct ClusterRuns {
 /// Told about each pass as it ends (progress displays).
 using PassObserver = std::function<void(const PassTiming&)>;
 
+/// How a frame runs, the same for every engine (a template method): process() checks the
+/// parameters once, resolves the frame's plan (kernels/frame_plan.h), runs each of the plan's
+/// engine runs through the engine's run_plan(), composes cluster control from those runs
+/// (kernels/cluster_control.h), checks the cancel token, and ends with the temporal step.
+/// Engines implement only run_plan(): one run's passes on their hardware.
 class Engine {
  public:
   virtual ~Engine() = default;
@@ -81,7 +87,7 @@ class Engine {
   virtual std::string name() const = 0;
   /// Processes one frame. Bad parameters or a bad mesh give a non-ok status and leave the
   /// engine usable for the next frame, as does a run stopped by the cancel token.
-  virtual Status process(const MeshView& mesh, const Params& params, FrameResult& out) = 0;
+  Status process(const MeshView& mesh, const Params& params, FrameResult& out);
   /// Gives back the buffers kept for the next frame (an idle engine: fqd calls it after
   /// caps.pool_idle_s without frames): the engine's own scratch and cluster control's runs;
   /// the next frame allocates them again.
@@ -93,7 +99,25 @@ class Engine {
   /// the engine's own scratch).
   const ClusterRuns& cluster_runs() const { return cluster_runs_; }
 
+  /// What this engine has done so far: frames (process() calls), parameter checks and engine
+  /// runs (run_plan() calls; a frame clustered on its filtered mesh makes up to three).
+  struct Counts {
+    uint64_t frames = 0, validations = 0, runs = 0;
+  };
+  const Counts& counts() const { return counts_; }
+
  protected:
+  /// One run of the frame's plan: its passes on `mesh` into `out`, whose scalar outputs and
+  /// timings process() has reset (labels are left for the run to overwrite; process() clears
+  /// them after a failed run or one without clustering). Ok, kCancelled or the first error.
+  virtual Status run_plan(const MeshView& mesh, const RunPlan& run, FrameResult& out) = 0;
+  /// The temporal step on the frame's own run's result, before any clustering run reads it
+  /// (kernels/temporal.h): by default follow_stream_history on the host with host_threads().
+  virtual void temporal_step(const MeshView& mesh, const Params& params, FrameResult& out) {
+    follow_stream_history(mesh, params, out, host_threads());
+  }
+  /// Host threads of the steps process() runs on the host.
+  virtual int host_threads() const;
   /// The engine's own scratch (host or device), given back by release_memory() and when a
   /// frame is far smaller than the largest so far (far_smaller). Not cluster_runs(): a frame
   /// may be one of those runs.
@@ -120,10 +144,11 @@ class Engine {
   TemporalScratch temporal_scratch_;  ///< the engine's scratch: release_scratch() gives it back
 
  private:
-  // Cluster control runs the engine again with these as outputs.
-  friend Status process_with_cluster_control(Engine& engine, const MeshView& mesh, const Params& p,
-                                             FrameResult& out);
+  Status run_frame(const MeshView& mesh, const FramePlan& plan, FrameResult& out);
+  Status run_once(const MeshView& mesh, const RunPlan& run, FrameResult& out);
+
   ClusterRuns cluster_runs_;
+  Counts counts_;
 };
 
 /// kCopy: the copy engine (copy_engine.h), which returns its input, for measuring the host

@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "kernels/frame_plan.h"
 #include "kernels/frame_prep.h"
 #include "kernels/grid_build.h"
 #include "core/parallel_for.h"
@@ -30,17 +31,19 @@ NeighbourStats neighbour_stats(const MeshView& mesh, const Params& params) {
   if (!compute_normalization(mesh, norm).ok()) return out;
   std::vector<Vec3> p(mesh.num_vertices);
   for (uint32_t i = 0; i < mesh.num_vertices; ++i) p[i] = norm.to_normalized(mesh.positions + 3 * size_t(i));
+  // The frame's own run (the first of its plan): its grid, its radii.
+  const RunPlan run = plan_frame(params).runs.front();
   CpuGrid grid;
-  build_grid(p.data(), mesh.num_vertices, params.filtering.sigma_s, grid);
+  build_grid(p.data(), mesh.num_vertices, run.grid_cell, grid);
   std::vector<Point4> sorted(mesh.num_vertices);
   for (uint32_t k = 0; k < mesh.num_vertices; ++k) {
     const Vec3 q = p[grid.order[k]];
     sorted[k] = {q.x, q.y, q.z, 0.f};
   }
   const GridView g = grid.view(sorted.data());
-  out.nbhd = mean_count(g, 2.f * params.filtering.effective_sigma_b());
-  out.diffusion = mean_count(g, 2.f * params.filtering.sigma_s);
-  if (params.cluster) out.cluster = mean_count(g, 2.f * params.clustering.sigma_d);
+  out.nbhd = mean_count(g, run.sigma_b.radius);
+  out.diffusion = mean_count(g, run.sigma_s.radius);
+  if (params.cluster) out.cluster = mean_count(g, run.sigma_d.radius);
   return out;
 }
 

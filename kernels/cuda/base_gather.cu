@@ -20,27 +20,27 @@ namespace {
 
 __global__ void triangle_geometry(uint32_t m, const uint32_t* tris, const Point4* points,
                                   TriangleGeom* geom) {
-  const uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t t = item_index();
   if (t >= m) return;
   const uint32_t* tri = tris + 3 * size_t(t);
   geom[t] = triangle_geom(xyz(points[tri[0]]), xyz(points[tri[1]]), xyz(points[tri[2]]));
 }
 
 __global__ void count_corners(uint64_t corners, const uint32_t* tris, uint32_t* count, uint32_t* slot) {
-  const uint64_t c = uint64_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  const uint64_t c = item_index();
   if (c < corners) slot[c] = atomicAdd(&count[tris[c]], 1u);
 }
 
 __global__ void scatter_corners(uint64_t corners, const uint32_t* tris, const uint32_t* start,
                                 const uint32_t* slot, uint32_t* faces) {
-  const uint64_t c = uint64_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  const uint64_t c = item_index();
   if (c < corners) faces[start[tris[c]] + slot[c]] = static_cast<uint32_t>(c / 3);
 }
 
 // Per vertex: its triangles, in increasing order, summed exactly as the CPU does.
 __global__ void gather_base(uint32_t n, const uint32_t* start, const uint32_t* faces, const TriangleGeom* geom,
                             Point4* points, Quadric* base, PackedQuadric* base_p, Vec3* vnormal) {
-  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t v = item_index();
   if (v >= n) return;
   const uint32_t b = start[v], e = start[v + 1];
   const Vec3 x = xyz(points[v]);
@@ -69,24 +69,20 @@ void base_quadrics(DeviceFrame& f, cudaStream_t s) {
   const size_t temp_bytes = std::max(scan_bytes, sort_bytes);
   unsigned char* temp = f.temp.reserve(temp_bytes);
 
-  triangle_geometry<<<blocks_for(m), block_size(), 0, s>>>(m, f.tris.data(), f.points.data(),
+  FQ_LAUNCH(triangle_geometry, m, s, m, f.tris.data(), f.points.data(),
                                                            f.tri_geom.reserve(m));
-  FQ_CUDA_CHECK_LAUNCH("triangle_geometry");
   FQ_CUDA_CHECK(cudaMemsetAsync(count, 0, (n + 1) * sizeof(uint32_t), s));
-  count_corners<<<blocks_for(corners), block_size(), 0, s>>>(corners, f.tris.data(), count,
+  FQ_LAUNCH(count_corners, corners, s, corners, f.tris.data(), count,
                                                              f.vf_slot.reserve(corners));
-  FQ_CUDA_CHECK_LAUNCH("count_corners");
   size_t bytes = temp_bytes;
   FQ_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(temp, bytes, count, start, int(n + 1), s));
-  scatter_corners<<<blocks_for(corners), block_size(), 0, s>>>(corners, f.tris.data(), start,
+  FQ_LAUNCH(scatter_corners, corners, s, corners, f.tris.data(), start,
                                                                f.vf_slot.data(), f.vf_faces.data());
-  FQ_CUDA_CHECK_LAUNCH("scatter_corners");
   bytes = temp_bytes;
   FQ_CUDA_CHECK(cub::DeviceSegmentedSort::SortKeys(temp, bytes, faces, int(corners), int(n), start, start + 1, s));
-  gather_base<<<blocks_for(n), block_size(), 0, s>>>(n, start, faces.Current(), f.tri_geom.data(),
+  FQ_LAUNCH(gather_base, n, s, n, start, faces.Current(), f.tri_geom.data(),
                                                      f.points.data(), f.base.reserve(n), f.base_p.reserve(n),
                                                      f.vnormal.reserve(n));
-  FQ_CUDA_CHECK_LAUNCH("gather_base");
   // Later passes (the "qf+" refinement) read the sorted table as vf_faces.
   if (faces.Current() != f.vf_faces.data()) std::swap(f.vf_faces, f.vf_slot);
 }

@@ -22,7 +22,7 @@ __global__ void reset_bounds(int* b) {
 }
 
 __global__ void centroid_points(uint32_t m, const TriangleGeom* geom, Point4* out, int* bounds) {
-  const uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t t = item_index();
   if (t >= m) return;
   const TriangleGeom g = geom[t];
   out[t] = {g.centroid.x, g.centroid.y, g.centroid.z, g.area};
@@ -35,18 +35,18 @@ __global__ void centroid_points(uint32_t m, const TriangleGeom* geom, Point4* ou
 }
 
 __global__ void sorted_normals(uint32_t m, const uint32_t* order, const TriangleGeom* geom, Vec3* out) {
-  const uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t k = item_index();
   if (k < m) out[k] = geom[order[k]].normal;
 }
 
 __global__ void mollify_kernel(GridView tg, const Vec3* normals, Gaussian gm, float radius, Vec3* out) {
-  const uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t t = item_index();
   if (t < tg.count) out[t] = mollified_face_normal(tg, normals, t, gm, radius);
 }
 
 __global__ void jones_kernel(uint32_t n, const Point4* points, GridView tg, const Vec3* mollified,
                              Gaussian gs, Gaussian gr, float radius, Vec3* moved) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t i = item_index();
   if (i < n) moved[i] = jones_bilateral_position(tg, mollified, xyz(points[i]), gs, gr, radius);
 }
 
@@ -55,9 +55,8 @@ GridLayout centroid_layout(DeviceFrame& f, float cell, cudaStream_t s) {
   int* bounds = f.bounds.reserve(6);
   reset_bounds<<<1, 32, 0, s>>>(bounds);
   FQ_CUDA_CHECK_LAUNCH("reset_bounds");
-  centroid_points<<<blocks_for(f.m), block_size(), 0, s>>>(f.m, f.tri_geom.data(), f.tri_in.reserve(f.m),
+  FQ_LAUNCH(centroid_points, f.m, s, f.m, f.tri_geom.data(), f.tri_in.reserve(f.m),
                                                            bounds);
-  FQ_CUDA_CHECK_LAUNCH("centroid_points");
   int* h = f.h_bounds.reserve(6);
   FQ_CUDA_CHECK(cudaMemcpyAsync(h, bounds, 6 * sizeof(int), cudaMemcpyDeviceToHost, s));
   FQ_CUDA_CHECK(cudaStreamSynchronize(s));
@@ -68,21 +67,18 @@ GridLayout centroid_layout(DeviceFrame& f, float cell, cudaStream_t s) {
 
 }  // namespace
 
-void bilateral_filter(DeviceFrame& f, const FilterParams& p, cudaStream_t s) {
-  const GridLayout layout = centroid_layout(f, p.sigma_s, s);
+void bilateral_filter(DeviceFrame& f, const RunPlan& run, cudaStream_t s) {
+  const GridLayout layout = centroid_layout(f, run.grid_cell, s);
   build_device_grid(layout, f.tri_in.data(), f.m, f.tri_grid, f.tri_points.reserve(f.m), s);
-  sorted_normals<<<blocks_for(f.m), block_size(), 0, s>>>(f.m, f.tri_grid.order.data(), f.tri_geom.data(),
+  FQ_LAUNCH(sorted_normals, f.m, s, f.m, f.tri_grid.order.data(), f.tri_geom.data(),
                                                           f.tri_normals.reserve(f.m));
-  FQ_CUDA_CHECK_LAUNCH("sorted_normals");
   const GridView tg = f.tri_grid.view(f.tri_points.data());
-  const float sm = 0.5f * p.sigma_s;  // Jones et al.: normals mollified with sigma_s / 2
-  mollify_kernel<<<blocks_for(f.m), block_size(), 0, s>>>(tg, f.tri_normals.data(), Gaussian::with_sigma(sm),
-                                                          2.f * sm, f.tri_mollified.reserve(f.m));
-  FQ_CUDA_CHECK_LAUNCH("mollify_kernel");
-  jones_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(
-      f.n, f.points.data(), tg, f.tri_mollified.data(), Gaussian::with_sigma(p.sigma_s),
-      Gaussian::with_sigma(p.sigma_r), 2.f * p.sigma_s, f.moved.reserve(f.n));
-  FQ_CUDA_CHECK_LAUNCH("jones_kernel");
+  FQ_LAUNCH(mollify_kernel, f.m, s, tg, f.tri_normals.data(),
+                                                          Gaussian::with_sigma(run.mollify.sigma),
+                                                          run.mollify.radius, f.tri_mollified.reserve(f.m));
+  FQ_LAUNCH(jones_kernel, f.n, s,
+      f.n, f.points.data(), tg, f.tri_mollified.data(), Gaussian::with_sigma(run.sigma_s.sigma),
+      Gaussian::with_sigma(run.sigma_r), run.sigma_s.radius, f.moved.reserve(f.n));
 }
 
 }  // namespace fq::cuda

@@ -15,13 +15,13 @@ namespace {
 
 __global__ void score_kernel(GridView g, const Quadric* bl, Gaussian gd, Gaussian gq, float radius,
                              bool euclid, float* score) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t i = item_index();
   if (i < g.count) score[i] = representativity(g, bl, i, gd, gq, radius, euclid);
 }
 
 __global__ void link_kernel(GridView g, const Quadric* bl, const float* score, Gaussian gd, Gaussian gq,
                             float radius, bool euclid, float cut, uint32_t* next) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t i = item_index();
   if (i < g.count) next[i] = quick_shift_link(g, bl, score, i, gd, gq, radius, euclid, cut);
 }
 
@@ -29,7 +29,7 @@ __global__ void link_kernel(GridView g, const Quadric* bl, const float* score, G
 // the farthest ancestor seen so far, so threads that pass through it later skip ahead.
 // Links only ever move up the same chain, so any value read is a valid ancestor.
 __global__ void jump_to_roots(uint32_t n, uint32_t* root) {
-  const uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t k = item_index();
   if (k >= n) return;
   volatile uint32_t* r = root;
   uint32_t cur = r[k];
@@ -40,7 +40,7 @@ __global__ void jump_to_roots(uint32_t n, uint32_t* root) {
 }
 
 __global__ void flag_roots(uint32_t n, const uint32_t* rank, const uint32_t* next, uint32_t* flag) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t i = item_index();
   if (i >= n) return;
   const uint32_t k = rank[i];
   flag[i] = next[k] == k ? 1u : 0u;
@@ -48,26 +48,26 @@ __global__ void flag_roots(uint32_t n, const uint32_t* rank, const uint32_t* nex
 
 __global__ void label_kernel(uint32_t n, const uint32_t* rank, const uint32_t* order, const uint32_t* root,
                              const uint32_t* root_scan, uint32_t* labels) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t i = item_index();
   if (i < n) labels[i] = root_scan[order[root[rank[i]]]];
 }
 
 }  // namespace
 
-void cluster_scores(DeviceFrame& f, const ClusterParams& p, cudaStream_t s) {
+void cluster_scores(DeviceFrame& f, const RunPlan& run, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
-  score_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(
-      g, f.bl.data(), Gaussian::with_sigma(p.sigma_d), Gaussian::with_sigma(p.sigma_q), 2.f * p.sigma_d,
+  const ClusterParams& p = run.params.clustering;
+  FQ_LAUNCH(score_kernel, f.n, s,
+      g, f.bl.data(), Gaussian::with_sigma(run.sigma_d.sigma), Gaussian::with_sigma(run.sigma_q), run.sigma_d.radius,
       p.method == ClusterMethod::kEuclidean, f.score.reserve(f.n));
-  FQ_CUDA_CHECK_LAUNCH("score_kernel");
 }
 
-void cluster_links(DeviceFrame& f, const ClusterParams& p, cudaStream_t s) {
+void cluster_links(DeviceFrame& f, const RunPlan& run, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
-  link_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(
-      g, f.bl.data(), f.score.data(), Gaussian::with_sigma(p.sigma_d), Gaussian::with_sigma(p.sigma_q),
-      2.f * p.sigma_d, p.method == ClusterMethod::kEuclidean, 1.0f - p.theta, f.next.reserve(f.n));
-  FQ_CUDA_CHECK_LAUNCH("link_kernel");
+  const ClusterParams& p = run.params.clustering;
+  FQ_LAUNCH(link_kernel, f.n, s,
+      g, f.bl.data(), f.score.data(), Gaussian::with_sigma(run.sigma_d.sigma), Gaussian::with_sigma(run.sigma_q),
+      run.sigma_d.radius, p.method == ClusterMethod::kEuclidean, 1.0f - p.theta, f.next.reserve(f.n));
 }
 
 void cluster_labels(DeviceFrame& f, cudaStream_t s) {
@@ -81,15 +81,12 @@ void cluster_labels(DeviceFrame& f, cudaStream_t s) {
   uint32_t* labels = f.labels.reserve(n + 1);
 
   FQ_CUDA_CHECK(cudaMemcpyAsync(root, f.next.data(), n * sizeof(uint32_t), cudaMemcpyDeviceToDevice, s));
-  jump_to_roots<<<blocks_for(n), block_size(), 0, s>>>(n, root);
-  FQ_CUDA_CHECK_LAUNCH("jump_to_roots");
+  FQ_LAUNCH(jump_to_roots, n, s, n, root);
   FQ_CUDA_CHECK(cudaMemsetAsync(flag + n, 0, sizeof(uint32_t), s));
-  flag_roots<<<blocks_for(n), block_size(), 0, s>>>(n, f.grid.rank.data(), f.next.data(), flag);
-  FQ_CUDA_CHECK_LAUNCH("flag_roots");
+  FQ_LAUNCH(flag_roots, n, s, n, f.grid.rank.data(), f.next.data(), flag);
   FQ_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(temp, bytes, flag, scan, int(n + 1), s));
-  label_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, f.grid.rank.data(), f.grid.order.data(), root, scan,
+  FQ_LAUNCH(label_kernel, n, s, n, f.grid.rank.data(), f.grid.order.data(), root, scan,
                                                       labels);
-  FQ_CUDA_CHECK_LAUNCH("label_kernel");
   FQ_CUDA_CHECK(cudaMemcpyAsync(labels + n, scan + n, sizeof(uint32_t), cudaMemcpyDeviceToDevice, s));
 }
 

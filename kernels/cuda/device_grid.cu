@@ -12,7 +12,7 @@ namespace {
 
 __global__ void count_cells(GridView shape, const Point4* in, uint32_t n, uint32_t* cell_of, uint32_t* slot,
                             uint32_t* cell_count) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t i = item_index();
   if (i >= n) return;
   const uint32_t c = cell_index(shape, xyz(in[i]));
   cell_of[i] = c;
@@ -21,14 +21,14 @@ __global__ void count_cells(GridView shape, const Point4* in, uint32_t n, uint32
 
 __global__ void scatter_to_cells(uint32_t n, const uint32_t* cell_of, const uint32_t* slot,
                                  const uint32_t* cell_start, uint32_t* scattered) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t i = item_index();
   if (i >= n) return;
   scattered[cell_start[cell_of[i]] + slot[i]] = i;
 }
 
 __global__ void permute_points(uint32_t n, const uint32_t* order, const Point4* in, Point4* sorted,
                                uint32_t* rank) {
-  const uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t k = item_index();
   if (k >= n) return;
   const uint32_t i = order[k];
   rank[i] = k;
@@ -60,19 +60,16 @@ void build_device_grid(const GridLayout& layout, const Point4* in, uint32_t n, D
   g.temp.reserve(temp_bytes);
 
   FQ_CUDA_CHECK(cudaMemsetAsync(count, 0, (cells + 1) * sizeof(uint32_t), s));
-  count_cells<<<blocks_for(n), block_size(), 0, s>>>(shape, in, n, g.cell_of.data(), g.slot.data(), count);
-  FQ_CUDA_CHECK_LAUNCH("count_cells");
+  FQ_LAUNCH(count_cells, n, s, shape, in, n, g.cell_of.data(), g.slot.data(), count);
   size_t bytes = temp_bytes;
   FQ_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(g.temp.data(), bytes, count, start, int(cells + 1), s));
-  scatter_to_cells<<<blocks_for(n), block_size(), 0, s>>>(n, g.cell_of.data(), g.slot.data(), start,
+  FQ_LAUNCH(scatter_to_cells, n, s, n, g.cell_of.data(), g.slot.data(), start,
                                                           g.scattered.data());
-  FQ_CUDA_CHECK_LAUNCH("scatter_to_cells");
   // Atomics gave an arbitrary order inside each cell; input order makes it the CPU's.
   bytes = temp_bytes;
   FQ_CUDA_CHECK(cub::DeviceSegmentedSort::SortKeys(g.temp.data(), bytes, g.scattered.data(), g.order.data(),
                                                    int(n), int(cells), start, start + 1, s));
-  permute_points<<<blocks_for(n), block_size(), 0, s>>>(n, g.order.data(), in, sorted_out, g.rank.data());
-  FQ_CUDA_CHECK_LAUNCH("permute_points");
+  FQ_LAUNCH(permute_points, n, s, n, g.order.data(), in, sorted_out, g.rank.data());
 }
 
 }  // namespace fq::cuda

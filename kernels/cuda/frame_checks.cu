@@ -105,7 +105,7 @@ __global__ void __launch_bounds__(kThreads) sum_partials(const double* partial, 
 }
 
 __global__ void normalize_kernel(uint32_t n, const float* coords, Normalization norm, Point4* out) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t i = item_index();
   if (i >= n) return;
   const Vec3 p = norm.to_normalized(coords + 3 * size_t(i));
   out[i] = {p.x, p.y, p.z, 0.f};
@@ -113,7 +113,7 @@ __global__ void normalize_kernel(uint32_t n, const float* coords, Normalization 
 
 __global__ void to_input_kernel(uint32_t n, const uint32_t* rank, const Vec3* moved, Normalization norm,
                                 float* out) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t i = item_index();
   if (i < n) norm.to_input(moved[rank[i]], out + 3 * size_t(i));
 }
 
@@ -147,15 +147,13 @@ FrameSummary read_summary(const DeviceFrame& f) {
 }
 
 void normalize_points(DeviceFrame& f, const Normalization& norm, cudaStream_t s) {
-  normalize_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(f.n, f.in_coords.data(), norm,
+  FQ_LAUNCH(normalize_kernel, f.n, s, f.n, f.in_coords.data(), norm,
                                                             f.in_points.reserve(f.n));
-  FQ_CUDA_CHECK_LAUNCH("normalize_kernel");
 }
 
 void positions_to_input(DeviceFrame& f, const Normalization& norm, cudaStream_t s) {
-  to_input_kernel<<<blocks_for(f.n), block_size(), 0, s>>>(f.n, f.grid.rank.data(), f.moved.data(), norm,
+  FQ_LAUNCH(to_input_kernel, f.n, s, f.n, f.grid.rank.data(), f.moved.data(), norm,
                                                            f.out_coords.reserve(3 * size_t(f.n)));
-  FQ_CUDA_CHECK_LAUNCH("to_input_kernel");
 }
 
 }  // namespace fq::cuda

@@ -12,23 +12,23 @@ namespace fq::cuda {
 namespace {
 
 __global__ void input_positions_kernel(uint32_t n, const Point4* in, Vec3* out) {
-  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t v = item_index();
   if (v < n) out[v] = xyz(in[v]);
 }
 
 __global__ void noise_sample_kernel(uint32_t count, uint32_t stride, FanView fan, const Vec3* x, NoiseSample* out) {
-  const uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t k = item_index();
   if (k < count) out[k] = noise_sample(fan, x, k * stride);
 }
 
 __global__ void closed_fan_kernel(uint32_t n, FanView fan, uint8_t* closed) {
-  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t v = item_index();
   if (v < n) closed[v] = closed_fan(fan, v) ? 1 : 0;
 }
 
 __global__ void face_geometry_kernel(uint32_t m, const uint32_t* tris, const Vec3* x, TriangleGeom* geom,
                                      Vec3* normals) {
-  const uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t t = item_index();
   if (t >= m) return;
   const uint32_t* tri = tris + 3 * size_t(t);
   geom[t] = triangle_geom(x[tri[0]], x[tri[1]], x[tri[2]]);
@@ -37,42 +37,42 @@ __global__ void face_geometry_kernel(uint32_t m, const uint32_t* tris, const Vec
 
 __global__ void normal_filter_kernel(uint32_t m, FanView fan, const TriangleGeom* geom, const Vec3* in,
                                      Gaussian gs, Gaussian gr, float share, Vec3* out) {
-  const uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t t = item_index();
   if (t < m) out[t] = partial_normal(in[t], filtered_face_normal(fan, geom, in, t, gs, gr), share);
 }
 
 __global__ void free_directions_kernel(uint32_t n, FanView fan, const Vec3* normals, const uint8_t* closed,
                                        FreeDirections* out) {
-  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t v = item_index();
   if (v < n) out[v] = free_directions(fan, normals, v, closed[v] != 0);
 }
 
 __global__ void vertex_update_kernel(uint32_t n, FanView fan, const Vec3* x, const Vec3* normals,
                                      const FreeDirections* dirs, float tangential_step, float share, Vec3* out) {
-  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t v = item_index();
   if (v < n) out[v] = partial_position(x[v], updated_vertex(fan, x, normals, v, dirs[v], tangential_step), share);
 }
 
 __global__ void partial_round_kernel(uint32_t n, const Vec3* before, float share, Vec3* x) {
-  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t v = item_index();
   if (v < n) x[v] = partial_position(before[v], x[v], share);
 }
 
 __global__ void tangential_move_kernel(uint32_t n, FanView fan, const Point4* in, const Vec3* x, Vec3* t,
                                        float* energy) {
-  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t v = item_index();
   if (v >= n) return;
   t[v] = tangential_move(xyz(in[v]), x[v], vertex_normal(fan, x, v));
   energy[v] = norm2(t[v]);
 }
 
 __global__ void ring_mean_kernel(uint32_t n, FanView fan, const float* in, float* out) {
-  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t v = item_index();
   if (v < n) out[v] = ring_mean(fan, in, v);
 }
 
 __global__ void limit_kernel(uint32_t n, const Vec3* t, const float* energy, float allowance, Vec3* x) {
-  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint64_t v = item_index();
   if (v < n) x[v] = limited_position(x[v], t[v], energy[v], allowance);
 }
 
@@ -82,8 +82,7 @@ NoiseEstimate estimate_noise(DeviceFrame& f, RefineBuffers& b, cudaStream_t s) {
   const uint32_t n = f.n;
   const FanView fan{f.tris.data(), f.vf_start.data(), f.vf_faces.data()};
   Vec3* x = f.moved.reserve(n);
-  input_positions_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, f.points.data(), x);
-  FQ_CUDA_CHECK_LAUNCH("input_positions_kernel");
+  FQ_LAUNCH(input_positions_kernel, n, s, n, f.points.data(), x);
   const uint32_t stride = noise_sample_stride(n), count = noise_sample_count(n);
   NoiseSample* samples = b.samples.reserve(count);
   // A few thousand long threads (two ring fits each): small blocks spread them over every SM
@@ -102,8 +101,7 @@ void refine_positions(DeviceFrame& f, RefineBuffers& b, const RefinePlan& plan, 
   const FanView fan{f.tris.data(), f.vf_start.data(), f.vf_faces.data()};
   b.x.reserve(n);
   uint8_t* closed = b.closed.reserve(n);
-  closed_fan_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, fan, closed);
-  FQ_CUDA_CHECK_LAUNCH("closed_fan_kernel");
+  FQ_LAUNCH(closed_fan_kernel, n, s, n, fan, closed);
   Vec3* normals[2] = {b.normals[0].reserve(m), b.normals[1].reserve(m)};
   TriangleGeom* geom = b.geom.reserve(m);
   FreeDirections* dirs = b.dirs.reserve(n);
@@ -112,41 +110,33 @@ void refine_positions(DeviceFrame& f, RefineBuffers& b, const RefinePlan& plan, 
     const float round_share = round == rounds.count - 1 ? rounds.last : 1.f;
     if (round_share < 1.f)
       FQ_CUDA_CHECK(cudaMemcpyAsync(b.round.reserve(n), f.moved.data(), n * sizeof(Vec3), cudaMemcpyDeviceToDevice, s));
-    face_geometry_kernel<<<blocks_for(m), block_size(), 0, s>>>(m, f.tris.data(), f.moved.data(), geom, normals[0]);
-    FQ_CUDA_CHECK_LAUNCH("face_geometry_kernel");
+    FQ_LAUNCH(face_geometry_kernel, m, s, m, f.tris.data(), f.moved.data(), geom, normals[0]);
     for (int it = 0; it < filters.count; ++it) {
       const float share = it == filters.count - 1 ? filters.last : 1.f;
-      normal_filter_kernel<<<blocks_for(m), block_size(), 0, s>>>(m, fan, geom, normals[it & 1], plan.gs, plan.gr,
+      FQ_LAUNCH(normal_filter_kernel, m, s, m, fan, geom, normals[it & 1], plan.gs, plan.gr,
                                                                   share, normals[(it + 1) & 1]);
-      FQ_CUDA_CHECK_LAUNCH("normal_filter_kernel");
     }
     const Vec3* filtered = normals[filters.count & 1];
-    free_directions_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, fan, filtered, closed, dirs);
-    FQ_CUDA_CHECK_LAUNCH("free_directions_kernel");
+    FQ_LAUNCH(free_directions_kernel, n, s, n, fan, filtered, closed, dirs);
     for (int it = 0; it < updates.count; ++it) {
       const float share = it == updates.count - 1 ? updates.last : 1.f;
-      vertex_update_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, fan, f.moved.data(), filtered, dirs,
+      FQ_LAUNCH(vertex_update_kernel, n, s, n, fan, f.moved.data(), filtered, dirs,
                                                                   plan.tangential_step, share, b.x.data());
-      FQ_CUDA_CHECK_LAUNCH("vertex_update_kernel");
       std::swap(f.moved, b.x);
     }
     if (round_share < 1.f) {
-      partial_round_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, b.round.data(), round_share, f.moved.data());
-      FQ_CUDA_CHECK_LAUNCH("partial_round_kernel");
+      FQ_LAUNCH(partial_round_kernel, n, s, n, b.round.data(), round_share, f.moved.data());
     }
   }
   Vec3* tangent = b.tangent.reserve(n);
   float* energy[2] = {b.energy[0].reserve(n), b.energy[1].reserve(n)};
-  tangential_move_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, fan, f.points.data(), f.moved.data(), tangent,
+  FQ_LAUNCH(tangential_move_kernel, n, s, n, fan, f.points.data(), f.moved.data(), tangent,
                                                                 energy[0]);
-  FQ_CUDA_CHECK_LAUNCH("tangential_move_kernel");
   for (int pass = 0; pass < kEnergyPasses; ++pass) {
-    ring_mean_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, fan, energy[pass & 1], energy[(pass + 1) & 1]);
-    FQ_CUDA_CHECK_LAUNCH("ring_mean_kernel");
+    FQ_LAUNCH(ring_mean_kernel, n, s, n, fan, energy[pass & 1], energy[(pass + 1) & 1]);
   }
-  limit_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, tangent, energy[kEnergyPasses & 1],
+  FQ_LAUNCH(limit_kernel, n, s, n, tangent, energy[kEnergyPasses & 1],
                                                       plan.tangential_allowance, f.moved.data());
-  FQ_CUDA_CHECK_LAUNCH("limit_kernel");
 }
 
 }  // namespace fq::cuda

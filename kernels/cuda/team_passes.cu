@@ -47,7 +47,7 @@ struct Slot {
 
 template <int T>
 __device__ Slot slot_of(uint32_t count) {
-  const uint64_t t = uint64_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  const uint64_t t = item_index();
   const uint32_t i = static_cast<uint32_t>(t / T);
   return {i, static_cast<unsigned>(t % T), i < count};
 }
@@ -152,32 +152,33 @@ void with_team_size(int team, Launch&& launch) {
 
 }  // namespace
 
-void team_neighbourhood_quadrics(DeviceFrame& f, float sigma_b, int team, bool fast_exp, cudaStream_t s) {
+void team_neighbourhood_quadrics(DeviceFrame& f, Extent sigma_b, int team, bool fast_exp, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
   FQ_TEAM_LAUNCH(team_neighbourhood, team, f.n, s, g, f.base_p.data(),
-                 Weight{Gaussian::with_sigma(sigma_b), fast_exp}, 2.f * sigma_b, f.nbhd_p.reserve(f.n));
+                 Weight{Gaussian::with_sigma(sigma_b.sigma), fast_exp}, sigma_b.radius, f.nbhd_p.reserve(f.n));
 }
 
-void team_diffuse_quadrics(DeviceFrame& f, const FilterParams& p, int team, bool fast_exp, cudaStream_t s) {
+void team_diffuse_quadrics(DeviceFrame& f, const RunPlan& run, int team, bool fast_exp, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
   FQ_TEAM_LAUNCH(team_diffusion, team, f.n, s, g, f.nbhd_p.data(),
-                 Weight{Gaussian::with_sigma(p.sigma_s), fast_exp},
-                 Weight{Gaussian::with_sigma(p.sigma_r), fast_exp}, 2.f * p.sigma_s, f.bl.reserve(f.n),
+                 Weight{Gaussian::with_sigma(run.sigma_s.sigma), fast_exp},
+                 Weight{Gaussian::with_sigma(run.sigma_r), fast_exp}, run.sigma_s.radius, f.bl.reserve(f.n),
                  f.bl_p.reserve(f.n));
 }
 
-void team_cluster_scores(DeviceFrame& f, const ClusterParams& p, int team, bool fast_exp, cudaStream_t s) {
+void team_cluster_scores(DeviceFrame& f, const RunPlan& run, int team, bool fast_exp, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
-  FQ_TEAM_LAUNCH(team_score, team, f.n, s, g, f.bl.data(), Weight{Gaussian::with_sigma(p.sigma_d), fast_exp},
-                 Weight{Gaussian::with_sigma(p.sigma_q), fast_exp}, 2.f * p.sigma_d,
-                 p.method == ClusterMethod::kEuclidean, f.score.reserve(f.n));
+  FQ_TEAM_LAUNCH(team_score, team, f.n, s, g, f.bl.data(), Weight{Gaussian::with_sigma(run.sigma_d.sigma), fast_exp},
+                 Weight{Gaussian::with_sigma(run.sigma_q), fast_exp}, run.sigma_d.radius,
+                 run.params.clustering.method == ClusterMethod::kEuclidean, f.score.reserve(f.n));
 }
 
-void team_cluster_links(DeviceFrame& f, const ClusterParams& p, int team, bool fast_exp, cudaStream_t s) {
+void team_cluster_links(DeviceFrame& f, const RunPlan& run, int team, bool fast_exp, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
+  const ClusterParams& p = run.params.clustering;
   FQ_TEAM_LAUNCH(team_link, team, f.n, s, g, f.bl_p.data(), f.score.data(),
-                 Weight{Gaussian::with_sigma(p.sigma_d), fast_exp},
-                 Weight{Gaussian::with_sigma(p.sigma_q), fast_exp}, 2.f * p.sigma_d,
+                 Weight{Gaussian::with_sigma(run.sigma_d.sigma), fast_exp},
+                 Weight{Gaussian::with_sigma(run.sigma_q), fast_exp}, run.sigma_d.radius,
                  p.method == ClusterMethod::kEuclidean, 1.0f - p.theta, f.next.reserve(f.n));
 }
 

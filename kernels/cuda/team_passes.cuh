@@ -6,12 +6,13 @@
 
 #include "kernels/cuda/device_frame.cuh"
 #include "core/params.h"
+#include "kernels/frame_plan.h"
 
 namespace fq::cuda {
 
-void team_neighbourhood_quadrics(DeviceFrame& f, float sigma_b, int team, bool fast_exp, cudaStream_t s);
-void team_diffuse_quadrics(DeviceFrame& f, const FilterParams& p, int team, bool fast_exp, cudaStream_t s);
-void team_cluster_scores(DeviceFrame& f, const ClusterParams& p, int team, bool fast_exp, cudaStream_t s);
-void team_cluster_links(DeviceFrame& f, const ClusterParams& p, int team, bool fast_exp, cudaStream_t s);
+void team_neighbourhood_quadrics(DeviceFrame& f, Extent sigma_b, int team, bool fast_exp, cudaStream_t s);
+void team_diffuse_quadrics(DeviceFrame& f, const RunPlan& run, int team, bool fast_exp, cudaStream_t s);
+void team_cluster_scores(DeviceFrame& f, const RunPlan& run, int team, bool fast_exp, cudaStream_t s);
+void team_cluster_links(DeviceFrame& f, const RunPlan& run, int team, bool fast_exp, cudaStream_t s);
 
 }  // namespace fq::cuda

@@ -92,25 +92,31 @@ TEST_F(CudaRefineParity, RealMeshesWithNoise) {
 // stated tolerances, frame after frame, with the same pull towards the history.
 TEST_F(CudaRefineParity, TemporalSequence) {
   const Mesh sphere = make_icosphere(5);
-  Params p;
-  p.filtering.temporal = 0.75f;
-  TemporalHistory cpu_history, gpu_history;
-  cpu_->set_history(&cpu_history);
-  gpu_->set_history(&gpu_history);
-  for (uint64_t seed = 1; seed <= 4; ++seed) {
-    Mesh frame = sphere;
-    add_gaussian_noise(frame, 0.2, seed);
-    Parity r;
-    run_both(*cpu_, *gpu_, frame.view(), p, r);
-    expect_parity(r, p);
-    EXPECT_NEAR(r.gpu.prior_share, r.cpu.prior_share, 0.01f) << "frame " << seed;
-    EXPECT_NEAR(r.gpu.prior_coverage, r.cpu.prior_coverage, 0.001f) << "frame " << seed;
-    EXPECT_EQ(r.gpu.prior_coverage > 0.f, seed > 1);
+  // Alone, and with clustering on the filtered mesh, which reads the frame's positions after
+  // the temporal step on both engines (kernels/engine_process.cpp).
+  for (const bool cluster : {false, true}) {
+    Params p;
+    p.filtering.temporal = 0.75f;
+    p.cluster = cluster;
+    p.clustering.target_clusters = cluster ? 12 : 0;
+    TemporalHistory cpu_history, gpu_history;
+    cpu_->set_history(&cpu_history);
+    gpu_->set_history(&gpu_history);
+    for (uint64_t seed = 1; seed <= 4; ++seed) {
+      Mesh frame = sphere;
+      add_gaussian_noise(frame, 0.2, seed);
+      Parity r;
+      run_both(*cpu_, *gpu_, frame.view(), p, r);
+      expect_parity(r, p);
+      EXPECT_NEAR(r.gpu.prior_share, r.cpu.prior_share, 0.01f) << "frame " << seed;
+      EXPECT_NEAR(r.gpu.prior_coverage, r.cpu.prior_coverage, 0.001f) << "frame " << seed;
+      EXPECT_EQ(r.gpu.prior_coverage > 0.f, seed > 1);
+    }
+    cpu_->set_history(nullptr);
+    gpu_->set_history(nullptr);
+    EXPECT_EQ(gpu_history.frames, 4u);
+    EXPECT_EQ(gpu_history.normals.size(), gpu_history.positions.size()) << "the host history is whole";
   }
-  cpu_->set_history(nullptr);
-  gpu_->set_history(nullptr);
-  EXPECT_EQ(gpu_history.frames, 4u);
-  EXPECT_EQ(gpu_history.normals.size(), gpu_history.positions.size()) << "the host history is whole";
 }
 
 // A frame far from the last (a scene cut) restarts the history on the device too, and is left

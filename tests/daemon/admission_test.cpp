@@ -169,9 +169,11 @@ TEST(DaemonAdmission, APartOverTheCapIsRefusedAtTheSocket) {
   EXPECT_EQ(h.counters("cam").frames_in(), 1u) << "the oversized message never reached the daemon";
 }
 
+// With clustering, the plan runs the sigma_s neighbourhoods ("qf+" alone does not read sigma_s).
 TEST(DaemonAdmission, AHugeNeighbourhoodIsRefusedBeforeTheEngine) {
   DaemonHarness h;
   client::FrameSpec s = spec_for("cam");
+  s.compute = wire::FILTER_AND_CLUSTER;
   s.overrides.set_sigma_s(1e4f);
   h.send(noisy_sphere(), s, 1);
   const client::ReceivedResult e = h.receive("cam");

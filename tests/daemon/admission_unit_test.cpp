@@ -86,6 +86,40 @@ TEST(WorkBudget, HugeSigmaIsRefusedNamingItDefaultsPass) {
   EXPECT_NE(s.message().find("max_neighbour_work"), std::string::npos) << s.message();
 }
 
+// The budget reads the frame's plan (kernels/frame_plan.h): "qf+" alone runs no neighbourhood
+// pass of sigma_s (before, it was counted as if it ran "qf"'s), and its refinement is counted:
+// at the known noise, or at kBudgetNoise when the noise is estimated. At noise 0.5: 5 rounds of
+// 6 face-normal passes (26 visits a vertex) and 10 vertex passes plus the fan setup (6 each),
+// then the 4 passes of the tangential limit: 5 * (156 + 66) + 24 = 1134 visits per vertex.
+TEST(WorkBudget, CountsTheRefinementFromThePlan) {
+  EXPECT_DOUBLE_EQ(expected_refine_visits(0.5f), 1134.0);
+  EXPECT_DOUBLE_EQ(expected_refine_visits(0.f), 26.0 + 6.0 * 3 + 24.0);  // 1 round, 1 normal, 2 vertex passes
+  Params p;
+  EXPECT_DOUBLE_EQ(expected_neighbour_work(p, 1000), 1134.0 * 1000);
+  p.filtering.sigma_s = 1e4f;  // read by no pass of "qf+" alone
+  EXPECT_TRUE(check_work_budget(p, 35'000, 2e10).ok());
+  p.filtering.refine.known_noise = 10.f;  // 1601 rounds of 101 face-normal passes
+  p.filtering.refine.strength = 1.f;
+  const Status s = check_work_budget(p, 35'000, 2e10);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("known_noise"), std::string::npos) << s.message();
+}
+
+// Clustering on the filtered mesh runs the engine three times; before, the budget counted one
+// run (the filter's sigma_b and sigma_s, the clustering's sigma_d twice).
+TEST(WorkBudget, CountsTheClusteringGeometryRuns) {
+  Params p;
+  p.filtering.method = FilterMethod::kQuadric;  // sigma_s 1.5, sigma_b = sigma_n = 0.75
+  p.cluster = true;                              // sigma_d 5
+  const double one_run = expected_neighbours(0.75) + expected_neighbours(1.5) + 2 * expected_neighbours(5.0);
+  EXPECT_NEAR(expected_neighbour_work(p, 1), one_run, 1e-9 * one_run);
+  p.clustering.geometry = ClusterGeometry::kFiltered;
+  const double frame = expected_neighbours(0.75) + expected_neighbours(1.5);
+  const double geometry = frame + expected_neighbours(0.75);  // constrained: the normals within sigma_n
+  const double clusters = expected_neighbours(0.375) + expected_neighbours(0.75) + 2 * expected_neighbours(5.0);
+  EXPECT_NEAR(expected_neighbour_work(p, 1), frame + geometry + clusters, 1e-9 * one_run);
+}
+
 }  // namespace
 }  // namespace fq::daemon
 

@@ -34,12 +34,13 @@ void run_stages(const Mesh& mesh, const Params& p, StageRun& r) {
   ASSERT_TRUE(validate(p).ok());
   ASSERT_TRUE(check_mesh(mesh.view()).ok());
   ASSERT_TRUE(compute_normalization(mesh.view(), r.f.norm).ok());
-  cpu::sort_into_grid(mesh.view(), p.filtering.sigma_s, r.f);
+  const RunPlan run = plan_frame(p).runs[0];
+  cpu::sort_into_grid(mesh.view(), run.grid_cell, r.f);
   cpu::base_quadrics(r.f, 2);
-  cpu::neighbourhood_quadrics(r.f, p.filtering.effective_sigma_b(), 2);
-  cpu::diffuse_quadrics(r.f, p.filtering, 2);
-  cpu::cluster_scores(r.f, p.clustering, 2);
-  cpu::cluster_links(r.f, p.clustering, 2);
+  cpu::neighbourhood_quadrics(r.f, run.sigma_b, 2);
+  cpu::diffuse_quadrics(r.f, run, 2);
+  cpu::cluster_scores(r.f, run, 2);
+  cpu::cluster_links(r.f, run, 2);
   r.k = cpu::cluster_labels(r.f, r.labels, 2);
 }
 

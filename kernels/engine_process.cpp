@@ -1,0 +1,105 @@
+// Engine::process, how every engine runs a frame: one parameter check, one plan, the plan's
+// runs through the engine's run_plan() (the frame's own run followed by the temporal step),
+// cluster control on their results and the cancel check. Before, each engine spelled this out
+// itself and cluster control called process() back for each extra run, so a frame checked its
+// parameters up to six times.
+#include <string>
+
+#include "core/parallel_for.h"
+#include "kernels/cluster_control.h"
+#include "kernels/engine.h"
+
+namespace fq {
+
+namespace {
+
+// The outputs a run sets, reset before it so that nothing of the frame before shows through.
+// Labels are left to the run (resized and overwritten: a stream of same-sized clustering
+// frames does not zero them every time); process() clears them where the run gave none.
+void reset_run_outputs(FrameResult& out) {
+  out.timings.clear();
+  out.num_clusters = 0;
+  out.theta = 0.f;
+  out.link_parent.clear();
+  out.link_p.clear();
+  out.noise_estimate = 0.f;
+  out.filter_noise = 0.f;
+  out.prior_coverage = 0.f;
+  out.prior_share = 0.f;
+  out.history_reset = false;
+}
+
+void append_timings(const char* prefix, const FrameResult& from, FrameResult& to) {
+  for (const PassTiming& t : from.timings) to.timings.push_back({std::string(prefix) + t.name, t.ms});
+}
+
+}  // namespace
+
+int Engine::host_threads() const { return hardware_threads(); }
+
+Status Engine::process(const MeshView& mesh, const Params& params, FrameResult& out) {
+  ++counts_.frames;
+  reset_run_outputs(out);
+  ++counts_.validations;
+  Status st = validate(params);
+  if (st.ok()) st = run_frame(mesh, plan_frame(params), out);
+  // A stopped frame is an error, never a result.
+  if (st.ok()) st = check_cancel();
+  if (!st.ok() || !params.cluster) out.labels.clear();
+  return st;
+}
+
+Status Engine::run_once(const MeshView& mesh, const RunPlan& run, FrameResult& out) {
+  ++counts_.runs;
+  reset_run_outputs(out);
+  Status st = run_plan(mesh, run, out);
+  if (!st.ok() || !run.params.cluster) out.labels.clear();
+  return st;
+}
+
+// The frame's own run writes `out`; the geometry and clustering runs write cluster_runs_
+// (kept for the next frame), and the clustering run reads the positions of the run before it.
+Status Engine::run_frame(const MeshView& mesh, const FramePlan& plan, FrameResult& out) {
+  const FrameResult* shape = &out;
+  for (const RunPlan& run : plan.runs) {
+    switch (run.role) {
+      case RunRole::kFrame:
+        FQ_RETURN_IF_ERROR(run_once(mesh, run, out));
+        // The temporal step on the frame's own result, before a clustering run reads it: both
+        // engines then cluster the same positions (the CUDA engine pulls them on the device
+        // inside its run, and here its history takes them). A stopped frame does not become
+        // the stream's history.
+        FQ_RETURN_IF_ERROR(check_cancel());
+        temporal_step(mesh, run.params, out);
+        break;
+      case RunRole::kGeometry:
+        FQ_RETURN_IF_ERROR(run_once(mesh, run, cluster_runs_.geometry));
+        shape = &cluster_runs_.geometry;
+        if (plan.params.filter) {
+          append_timings(run.timing_prefix(), cluster_runs_.geometry, out);
+        } else {  // the frame's positions are its input, its passes the geometry's
+          out.timings = cluster_runs_.geometry.timings;
+          out.mean_edge = cluster_runs_.geometry.mean_edge;
+          out.positions.assign(mesh.positions, mesh.positions + 3 * size_t(mesh.num_vertices));
+        }
+        break;
+      case RunRole::kClustering: {
+        MeshView filtered = mesh;
+        filtered.positions = shape->positions.data();
+        FrameResult& c = cluster_runs_.clusters;
+        FQ_RETURN_IF_ERROR(run_once(filtered, run, c));
+        append_timings(run.timing_prefix(), c, out);
+        out.labels.swap(c.labels);
+        out.link_parent.swap(c.link_parent);
+        out.link_p.swap(c.link_p);
+        out.num_clusters = c.num_clusters;
+        out.theta = c.theta;
+        break;
+      }
+    }
+  }
+  if (plan.cluster_control) finish_cluster_control(mesh, plan.params.clustering, out);
+  return {};
+}
+
+}  // namespace fq
