@@ -111,7 +111,8 @@ std::vector<std::string> cluster_geometry_names();
 /// rows only with `cluster`.
 Status validate(const Params& p);
 
-/// The one place for the methods' names on command lines, in configs and in JSON:
+/// The methods' names on command lines, in configs, on fqctl and in JSON, read from the enum
+/// rows of the parameter table (core/param_table.h), which also hold their wire numbers:
 /// "qf+" | "qf" | "bf" (FilterMethod) and "quadric" | "euclidean" (ClusterMethod).
 const char* method_name(FilterMethod m);
 const char* method_name(ClusterMethod m);
