@@ -100,19 +100,19 @@ const char* filter_method_name(FilterMethod m);
 /// Parses a name of filter_method_name(); false for anything else.
 bool parse_filter_method(const std::string& s, FilterMethod& out);
 
-/// Clear message for the first bad "qf+" value (negative, NaN or huge noise or strength).
-Status validate(const RefineParams& r);
-
 /// "auto" | "input" | "filtered" (command lines, config files).
 bool parse_cluster_geometry(const std::string& s, ClusterGeometry& out);
 const char* cluster_geometry_name(ClusterGeometry g);
 /// Every name parse_cluster_geometry accepts, in enum order (help texts, Python choices).
 std::vector<std::string> cluster_geometry_names();
 
-/// Clear message for the first bad value (sigma <= 0, NaN, theta outside (0, 1], ...).
+/// Clear message for the first bad value (sigma <= 0, NaN, theta outside (0, 1], ...): each
+/// row of the parameter table (core/param_table.h) checked against its range; the clustering's
+/// rows only with `cluster`.
 Status validate(const Params& p);
 
-/// The one place for the methods' names on command lines, in configs and in JSON:
+/// The methods' names on command lines, in configs, on fqctl and in JSON, read from the enum
+/// rows of the parameter table (core/param_table.h), which also hold their wire numbers:
 /// "qf+" | "qf" | "bf" (FilterMethod) and "quadric" | "euclidean" (ClusterMethod).
 const char* method_name(FilterMethod m);
 const char* method_name(ClusterMethod m);

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/param_table.h"
 #include "daemon/toml_reader.h"
 
 namespace fq::daemon {
@@ -13,44 +14,49 @@ namespace {
 
 constexpr int64_t kMaxThreads = 256;
 
-// "method" by its name (core/params.h), FilterMethod or ClusterMethod.
-template <typename Method>
-void read_method(TomlReader& r, Method& m) {
-  std::string name = method_name(m);
-  r.read("method", name);
-  if (const std::optional<Method> parsed = parse_method<Method>(name))
-    m = *parsed;
-  else
-    r.fail("method",
-           "must be " + join_names(method_names<Method>(), " or ", true) + " (got \"" + name + "\")");
+// The TOML table of a parameter row: [filter] holds the filter's, "qf+"'s noise and the
+// temporal strength, [cluster] the clustering's.
+const char* toml_table(ParamGroup g) { return g == ParamGroup::kCluster ? "cluster" : "filter"; }
+
+// One row of the parameter table from its key, if present; the reader records a bad value.
+void read_row(TomlReader& r, const ParamRow& row, Params& p) {
+  const char* key = row.toml_key();
+  switch (row.kind) {
+    case ParamKind::kFloat: {
+      auto v = static_cast<float>(row.get(p));
+      r.read(key, v);
+      row.set(p, v);
+      return;
+    }
+    case ParamKind::kUint: {
+      auto v = static_cast<uint32_t>(row.get(p));
+      r.read(key, v, static_cast<int64_t>(row.lo), static_cast<int64_t>(row.hi));
+      row.set(p, v);
+      return;
+    }
+    case ParamKind::kBool: {
+      bool v = row.get(p) != 0.0;
+      r.read(key, v);
+      row.set(p, v);
+      return;
+    }
+    case ParamKind::kEnum: {
+      std::string name = format_param(row, row.get(p));
+      r.read(key, name);
+      double v = 0;
+      if (parse_param(row, name, v).ok())
+        row.set(p, v);
+      else
+        r.fail(key, "must be " + choice_names(row, " or ", true) + " (got \"" + name + "\")");
+      return;
+    }
+  }
 }
 
-void read_filter(TomlReader& r, FilterParams& f) {
-  read_method(r, f.method);
-  r.read("sigma_s", f.sigma_s);
-  r.read("sigma_r", f.sigma_r);
-  r.read("sigma_b", f.sigma_b);
-  r.read("sigma_n", f.sigma_n);
-  r.read("constrained", f.constrained);
-  r.read("tikhonov", f.tikhonov);
-  r.read("known_noise", f.refine.known_noise);
-  r.read("strength", f.refine.strength);
-  r.read("temporal", f.temporal);
-}
-
-void read_cluster(TomlReader& r, ClusterParams& c) {
-  read_method(r, c.method);
-  r.read("sigma_d", c.sigma_d);
-  r.read("sigma_q", c.sigma_q);
-  r.read("theta", c.theta);
-  r.read("target_clusters", c.target_clusters, 0, 10'000'000);
-  r.read("min_cluster_size", c.min_cluster_size, 0, 10'000'000);
-  std::string geometry = cluster_geometry_name(c.geometry);
-  r.read("geometry", geometry);
-  if (!parse_cluster_geometry(geometry, c.geometry))
-    r.fail("geometry", "must be \"auto\", \"input\" or \"filtered\" (got \"" + geometry + "\")");
-  r.read("track_ids", c.track_ids);
-  r.read("sticky_rings", c.sticky_rings, 0, 64);
+// Every row of the parameter table that lives in TOML table `table` ("filter" or "cluster").
+void read_params(TomlReader& r, std::string_view table, Params& p) {
+  for (const ParamRow& row : param_table())
+    if (row.on(kToml) && table == toml_table(row.group)) read_row(r, row, p);
 }
 
 void read_output(TomlReader& r, OutputEncoding& o) {
@@ -85,8 +91,8 @@ Status read_stream(const toml::table& t, const std::string& source, const std::s
     void (*fn)(TomlReader&, StreamSettings&);
   };
   const Sub subs[] = {
-      {"filter", [](TomlReader& x, StreamSettings& st) { read_filter(x, st.params.filtering); }},
-      {"cluster", [](TomlReader& x, StreamSettings& st) { read_cluster(x, st.params.clustering); }},
+      {"filter", [](TomlReader& x, StreamSettings& st) { read_params(x, "filter", st.params); }},
+      {"cluster", [](TomlReader& x, StreamSettings& st) { read_params(x, "cluster", st.params); }},
       {"output", [](TomlReader& x, StreamSettings& st) { read_output(x, st.output); }},
   };
   for (const Sub& sub : subs) {

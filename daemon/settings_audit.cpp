@@ -1,40 +1,20 @@
 #include "daemon/settings_audit.h"
 
 #include <fmt/format.h>
-#include <google/protobuf/text_format.h>
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
-#include <cctype>
-
+#include "core/param_table.h"
 #include "daemon/stream_admission.h"
-#include "wire/header_codec.h"
 
 namespace fq::daemon {
 namespace {
 
-namespace pb = google::protobuf;
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-
-// The parameters through their wire form, so that the keys are the ones fqctl sets and a
-// field added to ParamOverrides is audited without a change here.
-void wire_fields(const pb::Message& m, std::vector<std::pair<std::string, std::string>>& out) {
-  const pb::Descriptor* d = m.GetDescriptor();
-  const pb::Reflection* r = m.GetReflection();
-  for (int i = 0; i < d->field_count(); ++i) {
-    const pb::FieldDescriptor* f = d->field(i);
-    if (f->is_repeated() || f->cpp_type() == pb::FieldDescriptor::CPPTYPE_MESSAGE) continue;
-    std::string value;
-    if (f->cpp_type() == pb::FieldDescriptor::CPPTYPE_ENUM)
-      value = lower(r->GetEnum(m, f)->name());
-    else
-      pb::TextFormat::PrintFieldValueToString(m, f, -1, &value);
-    out.emplace_back(f->name(), value);
-  }
+// The parameters by the table's wire rows (core/param_table.h), so that the keys are the ones
+// fqctl sets, the values are spelled as configs spell them ("qf+", "auto"), and a row added
+// to the table is audited without a change here.
+void param_fields(const Params& p, std::vector<std::pair<std::string, std::string>>& out) {
+  for (const ParamRow& row : param_table())
+    if (row.on(kWire)) out.emplace_back(row.name, format_param(row, row.get(p)));
 }
 
 }  // namespace
@@ -42,9 +22,7 @@ void wire_fields(const pb::Message& m, std::vector<std::pair<std::string, std::s
 std::vector<std::pair<std::string, std::string>> settings_fields(const StreamSettings& s) {
   std::vector<std::pair<std::string, std::string>> out;
   out.emplace_back("compute", compute_name(s.params));
-  wire::ParamOverrides params;
-  wire::params_to_wire(s.params, params);
-  wire_fields(params, out);
+  param_fields(s.params, out);
   out.emplace_back("budget_ms", fmt::format("{}", s.budget_ms));
   out.emplace_back("result_form", result_form_name(s.output.form));
   out.emplace_back("position_bits", std::to_string(s.output.position_bits));

@@ -50,6 +50,7 @@ void bind_engine_functions(pyb::module_& m) {
   m.def("filter", &filter, "V"_a, "F"_a, "keywords"_a, "engine"_a, "threads"_a);
   m.def("cluster", &cluster, "V"_a, "F"_a, "keywords"_a, "engine"_a, "threads"_a);
   m.def("keywords", &keyword_rows, "function"_a);
+  m.def("param_rows", &param_rows);
   m.def(
       "engine_name",
       [](const std::string& engine, int threads) {

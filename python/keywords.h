@@ -1,5 +1,5 @@
-// The parameter keywords of fq.filter and fq.cluster, read from fq's parameter structs: one
-// row per member (its Python name, the member, its help). Defaults come from a
+// The parameter keywords of fq.filter and fq.cluster: the rows of the parameter table
+// (core/param_table.h) that name those functions among their surfaces. Defaults come from a
 // default-constructed fq::Params, so Python's signatures and docstrings (which fq/_engine.py
 // builds from these rows) follow the structs and never restate a default.
 #pragma once
@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "core/params.h"
+#include "core/param_table.h"
 
 namespace fq::py {
 
@@ -22,5 +22,9 @@ pybind11::list keyword_rows(const std::string& function);
 /// unknown name or a value of the wrong type, ValueError for a name not among the choices or
 /// a negative count. Ranges are left to fq::validate, as for every other surface.
 void apply_keywords(const std::string& function, const pybind11::dict& keywords, Params& params);
+
+/// Every row of the parameter table as (name, Python keyword, surfaces), surfaces a list of
+/// "fqfilter", "toml", "wire", "filter", "cluster", "Stream", "report": for tests that walk it.
+pybind11::list param_rows();
 
 }  // namespace fq::py

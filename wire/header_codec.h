@@ -7,6 +7,7 @@
 
 #include "wire/fq.pb.h"
 #include "wire/frame_codec.h"
+#include "core/param_table.h"
 #include "core/params.h"
 #include "common/status.h"
 
@@ -58,6 +59,13 @@ std::optional<Compute> compute_from_name(std::string_view name);
 FilterMode to_wire(fq::FilterMethod m);
 ClusterMethodWire to_wire(fq::ClusterMethod m);
 ClusterGeometryWire to_wire(fq::ClusterGeometry g);
+
+/// The field of a kWire row of the parameter table (core/param_table.h) in `o`, as the row's
+/// Params value (an enum's native value); nullopt when unset or an enum's *_DEFAULT.
+/// kInvalidArgument for an enum number outside the row's choices.
+fq::Status wire_value(const fq::ParamRow& row, const ParamOverrides& o, std::optional<double>& out);
+/// Sets the row's field of `o` to `value` (a Params value; an enum by its wire number).
+void set_wire_value(const fq::ParamRow& row, double value, ParamOverrides& o);
 
 /// Every filter and clustering parameter of `p`, each field set: the overrides that turn any
 /// Params into `p` (apply_overrides is its inverse). The compute mode is compute_of(p).

@@ -1,4 +1,5 @@
-// ParamOverrides / Compute <-> fq::Params.
+// ParamOverrides / Compute <-> fq::Params: the parameters by the table's rows (core/param_table.h),
+// each field found by its name through protobuf reflection.
 #include <optional>
 #include <string>
 #include <string_view>
@@ -6,20 +7,12 @@
 #include <utility>
 
 #include "common/pair_table.h"
+#include "core/param_table.h"
 #include "wire/header_codec.h"
 
 namespace fq::wire {
 namespace {
 
-constexpr std::pair<FilterMode, fq::FilterMethod> kModes[] = {{QF, fq::FilterMethod::kQuadric},
-                                                              {BF, fq::FilterMethod::kBilateral},
-                                                              {QF_PLUS, fq::FilterMethod::kQuadricRefined}};
-constexpr std::pair<ClusterMethodWire, fq::ClusterMethod> kMethods[] = {
-    {QUADRIC, fq::ClusterMethod::kQuadric}, {EUCLIDEAN, fq::ClusterMethod::kEuclidean}};
-constexpr std::pair<ClusterGeometryWire, fq::ClusterGeometry> kGeometries[] = {
-    {GEOMETRY_AUTO, fq::ClusterGeometry::kAuto},
-    {GEOMETRY_INPUT, fq::ClusterGeometry::kInput},
-    {GEOMETRY_FILTERED, fq::ClusterGeometry::kFiltered}};
 /// Params::filter and Params::cluster of each compute mode.
 constexpr std::pair<Compute, std::pair<bool, bool>> kComputes[] = {
     {FILTER, {true, false}}, {CLUSTER, {false, true}}, {FILTER_AND_CLUSTER, {true, true}}};
@@ -39,38 +32,85 @@ fq::Status set_from_wire(const std::pair<Wire, Native> (&table)[N], Wire w, cons
   return {};
 }
 
+namespace pb = google::protobuf;
+
+// Each row's field is found by its name (tests/wire/param_table_wire_test.cpp checks that every
+// kWire row has a ParamOverrides field of that name and a matching type).
+const pb::FieldDescriptor* field_of(const fq::ParamRow& row) {
+  return ParamOverrides::descriptor()->FindFieldByName(row.name);
+}
+
+template <class Wire, class Native>
+Wire wire_enum(const char* row, Native v) {
+  return static_cast<Wire>(fq::choice_wire(*fq::find_param(row), static_cast<int>(v)).value_or(0));
+}
+
 }  // namespace
 
-FilterMode to_wire(fq::FilterMethod m) { return first_of(kModes, m).value_or(QF); }
-ClusterMethodWire to_wire(fq::ClusterMethod m) { return first_of(kMethods, m).value_or(QUADRIC); }
+FilterMode to_wire(fq::FilterMethod m) { return wire_enum<FilterMode>("mode", m); }
+ClusterMethodWire to_wire(fq::ClusterMethod m) { return wire_enum<ClusterMethodWire>("cluster_method", m); }
 ClusterGeometryWire to_wire(fq::ClusterGeometry g) {
-  return first_of(kGeometries, g).value_or(GEOMETRY_AUTO);
+  return wire_enum<ClusterGeometryWire>("cluster_geometry", g);
+}
+
+fq::Status wire_value(const fq::ParamRow& row, const ParamOverrides& o, std::optional<double>& out) {
+  out.reset();
+  const pb::FieldDescriptor* f = field_of(row);
+  const pb::Reflection* r = o.GetReflection();
+  if (!f || !r->HasField(o, f)) return {};
+  switch (f->cpp_type()) {
+    case pb::FieldDescriptor::CPPTYPE_FLOAT:
+      out = r->GetFloat(o, f);
+      return {};
+    case pb::FieldDescriptor::CPPTYPE_UINT32:
+      out = r->GetUInt32(o, f);
+      return {};
+    case pb::FieldDescriptor::CPPTYPE_BOOL:
+      out = r->GetBool(o, f) ? 1.0 : 0.0;
+      return {};
+    case pb::FieldDescriptor::CPPTYPE_ENUM: {
+      const int w = r->GetEnumValue(o, f);
+      if (w == 0) return {};  // the enum's *_DEFAULT: keep the stream's value
+      const std::optional<int> v = fq::choice_value(row, w);
+      if (!v) return invalid_argument(std::string(row.name) + " " + std::to_string(w) + " is not a " + f->enum_type()->name());
+      out = *v;
+      return {};
+    }
+    default:
+      return invalid_argument(std::string(row.name) + " has no wire type fq knows");
+  }
+}
+
+void set_wire_value(const fq::ParamRow& row, double value, ParamOverrides& o) {
+  const pb::FieldDescriptor* f = field_of(row);
+  if (!f) return;
+  const pb::Reflection* r = o.GetReflection();
+  switch (f->cpp_type()) {
+    case pb::FieldDescriptor::CPPTYPE_FLOAT:
+      r->SetFloat(&o, f, static_cast<float>(value));
+      break;
+    case pb::FieldDescriptor::CPPTYPE_UINT32:
+      r->SetUInt32(&o, f, static_cast<uint32_t>(value));
+      break;
+    case pb::FieldDescriptor::CPPTYPE_BOOL:
+      r->SetBool(&o, f, value != 0.0);
+      break;
+    case pb::FieldDescriptor::CPPTYPE_ENUM:
+      r->SetEnumValue(&o, f, fq::choice_wire(row, static_cast<int>(value)).value_or(0));
+      break;
+    default:
+      break;
+  }
 }
 
 fq::Status apply_overrides(const ParamOverrides& o, fq::Params& inout) {
   fq::Params p = inout;  // all or nothing: a bad enum leaves `inout` untouched
-  if (o.has_sigma_s()) p.filtering.sigma_s = o.sigma_s();
-  if (o.has_sigma_r()) p.filtering.sigma_r = o.sigma_r();
-  if (o.has_sigma_b()) p.filtering.sigma_b = o.sigma_b();
-  if (o.has_sigma_n()) p.filtering.sigma_n = o.sigma_n();
-  if (o.has_constrained()) p.filtering.constrained = o.constrained();
-  if (o.has_tikhonov()) p.filtering.tikhonov = o.tikhonov();
-  if (o.has_known_noise()) p.filtering.refine.known_noise = o.known_noise();
-  if (o.has_strength()) p.filtering.refine.strength = o.strength();
-  if (o.has_temporal()) p.filtering.temporal = o.temporal();
-  if (o.has_mode()) FQ_RETURN_IF_ERROR(set_from_wire(kModes, o.mode(), "filter mode", p.filtering.method));
-  if (o.has_sigma_d()) p.clustering.sigma_d = o.sigma_d();
-  if (o.has_sigma_q()) p.clustering.sigma_q = o.sigma_q();
-  if (o.has_theta()) p.clustering.theta = o.theta();
-  if (o.has_cluster_method())
-    FQ_RETURN_IF_ERROR(set_from_wire(kMethods, o.cluster_method(), "cluster method", p.clustering.method));
-  if (o.has_target_clusters()) p.clustering.target_clusters = o.target_clusters();
-  if (o.has_cluster_geometry())
-    FQ_RETURN_IF_ERROR(
-        set_from_wire(kGeometries, o.cluster_geometry(), "cluster geometry", p.clustering.geometry));
-  if (o.has_min_cluster_size()) p.clustering.min_cluster_size = o.min_cluster_size();
-  if (o.has_track_ids()) p.clustering.track_ids = o.track_ids();
-  if (o.has_sticky_rings()) p.clustering.sticky_rings = o.sticky_rings();
+  for (const fq::ParamRow& row : fq::param_table()) {
+    if (!row.on(fq::kWire)) continue;
+    std::optional<double> v;
+    FQ_RETURN_IF_ERROR(wire_value(row, o, v));
+    if (v) row.set(p, *v);
+  }
   inout = p;
   return {};
 }
@@ -91,25 +131,8 @@ const char* compute_name(Compute c) { return second_of(kComputeNames, c).value_o
 std::optional<Compute> compute_from_name(std::string_view name) { return first_of(kComputeNames, name); }
 
 void params_to_wire(const fq::Params& p, ParamOverrides& out) {
-  out.set_sigma_s(p.filtering.sigma_s);
-  out.set_sigma_r(p.filtering.sigma_r);
-  out.set_sigma_b(p.filtering.sigma_b);
-  out.set_sigma_n(p.filtering.sigma_n);
-  out.set_constrained(p.filtering.constrained);
-  out.set_tikhonov(p.filtering.tikhonov);
-  out.set_known_noise(p.filtering.refine.known_noise);
-  out.set_strength(p.filtering.refine.strength);
-  out.set_temporal(p.filtering.temporal);
-  out.set_mode(to_wire(p.filtering.method));
-  out.set_sigma_d(p.clustering.sigma_d);
-  out.set_sigma_q(p.clustering.sigma_q);
-  out.set_theta(p.clustering.theta);
-  out.set_cluster_method(to_wire(p.clustering.method));
-  out.set_target_clusters(p.clustering.target_clusters);
-  out.set_cluster_geometry(to_wire(p.clustering.geometry));
-  out.set_min_cluster_size(p.clustering.min_cluster_size);
-  out.set_track_ids(p.clustering.track_ids);
-  out.set_sticky_rings(p.clustering.sticky_rings);
+  for (const fq::ParamRow& row : fq::param_table())
+    if (row.on(fq::kWire)) set_wire_value(row, row.get(p), out);
 }
 
 }  // namespace fq::wire

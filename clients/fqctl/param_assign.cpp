@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
-#include <cstdlib>
 #include <google/protobuf/text_format.h>
+
+#include <optional>
+
+#include "core/param_table.h"
+#include "wire/header_codec.h"
 
 namespace fq::client {
 namespace {
@@ -21,19 +24,13 @@ std::string upper(std::string s) {
   return s;
 }
 
-// Whole-string number parsing: "2.5x" or "" is an error, not 2.5 or 0.
-bool parse_double(const std::string& s, double& out) {
-  if (s.empty()) return false;
-  char* end = nullptr;
-  out = std::strtod(s.c_str(), &end);
-  return end == s.c_str() + s.size() && std::isfinite(out);
-}
-
-bool parse_bool(const std::string& s, bool& out) {
-  const std::string v = lower(s);
-  if (v == "true" || v == "1" || v == "on" || v == "yes") return out = true, true;
-  if (v == "false" || v == "0" || v == "off" || v == "no") return out = false, true;
-  return false;
+// A number or boolean of SetParams' own fields (budget_ms, position_bits...), read as the
+// parameter table reads its rows.
+Status parse_scalar(const pb::FieldDescriptor* f, ParamKind kind, const std::string& value, double& out) {
+  ParamRow row{};
+  row.name = f->name().c_str();
+  row.kind = kind;
+  return parse_param(row, value, out);
 }
 
 // Fields a user may set: scalars and enums (not the stream id or nested messages).
@@ -44,9 +41,11 @@ bool settable(const pb::FieldDescriptor* f) {
 
 std::string valid_keys(const wire::SetParams& q) {
   std::string keys;
-  for (const pb::Descriptor* d : {q.params().GetDescriptor(), q.GetDescriptor()})
-    for (int i = 0; i < d->field_count(); ++i)
-      if (settable(d->field(i))) keys += (keys.empty() ? "" : ", ") + d->field(i)->name();
+  for (const ParamRow& row : param_table())
+    if (row.on(kWire)) keys += (keys.empty() ? "" : ", ") + std::string(row.name);
+  const pb::Descriptor* d = q.GetDescriptor();
+  for (int i = 0; i < d->field_count(); ++i)
+    if (settable(d->field(i))) keys += ", " + d->field(i)->name();
   return keys;
 }
 
@@ -73,32 +72,24 @@ Status set_enum(pb::Message& m, const pb::FieldDescriptor* f, const std::string&
 Status set_field(pb::Message& m, const pb::FieldDescriptor* f, const std::string& value) {
   const pb::Reflection* r = m.GetReflection();
   double d = 0;
-  bool b = false;
   switch (f->cpp_type()) {
     case pb::FieldDescriptor::CPPTYPE_ENUM:
       return set_enum(m, f, value);
     case pb::FieldDescriptor::CPPTYPE_BOOL:
-      if (!parse_bool(value, b)) return invalid_argument(f->name() + " must be true or false (got \"" + value + "\")");
-      r->SetBool(&m, f, b);
+      FQ_RETURN_IF_ERROR(parse_scalar(f, ParamKind::kBool, value, d));
+      r->SetBool(&m, f, d != 0.0);
       return {};
     case pb::FieldDescriptor::CPPTYPE_FLOAT:
     case pb::FieldDescriptor::CPPTYPE_DOUBLE:
-      if (!parse_double(value, d)) return invalid_argument(f->name() + " must be a number (got \"" + value + "\")");
+      FQ_RETURN_IF_ERROR(parse_scalar(f, ParamKind::kFloat, value, d));
       if (f->cpp_type() == pb::FieldDescriptor::CPPTYPE_FLOAT)
         r->SetFloat(&m, f, static_cast<float>(d));
       else
         r->SetDouble(&m, f, d);
       return {};
-    case pb::FieldDescriptor::CPPTYPE_INT32:
     case pb::FieldDescriptor::CPPTYPE_UINT32:
-    case pb::FieldDescriptor::CPPTYPE_INT64:
-    case pb::FieldDescriptor::CPPTYPE_UINT64:
-      if (!parse_double(value, d) || d != std::floor(d) || d < 0 || d > 4294967295.0)
-        return invalid_argument(f->name() + " must be a whole number (got \"" + value + "\")");
-      if (f->cpp_type() == pb::FieldDescriptor::CPPTYPE_INT32) r->SetInt32(&m, f, static_cast<int32_t>(d));
-      if (f->cpp_type() == pb::FieldDescriptor::CPPTYPE_UINT32) r->SetUInt32(&m, f, static_cast<uint32_t>(d));
-      if (f->cpp_type() == pb::FieldDescriptor::CPPTYPE_INT64) r->SetInt64(&m, f, static_cast<int64_t>(d));
-      if (f->cpp_type() == pb::FieldDescriptor::CPPTYPE_UINT64) r->SetUInt64(&m, f, static_cast<uint64_t>(d));
+      FQ_RETURN_IF_ERROR(parse_scalar(f, ParamKind::kUint, value, d));
+      r->SetUInt32(&m, f, static_cast<uint32_t>(d));
       return {};
     default:
       return invalid_argument(f->name() + " cannot be set from the command line");
@@ -130,9 +121,13 @@ Status assign_param(const std::string& key_value, wire::SetParams& out) {
   if (eq == std::string::npos || eq == 0)
     return invalid_argument("expected key=value, got \"" + key_value + "\"");
   const std::string key = lower(key_value.substr(0, eq)), value = key_value.substr(eq + 1);
-  pb::Message* params = out.mutable_params();
-  if (const pb::FieldDescriptor* f = params->GetDescriptor()->FindFieldByName(key); settable(f))
-    return set_field(*params, f, value);
+  if (const ParamRow* row = find_param(key); row && row->on(kWire)) {
+    double v = 0;
+    // Enum names in any case ("BF" for "bf"), as for SetParams' own enums below.
+    FQ_RETURN_IF_ERROR(parse_param(*row, row->kind == ParamKind::kEnum ? lower(value) : value, v));
+    wire::set_wire_value(*row, v, *out.mutable_params());
+    return {};
+  }
   if (const pb::FieldDescriptor* f = out.GetDescriptor()->FindFieldByName(key); settable(f))
     return set_field(out, f, value);
   return invalid_argument("unknown parameter '" + key + "'; one of: " + valid_keys(out));
@@ -141,26 +136,16 @@ Status assign_param(const std::string& key_value, wire::SetParams& out) {
 std::vector<std::pair<std::string, std::string>> describe_params(const wire::ControlReply& r) {
   // The reply carries each settable field of SetParams outside `params` (compute,
   // result_form) under the same name: found by reflection, as assign_param finds keys.
-  std::vector<std::pair<std::string, std::string>> out = describe_fields(r.params());
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const ParamRow& row : param_table()) {
+    std::optional<double> v;
+    if (row.on(kWire) && wire::wire_value(row, r.params(), v).ok() && v) out.emplace_back(row.name, format_param(row, *v));
+  }
   const pb::Descriptor* set = wire::SetParams::descriptor();
   for (int i = 0; i < set->field_count(); ++i)
     if (settable(set->field(i)))
       if (const pb::FieldDescriptor* f = r.GetDescriptor()->FindFieldByName(set->field(i)->name()))
         out.emplace_back(f->name(), field_text(r, f));
-  return out;
-}
-
-std::vector<std::pair<std::string, std::string>> describe_fields(const pb::Message& m) {
-  // Every field in declaration order: a proto3 field at its default (sigma_b = 0) is a
-  // real value here, not an absent one; only explicitly optional unset fields are skipped.
-  std::vector<std::pair<std::string, std::string>> out;
-  const pb::Descriptor* d = m.GetDescriptor();
-  for (int i = 0; i < d->field_count(); ++i) {
-    const pb::FieldDescriptor* f = d->field(i);
-    if (f->is_repeated() || f->cpp_type() == pb::FieldDescriptor::CPPTYPE_MESSAGE) continue;
-    if (f->has_presence() && !m.GetReflection()->HasField(m, f)) continue;
-    out.emplace_back(f->name(), field_text(m, f));
-  }
   return out;
 }
 

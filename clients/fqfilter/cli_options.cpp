@@ -5,92 +5,38 @@
 #include <iostream>
 
 #include "clients/common/defaulted_option.h"
-#include "clients/common/member_options.h"
 #include "clients/common/tool_app.h"
+#include "clients/fqfilter/param_options.h"
 
 namespace fq::cli {
 
 namespace {
 
 using client::add_defaulted;
-using client::add_member_options;
 using client::add_ranged;
-using client::MemberOption;
 
-// Every member of RefineParams, in --help's order: one option a row, its help under its flag.
-// clang-format off
-const MemberOption<RefineParams> kRefineOptions[] = {
-    {"--known-noise", &RefineParams::known_noise,
-     "Noise to filter for, in mean edge lengths (along the normal); 0 = estimated per mesh"},
-    {"--strength", &RefineParams::strength,
-     "Multiplies the noise the filter's strengths come from (2: as for twice the noise; 0: no filtering)"},
-};
-// clang-format on
+// The parameter groups below are added after app.option_defaults()->always_capture_default():
+// every option shows its default in --help; option_defaults()->group() names the group.
 
-// The groups below are added after app.option_defaults()->always_capture_default(): every
-// option of theirs shows its default in --help; option_defaults()->group() names the group.
-
-void add_filter_options(CLI::App& app, Options& o, std::string& mode) {
-  FilterParams& f = o.params.filtering;
+void add_parameter_groups(CLI::App& app, Options& o, bool& no_filter) {
   app.option_defaults()->group("Filter");
-  app.add_option("--mode", mode,
-                 "Filter: qf+ (fq's filter, its strength derived from the noise it estimates), qf (the "
-                 "paper's filtered quadrics exactly) or bf (bilateral baseline)")
-      ->check(CLI::IsMember(method_names<FilterMethod>()));
-  app.add_option("--sigma-s", f.sigma_s, "qf, bf and the clustering: spatial extent of the diffusion, in mean edge lengths");
-  app.add_option("--sigma-r", f.sigma_r, "qf and the clustering: range extent (RMS quadric distance), in mean edge lengths");
-  app.add_option("--sigma-b", f.sigma_b,
-                 "Finest detail captured by the neighbourhood quadrics; 0 = sigma-s/2");
-  app.add_option("--sigma-n", f.sigma_n, "Normal smoothing of --constrained; 0 = sigma-s/2");
-  app.add_flag("--constrained", f.constrained, "Move vertices along the smoothed normal only");
-  app.add_option("--tikhonov", f.tikhonov,
-                 "Pull toward the current position, relative to tr(A)/3; 0 = paper");
-}
-
-void add_refine_options(CLI::App& app, RefineParams& r) {
+  add_param_options(app, o.params, ParamGroup::kFilter);
   app.option_defaults()->group("Noise (--mode qf+)");
-  add_member_options(app, r, kRefineOptions);
-}
-
-/// Filtering across frames; the default strength applies with --sequence only.
-void add_sequence_options(CLI::App& app, Options& o, float& temporal) {
+  add_param_options(app, o.params, ParamGroup::kNoise);
   app.option_defaults()->group("Sequence (--mode qf+)");
   app.add_flag("--sequence", o.sequence,
                "IN is a folder of one stream's frames: filter them in name order, each with the last "
                "result as evidence (as fqd does with temporal > 0), noise seeded by --seed + frame index, "
                "flicker reported");
-  app.add_option("--temporal", temporal,
-                 "With --sequence: how far a vertex may be pulled to the last result's surface where "
-                 "that surface did not move, in [0, 1]; 0 = each frame alone")
-      ->check(CLI::Range(0.0, 1.0));
-}
-
-void add_cluster_control_options(CLI::App& app, Options& o, std::string& geometry) {
-  ClusterParams& c = o.params.clustering;
+  add_param_options(app, o.params, ParamGroup::kTemporal);
+  app.get_option("--temporal")->default_str(format_param(*find_param("temporal"), kDefaultTemporal) + " with --sequence");
   app.option_defaults()->group("Clustering");
-  app.add_option("--target-clusters", c.target_clusters,
-                 "Choose theta per mesh to give about K clusters (0 = use --theta)");
-  app.add_option("--cluster-geometry", geometry,
-                 "Quadrics the clustering uses: input (the paper), filtered (after a constrained filter) or "
-                 "auto (filtered with --target-clusters)")
-      ->check(CLI::IsMember(cluster_geometry_names()));
-  app.add_option("--min-cluster-size", c.min_cluster_size,
-                 "Split clusters into mesh-connected parts and merge parts under N vertices (0 = off)");
-}
-
-void add_cluster_options(CLI::App& app, Options& o, std::string& method, bool& no_filter) {
-  ClusterParams& c = o.params.clustering;
-  app.option_defaults()->group("Clustering");
-  app.add_flag("--cluster", o.params.cluster, "Compute a cluster label per vertex (written with the output)");
+  add_param_options(app, o.params, ParamGroup::kCompute);
   app.add_flag(
       "--colour-clusters", o.colour_clusters,
       "Cluster colours replace the input's vertex colours (default: they go to cluster_red/green/blue)");
   app.add_flag("--no-filter", no_filter, "Cluster only: keep the input positions (implies --cluster)");
-  app.add_option("--cluster-method", method, "quadric (the paper) or euclidean (plain quick shift)")
-      ->check(CLI::IsMember(method_names<ClusterMethod>()));
-  app.add_option("--sigma-d", c.sigma_d, "Spatial extent of score and proximity, in mean edge lengths");
-  app.add_option("--sigma-q", c.sigma_q, "Range extent of the clustering (RMS quadric distance)");
-  app.add_option("--theta", c.theta, "In (0, 1]; higher gives fewer, larger clusters");
+  add_param_options(app, o.params, ParamGroup::kCluster);
 }
 
 void add_run_options(CLI::App& app, Options& o, std::string& engine, std::string& noise_direction) {
@@ -150,18 +96,12 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
                       "fqfilter"};
   app.name("fqfilter");  // "Usage: fqfilter", whatever path it was started by
   app.footer(kExamples);
-  std::string mode = method_name(o.params.filtering.method), method = method_name(o.params.clustering.method), engine = "auto",
-              geometry = "auto";
+  std::string engine = "auto";
   bool no_filter = false;
   std::string noise_direction = "iso";
   add_run_options(app, o, engine, noise_direction);
   app.option_defaults()->always_capture_default();
-  add_filter_options(app, o, mode);
-  add_refine_options(app, o.params.filtering.refine);
-  float temporal = kDefaultTemporal;
-  add_sequence_options(app, o, temporal);
-  add_cluster_options(app, o, method, no_filter);
-  add_cluster_control_options(app, o, geometry);
+  add_parameter_groups(app, o, no_filter);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {  // --help, --version
@@ -170,10 +110,6 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
     std::cerr << "fqfilter: error: " << e.what() << " (see fqfilter --help)\n";
     return {false, 2};
   }
-  // CLI::IsMember has accepted only known names.
-  o.params.filtering.method = *parse_method<FilterMethod>(mode);
-  o.params.clustering.method = *parse_method<ClusterMethod>(method);
-  parse_cluster_geometry(geometry, o.params.clustering.geometry);  // checked by IsMember above
   parse_engine_kind(engine, o.engine.kind);
   o.noise_along_normal = noise_direction == "normal";
   if (no_filter) {
@@ -184,7 +120,7 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
     std::cerr << "fqfilter: error: " << why << "\n";
     return {false, 2};
   }
-  if (o.sequence) o.params.filtering.temporal = temporal;
+  if (o.sequence && app.count("--temporal") == 0) o.params.filtering.temporal = kDefaultTemporal;
   if (const std::string why = check_params(o); !why.empty()) {
     std::cerr << "fqfilter: error: " << why << "\n";
     return {false, 2};

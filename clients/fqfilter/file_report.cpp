@@ -10,6 +10,7 @@
 
 #include "clients/fqfilter/cli_options.h"
 #include "common/sample_stats.h"
+#include "core/param_table.h"
 #include "kernels/refine_plan.h"
 
 namespace fq::cli {
@@ -22,10 +23,6 @@ double as_typed(float v) {
   char buf[32];
   const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
   return std::strtod(std::string(buf, end).c_str(), nullptr);
-}
-
-nlohmann::json refine_json(const RefineParams& r) {
-  return {{"known_noise", as_typed(r.known_noise)}, {"strength", as_typed(r.strength)}};
 }
 
 // What "qf+" made of the noise: the estimate, the noise filtered for and the passes that gave.
@@ -41,26 +38,32 @@ nlohmann::json noise_json(const FileReport& r) {
           {"vertex_passes", passes(plan.vertex_passes)}};
 }
 
+nlohmann::json param_json(const ParamRow& row, const Params& p) {
+  const double v = row.effective ? row.effective(p) : row.get(p);
+  switch (row.kind) {
+    case ParamKind::kBool:
+      return v != 0.0;
+    case ParamKind::kUint:
+      return static_cast<uint32_t>(v);
+    case ParamKind::kEnum:
+      return format_param(row, v);
+    case ParamKind::kFloat:
+      break;
+  }
+  return as_typed(static_cast<float>(v));
+}
+
+// Every report row of the parameter table by its name, derived values resolved (sigma_b's
+// 0 as sigma_s / 2); "qf+"'s noise rows under "refine", null for the other filters.
 nlohmann::json params_json(const Params& p) {
-  const FilterParams& f = p.filtering;
-  return {{"filter", p.filter},
-          {"cluster", p.cluster},
-          {"mode", method_name(f.method)},
-          {"sigma_s", as_typed(f.sigma_s)},
-          {"sigma_r", as_typed(f.sigma_r)},
-          {"sigma_b", as_typed(f.effective_sigma_b())},
-          {"sigma_n", as_typed(f.effective_sigma_n())},
-          {"constrained", f.constrained},
-          {"tikhonov", as_typed(f.tikhonov)},
-          {"temporal", as_typed(f.temporal)},
-          {"cluster_method", method_name(p.clustering.method)},
-          {"sigma_d", as_typed(p.clustering.sigma_d)},
-          {"sigma_q", as_typed(p.clustering.sigma_q)},
-          {"theta", as_typed(p.clustering.theta)},
-          {"target_clusters", p.clustering.target_clusters},
-          {"cluster_geometry", cluster_geometry_name(p.clustering.geometry)},
-          {"min_cluster_size", p.clustering.min_cluster_size},
-          {"refine", f.method == FilterMethod::kQuadricRefined ? refine_json(f.refine) : nullptr}};
+  const bool refined = p.filtering.method == FilterMethod::kQuadricRefined;
+  nlohmann::json out, refine;
+  for (const ParamRow& row : param_table()) {
+    if (!row.on(kReport)) continue;
+    (row.group == ParamGroup::kNoise ? refine : out)[row.name] = param_json(row, p);
+  }
+  out["refine"] = refined ? refine : nullptr;
+  return out;
 }
 
 nlohmann::json error_json(const std::optional<MeshError>& e) {

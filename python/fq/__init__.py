@@ -6,7 +6,7 @@ positions and F (m, 3) vertex indices, or a `Mesh` that also carries colours, no
 texture coordinates (and converts to and from trimesh and Open3D meshes). Every function
 has a numpy-style docstring; see also docs/PYTHON.md.
 """
-from ._engine import cluster, engine_name, filter
+from ._engine import _param_names, cluster, engine_name, filter
 from ._fq import __version__, built_with_cuda
 from ._files import read_mesh, write_mesh
 from ._measures import add_noise, metrics

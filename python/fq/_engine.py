@@ -54,6 +54,12 @@ def _annotation(kind: str, choices: list[str] | None) -> Any:
     return Literal[tuple(choices)] if choices else _TYPES[kind]
 
 
+def _param_names() -> list[tuple[str, str, list[str]]]:
+    """The rows of fq's parameter table as (name, Python keyword, surfaces), surfaces among
+    "fqfilter", "toml", "wire", "filter", "cluster", "Stream", "report"; tests walk it."""
+    return [(name, keyword, list(surfaces)) for name, keyword, surfaces in _fq.param_rows()]
+
+
 def _describe(name: str, kind: str, default: Any, choices: list[str] | None, help_text: str) -> str:
     shown = "{" + ", ".join(repr(c) for c in choices) + "}" if choices else kind
     return f"{name} : {shown}, default {default!r}\n" + textwrap.fill(

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include "core/param_table.h"
+#include "tests/support/param_values.h"
+
 namespace fq::daemon {
 namespace {
 
@@ -91,6 +94,30 @@ sticky_rings = 3
   EXPECT_TRUE(a.params.clustering.track_ids) << "ids are tracked unless a stream says otherwise";
   EXPECT_EQ(a.params.clustering.geometry, ClusterGeometry::kAuto);
   EXPECT_FLOAT_EQ(c.settings_for("unlisted").params.filtering.sigma_s, 3.0f);
+}
+
+// Every TOML row of the parameter table (the filter's, "qf+"'s noise, the temporal strength,
+// the clustering's) set per stream, each to a value other than its default, arrives.
+TEST(DaemonConfig, AStreamSetsEveryTableParameter) {
+  std::string filter = "[streams.cam9.filter]\n", cluster = "[streams.cam9.cluster]\n";
+  for (const ParamRow& row : param_table()) {
+    if (!row.on(kToml)) continue;
+    const std::string text = format_param(row, test::other_value(row));
+    (row.group == ParamGroup::kCluster ? cluster : filter) +=
+        std::string(row.toml_key()) + " = " + (row.kind == ParamKind::kEnum ? "\"" + text + "\"" : text) + "\n";
+  }
+  DaemonConfig c;
+  const Status s = parse("[streams.cam9]\nbudget_ms = 250\n" + filter + cluster, c);
+  ASSERT_TRUE(s.ok()) << s.message() << "\n" << filter << cluster;
+  const StreamSettings& got = c.settings_for("cam9");
+  EXPECT_EQ(got.budget_ms, 250.0);
+  for (const ParamRow& row : param_table()) {
+    if (!row.on(kToml)) continue;
+    EXPECT_EQ(row.get(got.params), test::other_value(row)) << row.name;
+    EXPECT_EQ(row.get(c.defaults.params), row.get(Params{})) << row.name << ": [defaults] untouched";
+  }
+  for (const char* key : {"known_noise", "strength", "temporal"})
+    EXPECT_NE(filter.find(key), std::string::npos) << key << " has no TOML row";
 }
 
 TEST(DaemonConfig, UnknownKeysAreNamedWithTheirLine) {

@@ -100,6 +100,40 @@ TEST(Fqctl, InspectsAndSteersARunningFqd) {
   EXPECT_EQ(fqd.stop(), 0);
 }
 
+// The parameters as configs spell them (qf+, auto), and the stream's budget and output
+// encoding changed at run time like its parameters.
+TEST(Fqctl, SetsModeAndBudgetInTheConfigsSpelling) {
+  FqdProcess fqd({"--config", write_temp_file("fqctl_spelling_test.toml", ops_config())});
+  const std::string control = fqd.endpoint("control");
+  ASSERT_FALSE(control.empty()) << "fqd did not start";
+  const ToolRun set = fqctl(control, {"set", "cam0", "mode=qf+", "budget_ms=250"});
+  ASSERT_EQ(set.status, 0) << set.output;
+  const ToolRun params = fqctl(control, {"params", "cam0"});
+  ASSERT_EQ(params.status, 0) << params.output;
+  for (const char* line : {"mode = qf+\n", "budget_ms = 250\n", "cluster_geometry = auto\n",
+                           "cluster_method = quadric\n", "known_noise = 0\n", "temporal = 0\n"})
+    EXPECT_NE(params.output.find(line), std::string::npos) << line << " in\n" << params.output;
+  for (const char* wire_name : {"qf_plus", "geometry_auto", "QF_PLUS"})
+    EXPECT_EQ(params.output.find(wire_name), std::string::npos) << params.output;
+
+  const ToolRun output = fqctl(control, {"set", "cam0", "position_bits=12", "chunks=4", "encode_speed=5",
+                                         "decode_speed=6", "cluster_geometry=filtered", "strength=0.5"});
+  ASSERT_EQ(output.status, 0) << output.output;
+  for (const char* line : {"position_bits = 12\n", "chunks = 4\n", "encode_speed = 5\n", "decode_speed = 6\n",
+                           "cluster_geometry = filtered\n", "strength = 0.5\n", "mode = qf+\n"})
+    EXPECT_NE(output.output.find(line), std::string::npos) << line << " in\n" << output.output;
+  for (const std::vector<std::string>& bad : std::vector<std::vector<std::string>>{
+           {"budget_ms=0"}, {"position_bits=40"}, {"chunks=300"}, {"encode_speed=11"}}) {
+    const ToolRun r = fqctl(control, {"set", "cam0", bad[0]});
+    EXPECT_EQ(r.status, 1) << bad[0] << ": " << r.output;
+  }
+  const ToolRun wrong = fqctl(control, {"set", "cam0", "mode=qf_plus"});
+  EXPECT_EQ(wrong.status, 2);
+  EXPECT_NE(wrong.output.find("mode must be one of qf+, qf, bf"), std::string::npos) << wrong.output;
+  EXPECT_NE(fqctl(control, {"params", "cam0"}).output.find("budget_ms = 250\n"), std::string::npos);
+  EXPECT_EQ(fqd.stop(), 0);
+}
+
 TEST(Fqctl, JsonFromEverySubcommandAndTablesWithin80Columns) {
   FqdProcess fqd({"--config", write_temp_file("fqctl_json_test.toml", ops_config())});
   const std::string control = fqd.endpoint("control");

@@ -99,7 +99,7 @@ TEST(ServiceFlags, EveryControlAndReloadChangeIsAudited) {
   EXPECT_TRUE(eventually([&] { return read_text_file(log).find("(reload)") != std::string::npos; }));
   EXPECT_EQ(fqd.stop(), 0);
   const std::string text = read_text_file(log);
-  for (const char* line : {"cam0 sigma_s 1.5 -> 3 (control)", "cam0 mode qf_plus -> bf (control)",
+  for (const char* line : {"cam0 sigma_s 1.5 -> 3 (control)", "cam0 mode qf+ -> bf (control)",
                            "cam0 result_form positions -> mesh (control)", "cam0 sigma_s 3 -> 1.5 (reload)",
                            "cam0 budget_ms 60000 -> 50 (reload)"})
     EXPECT_NE(text.find(line), std::string::npos) << line << " not in\n" << text;

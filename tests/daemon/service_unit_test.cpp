@@ -24,7 +24,7 @@ TEST(SettingsAudit, NamesEachChangedKeyWithOldAndNewValue) {
   after.budget_ms = 33;
   after.output.chunks = 4;
   const std::vector<std::string> changes = settings_changes(before, after);
-  const std::vector<std::string> expected{"sigma_s 1.5 -> 3", "mode qf_plus -> bf", "budget_ms 100 -> 33", "chunks same -> 4"};
+  const std::vector<std::string> expected{"mode qf+ -> bf", "sigma_s 1.5 -> 3", "budget_ms 100 -> 33", "chunks same -> 4"};
   EXPECT_EQ(changes, expected);
 }
 

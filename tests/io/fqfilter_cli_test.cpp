@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/param_table.h"
 #include "io/mesh_io.h"
 #include "tests/io/fqfilter_run.h"
 #include "tests/io/io_test_util.h"
@@ -42,6 +43,32 @@ TEST(FqfilterCli, BadOptionIsOneErrorLine) {
   EXPECT_EQ(count_lines(r.err), 1u) << r.err;
 }
 
+// fqfilter's parameter options come from the parameter table: every fqfilter row is an
+// option of --help, with its default, and each takes its value (the --json report echoes it).
+TEST(FqfilterCli, HelpListsEveryTableRow) {
+  fq::test::ScratchDir dir;
+  const RunResult help = run_fqfilter({"--help"}, dir);
+  ASSERT_EQ(help.exit_code, 0) << help.err;
+  for (const fq::ParamRow& row : fq::param_table()) {
+    if (!row.on(fq::kFqfilter)) continue;
+    EXPECT_NE(help.out.find("  " + row.flag() + " "), std::string::npos) << row.flag() << " missing from --help";
+  }
+  EXPECT_NE(help.out.find("--mode TEXT:{qf+,qf,bf}=qf+"), std::string::npos) << "the default mode is shown as configs spell it";
+  const RunResult r = run_fqfilter({kFandisk, "--json", "--mode", "qf", "--cluster", "--cluster-geometry", "input",
+                                    "--sigma-b", "0.5", "--min-cluster-size", "3", "--constrained"},
+                                   dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json p = nlohmann::json::parse(r.out).at("params");
+  EXPECT_EQ(p.at("mode"), "qf");
+  EXPECT_EQ(p.at("cluster"), true);
+  EXPECT_EQ(p.at("cluster_geometry"), "input");
+  EXPECT_EQ(p.at("sigma_b"), 0.5);
+  EXPECT_EQ(p.at("sigma_n"), 0.75) << "0 = sigma_s / 2, resolved";
+  EXPECT_EQ(p.at("min_cluster_size"), 3);
+  EXPECT_EQ(p.at("constrained"), true);
+  EXPECT_EQ(p.at("refine"), nullptr) << "qf has no noise parameters";
+}
+
 TEST(FqfilterCli, BadValuesAreRejected) {
   fq::test::ScratchDir dir;
   const std::vector<std::vector<std::string>> cases = {{"--sigma-s", "-1"},
@@ -50,7 +77,9 @@ TEST(FqfilterCli, BadValuesAreRejected) {
                                                        {"--repeat", "0"},
                                                        {"--threads", "abc"},
                                                        {"--cluster-geometry", "mesh", "--cluster"},
-                                                       {"--target-clusters", "-3", "--cluster"}};
+                                                       {"--target-clusters", "-3", "--cluster"},
+                                                       {"--sticky-rings", "2"},  // fqd only
+                                                       {"--strength", "11"}};
   for (const auto& opt : cases) {
     std::vector<std::string> args = {kFandisk};
     args.insert(args.end(), opt.begin(), opt.end());

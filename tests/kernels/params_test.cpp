@@ -3,10 +3,14 @@
 // stays usable afterwards.
 #include "core/params.h"
 
+#include "core/param_table.h"
+#include "tests/support/param_values.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <set>
 #include <string>
 
 #include "kernels/cpu_engine.h"
@@ -156,6 +160,56 @@ TEST(KernelParams, MethodNamesRoundTrip) {
   EXPECT_EQ(join_names(method_names<FilterMethod>()), "qf+ or qf or bf");
   EXPECT_EQ(join_names(method_names<ClusterMethod>(), " | "), "quadric | euclidean");
   EXPECT_EQ(join_names(method_names<FilterMethod>(), " or ", true), "\"qf+\" or \"qf\" or \"bf\"");
+}
+
+TEST(ParamTable, NamesAreUniqueAndEveryValueReadsBackAsText) {
+  std::set<std::string> names;
+  for (const ParamRow& row : param_table()) {
+    EXPECT_TRUE(names.insert(row.name).second) << row.name << " twice";
+    EXPECT_EQ(find_param(row.name), &row);
+    const double v = test::other_value(row);
+    Params p;
+    row.set(p, v);
+    EXPECT_EQ(row.get(p), v) << row.name;
+    EXPECT_TRUE(check_param(row, v).ok()) << row.name;
+    double back = -1;
+    ASSERT_TRUE(parse_param(row, format_param(row, v), back).ok()) << row.name << " " << format_param(row, v);
+    EXPECT_EQ(back, v) << row.name;
+  }
+  EXPECT_EQ(find_param("sigma_z"), nullptr);
+  EXPECT_EQ(find_param("target_clusters")->flag(), "--target-clusters");
+}
+
+TEST(ParamTable, EnumsAreSpelledAsConfigsSpellThem) {
+  const ParamRow& mode = *find_param("mode");
+  EXPECT_EQ(choice_names(mode, " "), "qf+ qf bf");
+  EXPECT_EQ(choice_names(*find_param("cluster_method"), " "), "quadric euclidean");
+  EXPECT_EQ(choice_names(*find_param("cluster_geometry"), " "), "auto input filtered");
+  EXPECT_EQ(format_param(mode, mode.get(Params{})), "qf+");
+  double v = 0;
+  ASSERT_TRUE(parse_param(mode, "qf+", v).ok());
+  EXPECT_EQ(static_cast<FilterMethod>(static_cast<int>(v)), FilterMethod::kQuadricRefined);
+  const Status bad = parse_param(mode, "qf_plus", v);
+  EXPECT_NE(bad.message().find("mode must be one of qf+, qf, bf"), std::string::npos) << bad.message();
+  EXPECT_FALSE(parse_param(*find_param("theta"), "0.5x", v).ok());
+  EXPECT_FALSE(parse_param(*find_param("sticky_rings"), "2.5", v).ok());
+  ASSERT_TRUE(parse_param(*find_param("track_ids"), "Off", v).ok());
+  EXPECT_EQ(v, 0.0);
+}
+
+TEST(ParamTable, RangeMessagesNameTheRuleForZero) {
+  const Status noise = check_param(*find_param("known_noise"), 11);
+  EXPECT_NE(noise.message().find("known_noise must be in [0, 10] mean edge lengths (0 = estimated; got 11)"),
+            std::string::npos)
+      << noise.message();
+  const Status b = check_param(*find_param("sigma_b"), -1);
+  EXPECT_NE(b.message().find("sigma_b must be > 0 or 0 (0 = sigma_s / 2)"), std::string::npos) << b.message();
+  Params p = clustering_params();
+  p.clustering.target_clusters = 20'000'000;
+  expect_rejected(p, "target_clusters");
+  p.clustering.target_clusters = 0;
+  p.clustering.sticky_rings = 65;
+  expect_rejected(p, "sticky_rings");
 }
 
 }  // namespace

@@ -123,6 +123,21 @@ def test_signature_shows_the_parameter_structs_defaults():
     assert cluster["geometry"].default == "auto" and cluster["theta"].default == 0.9
 
 
+def test_every_fqfilter_parameter_is_a_keyword():
+    """The parameter table's fqfilter rows are keywords of fq.filter, fq.cluster or fq.Stream,
+    as the table says, and every Python row of the table is one."""
+    takes = {"filter": inspect.signature(fq.filter).parameters, "cluster": inspect.signature(fq.cluster).parameters,
+             "Stream": inspect.signature(fq.Stream).parameters}
+    rows = fq._param_names()
+    assert {"mode", "known_noise", "cluster_geometry", "temporal"} <= {name for name, _, _ in rows}
+    for name, keyword, surfaces in rows:
+        functions = [s for s in surfaces if s in takes]
+        if "fqfilter" in surfaces and name not in ("cluster",):  # fq.cluster is --cluster
+            assert functions, f"--{name.replace('_', '-')} has no Python keyword"
+        for function in functions:
+            assert keyword in takes[function], f"fq.{function} does not take {keyword} ({name})"
+
+
 def test_every_function_has_a_numpy_docstring():
     for name in fq.__all__:
         obj = getattr(fq, name)
