@@ -55,8 +55,15 @@ TEST_P(DaemonSignal, ServesFramesThenExitsZeroOnSignal) {
 
 TEST_P(DaemonSignal, FramesReceivedBeforeTheSignalAreFinished) {
   // Frames are finished within caps.stop_grace_s (then stopped): a grace no loaded machine
-  // runs out of, so that all three must come out as results.
-  const std::string config = write_config("fqd_drain_test.toml", kConfig + "[caps]\nstop_grace_s = 300\n");
+  // runs out of, so that all three must come out as results. One engine per stream and no
+  // engine time limit: with one engine the fairness rule would stop a frame that has run a
+  // second while a stream none of whose frames has run waits (counted preempted), and a
+  // loaded machine may pass the default 10 s limit; neither is what this test is about.
+  std::string text = kConfig;
+  const std::string threads = "cpu_threads = 1\n";
+  text.replace(text.find(threads), threads.size(), threads + "cpu_engines = 3\n");
+  const std::string config =
+      write_config("fqd_drain_test.toml", text + "[caps]\nstop_grace_s = 300\nengine_time_limit_s = 0\n");
   Child child = spawn_fqd({"--config", config, "--print-endpoints"});
   ASSERT_GT(child.pid, 0);
   char line[1024] = {0};
