@@ -126,9 +126,9 @@ Status LabelTracker::track_until(const CancelToken& token, const float* position
   std::vector<uint32_t> history;
   int window = 1;
   uint32_t new_bound = num_clusters;
-  // This frame's index first: the next frame is matched against it, and this frame's queries
-  // go to the previous one in its cell order (NearestVertexIndex::nearest_all).
-  NearestVertexIndex index;
+  // This frame's matcher first: the next frame is matched against it, and this frame's
+  // queries go to the previous one in its cell order (FrameMatcher::nearest_all).
+  FrameMatcher index;
   index.build(positions, n, o.cell);
   FQ_RETURN_IF_ERROR(token.check());
   if (has_previous()) {
@@ -171,7 +171,7 @@ Status LabelTracker::track_until(const CancelToken& token, const float* position
 }
 
 void LabelTracker::reset() {
-  prev_ = NearestVertexIndex{};
+  prev_.clear();
   prev_ids_.clear();
   prev_history_.clear();
   prev_window_ = 0;

@@ -19,7 +19,7 @@
 
 #include "common/status.h"
 #include "core/cancel_token.h"
-#include "kernels/nearest_vertex.h"
+#include "kernels/frame_matcher.h"
 
 namespace fq {
 
@@ -58,7 +58,7 @@ class LabelTracker {
   bool has_previous() const { return prev_.size() > 0; }
 
  private:
-  NearestVertexIndex prev_;
+  FrameMatcher prev_;
   std::vector<uint32_t> prev_ids_;
   /// Per previous vertex, the ids it was given before the vote, newest first (prev_window_ each).
   std::vector<uint32_t> prev_history_;

@@ -247,11 +247,4 @@ void NearestVertexIndex::nearest_all(const float* xyz, uint32_t n, float max_rad
   });
 }
 
-void NearestVertexIndex::nearest_all(const NearestVertexIndex& queries, float max_radius, std::vector<uint32_t>& out,
-                                     int threads) const {
-  const uint32_t n = queries.size();
-  out.resize(n);
-  parallel_for(n, threads, [&](uint32_t j) { out[queries.order_[j]] = nearest(queries.sorted_[j], max_radius); });
-}
-
 }  // namespace fq

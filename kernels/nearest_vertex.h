@@ -45,12 +45,6 @@ class NearestVertexIndex {
   /// nearest() for every query point, in parallel (under the caller's CancelScope: when its
   /// token expires, the answers are unspecified).
   void nearest_all(const float* xyz, uint32_t n, float max_radius, std::vector<uint32_t>& out, int threads) const;
-  /// nearest_all() for the points of `queries` (out[i]: the answer for the i-th point given to
-  /// queries.build), asked in the queries' cell order: neighbouring queries then read the same
-  /// cells of this index, which keeps them in cache (two noisy bunnies, 35K vertices: about a
-  /// quarter less time than asking in the points' own order on the 2-core development machine).
-  void nearest_all(const NearestVertexIndex& queries, float max_radius, std::vector<uint32_t>& out,
-                   int threads) const;
 
  private:
   struct CellCoords {

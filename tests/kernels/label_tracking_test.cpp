@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -47,22 +48,40 @@ TEST(KernelNearestVertex, MatchesBruteForce) {
   EXPECT_EQ(index.nearest({100.f, 0.f, 0.f}, 1.f), NearestVertexIndex::kNone) << "beyond max_radius";
 }
 
-// Queries asked in their own index's cell order get each point's own answer, in the points' order.
-TEST(KernelNearestVertex, QueriesInCellOrderGiveEachPointItsAnswer) {
+// The frame matcher gives the sparse index's answers, in the queries' own order: on a surface
+// (its uniform grid) and with a far outlier that widens the grid's cells (its sparse index).
+TEST(KernelFrameMatcher, GivesTheNearestVertexIndexAnswers) {
   std::mt19937 rng(5);
-  std::uniform_real_distribution<float> u(-5.f, 5.f);
-  std::vector<float> pts(3 * 800), queries(3 * 600);
-  for (float& x : pts) x = u(rng);
-  for (float& x : queries) x = 1.2f * u(rng);
-  NearestVertexIndex index, asked;
-  index.build(pts.data(), 800, 0.5f);
-  asked.build(queries.data(), 600, 0.3f);
-  for (float reach : {0.4f, 1e9f}) {
-    std::vector<uint32_t> in_order, by_cell;
-    index.nearest_all(queries.data(), 600, reach, in_order, 2);
-    index.nearest_all(asked, reach, by_cell, 2);
-    EXPECT_EQ(by_cell, in_order) << "reach " << reach;
-    EXPECT_NE(std::count(in_order.begin(), in_order.end(), NearestVertexIndex::kNone), reach < 1.f ? 0 : 600);
+  std::normal_distribution<float> jitter(0.f, 0.05f);
+  std::uniform_real_distribution<float> angle(0.f, 6.2831853f), height(-1.f, 1.f);
+  std::vector<float> pts, queries;
+  for (int i = 0; i < 3000; ++i) {  // points on a unit sphere, queries near it
+    const float z = height(rng), a = angle(rng), r = std::sqrt(1.f - z * z);
+    for (float c : {r * std::cos(a), r * std::sin(a), z}) pts.push_back(c);
+  }
+  for (int i = 0; i < 2000; ++i) {
+    const float z = height(rng), a = angle(rng), r = std::sqrt(1.f - z * z);
+    for (float c : {r * std::cos(a), r * std::sin(a), z}) queries.push_back(c + jitter(rng));
+  }
+  for (const bool outlier : {false, true}) {
+    std::vector<float> p = pts;
+    if (outlier) p.insert(p.end(), {1e6f, 0.f, 0.f});
+    const uint32_t n = uint32_t(p.size() / 3), q = uint32_t(queries.size() / 3);
+    NearestVertexIndex index;
+    FrameMatcher matcher, asked;
+    index.build(p.data(), n, 0.06f);
+    matcher.build(p.data(), n, 0.06f);
+    asked.build(queries.data(), q, 0.06f);
+    EXPECT_EQ(matcher.sparse(), outlier);
+    for (float reach : {0.02f, 0.5f}) {
+      std::vector<uint32_t> want, got;
+      index.nearest_all(queries.data(), q, reach, want, 2);
+      matcher.nearest_all(asked, reach, got, 2);
+      EXPECT_EQ(got, want) << "outlier " << outlier << " reach " << reach;
+      const auto none = std::count(got.begin(), got.end(), FrameMatcher::kNone);
+      if (reach < 0.05f) EXPECT_GT(none, 0) << "some queries have nothing within a short reach";
+      else EXPECT_EQ(none, 0);
+    }
   }
 }
 

@@ -1,0 +1,49 @@
+// Nearest-vertex lookups from one capture frame into another (cluster id tracking,
+// kernels/label_tracking.h): a frame's vertices counting-sorted into a uniform grid of about one
+// mean edge (kernels/grid_build.h), asked with the query the CUDA engine's temporal step uses
+// (kernels/grid_nearest.h). Two noisy bunnies (35K vertices) on the 2-core development machine:
+// build and lookups 8-10 ms against 28-31 ms with the sparse NearestVertexIndex, the same
+// answers. A uniform grid fails where the cell is wrong for the points: its cells are capped at
+// 8 per point, so a far outlier widens every cell, and a cell given as the mean edge of a frame
+// with a far outlier is itself too wide. When the grid's cell grew past twice the wanted one or
+// its occupied cells hold more than kCellLoad points on average, the lookups go to the sparse
+// index, which frames its cells on the bulk of the points (its header says how), and the grid
+// only orders the queries.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "kernels/grid_build.h"
+#include "kernels/nearest_vertex.h"
+
+namespace fq {
+
+class FrameMatcher {
+ public:
+  static constexpr uint32_t kNone = NearestVertexIndex::kNone;
+
+  /// Indexes n points (3 floats each, copied) in cells of about `cell` (the mean edge).
+  void build(const float* xyz, uint32_t n, float cell);
+  uint32_t size() const { return static_cast<uint32_t>(sorted_.size()); }
+  /// Whether the lookups go to the sparse index (the grid's cells are too coarse for the points).
+  bool sparse() const { return sparse_; }
+  void clear();
+
+  /// For each point of `queries` (out[i]: the i-th point given to queries.build), the index
+  /// (as given to build) of the nearest point of this frame within `reach`, or kNone; asked in
+  /// the queries' cell order, so neighbouring queries read the same cells. In parallel, under
+  /// the caller's CancelScope (when its token expires, the answers are unspecified).
+  void nearest_all(const FrameMatcher& queries, float reach, std::vector<uint32_t>& out, int threads) const;
+
+ private:
+  uint32_t nearest(Vec3 p, float reach) const;
+
+  float cell_ = 1.f;
+  CpuGrid grid_;
+  std::vector<Point4> sorted_;  ///< the points in cell order (grid_.order)
+  NearestVertexIndex index_;    ///< built only when sparse_
+  bool sparse_ = false;
+};
+
+}  // namespace fq
