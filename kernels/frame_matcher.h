@@ -1,5 +1,5 @@
 // Nearest-vertex lookups from one capture frame into another (cluster id tracking,
-// kernels/label_tracking.h): a frame's vertices counting-sorted into a uniform grid of about one
+// kernels/label_tracking.h, and the CPU engine's temporal step, kernels/temporal.h): a frame's vertices counting-sorted into a uniform grid of about one
 // mean edge (kernels/grid_build.h), asked with the query the CUDA engine's temporal step uses
 // (kernels/grid_nearest.h). Two noisy bunnies (35K vertices) on the 2-core development machine:
 // build and lookups 8-10 ms against 28-31 ms with the sparse NearestVertexIndex, the same
@@ -35,9 +35,11 @@ class FrameMatcher {
   /// the queries' cell order, so neighbouring queries read the same cells. In parallel, under
   /// the caller's CancelScope (when its token expires, the answers are unspecified).
   void nearest_all(const FrameMatcher& queries, float reach, std::vector<uint32_t>& out, int threads) const;
+  /// The index (as given to build) of the point nearest to p within `reach`, or kNone; ties go
+  /// to the first in cell order, as NearestVertexIndex::nearest.
+  uint32_t nearest(Vec3 p, float reach) const;
 
  private:
-  uint32_t nearest(Vec3 p, float reach) const;
 
   float cell_ = 1.f;
   CpuGrid grid_;

@@ -76,7 +76,7 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
       parallel_for(n, threads, [&](uint32_t v) {
         const Vec3 q = origin + float(mean_edge) * (s.x[v] + s.motion[v]);
         s.match[v] = history.index.nearest(q, reach);
-        s.offset[v] = s.match[v] == NearestVertexIndex::kNone ? Vec3{0.f, 0.f, 0.f} : prior_at(s.match[v]) - s.x[v];
+        s.offset[v] = s.match[v] == FrameMatcher::kNone ? Vec3{0.f, 0.f, 0.f} : prior_at(s.match[v]) - s.x[v];
       });
     };
     for (int it = 0; it < kMotionIterations; ++it) {
@@ -86,7 +86,7 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
     }
     look_up();
     const uint64_t covered = uint64_t(std::count_if(s.match.begin(), s.match.end(),
-                                                    [](uint32_t q) { return q != NearestVertexIndex::kNone; }));
+                                                    [](uint32_t q) { return q != FrameMatcher::kNone; }));
     step.coverage = prior_coverage(covered, n);
     if (scene_cut(step.coverage)) {
       history.clear();
@@ -97,14 +97,14 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
       s.level.resize(n);
       parallel_for(n, threads, [&](uint32_t v) {
         const uint32_t q = s.match[v];
-        s.detail[v] = q == NearestVertexIndex::kNone ? 0.f : prior_detail(s.x[v], s.motion[v], prior_at(q), normal_at(q));
+        s.detail[v] = q == FrameMatcher::kNone ? 0.f : prior_detail(s.x[v], s.motion[v], prior_at(q), normal_at(q));
         s.level[v] = s.detail[v] * s.detail[v];
       });
       ring_means(fan, s.level, s.spare_level, kAgreementPasses, threads);
       double pulled = 0.0;
       for (uint32_t v = 0; v < n; ++v) {  // serial: the sum, and so the report, is reproducible
         const uint32_t q = s.match[v];
-        if (q == NearestVertexIndex::kNone) continue;
+        if (q == FrameMatcher::kNone) continue;
         const float share = prior_share(s.level[v], strength, noise);
         const Vec3 move = (share * s.detail[v] * float(mean_edge)) * normal_at(q);
         positions[3 * size_t(v)] += move.x;

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/mesh_view.h"
-#include "kernels/nearest_vertex.h"
+#include "kernels/frame_matcher.h"
 #include "kernels/refine_math.h"
 #include "kernels/vec3.h"
 
@@ -30,7 +30,7 @@ struct TemporalHistory {
   uint64_t stamp = 0;
   /// The host index over `positions` and the stamp it was built for; built by the CPU
   /// engine's step when it needs it (the CUDA engine matches on the device and leaves it).
-  NearestVertexIndex index;
+  FrameMatcher index;
   uint64_t index_stamp = 0;
 
   bool empty() const { return frames == 0; }
