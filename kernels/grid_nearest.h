@@ -1,6 +1,7 @@
 // The nearest point of a uniform grid (kernels/grid.h) to a query: how the CUDA engine matches
 // a frame's vertices to its stream's last result (kernels/cuda/temporal_pass.cu) on a grid it
-// builds on the device, where the CPU engine asks its NearestVertexIndex (a sparse grid built
+// builds on the device, where the CPU engine asks a FrameMatcher (kernels/frame_matcher.h: the same query on a grid built
+// on the host, or its NearestVertexIndex, a sparse grid built
 // on the host, which on the device would need the host's decisions and a round trip). The same
 // answers: the nearest point within reach, found by growing spheres from `first_radius`, at
 // most kMaxCandidates points looked at, ties to the first in cell order.
