@@ -8,25 +8,20 @@
 #include "kernels/refine_math.h"
 #include "kernels/temporal_math.h"
 #include "kernels/vertex_faces.h"
+#include "kernels/vertex_ring.h"
 
 namespace fq {
 
 namespace {
 
-/// `passes` ring means of `a` (kernels/refine_math.h), `spare` the other buffer.
+/// `passes` ring means of `a` (kernels/vertex_ring.h), `spare` the other buffer.
 template <class T>
-void ring_means(const FanView& fan, std::vector<T>& a, std::vector<T>& spare, int passes, int threads) {
+void ring_means(const RingView& ring, std::vector<T>& a, std::vector<T>& spare, int passes, int threads) {
   spare.resize(a.size());
   for (int p = 0; p < passes; ++p) {
-    parallel_for(static_cast<uint32_t>(a.size()), threads, [&](uint32_t v) { spare[v] = ring_mean(fan, a.data(), v); });
+    parallel_for(static_cast<uint32_t>(a.size()), threads, [&](uint32_t v) { spare[v] = ring_mean(ring, a.data(), v); });
     a.swap(spare);
   }
-}
-
-/// Vertex -> incident triangles of the mesh, for the ring means.
-FanView fan_of(const MeshView& mesh, TemporalScratch& s) {
-  build_vertex_faces(mesh.triangles, mesh.num_triangles, mesh.num_vertices, s.vf_offsets, s.vf_faces);
-  return FanView{mesh.triangles, s.vf_offsets.data(), s.vf_faces.data()};
 }
 
 Vec3 at(const float* xyz, uint32_t v) { return {xyz[3 * size_t(v)], xyz[3 * size_t(v) + 1], xyz[3 * size_t(v) + 2]}; }
@@ -53,12 +48,25 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
                             float strength, TemporalHistory& history, TemporalScratch& s, int threads) {
   const uint32_t n = mesh.num_vertices;
   TemporalStep step;
-  const FanView fan = fan_of(mesh, s);
-  if (!history.empty() && n > 0 && mean_edge > 0.0) {
-    if (history.index_stamp != history.stamp) {  // the last frame's engine left no host index
-      history.index.build(history.positions.data(), uint32_t(history.positions.size() / 3), float(history.mean_edge));
-      history.index_stamp = history.stamp;
-    }
+  const bool follows = !history.empty() && n > 0 && mean_edge > 0.0;
+  // The frame's vertex -> triangles table (for the ring means and the normals) and the index of
+  // the last result (when the last frame's engine left none) are two serial builds that do not
+  // depend on each other: side by side on two threads.
+  const bool index_needed = follows && history.index_stamp != history.stamp;
+  parallel_for(
+      index_needed ? 2 : 1, threads,
+      [&](uint32_t task) {
+        if (task == 0)
+          build_vertex_faces(mesh.triangles, mesh.num_triangles, n, s.vf_offsets, s.vf_faces);
+        else
+          history.index.build(history.positions.data(), uint32_t(history.positions.size() / 3), float(history.mean_edge));
+      },
+      kOneChunkAtATime);
+  if (index_needed) history.index_stamp = history.stamp;
+  const FanView fan{mesh.triangles, s.vf_offsets.data(), s.vf_faces.data()};
+  if (follows) {
+    // Six ring means follow: the table saves each of them the walk through the triangles.
+    const RingView ring = build_vertex_ring(fan, n, s.ring_corners, threads);
     // The math runs in mean edges about the first vertex (floats keep their precision there).
     const Vec3 origin = at(positions.data(), 0);
     const float unit = float(1.0 / mean_edge);
@@ -82,7 +90,7 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
     for (int it = 0; it < kMotionIterations; ++it) {
       look_up();
       s.motion = s.offset;
-      ring_means(fan, s.motion, s.spare, kMotionPasses, threads);
+      ring_means(ring, s.motion, s.spare, kMotionPasses, threads);
     }
     look_up();
     const uint64_t covered = uint64_t(std::count_if(s.match.begin(), s.match.end(),
@@ -100,18 +108,20 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
         s.detail[v] = q == FrameMatcher::kNone ? 0.f : prior_detail(s.x[v], s.motion[v], prior_at(q), normal_at(q));
         s.level[v] = s.detail[v] * s.detail[v];
       });
-      ring_means(fan, s.level, s.spare_level, kAgreementPasses, threads);
-      double pulled = 0.0;
-      for (uint32_t v = 0; v < n; ++v) {  // serial: the sum, and so the report, is reproducible
+      ring_means(ring, s.level, s.spare_level, kAgreementPasses, threads);
+      s.share.resize(n);
+      parallel_for(n, threads, [&](uint32_t v) {
         const uint32_t q = s.match[v];
-        if (q == FrameMatcher::kNone) continue;
-        const float share = prior_share(s.level[v], strength, noise);
-        const Vec3 move = (share * s.detail[v] * float(mean_edge)) * normal_at(q);
+        s.share[v] = 0.f;
+        if (q == FrameMatcher::kNone) return;
+        s.share[v] = prior_share(s.level[v], strength, noise);
+        const Vec3 move = (s.share[v] * s.detail[v] * float(mean_edge)) * normal_at(q);
         positions[3 * size_t(v)] += move.x;
         positions[3 * size_t(v) + 1] += move.y;
         positions[3 * size_t(v) + 2] += move.z;
-        pulled += share;
-      }
+      });
+      double pulled = 0.0;
+      for (uint32_t v = 0; v < n; ++v) pulled += s.share[v];  // in order: the report is reproducible
       step.share = float(pulled / n);
     }
   }

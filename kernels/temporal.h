@@ -51,10 +51,10 @@ struct TemporalStep {
 
 /// Buffers of the step, kept between frames.
 struct TemporalScratch {
-  std::vector<uint32_t> vf_offsets, vf_faces;
+  std::vector<uint32_t> vf_offsets, vf_faces, ring_corners;
   std::vector<Vec3> x, motion, offset, spare;
   std::vector<uint32_t> match;
-  std::vector<float> detail, level, spare_level, normals;
+  std::vector<float> detail, level, spare_level, share, normals;
 };
 
 /// The temporal step of one frame: `positions` (the frame's filtered result, input order, 3

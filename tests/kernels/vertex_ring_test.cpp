@@ -1,0 +1,83 @@
+// The ring table (kernels/vertex_ring.h) against ring_mean over the fan, bit for bit: on a
+// closed surface, a grid with a boundary, a non-manifold fin and triangles that repeat a vertex
+// (degenerate: a triangle listed once per corner, each time without the vertex itself).
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "kernels/vertex_faces.h"
+#include "kernels/vertex_ring.h"
+#include "tests/support/test_meshes.h"
+
+namespace fq {
+namespace {
+
+using test::make_icosphere;
+using test::make_non_manifold_fin;
+using test::make_plane_grid;
+
+uint32_t bits(float f) { return std::bit_cast<uint32_t>(f); }
+
+void expect_same_ring_means(const Mesh& mesh, int threads) {
+  const uint32_t n = mesh.num_vertices();
+  std::vector<uint32_t> vf_offsets, vf_faces, corners;
+  build_vertex_faces(mesh.triangles.data(), mesh.triangles.size() / 3, n, vf_offsets, vf_faces);
+  const FanView fan{mesh.triangles.data(), vf_offsets.data(), vf_faces.data()};
+  const RingView ring = build_vertex_ring(fan, n, corners, threads);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  std::vector<float> e(n);
+  std::vector<Vec3> x(n);
+  for (uint32_t v = 0; v < n; ++v) {
+    e[v] = u(rng);
+    x[v] = {u(rng), u(rng), u(rng)};
+  }
+  for (uint32_t v = 0; v < n; ++v) {
+    const float a = ring_mean(fan, e.data(), v), b = ring_mean(ring, e.data(), v);
+    EXPECT_EQ(bits(a), bits(b)) << "vertex " << v;
+    const Vec3 p = ring_mean(fan, x.data(), v), q = ring_mean(ring, x.data(), v);
+    EXPECT_EQ(bits(p.x), bits(q.x)) << "vertex " << v;
+    EXPECT_EQ(bits(p.y), bits(q.y)) << "vertex " << v;
+    EXPECT_EQ(bits(p.z), bits(q.z)) << "vertex " << v;
+  }
+}
+
+/// The neighbours in v's slots of the table.
+uint32_t ring_size(const RingView& r, uint32_t v) {
+  uint32_t count = 0;
+  for (uint32_t k = 2 * r.vf_offsets[v]; k < 2 * r.vf_offsets[v + 1]; ++k) count += r.corners[k] != RingView::kNoCorner;
+  return count;
+}
+
+TEST(KernelVertexRing, GivesRingMeanBitForBitOnAClosedSurface) {
+  const Mesh sphere = make_icosphere(3);
+  expect_same_ring_means(sphere, 1);
+  expect_same_ring_means(sphere, 4);
+}
+
+TEST(KernelVertexRing, GivesRingMeanBitForBitOnABoundaryAndANonManifoldFin) {
+  expect_same_ring_means(make_plane_grid(7, 5), 2);
+  expect_same_ring_means(make_non_manifold_fin(), 2);
+}
+
+TEST(KernelVertexRing, CountsADegenerateTrianglesCornersAsTheFanDoes) {
+  Mesh m = make_plane_grid(4, 4);
+  const uint32_t a = m.triangles[0], b = m.triangles[1];
+  m.triangles.insert(m.triangles.end(), {a, a, b, b, b, b});  // a repeated corner, then all three
+  expect_same_ring_means(m, 2);
+  std::vector<uint32_t> vf_offsets, vf_faces, corners;
+  build_vertex_faces(m.triangles.data(), m.triangles.size() / 3, m.num_vertices(), vf_offsets, vf_faces);
+  const FanView fan{m.triangles.data(), vf_offsets.data(), vf_faces.data()};
+  const RingView ring = build_vertex_ring(fan, m.num_vertices(), corners, 1);
+  // b's fan lists {a, a, b} once and {b, b, b} three times (once a corner); its ring has two
+  // corners per proper triangle, a twice from {a, a, b} and nothing from {b, b, b}.
+  const uint32_t proper = (vf_offsets[b + 1] - vf_offsets[b]) - 4;
+  EXPECT_EQ(ring_size(ring, b), 2 * proper + 2);
+  EXPECT_EQ(ring_size(ring, a), 2 * (vf_offsets[a + 1] - vf_offsets[a] - 2) + 2) << "a: b from {a, a, b} twice";
+}
+
+}  // namespace
+}  // namespace fq
