@@ -71,10 +71,13 @@ void histograms(std::string& out, const std::vector<StreamSnapshot>& streams) {
 }
 
 void engines_and_gpus(std::string& out, const MetricsInput& in) {
-  family(out, "fq_engine_info", "gauge", "One series per engine; kind is cpu or cuda.");
-  for (const std::string& e : in.engines) {
+  family(out, "fq_engine_info", "gauge",
+         "One series per engine; kind is cpu or cuda, index tells engines of one name apart.");
+  for (size_t i = 0; i < in.engines.size(); ++i) {
+    const std::string& e = in.engines[i];
     const std::string kind = e.rfind("cuda", 0) == 0 ? "cuda" : "cpu";
-    out += "fq_engine_info{engine=\"" + escape_label_value(e) + "\",kind=\"" + kind + "\"} 1\n";
+    out += "fq_engine_info{engine=\"" + escape_label_value(e) + "\",index=\"" + std::to_string(i) + "\",kind=\"" +
+           kind + "\"} 1\n";
   }
   family(out, "fq_gpu_memory_used_bytes", "gauge", "Device memory in use on each GPU with an engine (device-wide).");
   for (const GpuMemory& g : in.gpus)

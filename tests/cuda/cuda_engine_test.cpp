@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <thread>
 
 #include "eval/noise.h"
 #include "tests/cuda/parity.h"
@@ -224,6 +225,38 @@ TEST_F(CudaEngineTest, NoDeviceAllocationAfterWarmUp) {
   EXPECT_EQ(cuda_allocation_count(), after_bf);
 }
 
+// fqd runs two engines on one device when engine.gpus lists it twice: each engine on its own
+// thread, CUDA stream and buffers, frames of both on the device at once. Each gives, frame after
+// frame, what one engine gives alone.
+TEST_F(CudaEngineTest, TwoEnginesOnOneDeviceAtOnceGiveWhatOneGivesAlone) {
+  Status why;
+  std::unique_ptr<Engine> second = make_cuda_engine(0, &why);
+  ASSERT_TRUE(second) << why.message();
+  const Mesh sphere = noisy_sphere(), cube = noisy_cube();
+  const Params filter;  // qf+
+  const Params cluster = clustering(5.f, 1.f, 0.9f);
+  FrameResult want_sphere, want_cube;
+  ASSERT_TRUE(gpu_->process(sphere.view(), filter, want_sphere).ok());
+  ASSERT_TRUE(gpu_->process(cube.view(), cluster, want_cube).ok());
+  ASSERT_FALSE(want_cube.labels.empty());
+  std::atomic<int> differing{0}, failed{0};
+  const auto frames = [&](Engine* e, const Mesh* m, const Params* p, const FrameResult* want) {
+    for (int k = 0; k < 20; ++k) {
+      FrameResult r;
+      if (!e->process(m->view(), *p, r).ok())
+        ++failed;
+      else if (r.positions != want->positions || r.labels != want->labels)
+        ++differing;
+    }
+  };
+  std::thread a(frames, gpu_.get(), &sphere, &filter, &want_sphere);
+  std::thread b(frames, second.get(), &cube, &cluster, &want_cube);
+  a.join();
+  b.join();
+  EXPECT_EQ(failed.load(), 0);
+  EXPECT_EQ(differing.load(), 0);
+}
+
 // A stream with its history (temporal filtering on the device): after its first two frames
 // (the first has no history to follow) the device copy of the history and the step's buffers
 // are reused, the copy the frame read and the one it wrote taking turns.
@@ -282,7 +315,7 @@ TEST_F(CudaEngineTest, BadInputAndParametersAreRejectedWithTheCpuMessages) {
   expect_same_rejection(m);
   m = noisy_cube();
   // Out-of-range indices in several triangles, the first of them in a later corner.
-  m.triangles[3 * 2000] = m.num_vertices() + 5;
+  m.triangles[size_t{3} * 2000] = m.num_vertices() + 5;
   m.triangles[3 * 50 + 2] = m.num_vertices();
   m.triangles[3 * 50 + 1] = m.num_vertices() + 1;
   expect_same_rejection(m);

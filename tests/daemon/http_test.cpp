@@ -65,7 +65,10 @@ nlohmann::json settled(const FqdProcess& fqd, uint64_t sent, const std::string& 
 }
 
 TEST(Http, MetricsParseAndAgreeWithFqctl) {
-  FqdProcess fqd({"--config", write_temp_file("http_metrics.toml", ops_config(kHttp))});
+  // Two engines of one name, whose series must still be told apart.
+  std::string config = ops_config(kHttp);
+  config.replace(config.find("cpu_threads = 1"), 15, "cpu_threads = 1\ncpu_engines = 2");
+  FqdProcess fqd({"--config", write_temp_file("http_metrics.toml", config)});
   ASSERT_FALSE(fqd.endpoint("http").empty()) << "fqd did not report an http endpoint";
   ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam0", 10).status, 0);
   // A stream id with the characters the text format escapes in label values.
@@ -97,7 +100,7 @@ TEST(Http, MetricsParseAndAgreeWithFqctl) {
   EXPECT_EQ(streams->status, 200);
   const nlohmann::json sj = nlohmann::json::parse(streams->body);
   EXPECT_EQ(sj.at("streams"), fqctl_counters(fqd).at("streams"));
-  EXPECT_EQ(sj.at("engines"), nlohmann::json::array({"cpu"}));
+  EXPECT_EQ(sj.at("engines"), nlohmann::json::array({"cpu", "cpu"}));
   EXPECT_EQ(fqd.stop(), 0);
 }
 

@@ -2,7 +2,8 @@
 """Reads fqd's GET /metrics with prometheus_client's own text parser (a real parser, not ours)
 and prints what it found as JSON in the words of `fqctl counters --json`:
 {"streams": {id: {"frames_in": N, ..., "stages": {stage: count}}}, "families": {name: type}}.
-Exits 1 with a message when the text does not parse or a histogram is inconsistent."""
+Exits 1 with a message when the text does not parse, a series appears twice (the parser
+accepts that; a Prometheus server rejects the scrape's duplicates) or a histogram is inconsistent."""
 import json
 import sys
 import urllib.request
@@ -17,9 +18,14 @@ def main(url):
     text = urllib.request.urlopen(url, timeout=30).read().decode("utf-8")
     streams, families = {}, {}
     buckets = {}
+    seen = set()
     for family in text_string_to_metric_families(text):
         families[family.name] = family.type
         for s in family.samples:
+            series = (s.name, tuple(sorted(s.labels.items())))
+            if series in seen:
+                sys.exit(f"series {s.name}{dict(s.labels)} appears twice")
+            seen.add(series)
             stream = s.labels.get("stream")
             if s.name.endswith("_total") and s.name[3:-6] in COUNTERS:
                 streams.setdefault(stream, {"stages": {}})[s.name[3:-6]] = int(s.value)
