@@ -138,14 +138,14 @@ std::string Daemon::service_metrics() const {
                {"slots", pipeline_.slots.waiting()},
                {"encode", pipeline_.encode_queue.size()},
                {"publish", pipeline_.publish_queue.size()}};
+  in.ingest_reconnects = sub_reconnects_.load(std::memory_order_relaxed);
   in.process = read_process_stats();
   return service_metrics_text(in) + stage_cpu_metrics_text(pipeline_.stage_cpu, daemon_threads_cpu_seconds());
 }
 
 struct Daemon::Sockets {
   zmq::socket_t ingest, publish, publish_monitor, control;
-  zmq::socket_t sub;  ///< stays empty without [ingest] connect
-  std::unique_ptr<SubReconnector> sub_reconnector;
+  std::unique_ptr<SubProducers> sub;  ///< stays empty without [ingest] connect
   CurveServerKeys keys;  ///< with [security]
 };
 
@@ -184,8 +184,8 @@ Status Daemon::make_sockets(Sockets& s) {
                      "frames, read results and change parameters (set [security] curve_key_file)", e);
   }
   if (config_.sub_ingest.connect.empty()) return {};
-  return make_sub_socket(input_context_, config_.sub_ingest, config_.caps.max_frame_bytes,
-                         config_.security.enabled() ? &s.keys.server : nullptr, s.sub, s.sub_reconnector);
+  return make_sub_producers(input_context_, config_.sub_ingest, config_.caps.max_frame_bytes,
+                            config_.security.enabled() ? &s.keys.server : nullptr, sub_reconnects_, s.sub);
 }
 
 Status Daemon::bind_sockets(Sockets& s) {
@@ -239,12 +239,10 @@ Status Daemon::start() {
     run_control(std::move(s), registry_, caps_, client_keys_.get());
   });
   if (sockets.sub) {
-    ingest_thread_ = std::thread([this, pull = std::move(sockets.ingest), sub = std::move(sockets.sub),
-                                  reconnector = std::move(sockets.sub_reconnector)]() mutable {
+    ingest_thread_ = std::thread([this, pull = std::move(sockets.ingest), sub = std::move(sockets.sub)]() mutable {
       name_this_thread("ingest");
       const auto& ids = config_.sub_ingest.streams;
-      run_sub_ingest(std::move(pull), std::move(sub), *reconnector, pipeline_,
-                     std::set<std::string>(ids.begin(), ids.end()));
+      run_sub_ingest(std::move(pull), *sub, pipeline_, std::set<std::string>(ids.begin(), ids.end()));
     });
   } else {
     ingest_thread_ = std::thread([this, s = std::move(sockets.ingest)]() mutable {

@@ -77,6 +77,7 @@ class Daemon : NonCopyable {
   std::vector<std::thread> decoders_, workers_, encoders_;
   bool running_ = false;
   std::atomic<bool> healthy_{false};    ///< every thread started (GET /healthz)
+  std::atomic<uint64_t> sub_reconnects_{0};  ///< SUB producers connected again (fq_ingest_reconnects_total)
   std::unique_ptr<HttpServer> http_;    ///< null when http.listen is empty
   std::unique_ptr<StatsLog> stats_log_; ///< null when stats.interval_s is 0
 };

@@ -36,6 +36,10 @@ std::string service_metrics_text(const ServiceMetricsInput& in) {
                        "state was made for them, by reason (bad_stream_id, malformed, not_allowed, "
                        "too_many_streams, unauthenticated, oversized, subscriptions).",
                        in.refusals);
+  append_family(out, "fq_ingest_reconnects_total", "counter",
+                "Times fqd connected again to an [ingest] connect producer that ZeroMQ had dropped for a protocol "
+                "error (a part over caps.max_frame_bytes, a failed CURVE handshake) and would not reconnect.");
+  out += "fq_ingest_reconnects_total " + std::to_string(in.ingest_reconnects) + "\n";
   append_family(out, "fq_stream_budget_seconds", "gauge",
                 "Each stream's receive-to-publish budget (budget_ms): results later than this are LATE.");
   for (const auto& [stream, ms] : in.budgets_ms)

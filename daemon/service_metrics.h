@@ -1,7 +1,8 @@
 // The /metrics families about fqd as a service rather than about its streams' frames: build
-// info, refusals on the ZeroMQ doors by reason, each stream's budget, engine busy time, queue depths
-// and the process (CPU, memory, file descriptors). They are what alert rules and the
-// dashboard in deploy/monitoring read (docs/DAEMON.md has PromQL for each).
+// info, refusals on the ZeroMQ doors by reason, SUB producers connected again, each stream's
+// budget, engine busy time, queue depths and the process (CPU, memory, file descriptors). They
+// are what alert rules and the dashboard in deploy/monitoring read (docs/DAEMON.md has PromQL
+// for each).
 #pragma once
 
 #include <cstdint>
@@ -24,6 +25,7 @@ struct ServiceMetricsInput {
   std::vector<std::pair<std::string, double>> budgets_ms;  ///< stream id, budget
   std::vector<EngineLoad> engines;                         ///< in engine order (label index)
   std::vector<std::pair<std::string, size_t>> queues;      ///< queue name, items waiting
+  uint64_t ingest_reconnects = 0;                          ///< SUB producers connected again
   ProcessStats process;
 };
 

@@ -1,7 +1,8 @@
 // fqd's ZeroMQ doors under the same rules, over real sockets on 127.0.0.1: SUB ingest takes only
-// authenticated producers and refuses a part over the size cap at the socket; a control request
-// of 100,000 parts gets one error reply and at most a few log lines, an oversized one nothing;
-// a subscriber past caps.max_subscriptions is cut and counted while others keep their results.
+// authenticated producers and refuses a part over the size cap at the socket, and producers it
+// dropped for that, however many at once, come back; a control request of 100,000 parts gets one
+// error reply and at most a few log lines, an oversized one nothing; a subscriber past
+// caps.max_subscriptions is cut and counted while others keep their results.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -9,6 +10,7 @@
 #include <zmq_addon.hpp>
 
 #include "tests/daemon/daemon_harness.h"
+#include "tests/daemon/http_metrics.h"
 #include "tests/daemon/log_capture.h"
 #include "tests/daemon/test_keys.h"
 
@@ -90,6 +92,38 @@ TEST(ZmqDoors, SubIngestTakesOnlyAuthenticatedProducersAndRefusesAnOversizedPart
   EXPECT_EQ(r.header.sequence(), 3u);
   EXPECT_EQ(h.counters("sub_keyed").frames_in(), 2u) << "the oversized frame reached fqd";
   EXPECT_FALSE(has_stream(h, "sub_plain")) << "frames from a producer without keys got in";
+}
+
+// Producers dropped at once (each sent a part over the cap) all come back, round after round,
+// and each time fqd connected again is counted. fqd used to disconnect the endpoint libzmq had
+// given up on and connect it again on the same SUB socket: libzmq 4.3 keeps that endpoint with
+// pointers to the freed connection, and disconnecting it could end the connection just made to
+// another producer, which then never came back.
+TEST(ZmqDoors, ProducersDroppedTogetherAllComeBack) {
+  const TestKeys k;
+  zmq::context_t ctx(1);
+  const client::CurveClientOptions keyed_opts{k.server_pub, k.client_key};
+  daemon::DaemonConfig c = k.secured(test_config());
+  c.caps.max_frame_bytes = 1 << 20;
+  std::vector<std::unique_ptr<Producer>> producers;
+  for (int i = 0; i < 6; ++i) {
+    producers.push_back(std::make_unique<Producer>(ctx, &keyed_opts));
+    c.sub_ingest.connect.push_back(producers.back()->endpoint);
+  }
+  DaemonHarness h(c, keyed_opts);
+  for (auto& p : producers) ASSERT_TRUE(p->subscribed(milliseconds(30000)));
+
+  std::vector<std::string> big = frame_parts("sub_many", 1);
+  big.back() = std::string(2 << 20, 'x');
+  constexpr int kRounds = 3;
+  for (int round = 0; round < kRounds; ++round) {
+    for (auto& p : producers) client::send_parts(p->socket, big);
+    for (size_t i = 0; i < producers.size(); ++i)
+      ASSERT_TRUE(producers[i]->subscribed(milliseconds(30000))) << "producer " << i << " lost in round " << round;
+  }
+  const std::string m = h.daemon()->service_metrics();
+  EXPECT_EQ(metric_value(m, "fq_ingest_reconnects_total"), kRounds * 6.0) << m;
+  EXPECT_FALSE(has_stream(h, "sub_many")) << "an oversized frame reached fqd";
 }
 
 TEST(ZmqDoors, AControlRequestOfManyPartsGetsOneAnswerAndAnOversizedOneNone) {
