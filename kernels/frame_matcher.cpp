@@ -3,35 +3,47 @@
 #include <cmath>
 
 #include "core/parallel_for.h"
+#include "kernels/box_nearest.h"
 #include "kernels/grid_nearest.h"
 
 namespace fq {
 
+namespace {
+
+/// Three of choose_grid_layout's steps of 1.26 (1.26^3 = 2.0004): a surface whose bounds hold
+/// more than 8 cells of a mean edge a point (igea, 134K vertices) keeps the grid; an outlier
+/// widens the cells far more.
+constexpr float kMaxCellGrowth = 2.01f;
+
+}  // namespace
+
 void FrameMatcher::clear() {
-  grid_ = CpuGrid{};
+  grid_.order.clear();
+  grid_.cell_start.clear();
   sorted_.clear();
   index_ = NearestVertexIndex{};
   sparse_ = false;
 }
 
 void FrameMatcher::build(const float* xyz, uint32_t n, float cell) {
+  // Every buffer keeps its memory from the last build (a stream's frames are about one size).
   clear();
   cell_ = std::isfinite(cell) && cell > 0.f ? cell : 1.f;
   if (n == 0) return;
-  std::vector<Vec3> points(n);
-  for (uint32_t i = 0; i < n; ++i) points[i] = {xyz[3 * size_t(i)], xyz[3 * size_t(i) + 1], xyz[3 * size_t(i) + 2]};
-  build_grid(points.data(), n, cell_, grid_);
+  points_.resize(n);
+  for (uint32_t i = 0; i < n; ++i) points_[i] = {xyz[3 * size_t(i)], xyz[3 * size_t(i) + 1], xyz[3 * size_t(i) + 2]};
+  build_grid(points_.data(), n, cell_, grid_);
   sorted_.resize(n);
   for (uint32_t k = 0; k < n; ++k) {
-    const Vec3 p = points[grid_.order[k]];
+    const Vec3 p = points_[grid_.order[k]];
     sorted_[k] = {p.x, p.y, p.z, 0.f};
   }
   // The sparse index's own rule for a cell that is too coarse (kCellLoad points per occupied
   // cell: a cell given as the mean edge of a frame with a far outlier), and a grid whose cells
-  // had to grow to stay within 8 per point.
+  // had to grow past about twice the wanted one to stay within 8 cells a point.
   uint64_t occupied = 0;
   for (size_t c = 0; c + 1 < grid_.cell_start.size(); ++c) occupied += grid_.cell_start[c + 1] > grid_.cell_start[c];
-  sparse_ = !(grid_.layout.cell <= 2.f * cell_) || n > NearestVertexIndex::kCellLoad * occupied;
+  sparse_ = !(grid_.layout.cell <= kMaxCellGrowth * cell_) || n > NearestVertexIndex::kCellLoad * occupied;
   if (sparse_) index_.build(xyz, n, cell_);
 }
 
@@ -39,7 +51,7 @@ uint32_t FrameMatcher::nearest(Vec3 p, float reach) const {
   if (sparse_) return index_.nearest(p, reach);
   // Growing spheres from half a cell, as NearestVertexIndex: most queries (the same surface
   // captured again) find their vertex within it.
-  const uint32_t j = nearest_in_grid(grid_.view(sorted_.data()), p, reach, 0.5f * cell_);
+  const uint32_t j = nearest_in_grid_boxes(grid_.view(sorted_.data()), p, reach, 0.5f * cell_);
   return j == kNoNearest ? kNone : grid_.order[j];
 }
 

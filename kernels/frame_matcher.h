@@ -42,6 +42,7 @@ class FrameMatcher {
  private:
 
   float cell_ = 1.f;
+  std::vector<Vec3> points_;  ///< build's copy of the points (kept for the next build)
   CpuGrid grid_;
   std::vector<Point4> sorted_;  ///< the points in cell order (grid_.order)
   NearestVertexIndex index_;    ///< built only when sparse_

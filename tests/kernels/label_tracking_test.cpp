@@ -85,6 +85,30 @@ TEST(KernelFrameMatcher, GivesTheNearestVertexIndexAnswers) {
   }
 }
 
+// A surface whose bounds hold more than 8 cells of the wanted size a point: the grid's cell
+// grows three of its steps (1.26^3 = 2.0004 times), not an outlier's widening, so the matcher
+// keeps its grid, with the sparse index's answers.
+TEST(KernelFrameMatcher, KeepsTheGridWhereTheCellGrewThreeSteps) {
+  std::mt19937 rng(7);
+  std::normal_distribution<float> g(0.f, 1.f), jitter(0.f, 0.01f);
+  std::vector<float> pts, queries;
+  for (int i = 0; i < 3000; ++i) {  // a unit sphere, cells of 0.04: 51^3 cells wanted, 24,000 allowed
+    const Vec3 p = normalized_or_zero({g(rng), g(rng), g(rng)});
+    pts.insert(pts.end(), {p.x, p.y, p.z});
+    queries.insert(queries.end(), {p.x + jitter(rng), p.y + jitter(rng), p.z + jitter(rng)});
+  }
+  FrameMatcher matcher, asked;
+  matcher.build(pts.data(), 3000, 0.04f);
+  asked.build(queries.data(), 3000, 0.04f);
+  EXPECT_FALSE(matcher.sparse());
+  NearestVertexIndex index;
+  index.build(pts.data(), 3000, 0.04f);
+  std::vector<uint32_t> want, got;
+  index.nearest_all(queries.data(), 3000, 0.32f, want, 2);
+  matcher.nearest_all(asked, 0.32f, got, 2);
+  EXPECT_EQ(got, want);
+}
+
 // The same surface as a new capture: vertices shuffled, jittered, clusters renumbered.
 struct Frame {
   std::vector<float> positions;
