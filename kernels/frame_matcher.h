@@ -28,6 +28,7 @@ class FrameMatcher {
   uint32_t size() const { return static_cast<uint32_t>(sorted_.size()); }
   /// Whether the lookups go to the sparse index (the grid's cells are too coarse for the points).
   bool sparse() const { return sparse_; }
+  /// Forgets the points; the buffers keep their memory for the next build.
   void clear();
 
   /// For each point of `queries` (out[i]: the i-th point given to queries.build), the index

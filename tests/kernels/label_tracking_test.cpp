@@ -223,6 +223,53 @@ TEST(KernelLabelTracking, AnExpiredTokenLeavesTheFrameAndTheTrackerAsTheyWere) {
   for (uint32_t v = 0; v < ids.size(); ++v) ASSERT_EQ(ids[v], a.labels[source_of[v]]) << "vertex " << v;
 }
 
+// The tracker keeps its buffers from frame to frame: a restart must forget everything the last
+// frames left in them, and a frame of another size must be matched like any other.
+TEST(KernelLabelTracking, ARestartOrAFrameOfAnotherSizeIsTrackedAsByAFreshTracker) {
+  const Mesh big = test::make_icosphere(4), small = test::make_icosphere(2);
+  const uint32_t k = 7;
+  auto striped = [&](const Mesh& m) {
+    Frame f{m.positions, {}};
+    for (uint32_t v = 0; v < m.num_vertices(); ++v) f.labels.push_back(uint32_t((m.positions[3 * size_t(v)] + 1.f) * 3.49f));
+    return f;
+  };
+  std::vector<uint32_t> source_of;
+  const Frame a0 = striped(big), s0 = striped(small);
+  const Frame a1 = recaptured(a0, k, 21, source_of), s1 = recaptured(s0, k, 22, source_of);
+  TrackingOptions o;
+  o.cell = 0.05f;
+  o.max_distance = 0.4f;
+  auto track = [&](LabelTracker& t, const Frame& f, uint32_t clusters, uint32_t* bound = nullptr) {
+    std::vector<uint32_t> ids = f.labels;
+    const uint32_t b = t.track(f.positions.data(), uint32_t(f.labels.size()), ids, clusters, o);
+    if (bound != nullptr) *bound = b;
+    return ids;
+  };
+  LabelTracker fresh, reused;
+  const std::vector<uint32_t> want_a0 = track(fresh, a0, k), want_a1 = track(fresh, a1, k);
+  fresh.reset();
+  const std::vector<uint32_t> want_s0 = track(fresh, s0, k), want_s1 = track(fresh, s1, k);
+  for (int round = 0; round < 2; ++round) {
+    EXPECT_EQ(track(reused, a0, k), want_a0);
+    EXPECT_EQ(track(reused, a1, k), want_a1);
+    reused.reset();
+    EXPECT_EQ(track(reused, s0, k), want_s0) << "round " << round;
+    EXPECT_EQ(track(reused, s1, k), want_s1) << "round " << round;
+    reused.reset();
+  }
+  // Without a restart, the small frame then the big one: with a vote over one frame a frame's
+  // ids follow from the last frame's alone, so a fresh tracker given the small frame's ids agrees.
+  o.vote_frames = 1;
+  LabelTracker growing, from_small;
+  uint32_t bound = 0;
+  track(growing, a0, k);
+  track(growing, a1, k);
+  Frame tracked_s0 = s0;
+  tracked_s0.labels = track(growing, s0, k, &bound);
+  track(from_small, tracked_s0, bound);
+  EXPECT_EQ(track(growing, a1, k), track(from_small, a1, k));
+}
+
 // 21 x 21 grid: previous frame = left half id 0, right half id 1.
 TEST(KernelLabelTracking, SplitClusterKeepsItsIdOnTheLargerPart) {
   const Mesh grid = test::make_plane_grid(20, 20);
