@@ -22,6 +22,7 @@ void FrameMatcher::clear() {
   grid_.cell_start.clear();
   sorted_.clear();
   index_ = NearestVertexIndex{};
+  rank_.clear();
   sparse_ = false;
 }
 
@@ -41,10 +42,12 @@ void FrameMatcher::build(const float* xyz, uint32_t n, float cell) {
   // The sparse index's own rule for a cell that is too coarse (kCellLoad points per occupied
   // cell: a cell given as the mean edge of a frame with a far outlier), and a grid whose cells
   // had to grow past about twice the wanted one to stay within 8 cells a point.
-  uint64_t occupied = 0;
-  for (size_t c = 0; c + 1 < grid_.cell_start.size(); ++c) occupied += grid_.cell_start[c + 1] > grid_.cell_start[c];
-  sparse_ = !(grid_.layout.cell <= kMaxCellGrowth * cell_) || n > NearestVertexIndex::kCellLoad * occupied;
-  if (sparse_) index_.build(xyz, n, cell_);
+  sparse_ = !(grid_.layout.cell <= kMaxCellGrowth * cell_) || n > NearestVertexIndex::kCellLoad * uint64_t(grid_.occupied);
+  if (sparse_) {
+    index_.build(xyz, n, cell_);
+    rank_.resize(n);
+    for (uint32_t k = 0; k < n; ++k) rank_[grid_.order[k]] = k;
+  }
 }
 
 uint32_t FrameMatcher::nearest(Vec3 p, float reach) const {
@@ -61,6 +64,24 @@ void FrameMatcher::nearest_all(const FrameMatcher& queries, float reach, std::ve
   out.assign(n, kNone);
   if (size() == 0) return;
   parallel_for(n, threads, [&](uint32_t k) { out[queries.grid_.order[k]] = nearest(xyz(queries.sorted_[k]), reach); });
+}
+
+void FrameMatcher::nearest_all_in_cell_order(const FrameMatcher& queries, float reach, std::vector<uint32_t>& out,
+                                             int threads) const {
+  const uint32_t n = queries.size();
+  out.assign(n, kNone);
+  if (size() == 0) return;
+  const GridView view = grid_.view(sorted_.data());
+  parallel_for(n, threads, [&](uint32_t k) {
+    const Vec3 p = xyz(queries.sorted_[k]);
+    if (sparse_) {
+      const uint32_t i = index_.nearest(p, reach);
+      out[k] = i == kNone ? kNone : rank_[i];
+    } else {
+      const uint32_t j = nearest_in_grid_boxes(view, p, reach, 0.5f * cell_);
+      out[k] = j == kNoNearest ? kNone : j;
+    }
+  });
 }
 
 }  // namespace fq

@@ -36,6 +36,13 @@ class FrameMatcher {
   /// the queries' cell order, so neighbouring queries read the same cells. In parallel, under
   /// the caller's CancelScope (when its token expires, the answers are unspecified).
   void nearest_all(const FrameMatcher& queries, float reach, std::vector<uint32_t>& out, int threads) const;
+  /// nearest_all in cell order on both sides: out[k] for the k-th of `queries` in its cell
+  /// order, the position in this frame's cell order of its nearest point, or kNone. A caller
+  /// that keeps per-point data in cell order reads neighbouring entries for neighbouring queries.
+  void nearest_all_in_cell_order(const FrameMatcher& queries, float reach, std::vector<uint32_t>& out,
+                                 int threads) const;
+  /// The index (as given to build) of the k-th point in cell order.
+  uint32_t original(uint32_t k) const { return grid_.order[k]; }
   /// The index (as given to build) of the point nearest to p within `reach`, or kNone; ties go
   /// to the first in cell order, as NearestVertexIndex::nearest.
   uint32_t nearest(Vec3 p, float reach) const;
@@ -47,6 +54,7 @@ class FrameMatcher {
   CpuGrid grid_;
   std::vector<Point4> sorted_;  ///< the points in cell order (grid_.order)
   NearestVertexIndex index_;    ///< built only when sparse_
+  std::vector<uint32_t> rank_;  ///< only when sparse_: each point's position in cell order
   bool sparse_ = false;
 };
 

@@ -60,23 +60,29 @@ void stick_to_previous_side(const TrackingOptions& o, const std::vector<uint32_t
   }
 }
 
-/// The majority vote over time (see the header). `history` receives, per vertex, this
-/// frame's id then the history of its nearest previous vertex (`window` entries); `votes`
-/// are the previous frame's ids (the tie-break); `labels` become the most frequent id, one of
-/// the vertex's history. Returns the bound of the ids in `history` (so of `labels` too), and
-/// sets `used` (that long) where an id is in it; every id is below `id_limit`.
-uint32_t vote_over_frames(const std::vector<uint32_t>& nearest, const std::vector<uint32_t>& prev_history,
-                          int prev_window, int window, const std::vector<uint32_t>& votes, uint32_t id_limit,
-                          std::vector<uint32_t>& history, std::vector<uint32_t>& labels, std::vector<bool>& used) {
-  const size_t n = labels.size();
-  history.resize(n * size_t(window));
+/// The majority vote over time (see the header), in this frame's cell order (k-th vertex:
+/// `frame.original(k)`), with the previous frame's histories in its cell order (`nearest`: per
+/// vertex, the position there of its nearest previous vertex). `history` receives, per vertex,
+/// this frame's id then its nearest previous vertex's history (`window` entries), and
+/// `sorted_ids` its final id, both in cell order; `votes` are the previous frame's ids (the
+/// tie-break); `labels` become the most frequent id, one of the vertex's history. Returns the
+/// bound of the ids in `history` (so of `labels` too), and sets `used` (that long) where an id
+/// is in it; every id is below `id_limit`.
+uint32_t vote_over_frames(const FrameMatcher& frame, const std::vector<uint32_t>& nearest,
+                          const std::vector<uint32_t>& prev_history, int prev_window, int window,
+                          const std::vector<uint32_t>& votes, uint32_t id_limit, std::vector<uint32_t>& history,
+                          std::vector<uint32_t>& sorted_ids, std::vector<uint32_t>& labels, std::vector<bool>& used) {
+  const uint32_t n = frame.size();
+  history.resize(size_t(n) * window);
+  sorted_ids.resize(n);
   used.assign(id_limit, false);
   uint32_t bound = 0;
-  for (size_t v = 0; v < n; ++v) {
-    uint32_t* h = &history[v * window];
+  for (uint32_t k = 0; k < n; ++k) {
+    const uint32_t v = frame.original(k);
+    uint32_t* h = &history[size_t(k) * window];
     h[0] = labels[v];
-    const uint32_t* p = nearest[v] == kNone ? nullptr : &prev_history[size_t(nearest[v]) * prev_window];
-    for (int k = 1; k < window; ++k) h[k] = p != nullptr && k <= prev_window ? p[k - 1] : kNone;
+    const uint32_t* p = nearest[k] == kNone ? nullptr : &prev_history[size_t(nearest[k]) * prev_window];
+    for (int i = 1; i < window; ++i) h[i] = p != nullptr && i <= prev_window ? p[i - 1] : kNone;
     uint32_t best = h[0];
     int best_count = 0;
     for (int a = 0; a < window; ++a) {
@@ -91,6 +97,7 @@ uint32_t vote_over_frames(const std::vector<uint32_t>& nearest, const std::vecto
       used[h[a]] = true;
     }
     labels[v] = best;
+    sorted_ids[k] = best;
   }
   used.resize(bound);
   return bound;
@@ -143,10 +150,12 @@ Status LabelTracker::track_until(const CancelToken& token, const float* position
   int window = 1;
   uint32_t new_bound = num_clusters;
   if (has_previous()) {
-    prev_.nearest_all(next_, o.max_distance, nearest_, o.threads);
+    // Lookups, previous ids and histories in cell order: neighbouring vertices read
+    // neighbouring entries of the previous frame's.
+    prev_.nearest_all_in_cell_order(next_, o.max_distance, nearest_, o.threads);
     FQ_RETURN_IF_ERROR(token.check());
     votes_.resize(n);
-    for (uint32_t v = 0; v < n; ++v) votes_[v] = nearest_[v] == kNone ? kNone : prev_ids_[nearest_[v]];
+    for (uint32_t k = 0; k < n; ++k) votes_[next_.original(k)] = nearest_[k] == kNone ? kNone : prev_ids_[nearest_[k]];
     // prev_used_: the ids still in a vertex's vote window; a new cluster must not take one.
     const std::vector<uint32_t> id = match_cluster_ids(ids_, num_clusters, votes_, prev_used_);
     for (uint32_t& l : ids_) l = id[l];
@@ -158,16 +167,19 @@ Status LabelTracker::track_until(const CancelToken& token, const float* position
     }
     window = std::max(o.vote_frames, 1);
     const uint32_t id_limit = std::max(prev_bound_, uint32_t(prev_used_.size())) + num_clusters;
-    new_bound = vote_over_frames(nearest_, prev_history_, prev_window_, window, votes_, id_limit, history_, ids_, used_);
+    new_bound = vote_over_frames(next_, nearest_, prev_history_, prev_window_, window, votes_, id_limit, history_,
+                                 sorted_ids_, ids_, used_);
   } else {
-    history_ = ids_;
+    sorted_ids_.resize(n);
+    for (uint32_t k = 0; k < n; ++k) sorted_ids_[k] = ids_[next_.original(k)];
+    history_ = sorted_ids_;
     used_.assign(num_clusters, false);
     for (uint32_t id : ids_) used_[id] = true;
   }
   std::swap(prev_, next_);
   prev_history_.swap(history_);
   prev_window_ = window;
-  prev_ids_ = ids_;
+  prev_ids_.swap(sorted_ids_);
   prev_used_.swap(used_);
   prev_bound_ = new_bound;
   std::copy(ids_.begin(), ids_.end(), labels.begin());

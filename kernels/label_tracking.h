@@ -58,9 +58,10 @@ class LabelTracker {
   bool has_previous() const { return prev_.size() > 0; }
 
  private:
+  /// The previous frame: its matcher, and per vertex in the matcher's cell order its id and
+  /// the ids it was given before the vote, newest first (prev_window_ each).
   FrameMatcher prev_;
   std::vector<uint32_t> prev_ids_;
-  /// Per previous vertex, the ids it was given before the vote, newest first (prev_window_ each).
   std::vector<uint32_t> prev_history_;
   /// Per id below prev_bound_, whether prev_history_ holds it (a new cluster must not take it).
   std::vector<bool> prev_used_;
@@ -69,7 +70,7 @@ class LabelTracker {
   /// A frame's buffers, kept between frames (a stream's frames are about one size): the next
   /// matcher (swapped with prev_ once the frame is tracked), ids, lookups, votes, history, used ids.
   FrameMatcher next_;
-  std::vector<uint32_t> ids_, nearest_, votes_, history_;
+  std::vector<uint32_t> ids_, nearest_, votes_, history_, sorted_ids_;
   std::vector<bool> used_;
 };
 
