@@ -1,14 +1,17 @@
 // Nearest-vertex lookups from one capture frame into another (cluster id tracking,
-// kernels/label_tracking.h, and the CPU engine's temporal step, kernels/temporal.h): a frame's vertices counting-sorted into a uniform grid of about one
-// mean edge (kernels/grid_build.h), asked with the query the CUDA engine's temporal step uses
-// (kernels/grid_nearest.h). Two noisy bunnies (35K vertices) on the 2-core development machine:
-// build and lookups 8-10 ms against 28-31 ms with the sparse NearestVertexIndex, the same
-// answers. A uniform grid fails where the cell is wrong for the points: its cells are capped at
-// 8 per point, so a far outlier widens every cell, and a cell given as the mean edge of a frame
-// with a far outlier is itself too wide. When the grid's cell grew past twice the wanted one or
-// its occupied cells hold more than kCellLoad points on average, the lookups go to the sparse
+// kernels/label_tracking.h, and the CPU engine's temporal step, kernels/temporal.h): a frame's
+// vertices counting-sorted into a uniform grid of about one mean edge (kernels/grid_build.h),
+// with the answers of the query the CUDA engine's temporal step uses (kernels/grid_nearest.h),
+// its spheres walked as boxes of cells (kernels/box_nearest.h). Two noisy bunnies (35K
+// vertices) on the 2-core development machine: build and lookups 8-10 ms against 28-31 ms with
+// the sparse NearestVertexIndex, the same answers (about 3 ms with the box walk). A uniform grid
+// fails where the cell is wrong for the points: its cells are capped at 8 per point, so a far
+// outlier widens every cell, and a cell given as the mean edge of a frame with a far outlier is
+// itself too wide. When the grid's cell grew more than three of its steps (past about twice the
+// wanted one: on dragon, four steps, the grid's budget of candidates cuts a few lookups short)
+// or its occupied cells hold more than kCellLoad points on average, the lookups go to the sparse
 // index, which frames its cells on the bulk of the points (its header says how), and the grid
-// only orders the queries.
+// only orders the queries. Every buffer keeps its memory from one build to the next.
 #pragma once
 
 #include <cstdint>
