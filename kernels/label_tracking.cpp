@@ -143,7 +143,7 @@ Status LabelTracker::track_until(const CancelToken& token, const float* position
   const CancelScope scope(&token);
   // Everything is computed aside (in buffers kept from frame to frame) and kept only once the
   // whole frame is tracked. This frame's matcher first: the next frame is matched against it,
-  // and this frame's queries go to the previous one in its cell order (FrameMatcher::nearest_all).
+  // and this frame's queries go to the previous one in its cell order.
   next_.build(positions, n, o.cell);
   FQ_RETURN_IF_ERROR(token.check());
   ids_.assign(labels.begin(), labels.end());
@@ -166,7 +166,8 @@ Status LabelTracker::track_until(const CancelToken& token, const float* position
       }
     }
     window = std::max(o.vote_frames, 1);
-    const uint32_t id_limit = std::max(prev_bound_, uint32_t(prev_used_.size())) + num_clusters;
+    // Ids in the previous histories are below prev_bound_, new ones below prev_bound_ + num_clusters.
+    const uint32_t id_limit = prev_bound_ + num_clusters;
     new_bound = vote_over_frames(next_, nearest_, prev_history_, prev_window_, window, votes_, id_limit, history_,
                                  sorted_ids_, ids_, used_);
   } else {

@@ -178,8 +178,8 @@ TEST(KernelGridNearestBoxes, GivesTheSpheresAnswersOnTiesAndWhereTheBudgetRunsOu
   for (uint32_t i = 0; i < 2000; ++i) piles.push_back({float(i % 4) * 0.7f, 1.f + 1e-4f * float(i % 7), 1.f});
   piles.push_back({3.f, 3.f, 3.f});
   const LaidOutGrid crowded = lay_out(piles, choose_grid_layout({0.f, 0.f, 0.f}, {4.f, 4.f, 4.f}, 0.5f, 2001));
-  std::vector<Vec3> near_piles;
-  for (int i = 0; i < 40; ++i) near_piles.push_back({0.1f * float(i), 1.2f, 1.1f + 0.05f * float(i % 5)});
+  std::vector<Vec3> near_piles(40);
+  for (int i = 0; i < 40; ++i) near_piles[i] = {0.1f * float(i), 1.2f, 1.1f + 0.05f * float(i % 5)};
   expect_boxes_agree(crowded, near_piles, 0.25f, {0.2f, 1.f, 4.f});
 }
 
