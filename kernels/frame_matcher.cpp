@@ -1,6 +1,8 @@
 #include "kernels/frame_matcher.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/parallel_for.h"
 #include "kernels/box_nearest.h"
@@ -14,6 +16,11 @@ namespace {
 /// more than 8 cells of a mean edge a point (igea, 134K vertices) keeps the grid; an outlier
 /// widens the cells far more.
 constexpr float kMaxCellGrowth = 2.01f;
+/// The growth up to which the grid was kept before three steps were: a grid grown more keeps
+/// the sparse index's reach, kMaxReachCells of the wanted cell, so that its frames are matched
+/// as they were when they went to that index (the reach asked for is wider only when the next
+/// frame's mean edge is much longer than this one's).
+constexpr float kFullReachGrowth = 2.f;
 
 }  // namespace
 
@@ -43,6 +50,8 @@ void FrameMatcher::build(const float* xyz, uint32_t n, float cell) {
   // cell: a cell given as the mean edge of a frame with a far outlier), and a grid whose cells
   // had to grow past about twice the wanted one to stay within 8 cells a point.
   sparse_ = !(grid_.layout.cell <= kMaxCellGrowth * cell_) || n > NearestVertexIndex::kCellLoad * uint64_t(grid_.occupied);
+  reach_cap_ = grid_.layout.cell <= kFullReachGrowth * cell_ ? std::numeric_limits<float>::infinity()
+                                                             : NearestVertexIndex::kMaxReachCells * cell_;
   if (sparse_) {
     index_.build(xyz, n, cell_);
     rank_.resize(n);
@@ -54,7 +63,7 @@ uint32_t FrameMatcher::nearest(Vec3 p, float reach) const {
   if (sparse_) return index_.nearest(p, reach);
   // Growing spheres from half a cell, as NearestVertexIndex: most queries (the same surface
   // captured again) find their vertex within it.
-  const uint32_t j = nearest_in_grid_boxes(grid_.view(sorted_.data()), p, reach, 0.5f * cell_);
+  const uint32_t j = nearest_in_grid_boxes(grid_.view(sorted_.data()), p, std::min(reach, reach_cap_), 0.5f * cell_);
   return j == kNoNearest ? kNone : grid_.order[j];
 }
 
@@ -78,7 +87,7 @@ void FrameMatcher::nearest_all_in_cell_order(const FrameMatcher& queries, float 
       const uint32_t i = index_.nearest(p, reach);
       out[k] = i == kNone ? kNone : rank_[i];
     } else {
-      const uint32_t j = nearest_in_grid_boxes(view, p, reach, 0.5f * cell_);
+      const uint32_t j = nearest_in_grid_boxes(view, p, std::min(reach, reach_cap_), 0.5f * cell_);
       out[k] = j == kNoNearest ? kNone : j;
     }
   });

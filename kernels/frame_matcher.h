@@ -11,7 +11,9 @@
 // wanted one: on dragon, four steps, the grid's budget of candidates cuts a few lookups short)
 // or its occupied cells hold more than kCellLoad points on average, the lookups go to the sparse
 // index, which frames its cells on the bulk of the points (its header says how), and the grid
-// only orders the queries. Every buffer keeps its memory from one build to the next.
+// only orders the queries. A grid grown past twice the wanted cell (three steps) gives its
+// lookups the sparse index's reach, as those frames went to that index before. Every buffer
+// keeps its memory from one build to the next.
 #pragma once
 
 #include <cstdint>
@@ -59,6 +61,7 @@ class FrameMatcher {
   NearestVertexIndex index_;    ///< built only when sparse_
   std::vector<uint32_t> rank_;  ///< only when sparse_: each point's position in cell order
   bool sparse_ = false;
+  float reach_cap_ = 0.f;  ///< the widest reach a lookup on the grid is given (see build)
 };
 
 }  // namespace fq

@@ -87,7 +87,8 @@ TEST(KernelFrameMatcher, GivesTheNearestVertexIndexAnswers) {
 
 // A surface whose bounds hold more than 8 cells of the wanted size a point: the grid's cell
 // grows three of its steps (1.26^3 = 2.0004 times), not an outlier's widening, so the matcher
-// keeps its grid, with the sparse index's answers.
+// keeps its grid, with the sparse index's answers, also to queries asked with a reach wider
+// than the index's (kMaxReachCells cells: a next frame of a much longer mean edge).
 TEST(KernelFrameMatcher, KeepsTheGridWhereTheCellGrewThreeSteps) {
   std::mt19937 rng(7);
   std::normal_distribution<float> g(0.f, 1.f), jitter(0.f, 0.01f);
@@ -107,6 +108,14 @@ TEST(KernelFrameMatcher, KeepsTheGridWhereTheCellGrewThreeSteps) {
   index.nearest_all(queries.data(), 3000, 0.32f, want, 2);
   matcher.nearest_all(asked, 0.32f, got, 2);
   EXPECT_EQ(got, want);
+  std::vector<float> outside = queries;
+  for (size_t i = 0; i < outside.size(); ++i) outside[i] *= 1.f + 0.5f * float(i / 3 % 2);  // every other point 0.5 out
+  FrameMatcher asked_outside;
+  asked_outside.build(outside.data(), 3000, 0.04f);
+  index.nearest_all(outside.data(), 3000, 2.f, want, 2);
+  matcher.nearest_all(asked_outside, 2.f, got, 2);
+  EXPECT_EQ(got, want);
+  EXPECT_GT(std::count(got.begin(), got.end(), FrameMatcher::kNone), 500) << "the far half finds nothing";
 }
 
 // The same surface as a new capture: vertices shuffled, jittered, clusters renumbered.
