@@ -104,8 +104,9 @@ struct PublishOrder {
   std::map<uint64_t, FramePtr> held;
 };
 
-/// The previous frames' cluster ids (label_tracks.h): the previous frame's positions, ids and
-/// votes, tens of MB for a large frame.
+/// The previous frames' cluster ids (label_tracks.h): the previous frame's grid, ids and votes,
+/// and the buffers the next frame is tracked in (about 120 bytes a vertex: tens of MB for a
+/// large frame).
 struct LabelTrack {
   std::mutex mutex;
   LabelTracker tracker;

@@ -41,10 +41,11 @@ void build_grid(const Vec3* points, uint32_t n, float wanted_cell, CpuGrid& grid
                        grid.layout.nz, nullptr, nullptr, n};
   const size_t cells = grid.layout.cells();
   grid.cell_start.assign(cells + 1, 0);
+  grid.occupied = 0;
   std::vector<uint32_t> cell_of(n);
   for (uint32_t i = 0; i < n; ++i) {
     cell_of[i] = cell_index(shape, points[i]);
-    ++grid.cell_start[cell_of[i] + 1];
+    grid.occupied += grid.cell_start[cell_of[i] + 1]++ == 0 ? 1u : 0u;
   }
   for (size_t c = 0; c < cells; ++c) grid.cell_start[c + 1] += grid.cell_start[c];
   std::vector<uint32_t> cursor(grid.cell_start.begin(), grid.cell_start.end() - 1);

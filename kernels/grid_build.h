@@ -28,6 +28,7 @@ struct CpuGrid {
   GridLayout layout{};
   std::vector<uint32_t> cell_start;
   std::vector<uint32_t> order;
+  uint32_t occupied = 0;  ///< cells that hold a point
 
   /// View over `sorted_points` (the caller's points permuted by `order`).
   GridView view(const Point4* sorted_points) const {

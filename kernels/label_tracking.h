@@ -53,17 +53,25 @@ class LabelTracker {
   /// tracked. Every step is O(n log n) or less in the frame's vertices and triangles.
   Status track_until(const CancelToken& token, const float* positions, uint32_t n, std::vector<uint32_t>& labels,
                      uint32_t num_clusters, const TrackingOptions& options, uint32_t& bound);
-  /// Forgets the previous frame (the next one starts afresh).
+  /// Forgets the previous frame (the next one starts afresh) and frees the buffers.
   void reset();
   bool has_previous() const { return prev_.size() > 0; }
 
  private:
+  /// The previous frame: its matcher, and per vertex in the matcher's cell order its id and
+  /// the ids it was given before the vote, newest first (prev_window_ each).
   FrameMatcher prev_;
   std::vector<uint32_t> prev_ids_;
-  /// Per previous vertex, the ids it was given before the vote, newest first (prev_window_ each).
   std::vector<uint32_t> prev_history_;
+  /// Per id below prev_bound_, whether prev_history_ holds it (a new cluster must not take it).
+  std::vector<bool> prev_used_;
   int prev_window_ = 0;
   uint32_t prev_bound_ = 0;
+  /// A frame's buffers, kept between frames (a stream's frames are about one size): the next
+  /// matcher (swapped with prev_ once the frame is tracked), ids, lookups, votes, history, used ids.
+  FrameMatcher next_;
+  std::vector<uint32_t> ids_, nearest_, votes_, history_, sorted_ids_;
+  std::vector<bool> used_;
 };
 
 }  // namespace fq

@@ -85,6 +85,39 @@ TEST(KernelFrameMatcher, GivesTheNearestVertexIndexAnswers) {
   }
 }
 
+// A surface whose bounds hold more than 8 cells of the wanted size a point: the grid's cell
+// grows three of its steps (1.26^3 = 2.0004 times), not an outlier's widening, so the matcher
+// keeps its grid, with the sparse index's answers, also to queries asked with a reach wider
+// than the index's (kMaxReachCells cells: a next frame of a much longer mean edge).
+TEST(KernelFrameMatcher, KeepsTheGridWhereTheCellGrewThreeSteps) {
+  std::mt19937 rng(7);
+  std::normal_distribution<float> g(0.f, 1.f), jitter(0.f, 0.01f);
+  std::vector<float> pts, queries;
+  for (int i = 0; i < 3000; ++i) {  // a unit sphere, cells of 0.04: 51^3 cells wanted, 24,000 allowed
+    const Vec3 p = normalized_or_zero({g(rng), g(rng), g(rng)});
+    pts.insert(pts.end(), {p.x, p.y, p.z});
+    queries.insert(queries.end(), {p.x + jitter(rng), p.y + jitter(rng), p.z + jitter(rng)});
+  }
+  FrameMatcher matcher, asked;
+  matcher.build(pts.data(), 3000, 0.04f);
+  asked.build(queries.data(), 3000, 0.04f);
+  EXPECT_FALSE(matcher.sparse());
+  NearestVertexIndex index;
+  index.build(pts.data(), 3000, 0.04f);
+  std::vector<uint32_t> want, got;
+  index.nearest_all(queries.data(), 3000, 0.32f, want, 2);
+  matcher.nearest_all(asked, 0.32f, got, 2);
+  EXPECT_EQ(got, want);
+  std::vector<float> outside = queries;
+  for (size_t i = 0; i < outside.size(); ++i) outside[i] *= 1.f + 0.5f * float(i / 3 % 2);  // every other point 0.5 out
+  FrameMatcher asked_outside;
+  asked_outside.build(outside.data(), 3000, 0.04f);
+  index.nearest_all(outside.data(), 3000, 2.f, want, 2);
+  matcher.nearest_all(asked_outside, 2.f, got, 2);
+  EXPECT_EQ(got, want);
+  EXPECT_GT(std::count(got.begin(), got.end(), FrameMatcher::kNone), 500) << "the far half finds nothing";
+}
+
 // The same surface as a new capture: vertices shuffled, jittered, clusters renumbered.
 struct Frame {
   std::vector<float> positions;
@@ -197,6 +230,53 @@ TEST(KernelLabelTracking, AnExpiredTokenLeavesTheFrameAndTheTrackerAsTheyWere) {
   stop = false;
   ASSERT_TRUE(tracker.track_until(CancelToken(&stop), b.positions.data(), sphere.num_vertices(), ids, k, o, bound).ok());
   for (uint32_t v = 0; v < ids.size(); ++v) ASSERT_EQ(ids[v], a.labels[source_of[v]]) << "vertex " << v;
+}
+
+// The tracker keeps its buffers from frame to frame: a restart must forget everything the last
+// frames left in them, and a frame of another size must be matched like any other.
+TEST(KernelLabelTracking, ARestartOrAFrameOfAnotherSizeIsTrackedAsByAFreshTracker) {
+  const Mesh big = test::make_icosphere(4), small = test::make_icosphere(2);
+  const uint32_t k = 7;
+  auto striped = [&](const Mesh& m) {
+    Frame f{m.positions, {}};
+    for (uint32_t v = 0; v < m.num_vertices(); ++v) f.labels.push_back(uint32_t((m.positions[3 * size_t(v)] + 1.f) * 3.49f));
+    return f;
+  };
+  std::vector<uint32_t> source_of;
+  const Frame a0 = striped(big), s0 = striped(small);
+  const Frame a1 = recaptured(a0, k, 21, source_of), s1 = recaptured(s0, k, 22, source_of);
+  TrackingOptions o;
+  o.cell = 0.05f;
+  o.max_distance = 0.4f;
+  auto track = [&](LabelTracker& t, const Frame& f, uint32_t clusters, uint32_t* bound = nullptr) {
+    std::vector<uint32_t> ids = f.labels;
+    const uint32_t b = t.track(f.positions.data(), uint32_t(f.labels.size()), ids, clusters, o);
+    if (bound != nullptr) *bound = b;
+    return ids;
+  };
+  LabelTracker fresh, reused;
+  const std::vector<uint32_t> want_a0 = track(fresh, a0, k), want_a1 = track(fresh, a1, k);
+  fresh.reset();
+  const std::vector<uint32_t> want_s0 = track(fresh, s0, k), want_s1 = track(fresh, s1, k);
+  for (int round = 0; round < 2; ++round) {
+    EXPECT_EQ(track(reused, a0, k), want_a0);
+    EXPECT_EQ(track(reused, a1, k), want_a1);
+    reused.reset();
+    EXPECT_EQ(track(reused, s0, k), want_s0) << "round " << round;
+    EXPECT_EQ(track(reused, s1, k), want_s1) << "round " << round;
+    reused.reset();
+  }
+  // Without a restart, the small frame then the big one: with a vote over one frame a frame's
+  // ids follow from the last frame's alone, so a fresh tracker given the small frame's ids agrees.
+  o.vote_frames = 1;
+  LabelTracker growing, from_small;
+  uint32_t bound = 0;
+  track(growing, a0, k);
+  track(growing, a1, k);
+  Frame tracked_s0 = s0;
+  tracked_s0.labels = track(growing, s0, k, &bound);
+  track(from_small, tracked_s0, bound);
+  EXPECT_EQ(track(growing, a1, k), track(from_small, a1, k));
 }
 
 // 21 x 21 grid: previous frame = left half id 0, right half id 1.
