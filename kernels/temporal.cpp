@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 
+#include "core/cancel_token.h"
 #include "core/parallel_for.h"
 #include "kernels/refine_math.h"
 #include "kernels/temporal_math.h"
@@ -46,6 +47,9 @@ void vertex_normals(const FanView& fan, const std::vector<Vec3>& x, std::vector<
 
 TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions, double mean_edge, float noise,
                             float strength, TemporalHistory& history, TemporalScratch& s, int threads) {
+  // No loop of the step may be skipped (parallel_for skips chunks under an expired token): the
+  // serial code after each loop reads what it wrote, and the step is short. It runs whole.
+  const CancelScope whole(nullptr);
   const uint32_t n = mesh.num_vertices;
   TemporalStep step;
   const bool follows = !history.empty() && n > 0 && mean_edge > 0.0;

@@ -5,13 +5,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <atomic>
 #include <numeric>
 #include <random>
 #include <vector>
 
 #include "eval/error_metrics.h"
 #include "eval/noise.h"
+#include "core/cancel_token.h"
 #include "kernels/cpu_engine.h"
+#include "kernels/temporal.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
@@ -116,6 +120,39 @@ TEST(Temporal, VertexIdsPlayNoPart) {
     for (int c = 0; c < 3; ++c)
       EXPECT_NEAR(renumbered.positions[3 * size_t(j) + c], plain.positions[3 * size_t(perm[j]) + c], 1e-4f)
           << "vertex " << j;
+}
+
+// The step runs whole under a caller's expired token (parallel_for skips the chunks of one, and
+// the step's serial code reads what its loops wrote): the same result as without one.
+TEST(Temporal, TheStepRunsWholeUnderAnExpiredToken) {
+  const Mesh sphere = test::make_icosphere(3);
+  const Mesh f0 = noisy(sphere, 1), f1 = noisy(sphere, 2);
+  double edge = 0.0;
+  for (size_t t = 0; t < f0.triangles.size(); t += 3)
+    for (int k = 0; k < 3; ++k) {
+      const float* a = &f0.positions[3 * size_t(f0.triangles[t + k])];
+      const float* b = &f0.positions[3 * size_t(f0.triangles[t + (k + 1) % 3])];
+      edge += std::sqrt(double(a[0] - b[0]) * (a[0] - b[0]) + double(a[1] - b[1]) * (a[1] - b[1]) +
+                        double(a[2] - b[2]) * (a[2] - b[2]));
+    }
+  edge /= double(f0.triangles.size());
+  std::vector<float> results[2];
+  TemporalStep steps[2];
+  for (int expired = 0; expired < 2; ++expired) {
+    TemporalHistory history;
+    TemporalScratch scratch;
+    std::vector<float> first = f0.positions;
+    follow_history(f0.view(), first, edge, 0.2f, 0.75f, history, scratch, 2);
+    results[expired] = f1.positions;
+    std::atomic<bool> stop{expired == 1};
+    const CancelToken token(&stop);
+    const CancelScope scope(&token);
+    steps[expired] = follow_history(f1.view(), results[expired], edge, 0.2f, 0.75f, history, scratch, 2);
+  }
+  EXPECT_GT(steps[0].share, 0.05f) << "the history was used";
+  EXPECT_NE(results[0], f1.positions) << "the frame was pulled";
+  EXPECT_EQ(steps[1].share, steps[0].share);
+  EXPECT_EQ(results[1], results[0]);
 }
 
 TEST(Temporal, ASceneCutRestartsTheHistoryAndLeavesTheFrameAlone) {
