@@ -54,7 +54,7 @@ Errors run_sequence(CleanAt clean_at, int frames, float temporal) {
   stream.set_history(&history);
   Errors r;
   for (int t = 0; t < frames; ++t) {
-    const Mesh clean = clean_at(t);
+    const Mesh& clean = clean_at(t);  // a reference or a temporary kept alive
     const Mesh input = noisy(clean, 100 + t);
     FrameResult a, s;
     EXPECT_TRUE(alone.process(input.view(), temporal_params(temporal), a).ok());
