@@ -59,12 +59,20 @@ void FrameMatcher::build(const float* xyz, uint32_t n, float cell) {
   }
 }
 
-uint32_t FrameMatcher::nearest(Vec3 p, float reach) const {
-  if (sparse_) return index_.nearest(p, reach);
+uint32_t FrameMatcher::nearest_position(Vec3 p, float reach) const {
+  if (sparse_) {
+    const uint32_t i = index_.nearest(p, reach);
+    return i == kNone ? kNone : rank_[i];
+  }
   // Growing spheres from half a cell, as NearestVertexIndex: most queries (the same surface
   // captured again) find their vertex within it.
   const uint32_t j = nearest_in_grid_boxes(grid_.view(sorted_.data()), p, std::min(reach, reach_cap_), 0.5f * cell_);
-  return j == kNoNearest ? kNone : grid_.order[j];
+  return j == kNoNearest ? kNone : j;
+}
+
+uint32_t FrameMatcher::nearest(Vec3 p, float reach) const {
+  const uint32_t k = nearest_position(p, reach);
+  return k == kNone ? kNone : grid_.order[k];
 }
 
 void FrameMatcher::nearest_all(const FrameMatcher& queries, float reach, std::vector<uint32_t>& out,
@@ -80,17 +88,7 @@ void FrameMatcher::nearest_all_in_cell_order(const FrameMatcher& queries, float 
   const uint32_t n = queries.size();
   out.assign(n, kNone);
   if (size() == 0) return;
-  const GridView view = grid_.view(sorted_.data());
-  parallel_for(n, threads, [&](uint32_t k) {
-    const Vec3 p = xyz(queries.sorted_[k]);
-    if (sparse_) {
-      const uint32_t i = index_.nearest(p, reach);
-      out[k] = i == kNone ? kNone : rank_[i];
-    } else {
-      const uint32_t j = nearest_in_grid_boxes(view, p, std::min(reach, reach_cap_), 0.5f * cell_);
-      out[k] = j == kNoNearest ? kNone : j;
-    }
-  });
+  parallel_for(n, threads, [&](uint32_t k) { out[k] = nearest_position(xyz(queries.sorted_[k]), reach); });
 }
 
 }  // namespace fq

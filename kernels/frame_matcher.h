@@ -53,6 +53,9 @@ class FrameMatcher {
   uint32_t nearest(Vec3 p, float reach) const;
 
  private:
+  /// nearest's point as its position in this frame's cell order, or kNone: the one lookup
+  /// behind nearest and nearest_all_in_cell_order.
+  uint32_t nearest_position(Vec3 p, float reach) const;
 
   float cell_ = 1.f;
   std::vector<Vec3> points_;  ///< build's copy of the points (kept for the next build)
