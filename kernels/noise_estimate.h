@@ -109,8 +109,76 @@ struct RingFit {
   bool ok = false;
 };
 
+/// The frame a fit works in at vertex v (position p): its area-weighted unit normal n, a
+/// tangent basis (t1, t2) and the inverse mean length of the `first` 1-ring edges, which makes
+/// the in-plane coordinates order one (a well-scaled system). ok is false without a normal or
+/// without edge length.
+struct FitFrame {
+  Vec3 p, n, t1, t2;
+  double inv_edge = 0.0;
+  bool ok = false;
+};
+
+FQ_HD FitFrame fit_frame(const FanView& m, const Vec3* x, uint32_t v, const uint32_t* ring, int first) {
+  FitFrame f;
+  f.p = x[v];
+  Vec3 n{0.f, 0.f, 0.f};
+  double edge = 0.0;
+  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
+    const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[k]);
+    n = n + cross(x[tri[1]] - x[tri[0]], x[tri[2]] - x[tri[0]]);
+  }
+  for (int k = 0; k < first; ++k) edge += std::sqrt(double(norm2(x[ring[k]] - f.p)));
+  const float len = std::sqrt(norm2(n));
+  if (!(len > 0.f) || !(edge > 0.0)) return f;
+  f.n = (1.0f / len) * n;
+  // A tangent frame: the axis least aligned with n, crossed with n.
+  const Vec3 axis = std::fabs(f.n.x) < 0.9f ? Vec3{1.f, 0.f, 0.f} : Vec3{0.f, 1.f, 0.f};
+  const Vec3 t1 = cross(f.n, axis);
+  f.t1 = (1.0f / std::sqrt(norm2(t1))) * t1;
+  f.t2 = cross(f.n, f.t1);
+  f.inv_edge = first / edge;
+  f.ok = true;
+  return f;
+}
+
+/// A ring vertex q in the frame: in-plane coordinates (u, w) and height h along the normal.
+struct FitPoint {
+  double u, w;
+  float h;
+};
+FQ_HD FitPoint fit_point(const FitFrame& f, Vec3 q) {
+  const Vec3 d = q - f.p;
+  return {dot(d, f.t1) * f.inv_edge, dot(d, f.t2) * f.inv_edge, dot(d, f.n)};
+}
+
+/// The design row of the quadratic height field at (u, w).
+FQ_HD void fit_row(const FitPoint& q, double (&row)[6]) {
+  row[0] = 1.0;
+  row[1] = q.u;
+  row[2] = q.w;
+  row[3] = q.u * q.u;
+  row[4] = q.u * q.w;
+  row[5] = q.w * q.w;
+}
+
+/// The point's weight in the fitted height at the vertex: its row times y = (XᵀX)⁻¹ e0.
+FQ_HD double intercept_weight(const double (&y)[6], const FitPoint& q) {
+  return y[0] + y[1] * q.u + y[2] * q.w + y[3] * q.u * q.u + y[4] * q.u * q.w + y[5] * q.w * q.w;
+}
+
+/// The fit's leverage and standardized residual from y[0] = λ and the fitted height b0.
+FQ_HD void finish_fit(double y0, double b0, RingFit& fit) {
+  fit.leverage = float(y0 > 0.0 ? y0 : 0.0);
+  fit.z = float(-b0 / sqrt(1.0 + fit.leverage));
+  fit.ok = true;
+}
+
 /// Fits vertex v (see the top of this file); fit.ok is false where v has fewer than kMinRing
-/// 2-ring neighbours, no normal or a degenerate ring.
+/// 2-ring neighbours, no normal or a degenerate ring. The ring is the first kMaxRing distinct
+/// vertices other than v met walking v's triangles' corners, then those of the triangles of
+/// each 1-ring vertex in turn (kernels/cuda/noise_samples.cu builds the same list a warp at a
+/// time).
 FQ_HD void fit_ring(const FanView& m, const Vec3* x, uint32_t v, RingFit& fit) {
   fit.ok = false;
   int count = detail::add_one_ring(m, v, v, fit.ring, 0);
@@ -118,28 +186,12 @@ FQ_HD void fit_ring(const FanView& m, const Vec3* x, uint32_t v, RingFit& fit) {
   for (int k = 0; k < first; ++k) count = detail::add_one_ring(m, fit.ring[k], v, fit.ring, count);
   fit.count = count;
   if (count < kMinRing) return;
-  const Vec3 p = x[v];
-  Vec3 n{0.f, 0.f, 0.f};
-  double edge = 0.0;
-  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
-    const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[k]);
-    n = n + cross(x[tri[1]] - x[tri[0]], x[tri[2]] - x[tri[0]]);
-  }
-  for (int k = 0; k < first; ++k) edge += std::sqrt(double(norm2(x[fit.ring[k]] - p)));
-  const float len = std::sqrt(norm2(n));
-  if (!(len > 0.f) || !(edge > 0.0)) return;
-  n = (1.0f / len) * n;
-  // A tangent frame: the axis least aligned with n, crossed with n.
-  const Vec3 axis = std::fabs(n.x) < 0.9f ? Vec3{1.f, 0.f, 0.f} : Vec3{0.f, 1.f, 0.f};
-  Vec3 t1 = cross(n, axis);
-  t1 = (1.0f / std::sqrt(norm2(t1))) * t1;
-  const Vec3 t2 = cross(n, t1);
-  const double inv_edge = first / edge;  // u, v in the vertex's own edge lengths: a well-scaled system
+  const FitFrame frame = fit_frame(m, x, v, fit.ring, first);
+  if (!frame.ok) return;
   double a[6][6] = {}, y[6] = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   for (int k = 0; k < count; ++k) {
-    const Vec3 d = x[fit.ring[k]] - p;
-    const double u = dot(d, t1) * inv_edge, w = dot(d, t2) * inv_edge;
-    const double row[6] = {1.0, u, w, u * u, u * w, w * w};
+    double row[6];
+    fit_row(fit_point(frame, x[fit.ring[k]]), row);
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j <= i; ++j) a[i][j] += row[i] * row[j];
   }
@@ -148,15 +200,12 @@ FQ_HD void fit_ring(const FanView& m, const Vec3* x, uint32_t v, RingFit& fit) {
   if (!detail::solve6(a, y)) return;  // y = (XᵀX)⁻¹ e0
   double b0 = 0.0;
   for (int k = 0; k < count; ++k) {
-    const Vec3 d = x[fit.ring[k]] - p;
-    const double u = dot(d, t1) * inv_edge, w = dot(d, t2) * inv_edge;
-    const double ak = y[0] + y[1] * u + y[2] * w + y[3] * u * u + y[4] * u * w + y[5] * w * w;
+    const FitPoint q = fit_point(frame, x[fit.ring[k]]);
+    const double ak = intercept_weight(y, q);
     fit.weight[k] = float(ak);
-    b0 += ak * dot(d, n);
+    b0 += ak * q.h;
   }
-  fit.leverage = float(y[0] > 0.0 ? y[0] : 0.0);
-  fit.z = float(-b0 / sqrt(1.0 + fit.leverage));
-  fit.ok = true;
+  finish_fit(y[0], b0, fit);
 }
 
 /// One sample of the estimate: the residuals of vertex v and of a neighbour (the first other
@@ -170,11 +219,21 @@ struct NoiseSample {
   float z_v, z_u, white_correlation;
 };
 
+/// The neighbour a sample at v pairs with: the first other corner of v's first triangle (v has one).
+FQ_HD uint32_t sample_partner(const FanView& m, uint32_t v) {
+  const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[m.vf_offsets[v]]);
+  return tri[0] != v ? tri[0] : tri[1];
+}
+
+/// Cov(e_v, e_u) / σ² (c) as a correlation.
+FQ_HD float white_correlation(double c, const RingFit& fv, const RingFit& fu) {
+  return float(c / sqrt((1.0 + fv.leverage) * (1.0 + fu.leverage)));
+}
+
 FQ_HD NoiseSample noise_sample(const FanView& m, const Vec3* x, uint32_t v) {
   NoiseSample s{NAN, NAN, NAN};
   if (m.vf_offsets[v + 1] == m.vf_offsets[v]) return s;
-  const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[m.vf_offsets[v]]);
-  const uint32_t u = tri[0] != v ? tri[0] : tri[1];
+  const uint32_t u = sample_partner(m, v);
   RingFit fv, fu;
   fit_ring(m, x, v, fv);
   if (!fv.ok) return s;
@@ -190,7 +249,7 @@ FQ_HD NoiseSample noise_sample(const FanView& m, const Vec3* x, uint32_t v) {
   }
   for (int l = 0; l < fu.count; ++l)
     if (fu.ring[l] == v) c -= fu.weight[l];
-  s.white_correlation = float(c / sqrt((1.0 + fv.leverage) * (1.0 + fu.leverage)));
+  s.white_correlation = white_correlation(c, fv, fu);
   return s;
 }
 

@@ -1,10 +1,12 @@
-// "qf+" passes of the CUDA engine: one thread per vertex, triangle or noise sample, each calling
+// "qf+" passes of the CUDA engine: one thread per vertex or triangle (the noise samples: a warp
+// per fit, kernels/cuda/noise_samples.cu), each calling
 // the host+device math of kernels/noise_estimate.h and kernels/refine_math.h exactly as
 // cpu_stages.cpp does.
 #include <utility>
 
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/launch.cuh"
+#include "kernels/cuda/noise_samples.cuh"
 #include "kernels/cuda/refine_passes.cuh"
 
 namespace fq::cuda {
@@ -14,11 +16,6 @@ namespace {
 __global__ void input_positions_kernel(uint32_t n, const Point4* in, Vec3* out) {
   const uint64_t v = item_index();
   if (v < n) out[v] = xyz(in[v]);
-}
-
-__global__ void noise_sample_kernel(uint32_t count, uint32_t stride, FanView fan, const Vec3* x, NoiseSample* out) {
-  const uint64_t k = item_index();
-  if (k < count) out[k] = noise_sample(fan, x, k * stride);
 }
 
 __global__ void closed_fan_kernel(uint32_t n, FanView fan, uint8_t* closed) {
@@ -85,11 +82,7 @@ NoiseEstimate estimate_noise(DeviceFrame& f, RefineBuffers& b, cudaStream_t s) {
   FQ_LAUNCH(input_positions_kernel, n, s, n, f.points.data(), x);
   const uint32_t stride = noise_sample_stride(n), count = noise_sample_count(n);
   NoiseSample* samples = b.samples.reserve(count);
-  // A few thousand long threads (two ring fits each): small blocks spread them over every SM
-  // (256-thread blocks put 4096 samples on 16 SMs of an H100's 132).
-  constexpr unsigned kSampleBlock = 32;
-  noise_sample_kernel<<<(count + kSampleBlock - 1) / kSampleBlock, kSampleBlock, 0, s>>>(count, stride, fan, x, samples);
-  FQ_CUDA_CHECK_LAUNCH("noise_sample_kernel");
+  noise_samples(fan, x, stride, count, samples, s);
   NoiseSample* h = b.h_samples.reserve(count);
   FQ_CUDA_CHECK(cudaMemcpyAsync(h, samples, count * sizeof(NoiseSample), cudaMemcpyDeviceToHost, s));
   FQ_CUDA_CHECK(cudaStreamSynchronize(s));
