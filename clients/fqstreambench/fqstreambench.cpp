@@ -164,11 +164,14 @@ fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep,
   std::atomic<bool> stop_sending{false}, stop_collecting{false};
   const int64_t measure_from = fq::client::now_ns() + static_cast<int64_t>(a.warmup * 1e9);
   std::thread collector([&] { run.cpu.collector_ms = col.run(stop_collecting, measure_from, a.decode); });
+  fq::bench::HostProbe probe;
+  probe.start();
   std::vector<std::thread> senders;
   std::vector<fq::bench::Producer::Sent> sent(producers.size());
   for (size_t i = 0; i < producers.size(); ++i)
     senders.emplace_back([&, i] { sent[i] = producers[i].run(ctx, ep.ingest, stop_sending, measure_from); });
   for (std::thread& t : senders) t.join();
+  run.host = probe.stop();
   for (int i = 0; i < a.streams; ++i) {
     run.sent[a.stream_prefix + std::to_string(i)] = sent[size_t(i)].all;
     run.sent_measured[a.stream_prefix + std::to_string(i)] = sent[size_t(i)].measured;

@@ -69,6 +69,14 @@ void add_cpu(const RunInfo& r, const Deltas& d, nlohmann::json& fqd) {
   }
 }
 
+nlohmann::json host_json(const HostQuiet& h) {
+  nlohmann::json j = {{"wakeups", h.wakeups},
+                      {"wakeup_late_ms", {{"p50", h.late_p50_ms}, {"p99", h.late_p99_ms}, {"max", h.late_max_ms}}},
+                      {"wakeups_late_over_5ms", h.late_over_5ms}};
+  if (h.steal_share >= 0) j["steal_share"] = h.steal_share;
+  return j;
+}
+
 }  // namespace
 
 nlohmann::json report_json(const RunInfo& r) {
@@ -101,6 +109,7 @@ nlohmann::json report_json(const RunInfo& r) {
           {"drops_measured", measured > r.overall.results() ? measured - r.overall.results() : 0},
           {"fqd", fqd},
           {"bench", bench},
+          {"host", host_json(r.host)},
           {"overall", r.overall.to_json()},
           {"per_stream", streams}};
 }
@@ -149,6 +158,17 @@ std::string report_text(const RunInfo& r) {
     }
     s += "\n";
   }
+  const nlohmann::json& h = j["host"];
+  std::snprintf(b, sizeof b, "  host: 1 ms sleeps woke p50/p99/max %.2f/%.2f/%.1f ms late, %llu over 5 ms",
+                h["wakeup_late_ms"]["p50"].get<double>(), h["wakeup_late_ms"]["p99"].get<double>(),
+                h["wakeup_late_ms"]["max"].get<double>(),
+                static_cast<unsigned long long>(h["wakeups_late_over_5ms"].get<uint64_t>()));
+  s += b;
+  if (h.contains("steal_share")) {
+    std::snprintf(b, sizeof b, "; steal %.2f %%", 100 * h["steal_share"].get<double>());
+    s += b;
+  }
+  s += "\n";
   s += "  stages p50/p95/p99 ms:\n";
   for (const auto& [name, st] : o["stages"].items()) s += "    " + name + ": " + triple(st) + "\n";
   return s;

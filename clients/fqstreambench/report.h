@@ -10,6 +10,7 @@
 
 #include "wire/fq.pb.h"
 #include "clients/common/stream_stats.h"
+#include "clients/fqstreambench/host_probe.h"
 
 namespace fq::bench {
 
@@ -37,6 +38,7 @@ struct RunInfo {
   std::map<std::string, client::StreamStats> per_stream;
   client::StreamStats overall;
   CpuInfo cpu;
+  HostQuiet host;  ///< over the sending
 };
 
 nlohmann::json report_json(const RunInfo& r);

@@ -1,7 +1,8 @@
 // The built fqstreambench, run as a user would on the bundled sample with the copy engine:
 // its JSON says what fqd's host CPU per frame was, by stage, beside plain Draco's decode +
-// encode of the same frame, and what the benchmark's own producers and consumer used. CPU
-// times are checked for consistency, not for speed: this machine may be loaded.
+// encode of the same frame, what the benchmark's own producers and consumer used, and how late
+// the host woke a sleeping thread while it ran. CPU times are checked for consistency, not for
+// speed: this machine may be loaded.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -41,6 +42,15 @@ TEST(StreambenchCpu, JsonHasFqdsCpuByStageBesideTheFloor) {
   EXPECT_DOUBLE_EQ(fqd.at("cpu_over_floor").get<double>(), cpu / floor);
   EXPECT_GT(j.at("bench").at("producers_cpu_ms_per_frame").get<double>(), 0);
   EXPECT_GT(j.at("bench").at("collector_cpu_ms_per_frame").get<double>(), 0);
+  // How quiet the host was over the 2 s of sending: a wake-up at most every millisecond.
+  const nlohmann::json& host = j.at("host");
+  EXPECT_GT(host.at("wakeups").get<uint64_t>(), 10u);
+  EXPECT_LE(host.at("wakeups").get<uint64_t>(), 2100u);
+  const nlohmann::json& late = host.at("wakeup_late_ms");
+  EXPECT_LE(late.at("p50").get<double>(), late.at("p99").get<double>());
+  EXPECT_LE(late.at("p99").get<double>(), late.at("max").get<double>());
+  EXPECT_LE(host.at("wakeups_late_over_5ms").get<uint64_t>(), host.at("wakeups").get<uint64_t>());
+  EXPECT_GE(host.at("steal_share").get<double>(), 0.0);
 }
 
 }  // namespace
