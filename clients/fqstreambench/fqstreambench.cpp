@@ -35,6 +35,7 @@ struct Args {
   double warmup = 1.0, drain = 30.0, budget_ms = 0.0;
   int encode_speed = 10;
   std::string result_form;  ///< in-process fqd: "positions" | "mesh" ("" = config/default)
+  std::string phases = "aligned";  ///< when in the frame period the streams send
   bool connect = false, json = false, markdown = false, decode = false;
   fq::bench::ProducerOptions producer;
   fq::client::OverrideArgs overrides;
@@ -156,6 +157,7 @@ fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep,
     fq::bench::ProducerOptions o = a.producer;
     o.spec.stream_id = a.stream_prefix + std::to_string(i);
     o.seed += static_cast<uint64_t>(i) * 1000;
+    if (a.phases == "spread") o.phase = static_cast<double>(i) / a.streams;
     FQ_RETURN_IF_ERROR(producers[size_t(i)].prepare(mesh, o));
   }
   if (daemon) measure_floor(a, producers[0].frame_mesh(mesh, 0), run.cpu);
@@ -201,6 +203,10 @@ void add_options(CLI::App& app, Args& a) {
   fq::client::add_defaulted(app, "--warmup", a.warmup, "first seconds not measured");
   fq::client::add_defaulted(app, "--drain", a.drain, "longest wait for the last results");
   fq::client::add_ranged(app, "--chunks", a.producer.spec.chunks, "Draco chunks per frame", 1, 256);
+  fq::client::add_defaulted(app, "--phases", a.phases,
+                            "aligned: every stream sends at the same instants (cameras on one sync signal); "
+                            "spread: stream i sends i/K of a frame period later (free-running cameras)")
+      ->check(CLI::IsMember({"aligned", "spread"}));
   fq::client::add_ranged(app, "--encode-speed", a.encode_speed,
                          "Draco encoder speed 0..10 of the producers and of fqd's results (in-process fqd)",
                          0, 10);
@@ -252,6 +258,7 @@ int run(Args& a) {
   run.vertices = mesh.num_vertices(), run.triangles = mesh.num_triangles();
   run.streams = a.streams, run.fps = a.producer.fps, run.seconds = a.producer.seconds, run.warmup = a.warmup;
   run.chunks = a.producer.spec.chunks;
+  run.phases = a.phases;
   std::unique_ptr<fq::daemon::Daemon> daemon;
   Endpoints ep{a.ingest, a.publish, a.control};
   if (a.connect) {

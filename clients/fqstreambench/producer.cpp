@@ -36,8 +36,8 @@ Producer::Sent Producer::run(zmq::context_t& ctx, const std::string& endpoint, c
   push.connect(endpoint);
   using clock = std::chrono::steady_clock;
   const int64_t cpu0 = thread_cpu_ns();
-  const auto start = clock::now();
   const auto period = std::chrono::duration<double>(1.0 / options_.fps);
+  const auto start = clock::now() + std::chrono::duration_cast<clock::duration>(period * options_.phase);
   Sent sent;
   for (uint64_t i = 0; !stop; ++i) {
     const auto due = start + std::chrono::duration_cast<clock::duration>(period * static_cast<double>(i));

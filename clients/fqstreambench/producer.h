@@ -21,6 +21,7 @@ struct ProducerOptions {
   double noise = 0.0;  ///< mean edges; each variant gets its own draw
   int variants = 4;    ///< distinct noisy frames cycled through (1 without noise)
   uint64_t seed = 1;
+  double phase = 0.0;  ///< when in the frame period this stream sends, in periods: [0, 1)
 };
 
 class Producer {

@@ -101,6 +101,7 @@ nlohmann::json report_json(const RunInfo& r) {
           {"seconds", r.seconds},
           {"warmup", r.warmup},
           {"chunks", r.chunks},
+          {"phases", r.phases},
           {"compute", r.compute},
           {"result_form", r.result_form},
           {"frames_sent", total(r.sent)},
@@ -122,9 +123,9 @@ std::string report_text(const RunInfo& r) {
   std::snprintf(
       b, sizeof b,
       "fqstreambench: %s (%u V, %u F), %d stream(s) x %.1f fps for %.1f s (first %.1f s not measured), "
-      "%u chunk(s), engine %s, compute %s, %s results\n",
+      "%u chunk(s), %s phases, engine %s, compute %s, %s results\n",
       r.mesh_name.c_str(), r.vertices, r.triangles, r.streams, r.fps, r.seconds, r.warmup, r.chunks,
-      r.engine.c_str(), r.compute.c_str(), r.result_form.c_str());
+      r.phases.c_str(), r.engine.c_str(), r.compute.c_str(), r.result_form.c_str());
   s += b;
   std::snprintf(b, sizeof b,
                 "  sent %llu (measured %llu), results measured %llu, achieved %.2f fps/stream, drops %llu "

@@ -30,6 +30,7 @@ struct RunInfo {
   int streams = 1;
   double fps = 0, seconds = 0, warmup = 0;
   uint32_t chunks = 1;
+  std::string phases;  ///< "aligned" or "spread" (fqstreambench --phases)
   std::string compute;
   std::string result_form;  ///< "positions" or "mesh" (fqd's setting for the streams)
   std::map<std::string, uint64_t> sent;                       ///< all frames sent, per stream

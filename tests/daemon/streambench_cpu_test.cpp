@@ -17,11 +17,12 @@ namespace {
 TEST(StreambenchCpu, JsonHasFqdsCpuByStageBesideTheFloor) {
   const Child c = spawn(FQSTREAMBENCH_BIN, {"fandisk.ply", "--mesh-dir", FQ_DATA_DIR, "--engine", "copy", "--streams",
                                             "2", "--fps", "20", "-d", "2", "--warmup", "0.5", "--chunks", "2",
-                                            "--compute", "filter_and_cluster", "--json"});
+                                            "--phases", "spread", "--compute", "filter_and_cluster", "--json"});
   const std::string out = read_all(c.out);
   ASSERT_EQ(wait_exit(c.pid), 0) << out;
   const nlohmann::json j = nlohmann::json::parse(out);
   EXPECT_EQ(j.at("engine"), "copy");
+  EXPECT_EQ(j.at("phases"), "spread");
   const nlohmann::json& fqd = j.at("fqd");
   ASSERT_GT(fqd.at("frames_out").get<uint64_t>(), 0u);
   const double cpu = fqd.at("cpu_ms_per_frame").get<double>();
