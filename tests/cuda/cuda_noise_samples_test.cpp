@@ -6,16 +6,17 @@
 
 #include <cuda_runtime.h>
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "eval/noise.h"
-#include "io/mesh_io.h"
 #include "kernels/cuda/noise_samples.cuh"
 #include "kernels/vertex_faces.h"
 #include "tests/cuda/parity.h"
-#include "tests/support/mesh_dir.h"
+#include "tests/cuda/real_meshes.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq::test {
@@ -128,14 +129,11 @@ TEST_F(CudaNoiseSamples, FullRingsBoundariesAndDegenerateInput) {
 }
 
 TEST_F(CudaNoiseSamples, RealMeshesWithNoise) {
-  for (const char* file : {"fandisk.ply", "bunny.ply", "igea.ply", "crane/crane_0060.drc"}) {
-    const auto path = find_mesh(file);
-    if (!path) GTEST_SKIP() << file << " not found in " << mesh_dir();
-    Mesh mesh;
-    const Status rs = io::read_mesh(*path, mesh);
-    ASSERT_TRUE(rs.ok()) << rs.message();
-    add_gaussian_noise(mesh, 0.2, 7);
-    EXPECT_GT(expect_same_samples(mesh, file), 500);
+  for (const char* file : kRealMeshes) {
+    std::optional<Mesh> mesh = read_real_mesh(file);
+    if (!mesh) GTEST_SKIP() << file << " not found in " << mesh_dir();
+    add_gaussian_noise(*mesh, 0.2, 7);
+    EXPECT_GT(expect_same_samples(*mesh, file), 500);
   }
 }
 

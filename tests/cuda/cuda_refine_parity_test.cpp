@@ -7,14 +7,15 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "eval/capture_sequence.h"
 #include "eval/noise.h"
-#include "io/mesh_io.h"
 #include "kernels/cpu_engine.h"
 #include "tests/cuda/parity.h"
+#include "tests/cuda/real_meshes.h"
 #include "tests/support/mesh_dir.h"
 #include "tests/support/test_meshes.h"
 
@@ -72,16 +73,13 @@ TEST_F(CudaRefineParity, WithClustering) {
 }
 
 TEST_F(CudaRefineParity, RealMeshesWithNoise) {
-  for (const char* file : {"fandisk.ply", "bunny.ply", "igea.ply", "crane/crane_0060.drc"}) {
-    const auto path = find_mesh(file);
-    if (!path) GTEST_SKIP() << file << " not found in " << mesh_dir();
-    Mesh mesh;
-    const Status rs = io::read_mesh(*path, mesh);
-    ASSERT_TRUE(rs.ok()) << rs.message();
+  for (const char* file : kRealMeshes) {
+    const std::optional<Mesh> mesh = read_real_mesh(file);
+    if (!mesh) GTEST_SKIP() << file << " not found in " << mesh_dir();
     for (double s : {0.05, 0.2}) {
-      Mesh noisy = mesh;
+      Mesh noisy = *mesh;
       add_gaussian_noise(noisy, s, 7);
-      std::printf("  %s (%u vertices), noise %.2f:\n", file, mesh.num_vertices(), s);
+      std::printf("  %s (%u vertices), noise %.2f:\n", file, mesh->num_vertices(), s);
       expect_parity_for_each(*cpu_, noisy.view(), Params{}, kDefault, expect_same_noise);
     }
   }
