@@ -1,5 +1,6 @@
 #include "clients/common/frame_sender.h"
 
+#include <algorithm>
 #include <chrono>
 #include <zmq_addon.hpp>
 
@@ -13,6 +14,11 @@ int64_t now_ns() {
       .count();
 }
 
+uint32_t auto_chunks(uint32_t vertices) {
+  const uint32_t wanted = (vertices + kAutoChunkVertices - 1) / kAutoChunkVertices;
+  return std::clamp<uint32_t>(wanted, 1, kMaxAutoChunks);
+}
+
 Status build_frame(const MeshView& mesh, const FrameSpec& spec, uint64_t sequence,
                    std::vector<std::string>& parts) {
   std::vector<std::string> chunks;
@@ -21,7 +27,8 @@ Status build_frame(const MeshView& mesh, const FrameSpec& spec, uint64_t sequenc
   opt.encode_speed = spec.encode_speed;
   opt.decode_speed = spec.decode_speed;
   opt.threads = spec.encode_threads;
-  FQ_RETURN_IF_ERROR(wire::encode_frame(mesh, nullptr, spec.chunks, opt, chunks));
+  const uint32_t count = spec.chunks == 0 ? auto_chunks(mesh.num_vertices) : spec.chunks;
+  FQ_RETURN_IF_ERROR(wire::encode_frame(mesh, nullptr, count, opt, chunks));
   wire::FrameHeader h;
   h.set_version(wire::kWireVersion);
   h.set_stream_id(spec.stream_id);

@@ -14,9 +14,22 @@
 
 namespace fq::client {
 
+/// Vertices a chunk gets when the producer leaves the count to build_frame (FrameSpec::chunks
+/// = 0): about 2 ms of Draco decoding on one core of an H100 host (igea's 134K vertices decoded
+/// in 16-18 ms as one chunk), and fqd decodes a frame's chunks at once, so a frame's decode
+/// takes about that long when cores are free (igea 1 x 30: p50 21-23 ms with one chunk,
+/// 7.6-8.2 with eight; docs/BENCHMARKS.md). Chunks cost a little in bytes (igea: +0.6 % from 8
+/// to 16 chunks).
+constexpr uint32_t kAutoChunkVertices = 16384;
+/// At most this many chunks are chosen (a frame's decode is spread over at most this many cores).
+constexpr uint32_t kMaxAutoChunks = 16;
+
+/// The chunks build_frame makes of a frame of `vertices` vertices when FrameSpec::chunks is 0.
+uint32_t auto_chunks(uint32_t vertices);
+
 struct FrameSpec {
   std::string stream_id = "default";
-  uint32_t chunks = 1;
+  uint32_t chunks = 1;  ///< Draco chunks per frame; 0: auto_chunks of the frame's vertex count
   int position_bits = 16;
   int encode_speed = 10;  ///< Draco encoder speed 0..10 (10: fastest to encode and decode)
   int decode_speed = 10;

@@ -30,7 +30,11 @@ struct Args {
   double fps = 10.0, noise = 0.0, duration = 0.0;
   uint64_t seed = 1, count = 0;
   bool json = false, quiet = false;
-  fq::client::FrameSpec spec;
+  fq::client::FrameSpec spec = [] {
+    fq::client::FrameSpec s;
+    s.chunks = 0;  // by the frame's size
+    return s;
+  }();
   fq::client::OverrideArgs overrides;
 };
 
@@ -112,6 +116,7 @@ nlohmann::json summary(const Args& a, const Totals& t, bool connected) {
   return {{"stream", a.spec.stream_id},
           {"frames_sent", t.sent},
           {"frames_sent_unconnected", t.unconnected},
+          {"chunks", a.spec.chunks == 0 ? "auto" : std::to_string(a.spec.chunks)},
           {"fqd_connected", connected},
           {"seconds", t.seconds},
           {"fps", fps_of(t)},
@@ -127,7 +132,10 @@ void add_options(CLI::App& app, Args& a) {
                  "while no fqd is subscribed are dropped");
   fq::client::add_defaulted(app, "-s,--stream", a.spec.stream_id, "stream id (the topic of the results)");
   fq::client::add_ranged(app, "--fps", a.fps, "frames per second", 0.001, 10000.0);
-  fq::client::add_ranged(app, "--chunks", a.spec.chunks, "Draco chunks per frame", 1, 256);
+  fq::client::add_ranged(app, "--chunks", a.spec.chunks,
+                         "Draco chunks per frame; 0: one per 16,384 vertices, at most 16 (fqd decodes a frame's "
+                         "chunks at once)",
+                         0, 256);
   fq::client::add_ranged(app, "--position-bits", a.spec.position_bits, "Draco position bits", 8, 30);
   fq::client::add_ranged(app, "--encode-speed", a.spec.encode_speed,
                          "Draco encoder speed 0..10 (10: fastest, largest)", 0, 10);
