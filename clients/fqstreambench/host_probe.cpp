@@ -64,7 +64,8 @@ HostQuiet HostProbe::stop() {
     q.late_p50_ms = median(late_ms_);
     q.late_p99_ms = percentile(late_ms_, 0.99);
     q.late_max_ms = *std::max_element(late_ms_.begin(), late_ms_.end());
-    q.late_over_5ms = static_cast<uint64_t>(std::count_if(late_ms_.begin(), late_ms_.end(), [](double x) { return x > 5.0; }));
+    q.late_over_5ms = static_cast<uint64_t>(
+        std::count_if(late_ms_.begin(), late_ms_.end(), [](double x) { return x > 5.0; }));
   }
   const std::optional<CpuTicks> t1 = read_cpu_ticks();
   if (ticks0_ && t1 && t1->total > ticks0_->total && t1->steal >= ticks0_->steal)

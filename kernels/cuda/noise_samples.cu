@@ -91,7 +91,8 @@ __device__ void fit_ring_warp(const FanView& m, const Vec3* x, uint32_t v, WarpF
 }
 
 /// noise_sample()'s correlation term c by the warp (the same terms, summed in another order).
-__device__ double white_covariance_warp(const RingFit& fv, const RingFit& fu, uint32_t v, uint32_t u, int lane) {
+__device__ double white_covariance_warp(const RingFit& fv, const RingFit& fu, uint32_t v, uint32_t u,
+                                        int lane) {
   double c = 0.0;
   for (int k = lane; k < fv.count; k += kWarp) {
     const uint32_t r = fv.ring[k];
@@ -105,8 +106,8 @@ __device__ double white_covariance_warp(const RingFit& fv, const RingFit& fu, ui
 }
 
 /// Block k (two warps) makes sample k: warp 0 fits v, warp 1 its partner u.
-__global__ void __launch_bounds__(2 * kWarp) noise_sample_kernel(FanView m, const Vec3* x, uint32_t stride,
-                                                                  NoiseSample* out) {
+__global__ void __launch_bounds__(2 * kWarp)
+    noise_sample_kernel(FanView m, const Vec3* x, uint32_t stride, NoiseSample* out) {
   __shared__ alignas(alignof(WarpFit)) unsigned char raw[2 * sizeof(WarpFit)];
   WarpFit* fits = reinterpret_cast<WarpFit*>(raw);
   const uint32_t v = blockIdx.x * stride;

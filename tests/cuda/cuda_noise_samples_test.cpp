@@ -2,9 +2,8 @@
 // against noise_sample() on the host, sample by sample: the same failed fits (NaN fields) and the
 // same values, on synthetic shapes, a fan whose 2-ring passes kMaxRing, a mesh with boundaries,
 // an unreferenced vertex and zero-area triangles, and the shared real meshes with noise.
-#include <gtest/gtest.h>
-
 #include <cuda_runtime.h>
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
@@ -42,7 +41,8 @@ std::vector<Vec3> normalized_positions(const Mesh& m) {
   double edge = 0.0;
   for (size_t t = 0; t < m.num_triangles(); ++t)
     for (int c = 0; c < 3; ++c)
-      edge += std::sqrt(double(norm2(vertex(m, m.triangles[3 * t + c]) - vertex(m, m.triangles[3 * t + (c + 1) % 3]))));
+      edge += std::sqrt(
+          double(norm2(vertex(m, m.triangles[3 * t + c]) - vertex(m, m.triangles[3 * t + (c + 1) % 3]))));
   const float scale = m.num_triangles() ? float(3.0 * m.num_triangles() / edge) : 1.f;
   std::vector<Vec3> x(m.num_vertices());
   for (uint32_t v = 0; v < m.num_vertices(); ++v) x[v] = scale * vertex(m, v);
@@ -68,15 +68,17 @@ int expect_same_samples(const Mesh& m, const std::string& what) {
   OnDevice<NoiseSample> d_out(count);
   cuda::noise_samples(FanView{d_tris.p, d_offsets.p, d_faces.p}, d_x.p, stride, count, d_out.p, nullptr);
   std::vector<NoiseSample> gpu(count);
-  EXPECT_EQ(cudaMemcpy(gpu.data(), d_out.p, count * sizeof(NoiseSample), cudaMemcpyDeviceToHost), cudaSuccess);
+  EXPECT_EQ(cudaMemcpy(gpu.data(), d_out.p, count * sizeof(NoiseSample), cudaMemcpyDeviceToHost),
+            cudaSuccess);
   int usable = 0, differing = 0;
   for (uint32_t k = 0; k < count; ++k) {
     const NoiseSample c = noise_sample(host, x.data(), k * stride), g = gpu[k];
     const bool same = same_value(c.z_v, g.z_v) && same_value(c.z_u, g.z_u) &&
                       same_value(c.white_correlation, g.white_correlation);
     if (!same && ++differing <= 5)
-      ADD_FAILURE() << "sample " << k << " (vertex " << k * stride << "): host " << c.z_v << " " << c.z_u << " "
-                    << c.white_correlation << ", device " << g.z_v << " " << g.z_u << " " << g.white_correlation;
+      ADD_FAILURE() << "sample " << k << " (vertex " << k * stride << "): host " << c.z_v << " " << c.z_u
+                    << " " << c.white_correlation << ", device " << g.z_v << " " << g.z_u << " "
+                    << g.white_correlation;
     usable += std::isfinite(c.white_correlation) ? 1 : 0;
   }
   EXPECT_EQ(differing, 0) << "of " << count << " samples";
@@ -91,7 +93,8 @@ Mesh polar_disk(int spokes, int rings) {
   for (int r = 1; r <= rings; ++r)
     for (int s = 0; s < spokes; ++s) {
       const double a = 2 * M_PI * (s + 0.5 * (r % 2)) / spokes;
-      m.positions.insert(m.positions.end(), {float(r * std::cos(a)), float(r * std::sin(a)), float(0.05 * r * r)});
+      m.positions.insert(m.positions.end(),
+                         {float(r * std::cos(a)), float(r * std::sin(a)), float(0.05 * r * r)});
     }
   auto at = [&](int r, int s) { return r == 0 ? 0u : uint32_t(1 + (r - 1) * spokes + (s % spokes)); };
   for (int s = 0; s < spokes; ++s) m.triangles.insert(m.triangles.end(), {at(0, 0), at(1, s), at(1, s + 1)});

@@ -23,7 +23,7 @@ TEST(FrameSender, AutoChunksGrowWithTheFrameAndStopAtTheCap) {
 }
 
 TEST(FrameSender, ChunksZeroSplitsTheFrameByItsSize) {
-  const Mesh small = test::make_plane_grid(40, 40);   // 1,681 vertices
+  const Mesh small = test::make_plane_grid(40, 40);    // 1,681 vertices
   const Mesh large = test::make_plane_grid(200, 200);  // 40,401 vertices: 3 chunks
   for (const Mesh* m : {&small, &large}) {
     FrameSpec spec;
