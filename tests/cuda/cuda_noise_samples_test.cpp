@@ -13,6 +13,7 @@
 
 #include "eval/noise.h"
 #include "kernels/cuda/noise_samples.cuh"
+#include "kernels/frame_prep.h"
 #include "kernels/vertex_faces.h"
 #include "tests/cuda/parity.h"
 #include "tests/cuda/real_meshes.h"
@@ -38,12 +39,8 @@ struct OnDevice {
 
 // Positions in mean edge lengths, as the engines hand them to the estimate.
 std::vector<Vec3> normalized_positions(const Mesh& m) {
-  double edge = 0.0;
-  for (size_t t = 0; t < m.num_triangles(); ++t)
-    for (int c = 0; c < 3; ++c)
-      edge += std::sqrt(
-          double(norm2(vertex(m, m.triangles[3 * t + c]) - vertex(m, m.triangles[3 * t + (c + 1) % 3]))));
-  const float scale = m.num_triangles() ? float(3.0 * m.num_triangles() / edge) : 1.f;
+  const double edge = mean_edge_length(m.view());
+  const float scale = edge > 0.0 ? float(1.0 / edge) : 1.f;
   std::vector<Vec3> x(m.num_vertices());
   for (uint32_t v = 0; v < m.num_vertices(); ++v) x[v] = scale * vertex(m, v);
   return x;
