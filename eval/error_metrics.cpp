@@ -79,20 +79,26 @@ double rmse_over_diagonal(const MeshView& reference, const float* positions) {
   return std::sqrt(sum2 / reference.num_vertices) / diag;
 }
 
+double face_normal_angle(const float* pa, const uint32_t* ta, const float* pb, const uint32_t* tb) {
+  D3 na, nb;
+  if (!face_normal(pa, ta, na) || !face_normal(pb, tb, nb)) return std::numeric_limits<double>::quiet_NaN();
+  // atan2 of |cross| and dot keeps full precision for tiny and near-pi angles, where
+  // acos of a normalized dot product loses it.
+  const D3 c = cross(na, nb);
+  return std::atan2(std::sqrt(dot(c, c)), dot(na, nb));
+}
+
 MfneResult mean_face_normal_error(const MeshView& reference, const float* positions) {
   MfneResult r;
   double sum = 0.0;
   for (uint32_t t = 0; t < reference.num_triangles; ++t) {
     const uint32_t* tri = reference.triangles + 3 * size_t(t);
-    D3 n_ref, n;
-    if (!face_normal(reference.positions, tri, n_ref) || !face_normal(positions, tri, n)) {
+    const double angle = face_normal_angle(reference.positions, tri, positions, tri);
+    if (std::isnan(angle)) {
       ++r.faces_skipped;
       continue;
     }
-    // atan2 of |cross| and dot keeps full precision for tiny and near-pi angles, where
-    // acos of a normalized dot product loses it.
-    const D3 c = cross(n_ref, n);
-    sum += std::atan2(std::sqrt(dot(c, c)), dot(n_ref, n));
+    sum += angle;
     ++r.faces_used;
   }
   r.mean_radians = r.faces_used ? sum / r.faces_used : std::numeric_limits<double>::quiet_NaN();

@@ -42,4 +42,9 @@ struct MfneResult {
 /// Precondition: as for rmse_over_diagonal, and reference indices are in range.
 MfneResult mean_face_normal_error(const MeshView& reference, const float* positions);
 
+/// The angle, in radians in [0, pi], between the normal of triangle `ta` of positions `pa`
+/// and that of triangle `tb` of positions `pb`; NaN when either is degenerate (the rule of
+/// mean_face_normal_error). The meshes may differ (a scan against its reconstruction).
+double face_normal_angle(const float* pa, const uint32_t* ta, const float* pb, const uint32_t* tb);
+
 }  // namespace fq

@@ -1,11 +1,14 @@
 #include "eval/noise.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <random>
 #include <vector>
 
 #include "kernels/frame_prep.h"
+#include "kernels/grid_build.h"
 
 namespace fq {
 
@@ -48,11 +51,10 @@ double noise_std(const Mesh& mesh, double sigma_mean_edges) {
   return std_dev > 0.0 && std::isfinite(std_dev) ? std_dev : 0.0;
 }
 
-}  // namespace
-
-void add_normal_noise(Mesh& mesh, double sigma_mean_edges, uint64_t seed) {
-  const double std_dev = noise_std(mesh, sigma_mean_edges);
-  if (std_dev == 0.0) return;
+/// Area-weighted vertex normals of the mesh as it is, unnormalized (zero where a vertex has
+/// none): callers divide by the length where they use one, as add_normal_noise always did, so
+/// that its noisy meshes stay bit for bit what they were.
+std::vector<double> area_normals(const Mesh& mesh) {
   const uint32_t n = mesh.num_vertices();
   std::vector<double> normals(3 * size_t(n), 0.0);
   const float* p = mesh.positions.data();
@@ -67,16 +69,125 @@ void add_normal_noise(Mesh& mesh, double sigma_mean_edges, uint64_t seed) {
     for (int corner = 0; corner < 3; ++corner)
       for (int k = 0; k < 3; ++k) normals[3 * size_t(tri[corner]) + k] += c[k];  // area-weighted
   }
-  NormalSource normal(seed);
-  for (uint32_t v = 0; v < n; ++v) {
+  return normals;
+}
+
+double length(const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+/// Moves every vertex by offsets[v] along its unit normal (not at all without one).
+void move_along(Mesh& mesh, const std::vector<double>& normals, const std::vector<double>& offsets) {
+  for (uint32_t v = 0; v < mesh.num_vertices(); ++v) {
     const double* nv = &normals[3 * size_t(v)];
-    const double len = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
-    const double d = std_dev * normal.next();
+    const double len = length(nv);
     if (!(len > 0.0)) continue;
     for (int k = 0; k < 3; ++k) {
       float& c = mesh.positions[3 * size_t(v) + k];
-      c = float(double(c) + d * nv[k] / len);
+      c = float(double(c) + offsets[v] * nv[k] / len);
     }
+  }
+}
+
+/// Depth noise grows as 1 / |cos| of the angle to the view, up to 4 × at grazing angles
+/// (a scanner drops the steepest parts rather than measure them worse still).
+constexpr double kGrazingFloor = 0.25;
+
+}  // namespace
+
+void add_normal_noise(Mesh& mesh, double sigma_mean_edges, uint64_t seed) {
+  const double std_dev = noise_std(mesh, sigma_mean_edges);
+  if (std_dev == 0.0) return;
+  const std::vector<double> normals = area_normals(mesh);
+  NormalSource normal(seed);
+  std::vector<double> offsets(mesh.num_vertices());
+  for (double& d : offsets) d = std_dev * normal.next();
+  move_along(mesh, normals, offsets);
+}
+
+void add_depth_noise(Mesh& mesh, double sigma_mean_edges, uint64_t seed) {
+  const double std_dev = noise_std(mesh, sigma_mean_edges);
+  if (std_dev == 0.0) return;
+  const std::vector<double> normals = area_normals(mesh);
+  NormalSource normal(seed);
+  for (uint32_t v = 0; v < mesh.num_vertices(); ++v) {
+    const double len = length(&normals[3 * size_t(v)]), draw = normal.next();
+    if (!(len > 0.0)) continue;
+    const double cosine = std::fabs(normals[3 * size_t(v) + 2]) / len;
+    float& z = mesh.positions[3 * size_t(v) + 2];
+    z = float(double(z) + std_dev * draw / std::max(cosine, kGrazingFloor));
+  }
+}
+
+void add_correlated_noise(Mesh& mesh, double sigma_mean_edges, double length_mean_edges, uint64_t seed) {
+  const double std_dev = noise_std(mesh, sigma_mean_edges);
+  if (std_dev == 0.0 || !(length_mean_edges > 0.0) || !std::isfinite(length_mean_edges)) return;
+  const uint32_t n = mesh.num_vertices();
+  const double length = length_mean_edges * std_dev / sigma_mean_edges;  // in mesh units
+  NormalSource normal(seed);
+  std::vector<double> white(n);
+  for (double& w : white) w = normal.next();
+  std::vector<Vec3> points(n);
+  for (uint32_t v = 0; v < n; ++v) points[v] = {mesh.positions[3 * size_t(v)], mesh.positions[3 * size_t(v) + 1],
+                                                mesh.positions[3 * size_t(v) + 2]};
+  CpuGrid grid;
+  build_grid(points.data(), n, float(length), grid);
+  std::vector<Point4> sorted(n);
+  for (uint32_t k = 0; k < n; ++k) sorted[k] = {points[grid.order[k]].x, points[grid.order[k]].y, points[grid.order[k]].z, 0.f};
+  const GridView g = grid.view(sorted.data());
+  const double inv2 = -0.5 / (length * length);
+  std::vector<double> offsets(n);
+  for (uint32_t v = 0; v < n; ++v) {
+    // Σ k w / √(Σ k²): unit variance whatever the sampling around v.
+    double sum = 0.0, norm2 = 0.0;
+    for_each_neighbor(g, points[v], float(3.0 * length), [&](uint32_t j, const Point4&, Vec3, float d2) {
+      const double k = std::exp(double(d2) * inv2);
+      sum += k * white[grid.order[j]];
+      norm2 += k * k;
+    });
+    offsets[v] = norm2 > 0.0 ? std_dev * sum / std::sqrt(norm2) : 0.0;
+  }
+  move_along(mesh, area_normals(mesh), offsets);
+}
+
+void add_ripple_noise(Mesh& mesh, double sigma_mean_edges, double period_mean_edges, uint64_t seed) {
+  const double std_dev = noise_std(mesh, sigma_mean_edges);
+  if (std_dev == 0.0 || !(period_mean_edges > 0.0) || !std::isfinite(period_mean_edges)) return;
+  const double period = period_mean_edges * std_dev / sigma_mean_edges;  // in mesh units
+  std::mt19937_64 rng(seed);
+  const double phase = 2.0 * std::numbers::pi * (double(rng() >> 11) * 0x1.0p-53);
+  std::vector<double> offsets(mesh.num_vertices());
+  for (uint32_t v = 0; v < mesh.num_vertices(); ++v)
+    offsets[v] = std_dev * std::numbers::sqrt2 *
+                 std::sin(2.0 * std::numbers::pi * mesh.positions[3 * size_t(v)] / period + phase);
+  move_along(mesh, area_normals(mesh), offsets);
+}
+
+bool parse_noise_kind(const char* name, NoiseKind& kind) {
+  for (NoiseKind k : {NoiseKind::kIso, NoiseKind::kNormal, NoiseKind::kDepth, NoiseKind::kCorrelated, NoiseKind::kRipple})
+    if (std::strcmp(name, noise_kind_name(k)) == 0) {
+      kind = k;
+      return true;
+    }
+  return false;
+}
+
+const char* noise_kind_name(NoiseKind kind) {
+  switch (kind) {
+    case NoiseKind::kIso: return "iso";
+    case NoiseKind::kNormal: return "normal";
+    case NoiseKind::kDepth: return "depth";
+    case NoiseKind::kCorrelated: return "correlated";
+    case NoiseKind::kRipple: return "ripple";
+  }
+  return "?";
+}
+
+void add_noise(Mesh& mesh, NoiseKind kind, double sigma_mean_edges, double length_mean_edges, uint64_t seed) {
+  switch (kind) {
+    case NoiseKind::kIso: add_gaussian_noise(mesh, sigma_mean_edges, seed); break;
+    case NoiseKind::kNormal: add_normal_noise(mesh, sigma_mean_edges, seed); break;
+    case NoiseKind::kDepth: add_depth_noise(mesh, sigma_mean_edges, seed); break;
+    case NoiseKind::kCorrelated: add_correlated_noise(mesh, sigma_mean_edges, length_mean_edges, seed); break;
+    case NoiseKind::kRipple: add_ripple_noise(mesh, sigma_mean_edges, length_mean_edges, seed); break;
   }
 }
 

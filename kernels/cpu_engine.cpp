@@ -88,7 +88,12 @@ void CpuEngine::run_pass(PassKind pass, const RunPlan& run, FrameResult& out) {
     case PassKind::kBaseQuadrics: cpu::base_quadrics(f_, threads_); break;
     case PassKind::kNeighbourhoodQuadrics: cpu::neighbourhood_quadrics(f_, run.sigma_b, threads_); break;
     case PassKind::kDiffusion: cpu::diffuse_quadrics(f_, run, threads_); break;
-    case PassKind::kNoise: out.noise_estimate = cpu::estimate_noise(f_, threads_).noise; break;
+    case PassKind::kNoise: {
+      const NoiseEstimate e = cpu::estimate_noise(f_, threads_);
+      out.noise_estimate = e.noise;
+      out.noise_residual = e.residual;
+      break;
+    }
     case PassKind::kRefine: {
       const RefinePlan plan = run.refinement(out.noise_estimate);
       cpu::refine_positions(f_, plan, threads_);

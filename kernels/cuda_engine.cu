@@ -236,7 +236,12 @@ void CudaEngine::enqueue_pass(PassKind pass, const RunPlan& run, FrameResult& ou
     case PassKind::kDiffusion:
       team ? cuda::team_diffuse_quadrics(f_, run, team, fast_exp, s) : cuda::diffuse_quadrics(f_, run, s);
       break;
-    case PassKind::kNoise: out.noise_estimate = cuda::estimate_noise(f_, refine_, s).noise; break;
+    case PassKind::kNoise: {
+      const NoiseEstimate e = cuda::estimate_noise(f_, refine_, s);
+      out.noise_estimate = e.noise;
+      out.noise_residual = e.residual;
+      break;
+    }
     case PassKind::kRefine: {
       const RefinePlan plan = run.refinement(out.noise_estimate);
       cuda::refine_positions(f_, refine_, plan, s);

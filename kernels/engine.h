@@ -41,6 +41,10 @@ struct FrameResult {
   /// edge lengths; 0 for the other methods.
   float noise_estimate = 0.f;
   float filter_noise = 0.f;
+  /// "qf+": the residual of the estimate's fits (noise and the detail a quadratic over two
+  /// rings cannot follow, mean edge lengths): noise_estimate is the share of it read as
+  /// noise, the rest was read as the surface's detail.
+  float noise_residual = 0.f;
   /// Temporal filtering: the share of vertices that found a prior in the stream's last result,
   /// the mean pull towards it, and whether this frame reset the history (a scene cut).
   float prior_coverage = 0.f;

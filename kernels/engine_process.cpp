@@ -24,6 +24,7 @@ void reset_run_outputs(FrameResult& out) {
   out.link_p.clear();
   out.noise_estimate = 0.f;
   out.filter_noise = 0.f;
+  out.noise_residual = 0.f;
   out.prior_coverage = 0.f;
   out.prior_share = 0.f;
   out.history_reset = false;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/params.h"
+#include "eval/vertex_moves.h"
 #include "python/bindings.h"
 #include "python/engine_options.h"
 #include "python/interruptible.h"
@@ -27,12 +28,27 @@ FrameResult run(const pyb::handle& v, const pyb::handle& f, const Params& params
   return result;
 }
 
-pyb::array filter(const pyb::handle& v, const pyb::handle& f, const pyb::dict& keywords, const std::string& engine,
-                  int threads) {
+/// What fq.filter(return_info=True) adds (documented in fq/_engine.py).
+pyb::dict filter_info(const Mesh& mesh, const Params& p, const FrameResult& r) {
+  const VertexMoves moved = vertex_moves(mesh.positions.data(), r.positions.data(), mesh.num_vertices(), r.mean_edge);
+  const bool qf_plus = p.filter && p.filtering.method == FilterMethod::kQuadricRefined;
+  const pyb::object none = pyb::none();
+  return pyb::dict("mean_edge"_a = r.mean_edge, "noise_estimate"_a = qf_plus ? pyb::cast(r.noise_estimate) : none,
+                   "noise_residual"_a = qf_plus ? pyb::cast(r.noise_residual) : none,
+                   "filtered_for"_a = qf_plus ? pyb::cast(r.filter_noise) : none, "moved_mean"_a = moved.mean,
+                   "moved_p99"_a = moved.p99, "moved_max"_a = moved.max);
+}
+
+pyb::object filter(const pyb::handle& v, const pyb::handle& f, const pyb::dict& keywords, const std::string& engine,
+                   int threads, bool info) {
   Params p;  // fqfilter's defaults: the same positions as fqfilter for the same keywords
   apply_keywords("filter", keywords, p);
-  const FrameResult r = run(v, f, p, engine_options(engine, threads));
-  return positions_array(r.positions, v);
+  const Mesh mesh = to_mesh(v, f);
+  FrameResult r;
+  throw_if_error(run_interruptible(engine_options(engine, threads), mesh.view(), p, r));
+  pyb::array positions = positions_array(r.positions, v);
+  if (!info) return positions;
+  return pyb::make_tuple(positions, filter_info(mesh, p, r));
 }
 
 pyb::array cluster(const pyb::handle& v, const pyb::handle& f, const pyb::dict& keywords, const std::string& engine,
@@ -47,7 +63,7 @@ pyb::array cluster(const pyb::handle& v, const pyb::handle& f, const pyb::dict& 
 }  // namespace
 
 void bind_engine_functions(pyb::module_& m) {
-  m.def("filter", &filter, "V"_a, "F"_a, "keywords"_a, "engine"_a, "threads"_a);
+  m.def("filter", &filter, "V"_a, "F"_a, "keywords"_a, "engine"_a, "threads"_a, "info"_a = false);
   m.def("cluster", &cluster, "V"_a, "F"_a, "keywords"_a, "engine"_a, "threads"_a);
   m.def("keywords", &keyword_rows, "function"_a);
   m.def("param_rows", &param_rows);

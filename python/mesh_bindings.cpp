@@ -1,4 +1,4 @@
-// The compiled parts of fq.read_mesh, fq.write_mesh, fq.add_noise and fq.metrics (wrapped and
+// The compiled parts of fq.read_mesh, fq.write_mesh, fq.add_noise, fq.metrics and fq.scan_error (wrapped and
 // documented in fq/_files.py and fq/_measures.py). File work and measures run without the GIL.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -10,8 +10,10 @@
 
 #include "eval/error_metrics.h"
 #include "eval/noise.h"
+#include "eval/scan_error.h"
 #include "eval/surface_distance.h"
 #include "io/mesh_io.h"
+#include "kernels/frame_prep.h"
 #include "python/bindings.h"
 #include "python/mesh_dict.h"
 #include "python/numpy_mesh.h"
@@ -89,11 +91,15 @@ std::vector<std::string> write_mesh(const pyb::handle& path_like, const pyb::han
   return dropped;
 }
 
-pyb::array add_noise(const pyb::handle& v, const pyb::handle& f, double sigma, uint64_t seed) {
+pyb::array add_noise(const pyb::handle& v, const pyb::handle& f, double sigma, uint64_t seed, const std::string& kind,
+                     double length) {
+  NoiseKind k;
+  if (!parse_noise_kind(kind.c_str(), k))
+    throw pyb::value_error("kind must be 'iso', 'normal', 'depth', 'correlated' or 'ripple', got '" + kind + "'");
   Mesh mesh = to_mesh(v, f);
   {
     const pyb::gil_scoped_release unlocked;
-    add_gaussian_noise(mesh, sigma, seed);
+    fq::add_noise(mesh, k, sigma, length, seed);
   }
   return positions_array(mesh.positions, v);
 }
@@ -119,14 +125,37 @@ pyb::dict metrics(const pyb::handle& v_ref, const pyb::handle& f, const pyb::han
       "mfne_deg"_a = mfne.mean_radians * 180.0 / std::numbers::pi, "faces_skipped"_a = mfne.faces_skipped);
 }
 
+pyb::dict scan_error(const pyb::handle& v_ref, const pyb::handle& f_ref, const pyb::handle& v_scan,
+                     const pyb::handle& f_scan, const pyb::handle& v) {
+  const Mesh reference = to_mesh(v_ref, f_ref);
+  const Mesh scan = to_mesh(v_scan, f_scan);
+  std::vector<float> moved;
+  if (!v.is_none()) {
+    moved = to_positions(v, "V");
+    if (moved.size() != scan.positions.size())
+      throw pyb::value_error("V has " + std::to_string(moved.size() / 3) + " vertices but V_scan has " +
+                             std::to_string(scan.num_vertices()));
+  }
+  ScanError e;
+  {
+    const pyb::gil_scoped_release unlocked;
+    const std::vector<uint8_t> over = faces_over_reference(reference.view(), scan.view());
+    e = fq::scan_error(reference.view(), scan.view(), moved.empty() ? nullptr : moved.data(), over.data(),
+                       mean_edge_length(scan.view()));
+  }
+  return pyb::dict("normal_error_rad"_a = e.normal_error, "distance_mean_edges"_a = e.distance,
+                   "faces_used"_a = e.faces_used, "faces"_a = scan.num_triangles(), "flipped"_a = e.flipped);
+}
+
 }  // namespace
 
 void bind_mesh_functions(pyb::module_& m) {
   // Documented where fq/_files.py and fq/_measures.py wrap them.
   m.def("read_mesh", &read_mesh, "path"_a);
   m.def("write_mesh", &write_mesh, "path"_a, "V"_a, "F"_a, "labels"_a, "arrays"_a, "drc_bits"_a);
-  m.def("add_noise", &add_noise, "V"_a, "F"_a, "sigma"_a, "seed"_a);
+  m.def("add_noise", &add_noise, "V"_a, "F"_a, "sigma"_a, "seed"_a, "kind"_a, "length"_a);
   m.def("metrics", &metrics, "V_ref"_a, "F"_a, "V"_a);
+  m.def("scan_error", &scan_error, "V_ref"_a, "F_ref"_a, "V_scan"_a, "F_scan"_a, "V"_a);
 }
 
 }  // namespace fq::py

@@ -238,11 +238,16 @@ def _update_cache(path, fresh):
     os.replace(tmp, path)
 
 
-def peer_results(noisy_path, clean, faces, sweeps, tmp, cache_dir=None, seconds=None):
+def peer_results(noisy_path, clean, faces, sweeps, tmp, cache_dir=None, seconds=None, measure=None):
     """{"<peer>:<setting>": [mfne, rmse] or None} for every setting of sweeps [(peer, settings)]
     on the noisy file, from the cache where it has them, and the peer runs that failed (their
     settings left out, not cached). Settings of a peer that cannot run here (MeshLab missing)
-    and are not cached are left out. seconds, when given, receives each peer's run time."""
+    and are not cached are left out. seconds, when given, receives each peer's run time.
+    measure(v, f), when given, replaces errors(clean, faces, v, f) (a scan measured against a
+    surface it shares no vertices with: scripts/scan_quality.py; keep its cache apart)."""
+    if measure is None:
+        def measure(v, f):
+            return errors(clean, faces, v, f)
     cache_path, cached = None, {}
     if cache_dir:
         os.makedirs(cache_dir, exist_ok=True)
@@ -265,7 +270,7 @@ def peer_results(noisy_path, clean, faces, sweeps, tmp, cache_dir=None, seconds=
                 failures.append(f"{p} {', '.join(map(str, chain))}: {e}")
                 continue
             for s, (v, f) in zip(chain, outs):
-                fresh[key(p, s)] = errors(clean, faces, v, f)
+                fresh[key(p, s)] = measure(v, f)
         if seconds is not None:
             seconds[p] = time.monotonic() - started
     if cache_path and fresh:

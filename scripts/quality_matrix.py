@@ -4,11 +4,12 @@ over meshes × noise levels × noise directions × seeds, on MFNE and vertex RMS
 
     /usr/bin/python3 scripts/quality_matrix.py [--fqfilter build/clients/fqfilter/fqfilter]
         [--meshes ../shared/meshes] [--mesh fandisk,bunny,crane_0060,PATH.ply,PATH.drc,...]
-        [--iso 0.05,0.1,...] [--normal 0.2,0.3] [--seeds 1,2] [--jobs N] [--fq-args "..."]
+        [--iso 0.05,0.1,...] [--normal 0.2,0.3] [--structured depth:0.1,correlated2:0.2,...]
+        [--seeds 1,2] [--jobs N] [--fq-args "..."]
         [--peer-cache DIR] [--json FILE] [--plot docs/quality-matrix.png] [--quick]
 
 A row is one noisy file: fqfilter adds its own noise to the clean mesh (--noise S
---noise-direction iso|normal --seed K, σ in mean edges of the clean mesh), writes it
+--noise-kind iso|normal|... --seed K, σ in mean edges of the clean mesh), writes it
 (--noisy-out) and runs fq's default on it in the same call ("fq default": fqfilter's defaults
 and --fq-args); then the paper's QF runs on that file, and every peer (scripts/peers.py) over its
 sweep of settings. The row's "best peer" is the peer setting with the lowest MFNE. A mesh is a
@@ -17,6 +18,11 @@ crane/crane_0060.drc) or a path to a .ply or .drc file; a .drc is decoded with D
 draco_decoder to the PLY that is the clean reference, after fqfilter has confirmed that it reads
 the .drc as the same vertices in the same order with the same faces. The script measures MFNE
 and RMSE itself and checks them against fqfilter's report on every noisy input.
+
+Structured rows (--structured KIND:S,...; eval/noise.h) add the noise real acquisition makes:
+`depth` (a range scanner's, along one view direction, growing at grazing angles),
+`correlatedL` (along the normals, correlated over L mean edges) and `rippleP` (scan-line stripes of
+period P mean edges); they are summarized apart from the white rows (iso, normal).
 
 Output: markdown on stdout (summary, matrix, clean table: every mesh filtered without noise,
 against itself), --json FILE with every number, --plot FILE.png MFNE against isotropic noise
@@ -45,6 +51,8 @@ import quality_matrix_report as report
 MESHES = ["fandisk", "bunny", "igea", "max_planck", "armadillo", "crane_0000", "crane_0060", "crane_0120"]
 ISO = [0.05, 0.1, 0.15, 0.2, 0.3, 0.5]
 NORMAL = [0.2, 0.3]
+STRUCTURED = [("depth", 0.1), ("depth", 0.2), ("correlated2", 0.1), ("correlated2", 0.2),
+              ("ripple3", 0.1), ("ripple3", 0.2)]
 SEEDS = [1, 2]
 MOVED = 1e-6
 CLEAN = MESHES + ["dragon", "gargoyle"]  # the clean table of a default run: every shared mesh
@@ -91,13 +99,32 @@ def fq_default(cfg):
     return ["--engine", cfg.engine, *cfg.fq_args]
 
 
+def noise_args(direction):
+    """fqfilter's arguments for a row's noise: 'iso', 'depth', 'correlated2' (length 2), 'ripple3'."""
+    kind = direction.rstrip("0123456789.")
+    length = direction[len(kind):]
+    return ["--noise-kind", kind] + (["--noise-length", length] if length else [])
+
+
+def parse_structured(text):
+    """'depth:0.1,correlated2:0.2' as [('depth', 0.1), ('correlated2', 0.2)]."""
+    out = []
+    for item in filter(None, (x.strip() for x in text.split(","))):
+        direction, _, level = item.partition(":")
+        kind = direction.rstrip("0123456789.")
+        if kind not in ("depth", "correlated", "ripple") or (kind != "depth" and kind == direction):
+            raise ValueError(f"'{item}': expected depth:S, correlatedL:S or rippleP:S")
+        out.append((direction, float(level)))
+    return out
+
+
 def run_row(cfg, mesh, direction, noise, seed):
     """One noisy file: fq default (which makes it), the paper's QF, every peer setting."""
     t0 = time.time()
     tmp = tempfile.mkdtemp(dir=cfg.work, prefix=f"{mesh.label}_{direction}_{noise}_{seed}_")
     noisy = os.path.join(tmp, "noisy.ply")
     clean, faces = peers.load(mesh.clean)
-    fq = peers.fqfilter_json(cfg.fqfilter, [mesh.clean, "--noise", str(noise), "--noise-direction", direction,
+    fq = peers.fqfilter_json(cfg.fqfilter, [mesh.clean, "--noise", str(noise), *noise_args(direction),
                                             "--seed", str(seed), "--noisy-out", noisy, *fq_default(cfg)])
     noisy_err = peers.check_noisy(clean, faces, noisy, fq)
     qf = peers.fqfilter_json(cfg.fqfilter, [noisy, "--reference", mesh.clean, "--engine", cfg.engine, *peers.QF_ARGS])
@@ -169,6 +196,8 @@ def parse_args():
     ap.add_argument("--iso", help=f"isotropic noise levels in mean edges (default {','.join(map(str, ISO))})")
     ap.add_argument("--normal", help=f"normal-direction noise levels (default {','.join(map(str, NORMAL))}); "
                     "'' for none")
+    ap.add_argument("--structured", help="structured noise rows KIND:S, comma separated (default "
+                    f"{','.join(f'{d}:{s:g}' for d, s in STRUCTURED)}); '' for none")
     ap.add_argument("--seeds", help=f"noise seeds (default {','.join(map(str, SEEDS))})")
     ap.add_argument("--clean-mesh", help="meshes of the clean table (default: every shared mesh, or those of "
                     "--mesh when it is given); '' for none")
@@ -185,15 +214,17 @@ def parse_args():
     a = ap.parse_args()
     if a.clean_mesh is None:
         a.clean_mesh = ",".join(CLEAN) if a.mesh is None and not a.quick else (a.mesh or "fandisk")
-    row = ("fandisk", [0.2], [], [1]) if a.quick else (",".join(MESHES), ISO, NORMAL, SEEDS)
-    for name, default in zip(("mesh", "iso", "normal", "seeds"), row):
+    row = ("fandisk", [0.2], [], "", [1]) if a.quick else (
+        ",".join(MESHES), ISO, NORMAL, ",".join(f"{d}:{s:g}" for d, s in STRUCTURED), SEEDS)
+    for name, default in zip(("mesh", "iso", "normal", "structured", "seeds"), row):
         if getattr(a, name) is None:
             setattr(a, name, default if isinstance(default, str) else ",".join(map(str, default)))
     try:
         a.noises = [("iso", s) for s in floats(a.iso)] + [("normal", s) for s in floats(a.normal)]
+        a.noises += parse_structured(a.structured)
         a.seed_list = [int(s) for s in a.seeds.split(",") if s.strip()]
     except ValueError as e:
-        ap.error(f"--iso, --normal, --seeds: {e}")
+        ap.error(f"--iso, --normal, --structured, --seeds: {e}")
     if any(s <= 0 for _, s in a.noises):
         ap.error("noise levels must be above 0 (the clean table is the noise-free case)")
     unknown = set(a.peers.split(",")) - {p for p, _ in SWEEPS}

@@ -62,10 +62,18 @@ def summary(rows):
     }
 
 
+WHITE = ("iso", "normal")  # the other directions are structured noise (scripts/quality_matrix.py)
+
+
 def build(meta, rows, clean):
     for r in rows:
         judge_row(r)
-    return {"meta": meta, "summary": summary(rows), "rows": rows, "clean": clean}
+    white = [r for r in rows if r["direction"] in WHITE]
+    structured = [r for r in rows if r["direction"] not in WHITE]
+    doc = {"meta": meta, "summary": summary(white), "rows": rows, "clean": clean}
+    if structured:
+        doc["summary_structured"] = summary(structured)
+    return doc
 
 
 def _summary_md(s):
@@ -122,7 +130,11 @@ def markdown(doc):
            f"seeds {', '.join(map(str, m['seeds']))}; fq default = {fq}; QF = `{' '.join(m['qf_args'])}`; "
            f"{m['jobs']} jobs, {m['seconds']:.0f} s.", ""]
     if doc["rows"]:
-        out += ["#### Summary", "", _summary_md(doc["summary"]),
+        out += ["#### Summary (white noise: iso and normal rows)", "", _summary_md(doc["summary"])]
+        if "summary_structured" in doc:
+            out += ["#### Summary (structured noise: depth, correlated and ripple rows)", "",
+                    _summary_md(doc["summary_structured"])]
+        out += [
                 "#### fq default against the best peer setting of each row", "",
                 "MFNE in radians; RMSE: vertex RMSE in thousandths of the clean bounding-box diagonal. "
                 "Bold: fq loses the row (fq/peer ≥ 1), or its RMSE is above the noisy input's.", "",

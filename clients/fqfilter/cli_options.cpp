@@ -39,7 +39,7 @@ void add_parameter_groups(CLI::App& app, Options& o, bool& no_filter) {
   add_param_options(app, o.params, ParamGroup::kCluster);
 }
 
-void add_run_options(CLI::App& app, Options& o, std::string& engine, std::string& noise_direction) {
+void add_run_options(CLI::App& app, Options& o, std::string& engine, std::string& noise_kind) {
   app.add_option("IN", o.input, "Mesh file (.ply .obj .stl .drc) or folder of them")->required();
   app.add_option("OUT", o.output,
                  "Output file (.ply .drc .obj .glb), or folder when IN is a folder; none: write nothing");
@@ -51,9 +51,13 @@ void add_run_options(CLI::App& app, Options& o, std::string& engine, std::string
   app.add_option("--noise", o.noise_sigma,
                  "Add Gaussian noise of this std (mean edge lengths) before filtering")
       ->check(CLI::Range(0.0, 100.0));
-  add_defaulted(app, "--noise-direction", noise_direction,
-                "iso: every coordinate; normal: along the clean mesh's vertex normals")
-      ->check(CLI::IsMember({"iso", "normal"}));
+  add_defaulted(app, "--noise-kind,--noise-direction", noise_kind,
+                "iso: every coordinate; normal: along the clean mesh's vertex normals; depth: a range scanner's "
+                "along z, growing at grazing angles; correlated: along the normals, correlated over --noise-length; "
+                "ripple: scan-line stripes along x of period --noise-length (docs/QUALITY.md)")
+      ->check(CLI::IsMember({"iso", "normal", "depth", "correlated", "ripple"}));
+  add_ranged(app, "--noise-length", o.noise_length,
+             "--noise-kind correlated: the correlation length; ripple: the period (mean edge lengths)", 0.1, 100.0);
   add_defaulted(app, "--seed", o.seed, "Seed of --noise");
   app.add_option("--noisy-out", o.noisy_out,
                  "Also write the noisy input mesh to this file (to run other smoothers on the same input)");
@@ -98,8 +102,8 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
   app.footer(kExamples);
   std::string engine = "auto";
   bool no_filter = false;
-  std::string noise_direction = "iso";
-  add_run_options(app, o, engine, noise_direction);
+  std::string noise_kind = "iso";
+  add_run_options(app, o, engine, noise_kind);
   app.option_defaults()->always_capture_default();
   add_parameter_groups(app, o, no_filter);
   try {
@@ -111,7 +115,7 @@ ParseOutcome parse_options(int argc, char** argv, Options& o) {
     return {false, 2};
   }
   parse_engine_kind(engine, o.engine.kind);
-  o.noise_along_normal = noise_direction == "normal";
+  parse_noise_kind(noise_kind.c_str(), o.noise_kind);  // one of the names the check allowed
   if (no_filter) {
     o.params.filter = false;
     o.params.cluster = true;

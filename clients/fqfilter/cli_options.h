@@ -6,6 +6,7 @@
 
 #include "kernels/engine.h"
 #include "core/params.h"
+#include "eval/noise.h"
 
 namespace fq::cli {
 
@@ -15,7 +16,8 @@ struct Options {
   EngineOptions engine;
   Params params;           ///< defaults from fq::Params
   double noise_sigma = 0;  ///< in mean edge lengths; 0: no noise
-  bool noise_along_normal = false;  ///< --noise-direction normal
+  NoiseKind noise_kind = NoiseKind::kIso;  ///< --noise-kind
+  double noise_length = 2.0;               ///< --noise-length: correlation length or ripple period
   std::string noisy_out;            ///< also write the noisy input here (.ply/.drc); empty: don't
   uint64_t seed = 1;
   std::string reference;  ///< clean mesh for the metrics; empty: the input when noise is added

@@ -11,6 +11,7 @@
 #include "eval/noise.h"
 #include "eval/sharp_edge_recall.h"
 #include "eval/surface_distance.h"
+#include "eval/vertex_moves.h"
 #include "io/mesh_io.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/frame_prep.h"
@@ -51,6 +52,7 @@ Status run_engine(const Options& o, Engine& engine, const MeshView& view, FrameR
   if (o.params.filter && o.params.filtering.method == FilterMethod::kQuadricRefined) {
     report.noise_estimate = result.noise_estimate;
     report.filter_noise = result.filter_noise;
+    report.noise_residual = result.noise_residual;
   }
   if (o.sequence) {  // also at --temporal 0: the per-frame baseline's flicker
     report.prior_coverage = result.prior_coverage;
@@ -71,7 +73,8 @@ void describe(const std::string& input, const Options& o, const Engine& engine, 
   if (const auto* cpu = dynamic_cast<const CpuEngine*>(&engine)) r.threads = cpu->threads();
   r.params = o.params;
   r.noise_sigma = o.noise_sigma;
-  r.noise_along_normal = o.noise_along_normal;
+  r.noise_kind = o.noise_kind;
+  r.noise_length = o.noise_length;
   r.seed = o.seed;
   r.repeat = o.repeat;
 }
@@ -142,10 +145,7 @@ Status run_file_job(const std::string& input, const std::string& output, const O
   if (Status s = load_reference(o, input, clean, r.reference); !s.ok()) return fail(r, s);
   if (o.noise_sigma > 0) {
     if (o.reference.empty()) clean = mesh;
-    if (o.noise_along_normal)
-      add_normal_noise(mesh, o.noise_sigma, o.seed);
-    else
-      add_gaussian_noise(mesh, o.noise_sigma, o.seed);
+    add_noise(mesh, o.noise_kind, o.noise_sigma, o.noise_length, o.seed);
   }
   // With --noise 0 the "noisy" input is the input itself: written all the same, so that a
   // sweep over noise levels that starts at 0 finds every file it asked for.
@@ -160,6 +160,8 @@ Status run_file_job(const std::string& input, const std::string& output, const O
   FrameResult result;
   if (Status s = run_engine(o, engine, mesh.view(), result, r, progress); !s.ok())
     return fail(r, Status(s.code(), "'" + input + "': " + status_code_name(s.code()) + ": " + s.message()));
+  if (o.params.filter)
+    r.moved = vertex_moves(mesh.positions.data(), result.positions.data(), mesh.num_vertices(), result.mean_edge);
   if (!r.reference.empty()) {
     r.input_error = measure(clean.view(), mesh.positions.data());
     if (o.params.filter) r.output_error = measure(clean.view(), result.positions.data());

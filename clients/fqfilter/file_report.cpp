@@ -31,11 +31,20 @@ nlohmann::json noise_json(const FileReport& r) {
   const RefinePlan plan = plan_refinement(RefineParams{*r.filter_noise, 1.f}, 0.f);
   auto passes = [](Passes p) { return p.count > 0 ? p.count - 1 + p.last : 0.f; };
   return {{"estimated", *r.noise_estimate},
+          {"residual", r.noise_residual ? nlohmann::json(*r.noise_residual) : nlohmann::json(nullptr)},
           {"filtered_for", *r.filter_noise},
           {"looks_clean", *r.noise_estimate < kLooksCleanBelow},
           {"rounds", passes(plan.rounds)},
           {"normal_passes", passes(plan.normal_passes)},
           {"vertex_passes", passes(plan.vertex_passes)}};
+}
+
+/// The noise fqfilter added (--noise, --noise-kind, --seed); "direction" is the kind's old
+/// name, kept for the readers of iso and normal; "length" only where the kind has one.
+nlohmann::json noise_added_json(const FileReport& r) {
+  nlohmann::json j = {{"sigma", r.noise_sigma}, {"direction", noise_kind_name(r.noise_kind)}, {"seed", r.seed}};
+  if (r.noise_kind == NoiseKind::kCorrelated || r.noise_kind == NoiseKind::kRipple) j["length"] = r.noise_length;
+  return j;
 }
 
 nlohmann::json param_json(const ParamRow& row, const Params& p) {
@@ -131,11 +140,10 @@ nlohmann::json to_json(const FileReport& r) {
             {"triangles", r.triangles},
             {"mean_edge", r.mean_edge},
             {"noise_estimate", noise_json(r)},
+            {"moved", r.moved ? nlohmann::json{{"mean", r.moved->mean}, {"p99", r.moved->p99}, {"max", r.moved->max}}
+                              : nlohmann::json(nullptr)},
             {"params", params_json(r.params)},
-            {"noise", r.noise_sigma > 0 ? nlohmann::json{{"sigma", r.noise_sigma},
-                                                                      {"direction", r.noise_along_normal ? "normal" : "iso"},
-                                                                      {"seed", r.seed}}
-                                        : nlohmann::json(nullptr)},
+            {"noise", r.noise_sigma > 0 ? noise_added_json(r) : nlohmann::json(nullptr)},
             {"repeat", r.repeat},
             {"timings_ms", {{"passes", passes}, {"total", r.total_ms}}},
             {"clusters", r.clusters ? nlohmann::json(*r.clusters) : nlohmann::json(nullptr)},
@@ -176,10 +184,19 @@ void print_human(const FileReport& r, std::ostream& os) {
   if (r.noise_estimate && r.filter_noise) {
     os << std::setprecision(3) << "  noise: " << *r.noise_estimate << " mean edges estimated";
     if (*r.filter_noise != *r.noise_estimate) os << ", filtered for " << *r.filter_noise;
+    if (r.noise_residual && *r.noise_residual > 0.f)
+      os << " (of a residual " << *r.noise_residual << ": the rest read as the surface's detail)";
     os << "\n";
-    if (*r.noise_estimate < kLooksCleanBelow && r.params.filtering.refine.known_noise == 0.f)
+    const bool estimated = r.params.filtering.refine.known_noise == 0.f;
+    if (estimated && *r.noise_estimate < kLooksCleanBelow)
       os << "  input looks clean: filtered lightly (--known-noise 0.1 filters it as 0.1 mean edges of noise)\n";
+    else if (estimated && *r.noise_estimate < kReadsLightBelow && r.params.filtering.refine.strength <= 1.f)
+      os << "  read as light noise: filtered lightly; for noise this estimate does not see (a raw scan's "
+            "correlated noise) --strength 3 filters as for three times the noise\n";
   }
+  if (r.moved)
+    os << std::setprecision(3) << "  moved: mean " << r.moved->mean << ", p99 " << r.moved->p99 << ", max "
+       << r.moved->max << " mean edges\n";
   if (r.prior_coverage) {
     os << std::setprecision(3) << "  temporal: " << *r.prior_coverage << " of vertices near the last result, pull "
        << *r.prior_share;

@@ -10,9 +10,11 @@
 
 #include "kernels/engine.h"
 #include "eval/error_metrics.h"
+#include "eval/noise.h"
 #include "core/params.h"
 #include "eval/sharp_edge_recall.h"
 #include "eval/surface_distance.h"
+#include "eval/vertex_moves.h"
 
 namespace fq::cli {
 
@@ -33,13 +35,18 @@ struct FileReport {
   double mean_edge = 0.0;  ///< of the engine's input, in input units
   Params params;
   double noise_sigma = 0.0;
-  bool noise_along_normal = false;
+  NoiseKind noise_kind = NoiseKind::kIso;
+  double noise_length = 0.0;
   uint64_t seed = 0;
   int repeat = 1;
   std::vector<PassTiming> passes;  ///< median ms of each pass over the repeats
   double total_ms = 0.0;           ///< median of the per-run totals
   /// "qf+": the noise estimated from the mesh and the noise filtered for (mean edge lengths).
   std::optional<float> noise_estimate, filter_noise;
+  /// "qf+": the residual the estimate was read from (the rest of it taken for detail).
+  std::optional<float> noise_residual;
+  /// How far the filter moved the vertices (mean edge lengths); absent without filtering.
+  std::optional<VertexMoves> moved;
   /// --sequence: the share of vertices that found a prior in the last result, the mean pull
   /// towards it, whether this frame reset the stream's history (a scene cut), and the flicker
   /// against the last frame (eval/flicker.h; with a reference of the same vertices).
@@ -62,6 +69,10 @@ void summarize_timings(const std::vector<std::vector<PassTiming>>& runs, FileRep
 /// Below this estimated noise (mean edge lengths) the report calls an input clean: what "qf+" then
 /// does is a light touch (docs/ALGORITHM.md), and the report names the option for a full filter.
 inline constexpr float kLooksCleanBelow = 0.02f;
+/// Below this estimated noise the report says the input was read as lightly noisy and names
+/// --strength: a raw range scan's correlated noise reads about 0.05 (docs/QUALITY.md, "Real
+/// scans"), and a user who sees "the output looks the same" should see why and what to turn.
+inline constexpr float kReadsLightBelow = 0.1f;
 
 /// The JSON object documented in docs/FQFILTER.md (NaN values become null).
 nlohmann::json to_json(const FileReport& report);

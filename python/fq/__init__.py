@@ -9,9 +9,9 @@ has a numpy-style docstring; see also docs/PYTHON.md.
 from ._engine import _param_names, cluster, engine_name, filter
 from ._fq import __version__, built_with_cuda
 from ._files import read_mesh, write_mesh
-from ._measures import add_noise, metrics
+from ._measures import add_noise, metrics, scan_error
 from ._stream import Stream
 from .mesh import Mesh
 
 __all__ = ["Mesh", "Stream", "add_noise", "built_with_cuda", "cluster", "engine_name", "filter", "metrics", "read_mesh",
-           "write_mesh"]
+           "scan_error", "write_mesh"]

@@ -66,12 +66,22 @@ def _describe(name: str, kind: str, default: Any, choices: list[str] | None, hel
         help_text, 92, initial_indent="    ", subsequent_indent="    ")
 
 
-def _with_keywords(function_name: str, returns: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+# fq.filter's own keyword, in the rows' form.
+_INFO_ROW = ("return_info", "bool", False, None,
+             "Also return a dict of what was done: ``noise_estimate`` (the noise read from the mesh, mean "
+             "edges), ``noise_residual`` (the residual it was read from: the rest was taken for the "
+             "surface's detail), ``filtered_for`` (the noise the strengths came from; these three None "
+             "for modes other than qf+), ``moved_mean``, ``moved_p99`` and ``moved_max`` (how far "
+             "vertices moved, mean edges) and ``mean_edge`` (input units).")
+
+
+def _with_keywords(function_name: str, returns: str,
+                   own: tuple[tuple[Any, ...], ...] = ()) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
     """Gives the decorated ``f(V, F=None, **keywords)`` the keywords of the compiled
     module's rows for `function_name`: a signature (what help() and IDEs show), the
     Parameters section of its docstring ({parameters} in it; {raises} is the Raises section),
     and the defaults that `_split` checks keywords against."""
-    rows = list(_fq.keywords(function_name)) + _ENGINE_ROWS
+    rows = list(_fq.keywords(function_name)) + _ENGINE_ROWS + list(own)
 
     def decorate(f: Callable[..., Any]) -> Callable[..., Any]:
         P = inspect.Parameter
@@ -118,7 +128,7 @@ def _split(function_name: str, V: Any, F: Any, keywords: dict[str, Any],
     return V, F, keywords, engine, int(threads)
 
 
-@_with_keywords("filter", "Union[NDArray[np.floating], MeshLike]")
+@_with_keywords("filter", "Union[NDArray[np.floating], MeshLike, tuple[Any, dict[str, Any]]]", (_INFO_ROW,))
 def filter(V: Any, F: Any = None, **keywords: Any) -> Any:  # noqa: A001 (fq.filter is the name users know)
     """Smooth a mesh with filtered quadrics: new vertex positions, the triangles unchanged.
 
@@ -135,14 +145,20 @@ def filter(V: Any, F: Any = None, **keywords: Any) -> Any:  # noqa: A001 (fq.fil
     numpy.ndarray of shape (n, 3), or a mesh
         For arrays: the new positions, float64 when V is float64, else float32. For a mesh:
         a new mesh of the same kind with the new positions, its vertex normals recomputed
-        and its other attributes kept. The input is never modified.
+        and its other attributes kept. The input is never modified. With
+        ``return_info=True``: a tuple (that result, the info dict).
 
     {raises}
     """
     mesh = V if F is None else None
+    return_info = keywords.pop("return_info", False)
+    if not isinstance(return_info, bool):
+        raise TypeError(f"return_info must be a bool, got {type(return_info).__name__}")
     V, F, params, engine, threads = _split("filter", V, F, keywords, filter.defaults)  # type: ignore[attr-defined]
-    positions = _fq.filter(V, F, params, engine, threads)
-    return positions if mesh is None else moved_like(mesh, positions)
+    out = _fq.filter(V, F, params, engine, threads, return_info)
+    positions, info = out if return_info else (out, None)
+    result = positions if mesh is None else moved_like(mesh, positions)
+    return (result, info) if return_info else result
 
 
 @_with_keywords("cluster", "NDArray[np.uint32]")

@@ -1,14 +1,17 @@
-"""fq.add_noise and fq.metrics: the noise and error measures of fqfilter."""
+"""fq.add_noise, fq.metrics and fq.scan_error: the noise and error measures of fqfilter."""
 from __future__ import annotations
 
 import numpy as np
+from typing import Any
+
 from numpy.typing import ArrayLike, NDArray
 
 from . import _fq
 
 
-def add_noise(V: ArrayLike, F: ArrayLike, sigma: float, seed: int = 1) -> NDArray[np.floating]:
-    """Add Gaussian noise to vertex positions, as ``fqfilter --noise`` does.
+def add_noise(V: ArrayLike, F: ArrayLike, sigma: float, seed: int = 1, kind: str = "iso",
+              length: float = 2.0) -> NDArray[np.floating]:
+    """Add synthetic noise to vertex positions, as ``fqfilter --noise`` does.
 
     Parameters
     ----------
@@ -17,9 +20,17 @@ def add_noise(V: ArrayLike, F: ArrayLike, sigma: float, seed: int = 1) -> NDArra
     F : array_like of shape (m, 3)
         Triangles as vertex indices in 0..n-1 (they give the mean edge length).
     sigma : float
-        Standard deviation of the noise on each coordinate, in mean edge lengths.
+        Standard deviation of the noise, in mean edge lengths (on each coordinate for
+        ``iso``, along the normal for the others).
     seed : int, default 1
         Seed of the generator: the same seed gives the same noise on every machine.
+    kind : {'iso', 'normal', 'depth', 'correlated', 'ripple'}, default 'iso'
+        ``fqfilter --noise-kind``: Gaussian on every coordinate; along the vertex normals;
+        a range scanner's depth noise along z, growing at grazing angles; noise along the
+        normals correlated over ``length`` mean edges; scan-line stripes along x of period
+        ``length`` (``eval/noise.h``).
+    length : float, default 2.0
+        The correlated kind's correlation length, the ripples' period (mean edges).
 
     Returns
     -------
@@ -29,9 +40,9 @@ def add_noise(V: ArrayLike, F: ArrayLike, sigma: float, seed: int = 1) -> NDArra
     Raises
     ------
     ValueError
-        A wrong shape or dtype, or an index out of range.
+        A wrong shape or dtype, an index out of range, or an unknown kind.
     """
-    return _fq.add_noise(V, F, float(sigma), int(seed))
+    return _fq.add_noise(V, F, float(sigma), int(seed), str(kind), float(length))
 
 
 def metrics(V_ref: ArrayLike, F: ArrayLike, V: ArrayLike) -> dict[str, float]:
@@ -59,3 +70,41 @@ def metrics(V_ref: ArrayLike, F: ArrayLike, V: ArrayLike) -> dict[str, float]:
         Shapes that differ, a wrong dtype, or an index out of range.
     """
     return _fq.metrics(V_ref, F, V)
+
+
+def scan_error(V_ref: ArrayLike, F_ref: ArrayLike, V_scan: ArrayLike, F_scan: ArrayLike,
+               V: ArrayLike | None = None) -> dict[str, Any]:
+    """Error of a real scan against a reference surface it shares no vertices with.
+
+    A raw range scan measured against the merged reconstruction of all the scans, as
+    ``fqfilter --reference-surface`` and ``scripts/scan_quality.py`` measure it
+    (``eval/scan_error.h``): the normal error is the mean angle between a scan face's normal
+    and the normal of the reference triangle nearest the face's centroid; the distance is the
+    RMS distance of the centroids to the reference surface, in mean edges of the raw scan.
+    Only faces over the reference count (the scan sees parts the reference does not): those
+    whose centroid is within 3 mean edges of a reference triangle off the reference's
+    boundary, chosen on the raw scan. A scan wound the other way round from the reference is
+    measured against the flipped reference normals.
+
+    Parameters
+    ----------
+    V_ref, F_ref : array_like
+        The reference surface (n×3 positions, m×3 triangles).
+    V_scan, F_scan : array_like
+        The raw scan, in the reference's frame: it chooses the faces and the unit.
+    V : array_like of shape (len(V_scan), 3), optional
+        Positions to measure on the scan's triangles (a filtered scan); the raw scan when None.
+
+    Returns
+    -------
+    dict
+        ``normal_error_rad``, ``distance_mean_edges``, ``faces_used`` (faces counted),
+        ``faces`` (the scan's faces) and ``flipped`` (the scan is wound against the reference).
+        The errors are NaN when no face is over the reference.
+
+    Raises
+    ------
+    ValueError
+        A wrong shape or dtype, an index out of range, or V of another length than V_scan.
+    """
+    return _fq.scan_error(V_ref, F_ref, V_scan, F_scan, V)
