@@ -12,6 +12,7 @@
 #include "eval/sharp_edge_recall.h"
 #include "eval/surface_distance.h"
 #include "io/mesh_io.h"
+#include "io/surface_normals.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/frame_prep.h"
 
