@@ -11,6 +11,7 @@
 
 #include "io/cluster_colors.h"
 #include "io/mtl_library.h"
+#include "io/surface_normals.h"
 
 namespace fq::io {
 
@@ -87,11 +88,12 @@ bool fill_colours(aiMesh& m, const Primitive& p, const uint32_t* labels, const M
 }
 
 /// Normals and texture coordinates: the corner values when the input has them, else the
-/// per-vertex properties. Which vertex properties it used go to `used`.
-void fill_normals_and_uvs(aiMesh& m, const Primitive& p, const MeshAttributes& a, std::vector<std::string>& used) {
+/// per-vertex properties, else (normals) `computed`. Which vertex properties it used go to `used`.
+void fill_normals_and_uvs(aiMesh& m, const Primitive& p, const MeshAttributes& a,
+                          const std::vector<std::array<float, 3>>& computed, std::vector<std::string>& used) {
   const ElementProperty *nx = a.find_vertex("nx"), *ny = a.find_vertex("ny"), *nz = a.find_vertex("nz");
   const auto uv = a.vertex_uv();
-  if (!a.corner_normal.empty() || (nx && ny && nz)) m.mNormals = new aiVector3D[m.mNumVertices];
+  m.mNormals = new aiVector3D[m.mNumVertices];
   if (!a.corner_uv.empty() || uv[0]) {
     m.mNumUVComponents[0] = 2;
     m.mTextureCoords[0] = new aiVector3D[m.mNumVertices];
@@ -101,8 +103,10 @@ void fill_normals_and_uvs(aiMesh& m, const Primitive& p, const MeshAttributes& a
     if (!a.corner_normal.empty()) {
       const float* n = &a.corner_normal.values[3 * size_t(p.normal[i])];
       m.mNormals[i] = aiVector3D(n[0], n[1], n[2]);
-    } else if (m.mNormals) {
+    } else if (nx && ny && nz) {
       m.mNormals[i] = aiVector3D(float(nx->values[v]), float(ny->values[v]), float(nz->values[v]));
+    } else {
+      m.mNormals[i] = aiVector3D(computed[v][0], computed[v][1], computed[v][2]);
     }
     if (!a.corner_uv.empty()) {
       const float* t = &a.corner_uv.values[2 * size_t(p.uv[i])];
@@ -138,8 +142,8 @@ aiMesh* make_mesh(const MeshView& mesh, const Primitive& p) {
 /// The input's materials (name, diffuse colour, diffuse texture by its path from the
 /// output's folder), or one default material.
 void add_materials(aiScene& scene, const Materials& materials, const std::string& output) {
-  const std::map<std::string, MtlMaterial> library = materials.library.empty() ? std::map<std::string, MtlMaterial>{}
-                                                                              : read_mtl(materials.library);
+  const std::map<std::string, MtlMaterial> library =
+      materials.library.empty() ? std::map<std::string, MtlMaterial>{} : read_mtl(materials.library);
   scene.mNumMaterials = unsigned(std::max<size_t>(1, materials.names.size()));
   scene.mMaterials = new aiMaterial*[scene.mNumMaterials];
   const auto folder = std::filesystem::absolute(output).parent_path();
@@ -178,12 +182,17 @@ Status write_glb(const std::string& path, const MeshView& mesh, const uint32_t* 
   scene.mRootNode->mMeshes = new unsigned[parts.size()];
   scene.mMeshes = new aiMesh*[parts.size()];
   add_materials(scene, a.materials, path);
+  // Viewers shade a glb without normals flat (or not at all): give it the surface's own.
+  const bool has_normals =
+      !a.corner_normal.empty() || (a.find_vertex("nx") && a.find_vertex("ny") && a.find_vertex("nz"));
+  const std::vector<std::array<float, 3>> computed =
+      has_normals ? std::vector<std::array<float, 3>>() : vertex_normals(mesh);
   std::vector<std::string> used;
   bool coloured = false;
   for (size_t i = 0; i < parts.size(); ++i) {
     scene.mRootNode->mMeshes[i] = unsigned(i);
     scene.mMeshes[i] = make_mesh(mesh, parts[i]);
-    fill_normals_and_uvs(*scene.mMeshes[i], parts[i], a, used);
+    fill_normals_and_uvs(*scene.mMeshes[i], parts[i], a, computed, used);
     coloured = fill_colours(*scene.mMeshes[i], parts[i], labels, a, colour_clusters);
   }
   if (coloured && !(labels && colour_clusters)) used.insert(used.end(), {"red", "green", "blue", "alpha"});
@@ -193,9 +202,10 @@ Status write_glb(const std::string& path, const MeshView& mesh, const uint32_t* 
   for (const std::string& phrase : group_property_names(lost)) dropped.push_back("vertex " + phrase);
   for (const ElementProperty& p : a.face) dropped.push_back("face property '" + p.name + "'");
   if (labels)
-    dropped.emplace_back(coloured && (colour_clusters || !a.find_vertex("red"))
-                             ? "cluster labels as integers (the vertex colours show the clusters)"
-                             : "cluster labels (glb has no per-vertex integer property; try --colour-clusters)");
+    dropped.emplace_back(
+        coloured && (colour_clusters || !a.find_vertex("red"))
+            ? "cluster labels as integers (the vertex colours show the clusters)"
+            : "cluster labels (glb has no per-vertex integer property; try --colour-clusters)");
   Assimp::Exporter exporter;
   if (exporter.Export(&scene, "glb2", path) != aiReturn_SUCCESS)
     return invalid_argument("cannot write '" + path + "': " + exporter.GetErrorString());

@@ -15,7 +15,8 @@ namespace fq::io {
 
 /// Binary glTF: positions, triangles, and what glTF holds of `attributes`: normals and
 /// texture coordinates (per corner when the input has them: a vertex is split where its
-/// corners differ; else nx, ny, nz and u, v / s, t / texture_u, texture_v), vertex colours
+/// corners differ; else nx, ny, nz and u, v / s, t / texture_u, texture_v; normals always,
+/// the area-weighted vertex normals of `mesh` when `attributes` has none), vertex colours
 /// (red, green, blue[, alpha]; with `colour_clusters` the cluster colours), and one
 /// primitive per material of an OBJ's library (name, diffuse colour and texture, the
 /// texture by its path from the output's folder). Everything else (labels, scalars, face

@@ -30,8 +30,9 @@ struct ElementProperty {
 };
 
 /// Values given per triangle corner ("wedges": an OBJ's `vt` and `vn`), so that one vertex
-/// may carry several (along a texture seam). A filter moves positions only: these stay as
-/// they were read.
+/// may carry several (along a texture seam or a hard edge). A filter moves positions only:
+/// texture coordinates stay as they were read; fqfilter recomputes normals
+/// (surface_normals.h).
 struct CornerValues {
   int components = 0;             ///< 2 (texture coordinates) or 3 (normals)
   std::vector<float> values;      ///< `components` floats per distinct value
@@ -73,10 +74,5 @@ bool is_label_property(const std::string& name);
 /// one by one: "property 'quality'". Names in `names`' order, each group where its first
 /// member was.
 std::vector<std::string> group_property_names(const std::vector<std::string>& names);
-
-/// Overwrites the nx, ny, nz vertex properties (when all three are there) with the
-/// area-weighted normals of `mesh`'s triangles: normals of a moved surface must follow it.
-/// A vertex on no non-degenerate triangle keeps its old normal. Returns whether it did.
-bool recompute_normals(const MeshView& mesh, MeshAttributes& attributes);
 
 }  // namespace fq::io

@@ -45,6 +45,9 @@ void add_run_options(CLI::App& app, Options& o, std::string& engine, std::string
                  "Output file (.ply .drc .obj .glb), or folder when IN is a folder; none: write nothing");
   app.add_flag("--in-place", o.in_place,
                "Allow OUT to be IN: the input is replaced once the result is written");
+  app.add_flag("--keep-normals", o.keep_normals,
+               "Write the input's normals unchanged (default: recomputed from the filtered surface, an "
+               "OBJ's per-corner normals within their groups, so hard edges stay hard)");
   add_defaulted(app, "--engine", engine, "auto (CUDA when a GPU is present), cpu or cuda")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   add_ranged(app, "--threads", o.engine.threads, "CPU engine threads; 0 = all hardware threads", 0, 4096);

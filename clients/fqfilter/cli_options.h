@@ -27,6 +27,7 @@ struct Options {
   bool quiet = false;            ///< no report table, progress line or per-file line; warnings and errors stay
   bool colour_clusters = false;  ///< cluster colours replace the input's vertex colours
   bool in_place = false;         ///< OUT may be IN itself (replaced once the result is written)
+  bool keep_normals = false;     ///< write the input's normals as they were, not the filtered surface's
   bool sequence = false;         ///< IN is a folder of one stream's frames, filtered in name order with its history
 };
 

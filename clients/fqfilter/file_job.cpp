@@ -13,6 +13,7 @@
 #include "eval/surface_distance.h"
 #include "eval/vertex_moves.h"
 #include "io/mesh_io.h"
+#include "io/surface_normals.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/frame_prep.h"
 
@@ -113,8 +114,11 @@ Status write_output(const Options& o, const std::string& output, const MeshView&
     return invalid_argument("OUT '" + output + "' is the input file; pass --in-place to replace it");
   MeshView out = mesh;
   out.positions = result.positions.data();
-  // Normals of a moved surface must follow it.
-  if (o.params.filter) io::recompute_normals(out, attributes);
+  // Normals of a moved surface must follow it, or the result looks unsmoothed in any viewer.
+  if (o.params.filter && !o.keep_normals) {
+    io::recompute_normals(out, attributes);
+    io::recompute_corner_normals(out, attributes.corner_normal);
+  }
   io::WriteOptions options;
   options.drc_position_bits = o.drc_bits;
   options.attributes = &attributes;

@@ -15,7 +15,8 @@ namespace fq::cli {
 /// Processes `input` with `engine` and writes the result to `output` (nothing when
 /// empty): filtered positions (or the input's when clustering only), with clustering the
 /// labels, and what the input holds besides (a PLY's colours, normals recomputed from the
-/// filtered surface, texture coordinates, scalars, face properties) as far as the output
+/// filtered surface unless options.keep_normals, an OBJ's per-corner normals within their
+/// groups, texture coordinates, scalars, face properties) as far as the output
 /// format can hold it. What is lost is warned about on stderr and listed in
 /// report.warnings. Refuses to write over the input unless options.in_place. Fills
 /// `report`; on failure also report.error, and the returned status says what went wrong in

@@ -144,9 +144,9 @@ def filter(V: Any, F: Any = None, **keywords: Any) -> Any:  # noqa: A001 (fq.fil
     -------
     numpy.ndarray of shape (n, 3), or a mesh
         For arrays: the new positions, float64 when V is float64, else float32. For a mesh:
-        a new mesh of the same kind with the new positions, its vertex normals recomputed
-        and its other attributes kept. The input is never modified. With
-        ``return_info=True``: a tuple (that result, the info dict).
+        a new mesh of the same kind with the new positions, its normals those of the new
+        surface (never the input's) and its other attributes kept. The input is never modified.
+        With ``return_info=True``: a tuple (that result, the info dict).
 
     {raises}
     """

@@ -63,11 +63,14 @@ class Mesh:
         Returns
         -------
         Mesh
-            The same triangles and attributes; vertex normals recomputed from the moved
-            surface (as fqfilter does); per-corner attributes as they were.
+            The same triangles and attributes; normals recomputed from the moved surface (as
+            fqfilter does): vertex normals, and per-corner normals within their groups
+            (corner_normals_in_groups); texture coordinates as they were.
         """
         normals = None if self.normals is None else vertex_normals(vertices, self.faces)
-        return dataclasses.replace(self, vertices=vertices, normals=normals)
+        corner_normals = (None if self.corner_normals is None
+                          else corner_normals_in_groups(vertices, self.faces, self.corner_normals))
+        return dataclasses.replace(self, vertices=vertices, normals=normals, corner_normals=corner_normals)
 
     @classmethod
     def from_open3d(cls, mesh: Any) -> Mesh:
@@ -119,15 +122,40 @@ class Mesh:
         return trimesh.Trimesh(self.vertices, self.faces, vertex_normals=self.normals, visual=visual, process=False)
 
 
+def _area_normals(vertices: NDArray[Any], faces: NDArray[np.int64]) -> NDArray[np.float64]:
+    """Each triangle's normal times twice its area: larger triangles weigh more in a sum."""
+    v = np.asarray(vertices, dtype=np.float64)
+    return np.cross(v[faces[:, 1]] - v[faces[:, 0]], v[faces[:, 2]] - v[faces[:, 0]])
+
+
+def _unit(sums: NDArray[np.float64], fallback: NDArray[Any]) -> NDArray[np.float32]:
+    """Rows of ``sums`` scaled to unit length; rows of ``fallback`` where a sum has none."""
+    lengths = np.linalg.norm(sums, axis=1, keepdims=True)
+    return np.where(lengths > 0, sums / np.where(lengths > 0, lengths, 1.0), fallback).astype(np.float32)
+
+
 def vertex_normals(vertices: NDArray[Any], faces: NDArray[np.int64]) -> NDArray[np.float32]:
     """Area-weighted unit vertex normals (fqfilter's rule); a vertex on no proper triangle gets 0."""
-    v = np.asarray(vertices, dtype=np.float64)
-    area_normals = np.cross(v[faces[:, 1]] - v[faces[:, 0]], v[faces[:, 2]] - v[faces[:, 0]])
-    sums = np.zeros_like(v)
-    for k in range(3):
-        np.add.at(sums, faces[:, k], area_normals)
-    lengths = np.linalg.norm(sums, axis=1, keepdims=True)
-    return np.divide(sums, lengths, out=np.zeros_like(sums), where=lengths > 0).astype(np.float32)
+    faces = np.asarray(faces, dtype=np.int64)
+    sums = np.zeros((len(vertices), 3))
+    np.add.at(sums, faces.ravel(), np.repeat(_area_normals(vertices, faces), 3, axis=0))
+    return _unit(sums, np.zeros(3))
+
+
+def corner_normals_in_groups(vertices: NDArray[Any], faces: NDArray[np.int64],
+                             corner_normals: NDArray[Any]) -> NDArray[np.float32]:
+    """Per-corner normals (m, 3, 3) of the surface ``vertices, faces``, keeping the hard edges of
+    ``corner_normals`` (fqfilter's rule for an OBJ's ``vn``): at each vertex, the corners that
+    had the same normal form a group, whose new normal is the area-weighted normal of its
+    triangles. A group on degenerate triangles only keeps its normal."""
+    faces = np.asarray(faces, dtype=np.int64)
+    old = np.ascontiguousarray(corner_normals, dtype=np.float32).reshape(-1, 3)
+    keys = np.column_stack([faces.reshape(-1), old.view(np.int32)])  # (vertex, the normal's bits)
+    _, first, group = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    group = group.ravel()  # (some numpy 2 releases give the inverse more than one dimension)
+    sums = np.zeros((len(first), 3))
+    np.add.at(sums, group, np.repeat(_area_normals(vertices, faces), 3, axis=0))
+    return _unit(sums, old[first])[group].reshape(-1, 3, 3)
 
 
 def _kind(obj: Any) -> str:
@@ -166,19 +194,26 @@ def as_mesh(obj: Any) -> Mesh:
 
 def moved_like(original: Any, vertices: NDArray[Any]) -> Any:
     """``original`` (a Mesh, Open3D or trimesh mesh) with new vertex positions, as a new mesh
-    of the same kind: vertex normals follow the moved surface, everything else is kept."""
+    of the same kind: its normals are the moved surface's (area-weighted vertex normals, as
+    fqfilter writes them), everything else is kept."""
     kind = _kind(original)
     if kind == "fq":
         return original.moved(vertices)
+    faces = np.asarray(original.triangles if kind == "open3d" else original.faces, dtype=np.int64)
+    normals = vertex_normals(vertices, faces).astype(np.float64)
     if kind == "open3d":
         import open3d as o3d
         out = o3d.geometry.TriangleMesh(original)
         out.vertices = o3d.utility.Vector3dVector(np.asarray(vertices, np.float64))
+        # Not compute_vertex_normals(): Open3D adds onto the normals a mesh already has, so the
+        # input's (noisy) normals would come back.
         if original.has_vertex_normals():
-            out.compute_vertex_normals()
+            out.vertex_normals = o3d.utility.Vector3dVector(normals)
         if original.has_triangle_normals():
-            out.compute_triangle_normals()
+            out.triangle_normals = o3d.utility.Vector3dVector(_unit(_area_normals(vertices, faces),
+                                                                    np.zeros(3)).astype(np.float64))
         return out
     out = original.copy()
-    out.vertices = vertices  # trimesh drops its cached normals when the vertices change
+    out.vertices = vertices  # trimesh drops its cached normals when the vertices change...
+    out.vertex_normals = normals  # ...and would weigh new ones by angle: fqfilter's rule instead
     return out
