@@ -121,7 +121,9 @@ void add_correlated_noise(Mesh& mesh, double sigma_mean_edges, double length_mea
   const double std_dev = noise_std(mesh, sigma_mean_edges);
   if (std_dev == 0.0 || !(length_mean_edges > 0.0) || !std::isfinite(length_mean_edges)) return;
   const uint32_t n = mesh.num_vertices();
-  const double length = length_mean_edges * std_dev / sigma_mean_edges;  // in mesh units
+  // The smoothing kernel's standard deviation in mesh units: a Gaussian of std s smoothing white
+  // draws gives a field correlated as exp(−d² / (4 s²)), so s = length / √2.
+  const double kernel = length_mean_edges * std_dev / sigma_mean_edges / std::numbers::sqrt2;
   NormalSource normal(seed);
   std::vector<double> white(n);
   for (double& w : white) w = normal.next();
@@ -129,16 +131,16 @@ void add_correlated_noise(Mesh& mesh, double sigma_mean_edges, double length_mea
   for (uint32_t v = 0; v < n; ++v) points[v] = {mesh.positions[3 * size_t(v)], mesh.positions[3 * size_t(v) + 1],
                                                 mesh.positions[3 * size_t(v) + 2]};
   CpuGrid grid;
-  build_grid(points.data(), n, float(length), grid);
+  build_grid(points.data(), n, float(kernel), grid);
   std::vector<Point4> sorted(n);
   for (uint32_t k = 0; k < n; ++k) sorted[k] = {points[grid.order[k]].x, points[grid.order[k]].y, points[grid.order[k]].z, 0.f};
   const GridView g = grid.view(sorted.data());
-  const double inv2 = -0.5 / (length * length);
+  const double inv2 = -0.5 / (kernel * kernel);
   std::vector<double> offsets(n);
   for (uint32_t v = 0; v < n; ++v) {
     // Σ k w / √(Σ k²): unit variance whatever the sampling around v.
     double sum = 0.0, norm2 = 0.0;
-    for_each_neighbor(g, points[v], float(3.0 * length), [&](uint32_t j, const Point4&, Vec3, float d2) {
+    for_each_neighbor(g, points[v], float(3.0 * std::numbers::sqrt2 * kernel), [&](uint32_t j, const Point4&, Vec3, float d2) {
       const double k = std::exp(double(d2) * inv2);
       sum += k * white[grid.order[j]];
       norm2 += k * k;

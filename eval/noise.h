@@ -36,10 +36,11 @@ void add_normal_noise(Mesh& mesh, double sigma_mean_edges, uint64_t seed);
 /// surface facing it gets sigma along its normal. Vertices without a normal stay put.
 void add_depth_noise(Mesh& mesh, double sigma_mean_edges, uint64_t seed);
 
-/// Spatially correlated noise along the normal: white draws smoothed by a Gaussian of
-/// standard deviation `length` mean edges (over vertices within 3 × length, in space),
-/// scaled so that every vertex's offset has standard deviation sigma. Noise that a filter
-/// working on one or two rings reads as detail.
+/// Spatially correlated noise along the normal, of correlation length `length` mean edges:
+/// offsets two points d apart correlate as exp(−d² / (2 length²)) (white draws smoothed by a
+/// Gaussian of standard deviation length / √2, over the vertices within 3 length in space),
+/// and every vertex's offset has standard deviation sigma. Noise that a filter working on one
+/// or two rings reads as detail.
 void add_correlated_noise(Mesh& mesh, double sigma_mean_edges, double length_mean_edges, uint64_t seed);
 
 /// Scan-line ripples along the normal: sigma·√2·sin(2π x / (period · mean edge) + φ), a

@@ -1,6 +1,7 @@
 #include "eval/scan_error.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -27,6 +28,16 @@ Point3d centroid(const float* positions, const uint32_t* tri) {
   return c;
 }
 
+/// The triangle's normal times twice its area.
+std::array<double, 3> cross_of(const float* positions, const uint32_t* tri) {
+  const float* a = positions + 3 * size_t(tri[0]);
+  const float* b = positions + 3 * size_t(tri[1]);
+  const float* c = positions + 3 * size_t(tri[2]);
+  const double e1[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
+  const double e2[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
+  return {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+}
+
 /// 1 for each vertex on an edge that only one triangle has.
 std::vector<uint8_t> boundary_vertices(const MeshView& m) {
   std::vector<std::pair<uint32_t, uint32_t>> edges;
@@ -44,6 +55,37 @@ std::vector<uint8_t> boundary_vertices(const MeshView& m) {
     i = j;
   }
   return boundary;
+}
+
+/// Each scan face's area-weighted normal (its cross product) summed per nearest reference
+/// triangle, over the faces measured (angle not NaN); the mean angle between the sums and the
+/// reference normals where at least kCoarseFaces faces fell (fewer: an edge of the overlap).
+double coarse_normal_error(const MeshView& reference, const MeshView& scan, const float* positions,
+                           const std::vector<double>& angle, const std::vector<uint32_t>& nearest,
+                           bool flipped, uint32_t& used) {
+  constexpr uint32_t kCoarseFaces = 3;
+  std::vector<std::array<double, 3>> sums(reference.num_triangles, {0.0, 0.0, 0.0});
+  std::vector<uint32_t> counts(reference.num_triangles, 0);
+  for (uint32_t t = 0; t < scan.num_triangles; ++t) {
+    if (std::isnan(angle[t])) continue;
+    const uint32_t* tri = scan.triangles + 3 * size_t(t);
+    const std::array<double, 3> n = cross_of(positions, tri);
+    for (int k = 0; k < 3; ++k) sums[nearest[t]][k] += flipped ? -n[k] : n[k];
+    ++counts[nearest[t]];
+  }
+  double sum = 0.0;
+  used = 0;
+  for (uint32_t r = 0; r < reference.num_triangles; ++r) {
+    if (counts[r] < kCoarseFaces) continue;
+    const std::array<double, 3> n = cross_of(reference.positions, reference.triangles + 3 * size_t(r));
+    const std::array<double, 3>& s = sums[r];
+    const std::array<double, 3> c = {s[1] * n[2] - s[2] * n[1], s[2] * n[0] - s[0] * n[2],
+                                     s[0] * n[1] - s[1] * n[0]};
+    sum += std::atan2(std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
+                      s[0] * n[0] + s[1] * n[1] + s[2] * n[2]);
+    ++used;
+  }
+  return used ? sum / used : kNaN;
 }
 
 }  // namespace
@@ -66,12 +108,14 @@ std::vector<uint8_t> faces_over_reference(const MeshView& reference, const MeshV
 
 ScanError scan_error(const MeshView& reference, const MeshView& scan, const float* positions,
                      const uint8_t* counted, double unit) {
-  ScanError e{kNaN, kNaN, 0, false};
+  ScanError e;
+  e.normal_error = e.distance = e.normal_error_coarse = kNaN;
   if (!positions) positions = scan.positions;
   const double ref_edge = mean_edge_length(reference);
   if (reference.num_triangles == 0 || !(ref_edge > 0.0) || !(unit > 0.0)) return e;
   const TriangleIndex index(reference, 2.0 * ref_edge);
   std::vector<double> angle(scan.num_triangles, kNaN), dist(scan.num_triangles, kNaN);
+  std::vector<uint32_t> nearest(scan.num_triangles, UINT32_MAX);
   parallel_for(scan.num_triangles, 0, [&](uint32_t t) {
     if (counted && !counted[t]) return;
     const uint32_t* tri = scan.triangles + 3 * size_t(t);
@@ -79,6 +123,7 @@ ScanError scan_error(const MeshView& reference, const MeshView& scan, const floa
     angle[t] =
         face_normal_angle(positions, tri, reference.positions, reference.triangles + 3 * size_t(c.triangle));
     dist[t] = c.distance;
+    nearest[t] = c.triangle;
   });
   // In triangle order, so that the sums do not depend on the thread count.
   double sum = 0.0, sum2 = 0.0;
@@ -95,6 +140,8 @@ ScanError scan_error(const MeshView& reference, const MeshView& scan, const floa
   // Σ (π − a) = n π − Σ a.
   e.normal_error = (e.flipped ? e.faces_used * M_PI - sum : sum) / e.faces_used;
   e.distance = std::sqrt(sum2 / e.faces_used) / unit;
+  e.normal_error_coarse =
+      coarse_normal_error(reference, scan, positions, angle, nearest, e.flipped, e.reference_faces_used);
   return e;
 }
 

@@ -4,7 +4,12 @@
 //   normal error = mean angle between a scan face's normal and the normal of the reference
 //                  triangle nearest the face's centroid (radians);
 //   distance     = RMS distance of the faces' centroids to the reference surface, in a unit
-//                  the caller gives (the raw scan's mean edge, so that filters compare).
+//                  the caller gives (the raw scan's mean edge, so that filters compare);
+//   normal error at the reference's scale = the same angle between each reference triangle's
+//                  normal and the area-weighted normal of the scan faces nearest to it: a
+//                  reconstruction is often coarser than its scans (the bunny's edges are 1.8 of
+//                  a scan's), and a face-by-face angle then also counts the detail finer than
+//                  the reference can hold; this one does not.
 // Only faces over the reference count: a scan sees parts that the merge does not (the
 // bottom of a statue, a hole the merge left open), and a face there would measure the hole,
 // not the filter. The faces are chosen once, on the raw scan, and every filtered version is
@@ -23,10 +28,12 @@ namespace fq {
 inline constexpr double kOverReferenceEdges = 3.0;
 
 struct ScanError {
-  double normal_error = 0.0;  ///< radians; NaN when no face counted
-  double distance = 0.0;      ///< RMS centroid distance / unit; NaN when no face counted
-  uint32_t faces_used = 0;    ///< faces counted (over the reference and not degenerate)
-  bool flipped = false;       ///< the scan is wound against the reference (angles taken as π − a)
+  double normal_error = 0.0;          ///< radians; NaN when no face counted
+  double distance = 0.0;              ///< RMS centroid distance / unit; NaN when no face counted
+  uint32_t faces_used = 0;            ///< faces counted (over the reference and not degenerate)
+  double normal_error_coarse = 0.0;   ///< at the reference's scale (radians); NaN when none
+  uint32_t reference_faces_used = 0;  ///< reference triangles nearest to at least 3 counted faces
+  bool flipped = false;               ///< the scan is wound against the reference (angles taken as π − a)
 };
 
 /// 1 for each scan face over the reference: its centroid's closest reference point lies on a
@@ -38,7 +45,7 @@ std::vector<uint8_t> faces_over_reference(const MeshView& reference, const MeshV
 /// own positions when null) over the faces marked in `counted` (all when null), distance in
 /// units of `unit` (> 0). Scans are often wound the other way round from the reference:
 /// when most counted faces point against their reference triangle, every angle is taken
-/// against the flipped reference normal (π − a), and `flipped` says so.
+/// against the flipped reference normal (π − a), and `flipped` says so (for both normal errors).
 ScanError scan_error(const MeshView& reference, const MeshView& scan, const float* positions,
                      const uint8_t* counted, double unit);
 

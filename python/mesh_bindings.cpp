@@ -144,7 +144,9 @@ pyb::dict scan_error(const pyb::handle& v_ref, const pyb::handle& f_ref, const p
                        mean_edge_length(scan.view()));
   }
   return pyb::dict("normal_error_rad"_a = e.normal_error, "distance_mean_edges"_a = e.distance,
-                   "faces_used"_a = e.faces_used, "faces"_a = scan.num_triangles(), "flipped"_a = e.flipped);
+                   "faces_used"_a = e.faces_used, "faces"_a = scan.num_triangles(), "flipped"_a = e.flipped,
+                   "normal_error_coarse_rad"_a = e.normal_error_coarse,
+                   "reference_faces_used"_a = e.reference_faces_used);
 }
 
 }  // namespace

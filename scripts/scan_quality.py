@@ -14,13 +14,18 @@ convention). The reference defaults to the folder's name as a mesh two folders u
 Each scan is measured by fq.scan_error (eval/scan_error.h): normal error = mean angle between a
 scan face's normal and the normal of the reference triangle nearest its centroid (radians);
 distance = RMS centroid distance to the reference in the raw scan's mean edges; only faces over
-the reference count, chosen once on the raw scan. Rows: the raw scan, fq's default (fq.filter
+the reference count, chosen once on the raw scan. The normal error at the reference's scale
+compares each reference triangle with the area-weighted normal of the scan faces nearest it (the
+bunny's reconstruction is 1.8 times coarser than its scans: detail finer than its triangles is
+not in it). Table cells: normal error / at the reference's scale / distance. Rows: the raw scan, fq's default (fq.filter
 with the keywords of --fq: fqfilter's defaults when empty), the paper's QF, and every peer of
 scripts/peers.py over the quality matrix's sweeps, both the per-scan best setting (lowest normal
 error) and the best fixed setting (one setting of one peer for every scan: lowest mean normal
 error). fq runs through the Python module in build/python (bit-identical to fqfilter).
 
-Output: markdown on stdout, --json FILE with every number. --quick: two scans, one setting per
+Output: markdown on stdout, --json FILE with every number, --render FILE.png a close-up of the
+first scan (raw, fq default, the best fixed peer setting, the reference; scripts/scan_render.py).
+--quick: two scans, one setting per
 peer (the ctest smoke test). Exit 77 without Open3D or without the scans.
 """
 import argparse
@@ -91,6 +96,28 @@ def fq_keywords(text):
     return out
 
 
+def peer_positions(key, path, tmp):
+    """The positions one peer setting gives on the scan file (run again, not cached)."""
+    p, _, text = key.partition(":")
+    peer = peers.PEERS[p]
+    setting = next(s for q, settings in SWEEPS if q == p for s in settings if str(s) == text)
+    return peer.run(path, peer.group(setting), [peer.steps(setting)], tmp)[0][0]
+
+
+def render_first(fq, doc, scans, reference, path, tmp):
+    import scan_render
+    r = doc["rows"][0]
+    v, f = load_scan(*scans[r["scan"]])
+    ply = os.path.join(tmp, "render.ply")
+    fq.write_mesh(ply, v, f)
+    panels = [(f"{r['scan']} raw", v, f), ("fq default", np.asarray(fq.filter(v, f, **doc["meta"]["fq"]), float), f)]
+    fixed = doc["summary"]["best_fixed"]
+    if fixed:
+        panels.append((setting_name(fixed), peer_positions(fixed, ply, tmp), f))
+    panels.append(("reference", *reference))
+    scan_render.render(path, panels)
+
+
 def run_scan(fq, name, scan, reference, cfg, tmp):
     v, f = load_scan(*scan)
     rv, rf = reference
@@ -99,11 +126,11 @@ def run_scan(fq, name, scan, reference, cfg, tmp):
         if positions.shape != v.shape or not np.array_equal(faces, f):
             return None
         e = fq.scan_error(rv, rf, v, f, positions)
-        return [e["normal_error_rad"], e["distance_mean_edges"]]
+        return [e["normal_error_rad"], e["distance_mean_edges"], e["normal_error_coarse_rad"]]
 
     raw = fq.scan_error(rv, rf, v, f)
     row = {"scan": name, "vertices": len(v), "faces": len(f), "faces_used": raw["faces_used"],
-           "raw": [raw["normal_error_rad"], raw["distance_mean_edges"]]}
+           "raw": [raw["normal_error_rad"], raw["distance_mean_edges"], raw["normal_error_coarse_rad"]]}
     started = time.monotonic()
     filtered, info = fq.filter(v, f, return_info=True, **cfg.fq)
     row["fq_seconds"] = time.monotonic() - started
@@ -118,9 +145,9 @@ def run_scan(fq, name, scan, reference, cfg, tmp):
     return row, failures
 
 
-def best(results, keys):
+def best(results, keys, measure=0):
     keys = [k for k in keys if results.get(k)]
-    return min(keys, key=lambda k: results[k][0]) if keys else None
+    return min(keys, key=lambda k: results[k][measure]) if keys else None
 
 
 def summarize(rows, sweeps):
@@ -128,10 +155,14 @@ def summarize(rows, sweeps):
     keys = [peers.key(p, s) for p, settings in sweeps for s in settings]
     for r in rows:
         r["best_peer"] = best(r["peers"], keys)
+        r["best_peer_coarse"] = best(r["peers"], keys, 2)
     usable = [k for k in keys if all(r["peers"].get(k) for r in rows)]
     fixed = min(usable, key=lambda k: sum(r["peers"][k][0] for r in rows)) if usable else None
     ratios = [r["fq_default"][0] / r["peers"][r["best_peer"]][0] for r in rows if r["best_peer"]]
+    coarse = [r["fq_default"][2] / r["peers"][r["best_peer_coarse"]][2] for r in rows if r["best_peer_coarse"]]
     return {"best_fixed": fixed,
+            "fq_over_best_coarse_geomean": math.exp(sum(map(math.log, coarse)) / len(coarse)) if coarse else None,
+            "fq_wins_coarse": sum(1 for x in coarse if x < 1.0),
             "fq_over_best_geomean": math.exp(sum(map(math.log, ratios)) / len(ratios)) if ratios else None,
             "fq_wins_normal": sum(1 for x in ratios if x < 1.0),
             "fq_under_raw_distance": sum(1 for r in rows if r["fq_default"][1] < r["raw"][1]),
@@ -139,7 +170,7 @@ def summarize(rows, sweeps):
 
 
 def cell(e):
-    return "—" if not e else f"{e[0]:.4f} / {e[1]:.3f}"
+    return "—" if not e else f"{e[0]:.4f} / {e[2]:.4f} / {e[1]:.3f}"
 
 
 def setting_name(k):
@@ -150,8 +181,8 @@ def setting_name(k):
 def markdown(doc):
     s, rows = doc["summary"], doc["rows"]
     fixed = s["best_fixed"]
-    out = [f"Normal error (rad) / distance (raw scan's mean edges) against {doc['meta']['reference']}; "
-           f"{doc['meta']['machine']}.", "",
+    out = [f"Normal error / normal error at the reference's scale (rad) / distance (raw scan's mean edges) "
+           f"against {doc['meta']['reference']}; {doc['meta']['machine']}.", "",
            f"| scan | raw | fq default (σ̂) | QF | best fixed: {setting_name(fixed) if fixed else '—'} | per-scan best peer |",
            "|---|---:|---:|---:|---:|---:|"]
     for r in rows:
@@ -162,7 +193,9 @@ def markdown(doc):
     if s["fq_over_best_geomean"]:
         out += ["", f"fq default / per-scan best peer (normal error): geometric mean {s['fq_over_best_geomean']:.3f}; "
                     f"fq below the best peer on {s['fq_wins_normal']} of {s['scans']} scans; "
-                    f"fq's distance below the raw scan's on {s['fq_under_raw_distance']} of {s['scans']}."]
+                    f"fq's distance below the raw scan's on {s['fq_under_raw_distance']} of {s['scans']}. "
+                    f"At the reference's scale (against each scan's best peer by that measure): geometric mean "
+                    f"{s['fq_over_best_coarse_geomean']:.3f}, fq below it on {s['fq_wins_coarse']} of {s['scans']}."]
     return "\n".join(out)
 
 
@@ -178,6 +211,7 @@ def parse_args():
     ap.add_argument("--peers", default=",".join(p for p, _ in SWEEPS))
     ap.add_argument("--peer-cache", help="folder keeping peer results between runs (scripts/peers.py)")
     ap.add_argument("--json")
+    ap.add_argument("--render", help="PNG: a close-up of the first scan, raw and filtered, beside the reference")
     ap.add_argument("--quick", action="store_true", help="two scans, one setting per peer")
     return ap.parse_args()
 
@@ -219,6 +253,9 @@ def main():
            "rows": rows}
     doc["summary"] = summarize(rows, cfg.sweeps)
     print(markdown(doc))
+    if a.render and rows:
+        with tempfile.TemporaryDirectory(prefix="fq-scans-") as tmp:
+            render_first(fq, doc, scans, reference, a.render, tmp)
     if a.json:
         with open(a.json, "w") as fh:
             json.dump(doc, fh, indent=1)

@@ -99,7 +99,10 @@ def scan_error(V_ref: ArrayLike, F_ref: ArrayLike, V_scan: ArrayLike, F_scan: Ar
     -------
     dict
         ``normal_error_rad``, ``distance_mean_edges``, ``faces_used`` (faces counted),
-        ``faces`` (the scan's faces) and ``flipped`` (the scan is wound against the reference).
+        ``faces`` (the scan's faces), ``flipped`` (the scan is wound against the reference),
+        ``normal_error_coarse_rad`` (the normal error at the reference's scale: each reference
+        triangle's normal against the area-weighted normal of the scan faces nearest to it, for
+        a reference coarser than the scan) and ``reference_faces_used``.
         The errors are NaN when no face is over the reference.
 
     Raises

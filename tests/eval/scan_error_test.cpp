@@ -46,6 +46,25 @@ TEST(ScanError, LiftedScanIsAtItsHeightWithNoNormalError) {
   EXPECT_NEAR(e.normal_error, 0.0, 1e-6);
   EXPECT_NEAR(e.distance, 0.1 / edge, 1e-6);
   EXPECT_FALSE(e.flipped);
+  EXPECT_NEAR(e.normal_error_coarse, 0.0, 1e-6);
+  EXPECT_GT(e.reference_faces_used, 0u);
+}
+
+TEST(ScanError, AtTheReferencesScaleDetailFinerThanItsTrianglesAveragesOut) {
+  // A reference of edge 4 and a scan of step 0.5 zigzagging in x with period 1 (two steps,
+  // heights ±0.035): every scan face is tilted by about 0.14 rad, but over a reference
+  // triangle the tilts cancel.
+  const Mesh ref = make_plane_grid(5, 5, 4.f);
+  const Mesh scan = scan_at(
+      5.f, 5.f, [](float x, float) { return 0.05f * std::sin(2.f * float(M_PI) * x + float(M_PI) / 4.f); });
+  const ScanError e = scan_error(ref.view(), scan.view(), nullptr, nullptr, 1.0);
+  EXPECT_GT(e.normal_error, 0.1);
+  EXPECT_LT(e.normal_error_coarse, 0.25 * e.normal_error);
+  // A tilt is not detail: both measures see all of it.
+  const double slope = 0.2;
+  const Mesh tilted = scan_at(5.f, 5.f, [&](float x, float) { return float(slope * (x - 7.5)); });
+  const ScanError t = scan_error(ref.view(), tilted.view(), nullptr, nullptr, 1.0);
+  EXPECT_NEAR(t.normal_error_coarse, std::atan(slope), 1e-6);
 }
 
 TEST(ScanError, TiltedScanMeasuresTheTiltAndAReversedWindingTheSame) {
@@ -62,6 +81,7 @@ TEST(ScanError, TiltedScanMeasuresTheTiltAndAReversedWindingTheSame) {
   const ScanError f = scan_error(ref.view(), scan.view(), nullptr, nullptr, 1.0);
   EXPECT_TRUE(f.flipped);
   EXPECT_NEAR(f.normal_error, e.normal_error, 1e-9);
+  EXPECT_NEAR(f.normal_error_coarse, e.normal_error_coarse, 1e-9);
   EXPECT_NEAR(f.distance, e.distance, 1e-12);
 }
 
