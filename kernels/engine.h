@@ -15,6 +15,7 @@
 #include "core/mesh_view.h"
 #include "core/params.h"
 #include "kernels/frame_plan.h"
+#include "kernels/seam_weld.h"
 #include "kernels/temporal.h"
 
 namespace fq {
@@ -50,6 +51,9 @@ struct FrameResult {
   float prior_coverage = 0.f;
   float prior_share = 0.f;
   bool history_reset = false;
+  /// Vertices at the exact position of an earlier one (seam twins, kernels/seam_weld.h) that
+  /// the frame was filtered without: each is given its first copy's result. 0: none.
+  uint32_t welded_vertices = 0;
   std::vector<PassTiming> timings;
 
   double total_ms() const;
@@ -69,9 +73,10 @@ struct ClusterRuns {
 using PassObserver = std::function<void(const PassTiming&)>;
 
 /// How a frame runs, the same for every engine (a template method): process() checks the
-/// parameters once, resolves the frame's plan (kernels/frame_plan.h), runs each of the plan's
-/// engine runs through the engine's run_plan(), composes cluster control from those runs
-/// (kernels/cluster_control.h), checks the cancel token, and ends with the temporal step.
+/// parameters once, welds coincident vertices into one (kernels/seam_weld.h; the outputs go
+/// back to the input's order and count), resolves the frame's plan (kernels/frame_plan.h), runs
+/// each of the plan's engine runs through the engine's run_plan(), composes cluster control from
+/// those runs (kernels/cluster_control.h), checks the cancel token, and ends with the temporal step.
 /// Engines implement only run_plan(): one run's passes on their hardware.
 class Engine {
  public:
@@ -87,6 +92,11 @@ class Engine {
   /// (kernels/temporal.h): read and updated by process(); null: every frame alone. Like the
   /// token, it must outlive the runs that use it; a stream's frames must come in order.
   void set_history(TemporalHistory* history) { history_ = history; }
+  /// Whether process() filters coincident vertices as one (kernels/seam_weld.h); on by
+  /// default. Off, each copy is filtered alone and a seam may crack; a frame without twins
+  /// gives the same result either way, and off spares it the search (about 10 ms a million
+  /// vertices on one core).
+  void set_weld_seams(bool on) { weld_seams_ = on; }
   /// "cpu" or "cuda:<device name>".
   virtual std::string name() const = 0;
   /// Processes one frame. Bad parameters or a bad mesh give a non-ok status and leave the
@@ -97,6 +107,7 @@ class Engine {
   /// the next frame allocates them again.
   void release_memory() {
     cluster_runs_ = {};
+    seams_.release();
     release_scratch();
   }
   /// The extra runs' buffers kept for the next frame (what release_memory() gives back besides
@@ -148,10 +159,13 @@ class Engine {
   TemporalScratch temporal_scratch_;  ///< the engine's scratch: release_scratch() gives it back
 
  private:
+  Status run_welded(const MeshView& mesh, const FramePlan& plan, FrameResult& out);
   Status run_frame(const MeshView& mesh, const FramePlan& plan, FrameResult& out);
   Status run_once(const MeshView& mesh, const RunPlan& run, FrameResult& out);
 
   ClusterRuns cluster_runs_;
+  SeamWeld seams_;
+  bool weld_seams_ = true;
   Counts counts_;
 };
 

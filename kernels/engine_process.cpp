@@ -3,8 +3,10 @@
 // cluster control on their results and the cancel check. Before, each engine spelled this out
 // itself and cluster control called process() back for each extra run, so a frame checked its
 // parameters up to six times.
+#include <chrono>
 #include <string>
 
+#include "core/mesh_checks.h"
 #include "core/parallel_for.h"
 #include "kernels/cluster_control.h"
 #include "kernels/engine.h"
@@ -41,13 +43,43 @@ int Engine::host_threads() const { return hardware_threads(); }
 Status Engine::process(const MeshView& mesh, const Params& params, FrameResult& out) {
   ++counts_.frames;
   reset_run_outputs(out);
+  out.welded_vertices = 0;
   ++counts_.validations;
   Status st = validate(params);
-  if (st.ok()) st = run_frame(mesh, plan_frame(params), out);
+  if (st.ok()) st = run_welded(mesh, plan_frame(params), out);
   // A stopped frame is an error, never a result.
   if (st.ok()) st = check_cancel();
   if (!st.ok() || !params.cluster) out.labels.clear();
   return st;
+}
+
+// Seam twins (kernels/seam_weld.h) are filtered as one vertex: the runs, cluster control and the
+// temporal step all see the welded frame (a stream's history holds welded results; the next
+// frame finds its priors in space, not by index), and the per-vertex outputs go back to the
+// input's order and count at the end. A frame without twins pays the search only.
+Status Engine::run_welded(const MeshView& mesh, const FramePlan& plan, FrameResult& out) {
+  using Clock = std::chrono::steady_clock;
+  const auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
+  const Clock::time_point t0 = Clock::now();
+  const uint32_t twins = weld_seams_ ? seams_.find(mesh, host_threads()) : 0;
+  if (twins == 0) return run_frame(mesh, plan, out);
+  // The input's check, so that a fault is named in the input's numbering (and the weld reads
+  // only indices in range).
+  FQ_RETURN_IF_ERROR(check_mesh(mesh, host_threads()));
+  const MeshView welded = seams_.weld(mesh, host_threads());
+  const double before = ms(Clock::now() - t0);
+  FQ_RETURN_IF_ERROR(run_frame(welded, plan, out));
+  const Clock::time_point t1 = Clock::now();
+  if (plan.params.filter) {
+    seams_.spread(out.positions, 3);
+  } else {  // the input itself, as without twins (a twin's -0 is not its first copy's +0)
+    out.positions.assign(mesh.positions, mesh.positions + 3 * size_t(mesh.num_vertices));
+  }
+  seams_.spread(out.labels, 1);
+  seams_.spread_links(out.link_parent, out.link_p);
+  out.welded_vertices = twins;
+  out.timings.push_back({"weld", before + ms(Clock::now() - t1)});
+  return {};
 }
 
 Status Engine::run_once(const MeshView& mesh, const RunPlan& run, FrameResult& out) {

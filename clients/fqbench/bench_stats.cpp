@@ -10,7 +10,7 @@ Spread spread_of(const std::vector<double>& v) {
 
 bool is_host_or_transfer(const std::string& pass) {
   return pass == "upload" || pass == "download" || pass == "normalize" || pass == "prepare" ||
-         pass == "finish";
+         pass == "finish" || pass == "weld";
 }
 
 void PassSamples::push(const std::string& name, double ms) {

@@ -9,9 +9,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "eval/noise.h"
 #include "tests/cuda/parity.h"
@@ -276,6 +278,37 @@ TEST_F(CudaEngineTest, NoDeviceAllocationOnAStreamWithItsHistoryAfterWarmUp) {
   gpu_->set_history(nullptr);
   EXPECT_EQ(cuda_allocation_count(), warm);
   EXPECT_EQ(history.frames, 7u);
+}
+
+// Seam twins are welded on the host before either engine runs (kernels/seam_weld.h): the CUDA
+// engine gives every twin its first copy's result, with the CPU engine's parity, alone and in a
+// stream (the device's history holds the welded frame).
+TEST_F(CudaEngineTest, SeamTwinsGetOneResultAsOnTheCpu) {
+  std::vector<uint32_t> original;
+  const Mesh m = split_along_seam(noisy_sphere(), original);
+  const Params params = clustering(5.f, 0.8f, 0.9f);
+  Parity p;
+  run_both(*cpu_, *gpu_, m.view(), params, p);
+  expect_parity(p, params);
+  EXPECT_EQ(p.gpu.welded_vertices, p.cpu.welded_vertices);
+  EXPECT_EQ(p.gpu.welded_vertices, m.num_vertices() - noisy_sphere().num_vertices());
+  Params stream;  // qf+
+  stream.filtering.temporal = 0.75f;
+  TemporalHistory history;
+  gpu_->set_history(&history);
+  FrameResult r;
+  for (int k = 0; k < 2; ++k) ASSERT_TRUE(gpu_->process(m.view(), stream, r).ok());
+  gpu_->set_history(nullptr);
+  EXPECT_GT(r.prior_coverage, 0.9f);
+  for (const FrameResult* out : {&p.gpu, &r}) {
+    for (uint32_t v = 0; v < m.num_vertices(); ++v) {
+      ASSERT_EQ(std::memcmp(&out->positions[3 * size_t(v)], &out->positions[3 * size_t(original[v])],
+                            3 * sizeof(float)),
+                0)
+          << "vertex " << v;
+    }
+  }
+  for (uint32_t v = 0; v < m.num_vertices(); ++v) ASSERT_EQ(p.gpu.labels[v], p.gpu.labels[original[v]]) << v;
 }
 
 TEST_F(CudaEngineTest, LaunchFailureIsReportedAndEngineRecovers) {

@@ -143,27 +143,29 @@ TEST(KernelDegenerateInput, ZeroAreaFacesAreHarmless) {
   for (uint32_t v = first_added_vertex; v < m.num_vertices(); ++v) EXPECT_LT(std::fabs(vertex(out.positions, v).z), 0.5f);
 }
 
-// Coincident vertices with different indices (a triangle soup) carry, together, the same
-// area-weighted quadrics as the welded vertex: the filtered surface is the same and
-// copies of a vertex stay exactly together.
+// Coincident vertices with different indices (a triangle soup) are welded by the engine
+// (kernels/seam_weld.h): the filtered surface is the welded mesh's and copies of a vertex stay
+// exactly together, for the paper's filter and for qf+, which refines along the connectivity
+// that the soup gets back.
 TEST(KernelDegenerateInput, DuplicatedVerticesGiveTheWeldedResult) {
   Mesh welded = test::make_icosphere(2);
   add_gaussian_noise(welded, 0.15, 6);
   const Mesh soup = test::make_triangle_soup(welded);
   Params p;  // filter only (cluster_test.cpp checks the soup's clusters)
-  // The paper's filter: it sees only positions and areas. qf+ refines along the mesh
-  // connectivity, which a soup does not have (its steps leave a soup where QF put it).
-  p.filtering.method = FilterMethod::kQuadric;
-  const FrameResult w = expect_ok(welded, p), s = expect_ok(soup, p);
-  const double me = mean_edge_length(welded.view());
-  for (uint32_t corner = 0; corner < soup.num_vertices(); ++corner) {
-    const Vec3 got = vertex(s.positions, corner), want = vertex(w.positions, welded.triangles[corner]);
-    ASSERT_LT(std::sqrt(norm2(got - want)) / me, 1e-3) << corner;
-  }
-  for (uint32_t corner = 0; corner < soup.num_vertices(); ++corner) {
-    for (uint32_t other = corner + 1; other < soup.num_vertices(); ++other) {
-      if (welded.triangles[corner] != welded.triangles[other]) continue;
-      ASSERT_EQ(std::memcmp(&s.positions[3 * corner], &s.positions[3 * other], 3 * sizeof(float)), 0);
+  for (FilterMethod method : {FilterMethod::kQuadric, FilterMethod::kQuadricRefined}) {
+    p.filtering.method = method;
+    const FrameResult w = expect_ok(welded, p), s = expect_ok(soup, p);
+    EXPECT_EQ(s.welded_vertices, soup.num_vertices() - welded.num_vertices());
+    const double me = mean_edge_length(welded.view());
+    for (uint32_t corner = 0; corner < soup.num_vertices(); ++corner) {
+      const Vec3 got = vertex(s.positions, corner), want = vertex(w.positions, welded.triangles[corner]);
+      ASSERT_LT(std::sqrt(norm2(got - want)) / me, 1e-3) << corner;
+    }
+    for (uint32_t corner = 0; corner < soup.num_vertices(); ++corner) {
+      for (uint32_t other = corner + 1; other < soup.num_vertices(); ++other) {
+        if (welded.triangles[corner] != welded.triangles[other]) continue;
+        ASSERT_EQ(std::memcmp(&s.positions[3 * corner], &s.positions[3 * other], 3 * sizeof(float)), 0);
+      }
     }
   }
   expect_ok(soup);  // and clustering works on it

@@ -160,6 +160,35 @@ Mesh make_triangle_soup(const Mesh& mesh) {
   return soup;
 }
 
+Mesh split_along_seam(const Mesh& mesh, std::vector<uint32_t>& original, float cut) {
+  const uint32_t n = mesh.num_vertices();
+  std::vector<bool> side(mesh.num_triangles());
+  std::vector<uint8_t> touches(n, 0);  // bit 0: a triangle off the side, bit 1: one on it
+  for (uint32_t t = 0; t < mesh.num_triangles(); ++t) {
+    const uint32_t* c = &mesh.triangles[3 * size_t(t)];
+    side[t] = (vertex(mesh, c[0]).x + vertex(mesh, c[1]).x + vertex(mesh, c[2]).x) / 3.f > cut;
+    for (int k = 0; k < 3; ++k) touches[c[k]] |= side[t] ? 2 : 1;
+  }
+  Mesh out = mesh;
+  original.resize(n);
+  for (uint32_t v = 0; v < n; ++v) original[v] = v;
+  std::vector<uint32_t> copy_of(n, ~0u);
+  for (uint32_t v = 0; v < n; ++v) {
+    if (touches[v] != 3) continue;
+    copy_of[v] = out.num_vertices();
+    out.positions.insert(out.positions.end(), &mesh.positions[3 * size_t(v)],
+                         &mesh.positions[3 * size_t(v)] + 3);
+    original.push_back(v);
+  }
+  for (uint32_t t = 0; t < mesh.num_triangles(); ++t) {
+    if (!side[t]) continue;
+    for (size_t c = 3 * size_t(t); c < 3 * size_t(t) + 3; ++c) {
+      if (copy_of[mesh.triangles[c]] != ~0u) out.triangles[c] = copy_of[mesh.triangles[c]];
+    }
+  }
+  return out;
+}
+
 uint32_t append_isolated_vertex(Mesh& mesh, Vec3 p) {
   add_vertex(mesh, p.x, p.y, p.z);
   return mesh.num_vertices() - 1;

@@ -35,6 +35,13 @@ Mesh make_non_manifold_fin();
 /// (as a quantized scan gives), the same surface as `mesh`.
 Mesh make_triangle_soup(const Mesh& mesh);
 
+/// `mesh` cut open along a seam, as an export's UV or normal seam leaves it: every vertex shared
+/// by a triangle whose centroid has x > `cut` and one whose centroid has not is copied (the
+/// copies appended in vertex order, at the bit-identical position) and the triangles with
+/// x > `cut` reference the copies. `original` gets, per vertex of the result, the vertex of
+/// `mesh` it is (itself for the first num_vertices()).
+Mesh split_along_seam(const Mesh& mesh, std::vector<uint32_t>& original, float cut = 0.f);
+
 /// Appends a vertex that no triangle references; returns its index.
 uint32_t append_isolated_vertex(Mesh& mesh, Vec3 p);
 
