@@ -36,7 +36,7 @@ pyb::dict filter_info(const Mesh& mesh, const Params& p, const FrameResult& r) {
   return pyb::dict("mean_edge"_a = r.mean_edge, "noise_estimate"_a = qf_plus ? pyb::cast(r.noise_estimate) : none,
                    "noise_residual"_a = qf_plus ? pyb::cast(r.noise_residual) : none,
                    "filtered_for"_a = qf_plus ? pyb::cast(r.filter_noise) : none, "moved_mean"_a = moved.mean,
-                   "moved_p99"_a = moved.p99, "moved_max"_a = moved.max);
+                   "moved_p99"_a = moved.p99, "moved_max"_a = moved.max, "welded_vertices"_a = r.welded_vertices);
 }
 
 pyb::object filter(const pyb::handle& v, const pyb::handle& f, const pyb::dict& keywords, const std::string& engine,

@@ -50,6 +50,7 @@ Status run_engine(const Options& o, Engine& engine, const MeshView& view, FrameR
   }
   summarize_timings(runs, report);
   report.mean_edge = result.mean_edge;
+  report.welded_vertices = result.welded_vertices;
   if (o.params.filter && o.params.filtering.method == FilterMethod::kQuadricRefined) {
     report.noise_estimate = result.noise_estimate;
     report.filter_noise = result.filter_noise;

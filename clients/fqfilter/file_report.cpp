@@ -142,6 +142,7 @@ nlohmann::json to_json(const FileReport& r) {
             {"noise_estimate", noise_json(r)},
             {"moved", r.moved ? nlohmann::json{{"mean", r.moved->mean}, {"p99", r.moved->p99}, {"max", r.moved->max}}
                               : nlohmann::json(nullptr)},
+            {"welded_vertices", r.welded_vertices},
             {"params", params_json(r.params)},
             {"noise", r.noise_sigma > 0 ? noise_added_json(r) : nlohmann::json(nullptr)},
             {"repeat", r.repeat},
@@ -194,6 +195,8 @@ void print_human(const FileReport& r, std::ostream& os) {
       os << "  read as light noise: filtered lightly; for noise this estimate does not see (a raw scan's "
             "correlated noise) --strength 3 filters as for three times the noise\n";
   }
+  if (r.welded_vertices > 0)
+    os << "  seams: " << r.welded_vertices << " coincident vertices filtered as one with their twins\n";
   if (r.moved)
     os << std::setprecision(3) << "  moved: mean " << r.moved->mean << ", p99 " << r.moved->p99 << ", max "
        << r.moved->max << " mean edges\n";

@@ -47,6 +47,8 @@ struct FileReport {
   std::optional<float> noise_residual;
   /// How far the filter moved the vertices (mean edge lengths); absent without filtering.
   std::optional<VertexMoves> moved;
+  /// Coincident vertices (seam twins) filtered as one with their first copy (kernels/seam_weld.h).
+  uint32_t welded_vertices = 0;
   /// --sequence: the share of vertices that found a prior in the last result, the mean pull
   /// towards it, whether this frame reset the stream's history (a scene cut), and the flicker
   /// against the last frame (eval/flicker.h; with a reference of the same vertices).

@@ -72,7 +72,8 @@ _INFO_ROW = ("return_info", "bool", False, None,
              "edges), ``noise_residual`` (the residual it was read from: the rest was taken for the "
              "surface's detail), ``filtered_for`` (the noise the strengths came from; these three None "
              "for modes other than qf+), ``moved_mean``, ``moved_p99`` and ``moved_max`` (how far "
-             "vertices moved, mean edges) and ``mean_edge`` (input units).")
+             "vertices moved, mean edges), ``welded_vertices`` (coincident vertices filtered as one with their "
+             "twins: seams) and ``mean_edge`` (input units).")
 
 
 def _with_keywords(function_name: str, returns: str,

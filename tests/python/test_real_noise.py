@@ -31,6 +31,15 @@ def test_return_info_says_what_was_read_and_how_far_vertices_moved(fandisk):
     # The estimate is the residual's noise share; at noise 0.2 most of it.
     assert 0.1 < info["noise_estimate"] <= info["noise_residual"] < 0.3
     assert info["filtered_for"] == info["noise_estimate"]
+    assert info["welded_vertices"] == 0
+    # fandisk with its first triangle's corners copied and re-pointed (a seam): the copies are
+    # counted and come back where their twins go.
+    seam_v = np.concatenate([noisy, noisy[F[0]]])
+    seam_f = F.copy()
+    seam_f[0] = [len(noisy), len(noisy) + 1, len(noisy) + 2]
+    seamed, seam_info = fq.filter(seam_v, seam_f, return_info=True, engine="cpu")
+    assert seam_info["welded_vertices"] == 3
+    np.testing.assert_array_equal(seamed[len(noisy):], seamed[F[0]])
     _, doubled = fq.filter(noisy, F, return_info=True, strength=2.0, engine="cpu")
     assert doubled["filtered_for"] == pytest.approx(2 * info["noise_estimate"], rel=1e-6)
     assert doubled["moved_mean"] > info["moved_mean"]
