@@ -128,23 +128,26 @@ void add_correlated_noise(Mesh& mesh, double sigma_mean_edges, double length_mea
   std::vector<double> white(n);
   for (double& w : white) w = normal.next();
   std::vector<Vec3> points(n);
-  for (uint32_t v = 0; v < n; ++v) points[v] = {mesh.positions[3 * size_t(v)], mesh.positions[3 * size_t(v) + 1],
-                                                mesh.positions[3 * size_t(v) + 2]};
+  for (uint32_t v = 0; v < n; ++v)
+    points[v] = {mesh.positions[3 * size_t(v)], mesh.positions[3 * size_t(v) + 1],
+                 mesh.positions[3 * size_t(v) + 2]};
   CpuGrid grid;
   build_grid(points.data(), n, float(kernel), grid);
   std::vector<Point4> sorted(n);
-  for (uint32_t k = 0; k < n; ++k) sorted[k] = {points[grid.order[k]].x, points[grid.order[k]].y, points[grid.order[k]].z, 0.f};
+  for (uint32_t k = 0; k < n; ++k)
+    sorted[k] = {points[grid.order[k]].x, points[grid.order[k]].y, points[grid.order[k]].z, 0.f};
   const GridView g = grid.view(sorted.data());
   const double inv2 = -0.5 / (kernel * kernel);
   std::vector<double> offsets(n);
   for (uint32_t v = 0; v < n; ++v) {
     // Σ k w / √(Σ k²): unit variance whatever the sampling around v.
     double sum = 0.0, norm2 = 0.0;
-    for_each_neighbor(g, points[v], float(3.0 * std::numbers::sqrt2 * kernel), [&](uint32_t j, const Point4&, Vec3, float d2) {
-      const double k = std::exp(double(d2) * inv2);
-      sum += k * white[grid.order[j]];
-      norm2 += k * k;
-    });
+    for_each_neighbor(g, points[v], float(3.0 * std::numbers::sqrt2 * kernel),
+                      [&](uint32_t j, const Point4&, Vec3, float d2) {
+                        const double k = std::exp(double(d2) * inv2);
+                        sum += k * white[grid.order[j]];
+                        norm2 += k * k;
+                      });
     offsets[v] = norm2 > 0.0 ? std_dev * sum / std::sqrt(norm2) : 0.0;
   }
   move_along(mesh, area_normals(mesh), offsets);
@@ -164,7 +167,8 @@ void add_ripple_noise(Mesh& mesh, double sigma_mean_edges, double period_mean_ed
 }
 
 bool parse_noise_kind(const char* name, NoiseKind& kind) {
-  for (NoiseKind k : {NoiseKind::kIso, NoiseKind::kNormal, NoiseKind::kDepth, NoiseKind::kCorrelated, NoiseKind::kRipple})
+  for (NoiseKind k :
+       {NoiseKind::kIso, NoiseKind::kNormal, NoiseKind::kDepth, NoiseKind::kCorrelated, NoiseKind::kRipple})
     if (std::strcmp(name, noise_kind_name(k)) == 0) {
       kind = k;
       return true;
@@ -174,22 +178,37 @@ bool parse_noise_kind(const char* name, NoiseKind& kind) {
 
 const char* noise_kind_name(NoiseKind kind) {
   switch (kind) {
-    case NoiseKind::kIso: return "iso";
-    case NoiseKind::kNormal: return "normal";
-    case NoiseKind::kDepth: return "depth";
-    case NoiseKind::kCorrelated: return "correlated";
-    case NoiseKind::kRipple: return "ripple";
+    case NoiseKind::kIso:
+      return "iso";
+    case NoiseKind::kNormal:
+      return "normal";
+    case NoiseKind::kDepth:
+      return "depth";
+    case NoiseKind::kCorrelated:
+      return "correlated";
+    case NoiseKind::kRipple:
+      return "ripple";
   }
   return "?";
 }
 
 void add_noise(Mesh& mesh, NoiseKind kind, double sigma_mean_edges, double length_mean_edges, uint64_t seed) {
   switch (kind) {
-    case NoiseKind::kIso: add_gaussian_noise(mesh, sigma_mean_edges, seed); break;
-    case NoiseKind::kNormal: add_normal_noise(mesh, sigma_mean_edges, seed); break;
-    case NoiseKind::kDepth: add_depth_noise(mesh, sigma_mean_edges, seed); break;
-    case NoiseKind::kCorrelated: add_correlated_noise(mesh, sigma_mean_edges, length_mean_edges, seed); break;
-    case NoiseKind::kRipple: add_ripple_noise(mesh, sigma_mean_edges, length_mean_edges, seed); break;
+    case NoiseKind::kIso:
+      add_gaussian_noise(mesh, sigma_mean_edges, seed);
+      break;
+    case NoiseKind::kNormal:
+      add_normal_noise(mesh, sigma_mean_edges, seed);
+      break;
+    case NoiseKind::kDepth:
+      add_depth_noise(mesh, sigma_mean_edges, seed);
+      break;
+    case NoiseKind::kCorrelated:
+      add_correlated_noise(mesh, sigma_mean_edges, length_mean_edges, seed);
+      break;
+    case NoiseKind::kRipple:
+      add_ripple_noise(mesh, sigma_mean_edges, length_mean_edges, seed);
+      break;
   }
 }
 

@@ -30,17 +30,19 @@ FrameResult run(const pyb::handle& v, const pyb::handle& f, const Params& params
 
 /// What fq.filter(return_info=True) adds (documented in fq/_engine.py).
 pyb::dict filter_info(const Mesh& mesh, const Params& p, const FrameResult& r) {
-  const VertexMoves moved = vertex_moves(mesh.positions.data(), r.positions.data(), mesh.num_vertices(), r.mean_edge);
+  const VertexMoves moved =
+      vertex_moves(mesh.positions.data(), r.positions.data(), mesh.num_vertices(), r.mean_edge);
   const bool qf_plus = p.filter && p.filtering.method == FilterMethod::kQuadricRefined;
   const pyb::object none = pyb::none();
-  return pyb::dict("mean_edge"_a = r.mean_edge, "noise_estimate"_a = qf_plus ? pyb::cast(r.noise_estimate) : none,
-                   "noise_residual"_a = qf_plus ? pyb::cast(r.noise_residual) : none,
-                   "filtered_for"_a = qf_plus ? pyb::cast(r.filter_noise) : none, "moved_mean"_a = moved.mean,
-                   "moved_p99"_a = moved.p99, "moved_max"_a = moved.max, "welded_vertices"_a = r.welded_vertices);
+  return pyb::dict(
+      "mean_edge"_a = r.mean_edge, "noise_estimate"_a = qf_plus ? pyb::cast(r.noise_estimate) : none,
+      "noise_residual"_a = qf_plus ? pyb::cast(r.noise_residual) : none,
+      "filtered_for"_a = qf_plus ? pyb::cast(r.filter_noise) : none, "moved_mean"_a = moved.mean,
+      "moved_p99"_a = moved.p99, "moved_max"_a = moved.max, "welded_vertices"_a = r.welded_vertices);
 }
 
-pyb::object filter(const pyb::handle& v, const pyb::handle& f, const pyb::dict& keywords, const std::string& engine,
-                   int threads, bool info) {
+pyb::object filter(const pyb::handle& v, const pyb::handle& f, const pyb::dict& keywords,
+                   const std::string& engine, int threads, bool info) {
   Params p;  // fqfilter's defaults: the same positions as fqfilter for the same keywords
   apply_keywords("filter", keywords, p);
   const Mesh mesh = to_mesh(v, f);

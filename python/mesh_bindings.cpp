@@ -91,11 +91,12 @@ std::vector<std::string> write_mesh(const pyb::handle& path_like, const pyb::han
   return dropped;
 }
 
-pyb::array add_noise(const pyb::handle& v, const pyb::handle& f, double sigma, uint64_t seed, const std::string& kind,
-                     double length) {
+pyb::array add_noise(const pyb::handle& v, const pyb::handle& f, double sigma, uint64_t seed,
+                     const std::string& kind, double length) {
   NoiseKind k;
   if (!parse_noise_kind(kind.c_str(), k))
-    throw pyb::value_error("kind must be 'iso', 'normal', 'depth', 'correlated' or 'ripple', got '" + kind + "'");
+    throw pyb::value_error("kind must be 'iso', 'normal', 'depth', 'correlated' or 'ripple', got '" + kind +
+                           "'");
   Mesh mesh = to_mesh(v, f);
   {
     const pyb::gil_scoped_release unlocked;

@@ -54,13 +54,15 @@ void add_run_options(CLI::App& app, Options& o, std::string& engine, std::string
   app.add_option("--noise", o.noise_sigma,
                  "Add Gaussian noise of this std (mean edge lengths) before filtering")
       ->check(CLI::Range(0.0, 100.0));
-  add_defaulted(app, "--noise-kind,--noise-direction", noise_kind,
-                "iso: every coordinate; normal: along the clean mesh's vertex normals; depth: a range scanner's "
-                "along z, growing at grazing angles; correlated: along the normals, correlated over --noise-length; "
-                "ripple: scan-line stripes along x of period --noise-length (docs/QUALITY.md)")
+  add_defaulted(
+      app, "--noise-kind,--noise-direction", noise_kind,
+      "iso: every coordinate; normal: along the clean mesh's vertex normals; depth: a range scanner's "
+      "along z, growing at grazing angles; correlated: along the normals, correlated over --noise-length; "
+      "ripple: scan-line stripes along x of period --noise-length (docs/QUALITY.md)")
       ->check(CLI::IsMember({"iso", "normal", "depth", "correlated", "ripple"}));
   add_ranged(app, "--noise-length", o.noise_length,
-             "--noise-kind correlated: the correlation length; ripple: the period (mean edge lengths)", 0.1, 100.0);
+             "--noise-kind correlated: the correlation length; ripple: the period (mean edge lengths)", 0.1,
+             100.0);
   add_defaulted(app, "--seed", o.seed, "Seed of --noise");
   app.add_option("--noisy-out", o.noisy_out,
                  "Also write the noisy input mesh to this file (to run other smoothers on the same input)");

@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <string>
 
-#include "kernels/engine.h"
 #include "core/params.h"
 #include "eval/noise.h"
+#include "kernels/engine.h"
 
 namespace fq::cli {
 

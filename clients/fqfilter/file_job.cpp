@@ -166,7 +166,8 @@ Status run_file_job(const std::string& input, const std::string& output, const O
   if (Status s = run_engine(o, engine, mesh.view(), result, r, progress); !s.ok())
     return fail(r, Status(s.code(), "'" + input + "': " + status_code_name(s.code()) + ": " + s.message()));
   if (o.params.filter)
-    r.moved = vertex_moves(mesh.positions.data(), result.positions.data(), mesh.num_vertices(), result.mean_edge);
+    r.moved =
+        vertex_moves(mesh.positions.data(), result.positions.data(), mesh.num_vertices(), result.mean_edge);
   if (!r.reference.empty()) {
     r.input_error = measure(clean.view(), mesh.positions.data());
     if (o.params.filter) r.output_error = measure(clean.view(), result.positions.data());

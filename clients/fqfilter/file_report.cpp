@@ -42,8 +42,10 @@ nlohmann::json noise_json(const FileReport& r) {
 /// The noise fqfilter added (--noise, --noise-kind, --seed); "direction" is the kind's old
 /// name, kept for the readers of iso and normal; "length" only where the kind has one.
 nlohmann::json noise_added_json(const FileReport& r) {
-  nlohmann::json j = {{"sigma", r.noise_sigma}, {"direction", noise_kind_name(r.noise_kind)}, {"seed", r.seed}};
-  if (r.noise_kind == NoiseKind::kCorrelated || r.noise_kind == NoiseKind::kRipple) j["length"] = r.noise_length;
+  nlohmann::json j = {
+      {"sigma", r.noise_sigma}, {"direction", noise_kind_name(r.noise_kind)}, {"seed", r.seed}};
+  if (r.noise_kind == NoiseKind::kCorrelated || r.noise_kind == NoiseKind::kRipple)
+    j["length"] = r.noise_length;
   return j;
 }
 
@@ -140,8 +142,9 @@ nlohmann::json to_json(const FileReport& r) {
             {"triangles", r.triangles},
             {"mean_edge", r.mean_edge},
             {"noise_estimate", noise_json(r)},
-            {"moved", r.moved ? nlohmann::json{{"mean", r.moved->mean}, {"p99", r.moved->p99}, {"max", r.moved->max}}
-                              : nlohmann::json(nullptr)},
+            {"moved",
+             r.moved ? nlohmann::json{{"mean", r.moved->mean}, {"p99", r.moved->p99}, {"max", r.moved->max}}
+                     : nlohmann::json(nullptr)},
             {"welded_vertices", r.welded_vertices},
             {"params", params_json(r.params)},
             {"noise", r.noise_sigma > 0 ? noise_added_json(r) : nlohmann::json(nullptr)},

@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "kernels/engine.h"
+#include "core/params.h"
 #include "eval/error_metrics.h"
 #include "eval/noise.h"
-#include "core/params.h"
 #include "eval/sharp_edge_recall.h"
 #include "eval/surface_distance.h"
 #include "eval/vertex_moves.h"
+#include "kernels/engine.h"
 
 namespace fq::cli {
 
