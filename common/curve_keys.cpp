@@ -1,8 +1,12 @@
 #include "common/curve_keys.h"
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <zmq.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -69,12 +73,28 @@ Status write_curve_key_file(const std::string& path, const CurveKeyPair& keys) {
   text << "# ZeroMQ CURVE keys (Z85)" << (keys.secret_key.empty() ? "" : ": keep this file secret") << "\n";
   text << "public = \"" << keys.public_key << "\"\n";
   if (!keys.secret_key.empty()) text << "secret = \"" << keys.secret_key << "\"\n";
-  std::ofstream out(path, std::ios::trunc);
-  if (!out) return io_error(path, "cannot be written");
-  out << text.str();
-  out.close();
-  if (!out) return io_error(path, "write failed");
-  if (!keys.secret_key.empty()) chmod(path.c_str(), S_IRUSR | S_IWUSR);
+  // A secret key file is created owner-only (never readable for a moment under the umask) and
+  // made so again if it existed with a wider mode; a failure to do either is an error.
+  const mode_t mode = keys.secret_key.empty() ? 0644 : 0600;
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, mode);
+  if (fd < 0) return io_error(path, std::string("cannot be written: ") + std::strerror(errno));
+  if (!keys.secret_key.empty() && ::fchmod(fd, S_IRUSR | S_IWUSR) != 0) {
+    const int err = errno;
+    ::close(fd);
+    return io_error(path, std::string("cannot be made owner-only: ") + std::strerror(err));
+  }
+  const std::string bytes = text.str();
+  for (size_t done = 0; done < bytes.size();) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = errno;
+      ::close(fd);
+      return io_error(path, std::string("write failed: ") + std::strerror(err));
+    }
+    done += size_t(n);
+  }
+  if (::close(fd) != 0) return io_error(path, std::string("write failed: ") + std::strerror(errno));
   return {};
 }
 

@@ -69,18 +69,19 @@ void Engine::follow_stream_history(const MeshView& mesh, const Params& params, F
 
 const char* engine_kind_name(EngineKind kind) { return second_of(kEngineKindNames, kind).value_or("auto"); }
 
-StatusOr<std::unique_ptr<Engine>> make_engine(const EngineOptions& options) {
+StatusOr<std::unique_ptr<Engine>> make_engine(const EngineOptions& options, std::string* cuda_refused) {
+  if (cuda_refused) cuda_refused->clear();
   if (options.kind == EngineKind::kCpu) return std::make_unique<CpuEngine>(options.threads);
   if (options.kind == EngineKind::kCopy) return std::make_unique<CopyEngine>();
 #if FQ_WITH_CUDA
   Status s;
   if (auto e = make_cuda_engine(options.device, &s, options.cuda)) return e;
-  if (options.kind == EngineKind::kCuda) return s;
 #else
-  if (options.kind == EngineKind::kCuda)
-    return Status{StatusCode::kUnavailable,
-                  "this build of fq has no CUDA support (configure with FQ_CUDA=ON)"};
+  const Status s{StatusCode::kUnavailable, "this build of fq has no CUDA support (configure with FQ_CUDA=ON)"};
 #endif
+  if (options.kind == EngineKind::kCuda) return s;
+  // auto: the CPU engine, and the reason kept for whoever asks (a user who expected the GPU).
+  if (cuda_refused) *cuda_refused = s.message();
   return std::make_unique<CpuEngine>(options.threads);
 }
 

@@ -203,6 +203,8 @@ const char* engine_kind_name(EngineKind kind);
 
 /// CUDA when asked for or (auto) when a device is present, the CPU engine otherwise.
 /// kUnavailable (with the reason) when an explicitly requested engine is not present.
-StatusOr<std::unique_ptr<Engine>> make_engine(const EngineOptions& options);
+/// `cuda_refused` (may be null): where auto fell back to the CPU, why CUDA was not used ("this
+/// build has no CUDA support", "no CUDA device is present", a driver error...); cleared otherwise.
+StatusOr<std::unique_ptr<Engine>> make_engine(const EngineOptions& options, std::string* cuda_refused = nullptr);
 
 }  // namespace fq

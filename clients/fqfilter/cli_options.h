@@ -21,6 +21,7 @@ struct Options {
   std::string noisy_out;            ///< also write the noisy input here (.ply/.drc); empty: don't
   uint64_t seed = 1;
   std::string reference;  ///< clean mesh for the metrics; empty: the input when noise is added
+  std::string cuda_refused;  ///< --engine auto fell back to the CPU: why (make_engine), for the report
   int repeat = 1;         ///< engine runs per frame; timings are medians
   int drc_bits = 16;      ///< position quantization of .drc outputs
   bool json = false;

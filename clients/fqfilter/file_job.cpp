@@ -72,6 +72,7 @@ void describe(const std::string& input, const Options& o, const Engine& engine, 
   r = FileReport{};
   r.file = input;
   r.engine = engine.name();
+  r.cuda_refused = o.cuda_refused;
   if (const auto* cpu = dynamic_cast<const CpuEngine*>(&engine)) r.threads = cpu->threads();
   r.params = o.params;
   r.noise_sigma = o.noise_sigma;

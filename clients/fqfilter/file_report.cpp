@@ -137,6 +137,7 @@ nlohmann::json to_json(const FileReport& r) {
   for (const PassTiming& p : r.passes) passes.push_back({{"name", p.name}, {"ms", p.ms}});
   j.update({{"output", r.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.output)},
             {"engine", r.engine},
+            {"cuda_refused", r.cuda_refused.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.cuda_refused)},
             {"threads", r.threads},
             {"vertices", r.vertices},
             {"triangles", r.triangles},
@@ -175,6 +176,7 @@ void print_human(const FileReport& r, std::ostream& os) {
      << r.mean_edge << ", engine " << r.engine;
   if (r.threads > 0) os << " (" << r.threads << " threads)";
   os << "\n";
+  if (!r.cuda_refused.empty()) os << "  CUDA not used: " << r.cuda_refused << "\n";
   os << "  " << std::left << std::setw(24) << "pass" << std::right << std::setw(10) << "ms"
      << "\n"
      << std::fixed;

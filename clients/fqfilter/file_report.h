@@ -29,6 +29,7 @@ struct FileReport {
   std::string file;
   std::string output;  ///< written file; empty when none
   std::string engine;  ///< Engine::name()
+  std::string cuda_refused;  ///< --engine auto ran on the CPU: why CUDA was not used (empty otherwise)
   int threads = 0;     ///< CPU engine threads; 0 for other engines
   uint32_t vertices = 0;
   uint32_t triangles = 0;

@@ -58,7 +58,7 @@ int run(int argc, char** argv) {
     std::cerr << "fqfilter: error: --reference needs a single input file, not a folder\n";
     return 2;
   }
-  const fq::StatusOr<std::unique_ptr<fq::Engine>> engine = fq::make_engine(o.engine);
+  const fq::StatusOr<std::unique_ptr<fq::Engine>> engine = fq::make_engine(o.engine, &o.cuda_refused);
   if (!engine.ok()) {
     std::cerr << "fqfilter: error: " << engine.status().message() << "\n";
     return 1;

@@ -9,7 +9,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <limits>
 #include <string>
 #include <thread>
@@ -302,10 +301,8 @@ TEST_F(CudaEngineTest, SeamTwinsGetOneResultAsOnTheCpu) {
   EXPECT_GT(r.prior_coverage, 0.9f);
   for (const FrameResult* out : {&p.gpu, &r}) {
     for (uint32_t v = 0; v < m.num_vertices(); ++v) {
-      ASSERT_EQ(std::memcmp(&out->positions[3 * size_t(v)], &out->positions[3 * size_t(original[v])],
-                            3 * sizeof(float)),
-                0)
-          << "vertex " << v;
+      for (int c = 0; c < 3; ++c)
+        ASSERT_EQ(out->positions[3 * size_t(v) + c], out->positions[3 * size_t(original[v]) + c]) << "vertex " << v;
     }
   }
   for (uint32_t v = 0; v < m.num_vertices(); ++v) ASSERT_EQ(p.gpu.labels[v], p.gpu.labels[original[v]]) << v;

@@ -20,9 +20,9 @@ std::vector<double> z_offsets(const Mesh& before, const Mesh& after) {
   const double edge = mean_edge_length(before.view());
   std::vector<double> dz;
   for (uint32_t v = 0; v < before.num_vertices(); ++v) {
-    EXPECT_EQ(after.positions[3 * v], before.positions[3 * v]);
-    EXPECT_EQ(after.positions[3 * v + 1], before.positions[3 * v + 1]);
-    dz.push_back((double(after.positions[3 * v + 2]) - before.positions[3 * v + 2]) / edge);
+    EXPECT_EQ(after.positions[3 * size_t(v)], before.positions[3 * size_t(v)]);
+    EXPECT_EQ(after.positions[3 * size_t(v) + 1], before.positions[3 * size_t(v) + 1]);
+    dz.push_back((double(after.positions[3 * size_t(v) + 2]) - before.positions[3 * size_t(v) + 2]) / edge);
   }
   return dz;
 }
@@ -54,14 +54,14 @@ TEST(StructuredNoise, DepthNoiseIsSigmaFacingTheScannerAndFourTimesAtGrazing) {
   // noise along z is at the grazing floor's 4 × sigma, still along z only.
   Mesh wall = plane;
   for (uint32_t v = 0; v < wall.num_vertices(); ++v)
-    std::swap(wall.positions[3 * v], wall.positions[3 * v + 2]);
+    std::swap(wall.positions[3 * size_t(v)], wall.positions[3 * size_t(v) + 2]);
   Mesh noisy_wall = wall;
   add_depth_noise(noisy_wall, 0.1, 3);
   const double edge = mean_edge_length(wall.view());
   double s = 0;
   for (uint32_t v = 0; v < wall.num_vertices(); ++v) {
-    EXPECT_EQ(noisy_wall.positions[3 * v], wall.positions[3 * v]);
-    const double d = (double(noisy_wall.positions[3 * v + 2]) - wall.positions[3 * v + 2]) / edge;
+    EXPECT_EQ(noisy_wall.positions[3 * size_t(v)], wall.positions[3 * size_t(v)]);
+    const double d = (double(noisy_wall.positions[3 * size_t(v) + 2]) - wall.positions[3 * size_t(v) + 2]) / edge;
     s += d * d;
   }
   EXPECT_NEAR(std::sqrt(s / wall.num_vertices()), 0.4, 0.02);

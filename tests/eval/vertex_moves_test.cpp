@@ -12,7 +12,7 @@ TEST(VertexMoves, MeanPercentileAndMaxInTheUnit) {
   // 200 vertices, unit 2: 196 moved by 1 along x (0.5 units), then 2, 2.5, 3 and 4 along y or z
   // (1, 1.25, 1.5, 2): the nearest rank ⌈0.99 · 200⌉ = 198 is 1.25, its neighbours 1 and 1.5.
   std::vector<float> before(600, 0.5f), after = before;
-  for (int i = 0; i < 196; ++i) after[3 * i] += 1.f;
+  for (size_t i = 0; i < 196; ++i) after[3 * i] += 1.f;
   after[3 * 196 + 1] += 2.f;
   after[3 * 197 + 2] += 2.5f;
   after[3 * 198 + 1] += 3.f;

@@ -164,7 +164,8 @@ TEST(KernelDegenerateInput, DuplicatedVerticesGiveTheWeldedResult) {
     for (uint32_t corner = 0; corner < soup.num_vertices(); ++corner) {
       for (uint32_t other = corner + 1; other < soup.num_vertices(); ++other) {
         if (welded.triangles[corner] != welded.triangles[other]) continue;
-        ASSERT_EQ(std::memcmp(&s.positions[3 * corner], &s.positions[3 * other], 3 * sizeof(float)), 0);
+        for (int c = 0; c < 3; ++c)
+          ASSERT_EQ(s.positions[3 * size_t(corner) + c], s.positions[3 * size_t(other) + c]) << corner;
       }
     }
   }

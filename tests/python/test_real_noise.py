@@ -92,6 +92,13 @@ def test_fqfilter_reports_the_residual_the_moves_and_the_noise_kind(tmp_path):
     assert j["noise"] == {"sigma": 0.1, "direction": "ripple", "seed": 1, "length": 3.0}
     assert 0 <= j["noise_estimate"]["estimated"] <= j["noise_estimate"]["residual"]
     assert 0 < j["moved"]["mean"] <= j["moved"]["p99"] <= j["moved"]["max"]
+    assert j["cuda_refused"] is None  # --engine cpu asked for the CPU: nothing was refused
+    auto = json.loads(subprocess.run([os.environ["FQFILTER"], str(DATA / "fandisk.ply"), "--json"],
+                                     capture_output=True, text=True, check=True).stdout)
+    if auto["engine"] == "cpu":  # auto fell back: the reason is kept (a build without CUDA, no device, a driver)
+        assert isinstance(auto["cuda_refused"], str) and auto["cuda_refused"]
+    else:
+        assert auto["engine"].startswith("cuda") and auto["cuda_refused"] is None
     human = subprocess.run([os.environ["FQFILTER"], str(DATA / "fandisk.ply"), "--noise", "0.05", "--engine", "cpu"],
                            capture_output=True, text=True, check=True).stdout
     assert "moved: mean" in human and "of a residual" in human
