@@ -7,6 +7,9 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <memory>
+#include <string_view>
+#include <vector>
 
 #include "daemon/control_server.h"
 #include "daemon/counters_json.h"
@@ -52,39 +55,51 @@ class LongPollTicket {
   bool admitted_ = false;
 };
 
-void append_words(std::string& body, const uint32_t* words, size_t count) {
-  body.append(reinterpret_cast<const char*>(words), count * sizeof(uint32_t));
-}
-
 // The body is [faces][labels][chunks]: the two little-endian uint32 arrays first, so that
 // the browser views them in place (a Uint32Array needs a 4-byte aligned offset), then the
 // Draco chunks as published. The faces are left out when the viewer already has them
 // (`faces=ID` equal to X-Fq-Faces-Id): a stream's faces rarely change.
-void send_latest(const LatestResult& r, uint64_t viewer_faces_id, httplib::Response& res) {
-  const wire::ResultHeader& h = r.header;
-  const bool send_faces = r.faces && r.faces_id != viewer_faces_id;
-  const size_t face_words = send_faces ? r.faces->size() : 0;
+// The pieces are sent from the kept result itself, which the response holds until the last
+// byte is written: no request copies the body (a 25 MB result read by 64 slow viewers once
+// held 64 copies), and a newer result replaces the stream's without touching those in flight.
+void send_latest(std::shared_ptr<const LatestResult> r, uint64_t viewer_faces_id, httplib::Response& res) {
+  const wire::ResultHeader& h = r->header;
+  const bool send_faces = r->faces && r->faces_id != viewer_faces_id;
+  const size_t face_words = send_faces ? r->faces->size() : 0;
   res.set_header("Cache-Control", "no-store");
-  res.set_header("X-Fq-Index", std::to_string(r.index));
+  res.set_header("X-Fq-Index", std::to_string(r->index));
   res.set_header("X-Fq-Sequence", std::to_string(h.sequence()));
   res.set_header("X-Fq-Form", h.form() == wire::MESH ? "mesh" : "positions");
-  res.set_header("X-Fq-Faces-Id", std::to_string(r.faces_id));
+  res.set_header("X-Fq-Faces-Id", std::to_string(r->faces_id));
   res.set_header("X-Fq-Faces-Bytes", std::to_string(face_words * sizeof(uint32_t)));
   res.set_header("X-Fq-Labels-Bytes", std::to_string(h.labels_size() * sizeof(uint32_t)));
-  res.set_header("X-Fq-Chunk-Sizes", chunk_sizes(r));
+  res.set_header("X-Fq-Chunk-Sizes", chunk_sizes(*r));
   res.set_header("X-Fq-Vertex-Count", std::to_string(h.vertex_count()));
   res.set_header("X-Fq-Cluster-Count", std::to_string(h.cluster_count()));
   res.set_header("X-Fq-Latency-Ms", std::to_string(h.latency_ms()));
   res.set_header("X-Fq-Late", h.status() == wire::LATE ? "1" : "0");
   res.set_header("X-Fq-Engine", h.engine());
-  std::string body;
-  size_t total = (face_words + h.labels_size()) * sizeof(uint32_t);
-  for (const std::string& c : r.chunks) total += c.size();
-  body.reserve(total);
-  if (send_faces) append_words(body, r.faces->data(), face_words);
-  append_words(body, h.labels().data(), h.labels_size());
-  for (const std::string& c : r.chunks) body += c;
-  res.set_content(std::move(body), "application/octet-stream");
+  std::vector<std::string_view> pieces;
+  if (send_faces) pieces.emplace_back(reinterpret_cast<const char*>(r->faces->data()), face_words * sizeof(uint32_t));
+  pieces.emplace_back(reinterpret_cast<const char*>(h.labels().data()), h.labels_size() * sizeof(uint32_t));
+  for (const std::string& c : r->chunks) pieces.emplace_back(c);
+  size_t total = 0;
+  for (const std::string_view& p : pieces) total += p.size();
+  if (total == 0) {
+    res.set_content("", "application/octet-stream");
+    return;
+  }
+  res.set_content_provider(
+      total, "application/octet-stream",
+      [r = std::move(r), pieces = std::move(pieces)](size_t offset, size_t length, httplib::DataSink& sink) {
+        // The piece holding `offset`, written from there to its end or `length` (httplib asks
+        // again from where the write left off).
+        for (const std::string_view& p : pieces) {
+          if (offset < p.size()) return sink.write(p.data() + offset, std::min(length, p.size() - offset));
+          offset -= p.size();
+        }
+        return false;
+      });
 }
 
 }  // namespace
@@ -174,7 +189,7 @@ void HttpServer::add_api_routes() {
       res.status = 204;  // nothing newer yet: the viewer asks again
       return;
     }
-    send_latest(*r, faces_id, res);
+    send_latest(std::move(r), faces_id, res);
   });
 }
 

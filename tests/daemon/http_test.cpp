@@ -8,11 +8,17 @@
 #include <chrono>
 #include <cstring>
 #include <optional>
+#include <fstream>
+#include <memory>
 #include <thread>
+#include <vector>
 
 #include "wire/frame_codec.h"
 #include "io/ply_reader.h"
 #include "tests/daemon/fqd_process.h"
+#include "tests/daemon/raw_http.h"
+#include "tests/support/test_meshes.h"
+#include "io/mesh_io.h"
 
 namespace fq::test {
 namespace {
@@ -190,6 +196,55 @@ TEST(Http, HealthLatestResultAndViewerHint) {
   EXPECT_TRUE(wire::decode_frame(chunks_of(*mesh, label_bytes), input.num_vertices(), {}, decoded, nullptr).ok());
   EXPECT_EQ(decoded.triangles.size(), input.triangles.size());
   EXPECT_EQ(fqd.stop(), 0);
+}
+
+
+// Resident memory of a process (VmRSS), in bytes; 0 where /proc does not say.
+size_t resident_bytes(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("VmRSS:", 0) == 0) return std::stoul(line.substr(6)) * 1024;
+  return 0;
+}
+
+// Viewers that ask for a large result and read slowly (here: not at all) are served from the
+// kept result itself: before, each request built its own copy of the body and held it until the
+// last byte left, so 64 slow readers of a 25 MB result held 3 GB.
+TEST(Http, SlowReadersOfALargeResultShareItsBody) {
+  std::string toml = ops_config("[http]\nlisten = \"127.0.0.1:0\"\nweb_root = \"/nonexistent-fq-web\"\n"
+                                "[streams.cam0]\nbudget_ms = 60000\ncompute = \"filter\"\n");
+  toml.replace(toml.find("kind = \"cpu\""), 12, "kind = \"copy\"");  // the body's size is the point, not the filter
+  FqdProcess fqd({"--config", write_temp_file("http_slow_readers.toml", toml)});
+  ASSERT_FALSE(fqd.endpoint("http").empty());
+  httplib::Client c = client(fqd);
+  // A grid of 490,000 vertices: its faces are 11.8 MB of the 12 MB body.
+  const std::string mesh = testing::TempDir() + "/fq_slow_readers_grid.ply";
+  ASSERT_TRUE(io::write_mesh(mesh, make_plane_grid(700, 700).view(), nullptr, 0).ok());
+  EXPECT_EQ(c.Get("/streams/cam0/latest?wait_ms=0")->status, 204);  // now watched: the next result is kept
+  ASSERT_EQ(run_tool(FQPUB_PATH, {mesh, "--endpoint", fqd.endpoint("ingest"), "--stream", "cam0", "--count", "1",
+                                  "--quiet"}).status,
+            0);
+  settled(fqd, 1);
+  auto whole = c.Get("/streams/cam0/latest?after=0");
+  ASSERT_TRUE(whole);
+  ASSERT_EQ(whole->status, 200);
+  const size_t body = whole->body.size();
+  ASSERT_GT(body, size_t(10) << 20);
+  const size_t before = resident_bytes(fqd.pid());
+  ASSERT_GT(before, 0u);
+  std::vector<std::unique_ptr<RawConnection>> readers;
+  for (int i = 0; i < 8; ++i) {
+    readers.push_back(std::make_unique<RawConnection>(http_port(fqd.endpoint("http"))));
+    ASSERT_TRUE(readers.back()->send("GET /streams/cam0/latest?after=0 HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"));
+  }
+  std::this_thread::sleep_for(std::chrono::seconds(2));  // the readers' requests reach their threads
+  const size_t during = resident_bytes(fqd.pid());
+  // Eight copies would add 8 × body; what the sockets hold is the kernel's, not resident.
+  EXPECT_LT(during, before + 2 * body) << "resident " << before << " -> " << during << " bytes, body " << body;
+  // And a reader that reads gets the whole body.
+  auto again = c.Get("/streams/cam0/latest?after=0");
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->body, whole->body);
 }
 
 }  // namespace
