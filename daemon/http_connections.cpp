@@ -23,7 +23,8 @@ void close_gently(int fd) {
   const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
   char sink[4096];
   for (int i = 0; i < 16; ++i) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
     pollfd p{fd, POLLIN, 0};
     if (left.count() <= 0 || ::poll(&p, 1, static_cast<int>(left.count())) <= 0) break;
     if (::recv(fd, sink, sizeof sink, MSG_DONTWAIT) <= 0) break;
@@ -34,9 +35,34 @@ void close_gently(int fd) {
 const std::string& busy_response() {
   static const std::string body = "fqd: too many connections (http.max_connections)\n";
   static const std::string response =
-      "HTTP/1.1 503 Service Unavailable\r\nConnection: close\r\nRetry-After: 1\r\nContent-Type: text/plain\r\n"
-      "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
+      "HTTP/1.1 503 Service Unavailable\r\nConnection: close\r\nRetry-After: 1\r\nContent-Type: "
+      "text/plain\r\n"
+      "Content-Length: " +
+      std::to_string(body.size()) + "\r\n\r\n" + body;
   return response;
+}
+
+std::string plain_response(const char* status, const std::string& body) {
+  return std::string("HTTP/1.1 ") + status +
+         "\r\nConnection: close\r\nContent-Type: text/plain\r\nContent-Length: " +
+         std::to_string(body.size()) + "\r\n\r\n" + body;
+}
+
+/// The request line (up to its CR LF) read within `ms`, at most 1 KiB; empty on a timeout.
+std::string request_line(int fd, int ms) {
+  std::string line;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
+  char buf[256];
+  while (line.size() < 1024 && line.find("\r\n") == std::string::npos) {
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
+    pollfd p{fd, POLLIN, 0};
+    if (left.count() <= 0 || ::poll(&p, 1, static_cast<int>(left.count())) <= 0) return {};
+    const ssize_t n = ::recv(fd, buf, sizeof buf, 0);
+    if (n <= 0) return {};
+    line.append(buf, size_t(n));
+  }
+  return line.substr(0, line.find("\r\n"));
 }
 
 }  // namespace
@@ -61,24 +87,57 @@ void HttpConnections::refuse(int fd) {
 }
 
 void HttpConnections::open(int fd) {
+  bool lane = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     // The library checks sockets against FD_SETSIZE (select) and answers 500 past it.
-    if (closing_ || open_.size() >= max_connections_ || fd >= FD_SETSIZE) {
+    if (closing_ || fd >= FD_SETSIZE) {
       refuse(fd);
       return;
+    }
+    if (open_.size() >= max_connections_) {
+      if (!healthy_ || !answer_refusals_ || lane_ >= kHealthLane) {
+        refuse(fd);
+        return;
+      }
+      lane = true;
+      ++lane_;
     }
     open_.insert(fd);
     ++threads_;
   }
   try {
-    std::thread([this, fd] { run(fd); }).detach();
+    std::thread([this, fd, lane] { lane ? answer_on_lane(fd) : run(fd); }).detach();
   } catch (const std::system_error&) {  // no thread to be had: the connection is refused
     std::lock_guard<std::mutex> lock(mutex_);
     open_.erase(fd);
     --threads_;
+    if (lane) --lane_;
     refuse(fd);
   }
+}
+
+void HttpConnections::answer_on_lane(int fd) {
+  const std::string line = request_line(fd, kHealthLaneHeadMs);
+  const bool probe = line.rfind("GET /healthz ", 0) == 0 || line.rfind("GET /healthz?", 0) == 0;
+  if (probe) {
+    const std::string answer = healthy_() ? plain_response("200 OK", "ok\n")
+                                          : plain_response("503 Service Unavailable", "not ready\n");
+    (void)::send(fd, answer.data(), answer.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+  } else {
+    refusals_.add(HttpRefusal::kTooManyConnections);
+    const std::string& busy = busy_response();
+    (void)::send(fd, busy.data(), busy.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    open_.erase(fd);
+  }
+  close_gently(fd);
+  std::lock_guard<std::mutex> lock(mutex_);
+  --lane_;
+  --threads_;
+  finished_.notify_all();
 }
 
 void HttpConnections::run(int fd) {

@@ -13,6 +13,7 @@
 #include <httplib.h>
 
 #include <chrono>
+#include <functional>
 
 #include "daemon/http_config.h"
 #include "daemon/http_connections.h"
@@ -30,6 +31,8 @@ class HttpFront : public httplib::Server {
   /// Runs before routing for every request that passed fqd's own checks (a body, ...);
   /// Handled ends the request with the response it set.
   void set_request_check(HandlerWithResponse check) { check_ = std::move(check); }
+  /// What a health probe past max_connections is answered (HttpConnections' health lane).
+  void set_health(std::function<bool()> healthy) { connections_.set_health(std::move(healthy)); }
   /// Serves TLS with `tls` (owned by the caller, alive while this serves); before binding.
   void set_tls(SSL_CTX* tls);
   /// Binds host:port (0: any free port) and listens; the bound port, or -1.

@@ -116,6 +116,7 @@ HttpServer::HttpServer(const DaemonConfig& config, const LiveCaps& caps, StreamR
       server_(std::make_unique<HttpFront>(config.http, refusals_)) {
   for (const std::string& e : engines_)
     if (e.rfind("cuda", 0) == 0) gpus_ = config.engine.gpus;
+  server_->set_health([this] { return up(); });  // the probe's lane past max_connections
 }
 
 HttpServer::~HttpServer() { stop(); }
@@ -136,9 +137,9 @@ void HttpServer::add_api_routes() {
     res.set_content(metrics(), "text/plain; version=0.0.4; charset=utf-8");
   });
   s.Get("/healthz", [this](const httplib::Request&, httplib::Response& res) {
-    const bool up = healthy_.load() && !engines_.empty();
-    res.status = up ? 200 : 503;
-    res.set_content(up ? "ok\n" : "not ready\n", "text/plain");
+    const bool healthy = up();
+    res.status = healthy ? 200 : 503;
+    res.set_content(healthy ? "ok\n" : "not ready\n", "text/plain");
   });
   s.Get("/streams", [this](const httplib::Request&, httplib::Response& res) {
     wire::ControlRequest q;

@@ -51,6 +51,8 @@ class HttpServer : NonCopyable {
   /// Warnings for a listener other hosts can reach without TLS or a token.
   void warn_if_exposed(const std::string& host) const;
   std::string metrics() const;
+  /// What /healthz answers: fqd is up and has an engine.
+  bool up() const { return healthy_.load() && !engines_.empty(); }
 
   const DaemonConfig& config_;
   const LiveCaps& caps_;

@@ -100,8 +100,10 @@ TEST(HttpPool, ConnectionsAndLongPollsPastTheirBoundsGet503) {
   // fqd accepts in the order the connections came; on a loaded machine its accept loop may
   // trail the 20 by a while, so the 25th gets up to 10 s for its refusal.
   RawConnection over(port);
-  EXPECT_TRUE(over.send("GET /healthz HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"));
+  EXPECT_TRUE(over.send("GET /streams HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"));
   EXPECT_EQ(status_of(over.receive(seconds(10))), 503);
+  // A health probe past the bound is answered on the lane kept for it.
+  EXPECT_EQ(get_status(port, "/healthz", seconds(2)), 200);
   idle.clear();  // the holders leave: room again
   int health = 0;
   for (int i = 0; i < 50 && health != 200; ++i) {
@@ -112,6 +114,21 @@ TEST(HttpPool, ConnectionsAndLongPollsPastTheirBoundsGet503) {
   const std::string m = http_get(fqd.endpoint("http"), "/metrics");
   EXPECT_GE(metric_value(m, "fq_http_refused_total{reason=\"too_many_long_polls\"}"), 2) << m;
   EXPECT_GE(metric_value(m, "fq_http_refused_total{reason=\"too_many_connections\"}"), 1) << m;
+  EXPECT_EQ(fqd.stop(), 0);
+}
+
+// 300 connections held (the default bound is 256): a liveness probe with a 1 s timeout still
+// gets 200, 8 times of 8 (it failed every one before the health lane), and the rest past the
+// bound get 503.
+TEST(HttpPool, HealthAnswersWithEveryConnectionSlotTaken) {
+  FqdProcess fqd({"--config", write_temp_file("http_full.toml", config(""))});
+  const int port = http_port(fqd.endpoint("http"));
+  ASSERT_GT(port, 0);
+  Connections held = connect(port, 300);
+  std::this_thread::sleep_for(seconds(1));  // fqd has accepted them all
+  for (int probe = 0; probe < 8; ++probe) EXPECT_EQ(get_status(port, "/healthz", seconds(1)), 200) << "probe " << probe;
+  EXPECT_EQ(get_status(port, "/streams", seconds(2)), 503);
+  held.clear();
   EXPECT_EQ(fqd.stop(), 0);
 }
 
