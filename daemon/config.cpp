@@ -26,6 +26,13 @@ void read_row(TomlReader& r, const ParamRow& row, Params& p) {
       auto v = static_cast<float>(row.get(p));
       r.read(key, v);
       row.set(p, v);
+      // The row's range checked here, where the reader knows the key's line. check_param's
+      // message starts with the row's name; the reader puts the dotted key in its place.
+      if (Status s = check_param(row, v); !s.ok() && r.raw(key)) {
+        const std::string& m = s.message();
+        const size_t name = std::string_view(row.name).size();
+        r.fail(key, m.compare(0, name, row.name) == 0 ? m.substr(name + 1) : m);
+      }
       return;
     }
     case ParamKind::kUint: {
@@ -114,18 +121,15 @@ Status read_endpoints(TomlReader& root, Endpoints& e) {
   r.read("ingest", e.ingest);
   r.read("publish", e.publish);
   r.read("control", e.control);
-  FQ_RETURN_IF_ERROR(r.finish());
-  for (const std::string* ep : {&e.ingest, &e.publish, &e.control}) {
-    if (ep->find("://") == std::string::npos)
-      return invalid_argument(root.source() + ": endpoint \"" + *ep +
-                              "\" is not a ZeroMQ address like tcp://127.0.0.1:5555");
-  }
-  // Ports * and 0 are picked by the system at bind time, so equal strings do not collide.
+  // Their syntax is checked with the files the config names (config_check.h), every problem
+  // at once. Ports * and 0 are picked by the system at bind time, so equal strings do not collide.
   auto fixed = [](const std::string& ep) { return !ep.ends_with(":*") && !ep.ends_with(":0"); };
   auto same = [&](const std::string& a, const std::string& b) { return a == b && fixed(a); };
-  if (same(e.ingest, e.publish) || same(e.ingest, e.control) || same(e.publish, e.control))
-    return invalid_argument(root.source() + ": the ingest, publish and control endpoints must differ");
-  return {};
+  if (same(e.ingest, e.publish) || same(e.ingest, e.control))
+    r.fail("ingest", "must differ from endpoints.publish and endpoints.control");
+  else if (same(e.publish, e.control))
+    r.fail("publish", "must differ from endpoints.control");
+  return r.finish();
 }
 
 Status read_engine(TomlReader& root, EngineConfig& e) {
@@ -193,12 +197,25 @@ Status read_streams(TomlReader& root, DaemonConfig& c) {
   for (const auto& [k, v] : *streams) {
     const std::string id(k.str());
     const toml::table* st = v.as_table();
-    if (!st) return invalid_argument(root.source() + ": streams." + id + " must be a table");
+    if (!st)
+      return invalid_argument(root.source() + ":" + std::to_string(v.source().begin.line) + ": streams." +
+                              id + " must be a table");
     StreamSettings s = c.defaults;
     FQ_RETURN_IF_ERROR(read_stream(*st, root.source(), "streams." + id, s));
     c.streams[id] = s;
   }
   return {};
+}
+
+// The line of every key and array item, by dotted name.
+void record_lines(const toml::node& n, const std::string& name, std::map<std::string, int>& lines) {
+  if (!name.empty()) lines[name] = static_cast<int>(n.source().begin.line);
+  if (const toml::table* t = n.as_table()) {
+    for (const auto& [k, v] : *t)
+      record_lines(v, name.empty() ? std::string(k.str()) : name + "." + std::string(k.str()), lines);
+  } else if (const toml::array* a = n.as_array()) {
+    for (size_t i = 0; i < a->size(); ++i) record_lines((*a)[i], name + "[" + std::to_string(i) + "]", lines);
+  }
 }
 
 }  // namespace
@@ -212,6 +229,15 @@ void DaemonConfig::resolve_auto_threads() {
 const StreamSettings& DaemonConfig::settings_for(const std::string& stream_id) const {
   auto it = streams.find(stream_id);
   return it != streams.end() ? it->second : defaults;
+}
+
+std::string DaemonConfig::where(const std::string& key) const {
+  if (source.empty()) return "built-in defaults";
+  // A key the file does not set is placed at its table, where it would go.
+  for (std::string k = key;; k.erase(k.rfind('.'))) {
+    if (const auto it = lines.find(k); it != lines.end()) return source + ":" + std::to_string(it->second);
+    if (k.find('.') == std::string::npos) return source;
+  }
 }
 
 bool valid_log_level(const std::string& l) {
@@ -240,6 +266,8 @@ Status parse_config(std::string_view text, const std::string& source, DaemonConf
   FQ_RETURN_IF_ERROR(read_streams(root, c));
   FQ_RETURN_IF_ERROR(read_service_sections(root, c.http, c.stats, c.sub_ingest));
   FQ_RETURN_IF_ERROR(root.finish());
+  c.source = source;
+  record_lines(root_table, "", c.lines);
   out = std::move(c);
   return {};
 }

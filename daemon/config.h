@@ -78,12 +78,20 @@ struct DaemonConfig {
   HttpConfig http;        ///< [http]: metrics, health, streams and the live viewer
   StatsLogConfig stats;   ///< [stats]: the periodic one-line log per stream
   SubIngestConfig sub_ingest;  ///< [ingest]: SUB-connect to producers too (scale-out)
+  /// The file read ("" for the built-in defaults) and the line of each key in it, by dotted
+  /// name ("http.token_file"; an array's items as "ingest.connect[1]"), for messages about a
+  /// value found wrong after parsing (config_check.h).
+  std::string source;
+  std::map<std::string, int> lines;
 
   /// Replaces thread counts of 0 by their automatic value.
   void resolve_auto_threads();
 
   /// The settings a stream starts with: its [streams.<id>] entry or the defaults.
   const StreamSettings& settings_for(const std::string& stream_id) const;
+  /// "file:line" of a key from the file (of its table when the file does not set it), "file"
+  /// when neither is in the file, "built-in defaults" without a file.
+  std::string where(const std::string& key) const;
 };
 
 /// Parses TOML text (`source` names it in messages). Unknown keys, wrong types and

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/nearest_names.h"
 #include "daemon/bounded_receive.h"
 #include "daemon/log_limiter.h"
 #include "daemon/settings_audit.h"
@@ -54,6 +55,13 @@ wire::ControlReply unknown_stream(const std::string& id) {
   return error_reply("unknown stream '" + printable_id(id) + "'");
 }
 
+// A set_params for a stream fqd does not know, without `create`: most likely a typo, which
+// would otherwise make a stream that no producer feeds.
+wire::ControlReply not_created(const std::string& id, const StreamRegistry& registry) {
+  return error_reply("unknown stream '" + printable_id(id) + "'" + did_you_mean(id, registry.list()) +
+                     "; to make it, set with create (fqctl set --create)");
+}
+
 // Parameter changes are logged (one line each, at most 5 a second: any control client can send them).
 LogLimiter& change_log() {
   static LogLimiter log;
@@ -75,6 +83,7 @@ wire::ControlReply set_params(const wire::SetParams& q, StreamRegistry& registry
     return error_reply(id.message());
   }
   StreamSettings s;
+  if (!q.create() && !registry.find(q.stream_id(), s)) return not_created(q.stream_id(), registry);
   if (!registry.settings(q.stream_id(), s)) return error_reply("too many streams");
   const StreamSettings before = s;
   Status st = wire::apply_overrides(q.params(), s.params);

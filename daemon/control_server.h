@@ -19,8 +19,9 @@ namespace fq::daemon {
 inline constexpr size_t kMaxControlBytes = 64 << 10;
 
 /// Answers one request under `caps`. A SetParams change is for a stream id the ingest would
-/// admit (check_stream_id), is validated with fq::validate and takes effect on the stream's
-/// next frame to be decoded.
+/// admit (check_stream_id) and, without its `create`, one the registry knows (else refused,
+/// naming the nearest known ids); it is validated with fq::validate and takes effect on the
+/// stream's next frame to be decoded.
 wire::ControlReply handle_control(const wire::ControlRequest& request, StreamRegistry& registry, const Caps& caps);
 
 /// Parses, answers and serializes one request (an unparsable one gets an error reply).

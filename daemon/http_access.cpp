@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 
 namespace fq::daemon {
@@ -79,16 +81,22 @@ Status load_http_access(const HttpConfig& http, bool curve_on, HttpAccessRules& 
   int port = 0;
   split_host_port(http.listen, r.listen_host, port);
   if (!http.token_file.empty()) {
-    std::ifstream in(http.token_file);
-    if (!in) return invalid_argument("http.token_file " + http.token_file + " cannot be read");
-    std::getline(in, r.token);
-    while (!r.token.empty() && std::isspace(static_cast<unsigned char>(r.token.back()))) r.token.pop_back();
-    if (r.token.size() < kMinTokenChars || !token_chars_ok(r.token))
-      return invalid_argument("http.token_file " + http.token_file + ": the token (first line) must be at least " +
-                              std::to_string(kMinTokenChars) +
-                              " visible ASCII characters without ; , \" or \\ (e.g. openssl rand -hex 32)");
+    if (Status s = read_http_token(http.token_file, r.token); !s.ok())
+      return invalid_argument("http.token_file " + http.token_file + ": " + s.message());
   }
   out = std::move(r);
+  return {};
+}
+
+Status read_http_token(const std::string& path, std::string& token) {
+  std::ifstream in(path);
+  if (!in) return invalid_argument(std::string("cannot be read: ") + std::strerror(errno));
+  token.clear();
+  std::getline(in, token);
+  while (!token.empty() && std::isspace(static_cast<unsigned char>(token.back()))) token.pop_back();
+  if (token.size() < kMinTokenChars || !token_chars_ok(token))
+    return invalid_argument("the token (first line) must be at least " + std::to_string(kMinTokenChars) +
+                            " visible ASCII characters without ; , \" or \\ (e.g. openssl rand -hex 32)");
   return {};
 }
 

@@ -34,6 +34,10 @@ struct HttpAccessRules {
 /// `curve_on`; an error names the token file and what is wrong with it.
 Status load_http_access(const HttpConfig& http, bool curve_on, HttpAccessRules& out);
 
+/// The token of a token file (its first line, trailing space removed); an error says what is
+/// wrong (unreadable, too short, a character a header or cookie cannot carry), not which key.
+Status read_http_token(const std::string& path, std::string& token);
+
 /// True when `host` (a Host header value, port included or not) is allowed by `rules`.
 bool host_allowed(const std::string& host, const HttpAccessRules& rules);
 

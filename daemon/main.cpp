@@ -1,7 +1,8 @@
 // fqd: the streaming daemon. Usage: fqd [--config configs/fqd.toml] [--engine cpu] ...
 // Configuration: --config, else $FQ_CONFIG, else /etc/fq/fqd.toml, else built-in defaults;
 // the flags override the file (daemon/command_line.h). Exit status: 0 after a stop signal,
-// 1 when it cannot start, 2 for a usage error or an invalid configuration.
+// 1 when it cannot start (a port in use, a GPU missing), 2 for a usage error or an invalid
+// configuration (a file or endpoint it names included: daemon/config_check.h).
 // SIGINT/SIGTERM stop it (frames in flight are finished); SIGHUP reloads the file, the flags
 // over it again (what a reload may change: daemon/config_reload.h).
 #include <fmt/ranges.h>
@@ -17,6 +18,7 @@
 #include "common/tool_main.h"
 #include "daemon/command_line.h"
 #include "daemon/config.h"
+#include "daemon/config_check.h"
 #include "daemon/config_lookup.h"
 #include "daemon/daemon.h"
 #include "daemon/log_format.h"
@@ -42,6 +44,14 @@ fq::Status load(const fq::daemon::ConfigSource& source, const fq::daemon::Comman
   if (!source.path.empty()) FQ_RETURN_IF_ERROR(fq::daemon::load_config(source.path, config, allow_empty));
   fq::daemon::resolve_default_web_root(config.http);
   return fq::daemon::apply_command_line(cl, config, shard_streams);
+}
+
+// Start and --check-config alike: every endpoint and file the configuration names, checked
+// (config_check.h). False after one line on stderr per problem.
+bool startable(const fq::daemon::DaemonConfig& config) {
+  const std::vector<std::string> problems = fq::daemon::config_problems(config);
+  for (const std::string& p : problems) std::fprintf(stderr, "fqd: invalid configuration: %s\n", p.c_str());
+  return problems.empty();
 }
 
 // SIGHUP: the file again (the flags over it, as at start), applied whole or not at all: an
@@ -94,7 +104,8 @@ int run(int argc, char** argv) {
     std::fprintf(stderr, "fqd: invalid configuration: %s\n", s.message().c_str());
     return 2;
   }
-  if (cl.shard_map > 0) return print_shard_map(config, cl.shard_map);
+  if (cl.shard_map > 0) return print_shard_map(config, cl.shard_map);  // reads no file the config names
+  if (!startable(config)) return 2;
   if (cl.check_only) {
     std::printf("%s: configuration is valid\n", source.path.empty() ? source.from.c_str() : source.path.c_str());
     return 0;

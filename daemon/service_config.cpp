@@ -28,8 +28,6 @@ Status read_sub_ingest(TomlReader& root, SubIngestConfig& out) {
   TomlReader r(*t, root.source(), "ingest");
   read_strings(r, "connect", out.connect);
   read_strings(r, "streams", out.streams);
-  for (const std::string& ep : out.connect)
-    if (ep.find("://") == std::string::npos) r.fail("connect", "\"" + ep + "\" is not a ZeroMQ address like tcp://host:5555");
   if (!out.streams.empty() && out.connect.empty())
     r.fail("streams", "assigns streams of SUB ingest, but ingest.connect lists no producer");
   return r.finish();

@@ -1,8 +1,8 @@
 // fqctl: operates a running fqd over its control socket.
-//   fqctl [--control EP] streams | params STREAM | set STREAM key=value… |
+//   fqctl [--control EP] streams | params STREAM | set [--create] STREAM key=value… |
 //         counters [STREAM] | watch [STREAM]      (each with --json)
-// Exit status: 0 done; 1 fqd did not answer in time or refused the request (one line on
-// stderr says which); 2 bad command line.
+// Exit status: 0 done; 1 fqd did not answer in time or refused the request (an unknown stream
+// included; one line on stderr says which); 2 bad command line (an unknown key included).
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -31,7 +31,7 @@ struct Args {
   std::vector<std::string> assignments;
   int timeout_ms = 2000, count = 0;
   double interval = 1.0;
-  bool json = false;
+  bool json = false, create = false;
   fq::client::CurveClientOptions curve;
 };
 
@@ -102,6 +102,7 @@ int cmd_set(const Args& a) {
   fq::wire::ControlRequest q;
   fq::wire::SetParams* set = q.mutable_set_params();
   set->set_stream_id(a.stream);
+  if (a.create) set->set_create(true);
   for (const std::string& kv : a.assignments) {
     if (fq::Status s = fq::client::assign_param(kv, *set); !s.ok()) {
       std::fprintf(stderr, "fqctl: %s\n", s.message().c_str());
@@ -178,7 +179,12 @@ int run(int argc, char** argv) {
   CLI::App* params = app.add_subcommand("params", "print a stream's current parameters");
   params->add_option("stream", a.stream, "stream id")->required();
   CLI::App* set = app.add_subcommand("set", "change a stream's parameters from its next frame on");
-  set->add_option("stream", a.stream, "stream id (created when new)")->required();
+  set->add_option("stream", a.stream,
+                  "stream id: one fqd knows (configured or seen), or a new one with --create")
+      ->required();
+  set->add_flag("--create", a.create,
+                "make the stream when fqd does not know it (without it, an unknown id is refused, naming the "
+                "nearest known one)");
   set->add_option("assignments", a.assignments, "key=value, e.g. sigma_s=3 mode=bf compute=filter result_form=mesh")
       ->required();
   CLI::App* counters = app.add_subcommand("counters", "frame counters and stage latencies");

@@ -1,11 +1,12 @@
 #include "clients/fqctl/param_assign.h"
 
-#include <algorithm>
-#include <cctype>
 #include <google/protobuf/text_format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <optional>
 
+#include "common/nearest_names.h"
 #include "core/param_table.h"
 #include "wire/header_codec.h"
 
@@ -33,19 +34,21 @@ Status parse_scalar(const pb::FieldDescriptor* f, ParamKind kind, const std::str
   return parse_param(row, value, out);
 }
 
-// Fields a user may set: scalars and enums (not the stream id or nested messages).
+// Fields a user may set: the stream's settings, scalars and enums that the reply carries under
+// the same name (not the stream id, nested messages, or `create`, which is about the request).
 bool settable(const pb::FieldDescriptor* f) {
   return f && !f->is_repeated() && f->cpp_type() != pb::FieldDescriptor::CPPTYPE_MESSAGE &&
-         f->cpp_type() != pb::FieldDescriptor::CPPTYPE_STRING;
+         f->cpp_type() != pb::FieldDescriptor::CPPTYPE_STRING &&
+         wire::ControlReply::descriptor()->FindFieldByName(f->name()) != nullptr;
 }
 
-std::string valid_keys(const wire::SetParams& q) {
-  std::string keys;
+std::vector<std::string> valid_keys() {
+  std::vector<std::string> keys;
   for (const ParamRow& row : param_table())
-    if (row.on(kWire)) keys += (keys.empty() ? "" : ", ") + std::string(row.name);
-  const pb::Descriptor* d = q.GetDescriptor();
+    if (row.on(kWire)) keys.emplace_back(row.name);
+  const pb::Descriptor* d = wire::SetParams::descriptor();
   for (int i = 0; i < d->field_count(); ++i)
-    if (settable(d->field(i))) keys += ", " + d->field(i)->name();
+    if (settable(d->field(i))) keys.push_back(d->field(i)->name());
   return keys;
 }
 
@@ -130,7 +133,10 @@ Status assign_param(const std::string& key_value, wire::SetParams& out) {
   }
   if (const pb::FieldDescriptor* f = out.GetDescriptor()->FindFieldByName(key); settable(f))
     return set_field(out, f, value);
-  return invalid_argument("unknown parameter '" + key + "'; one of: " + valid_keys(out));
+  const std::vector<std::string> keys = valid_keys();
+  std::string list;
+  for (const std::string& k : keys) list += (list.empty() ? "" : ", ") + k;
+  return invalid_argument("unknown parameter '" + key + "'" + did_you_mean(key, keys) + "; one of: " + list);
 }
 
 std::vector<std::pair<std::string, std::string>> describe_params(const wire::ControlReply& r) {

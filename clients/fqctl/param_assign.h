@@ -18,7 +18,8 @@ namespace fq::client {
 /// Applies one `key=value` to a SetParams request: a field of its `params` message, else
 /// a field of SetParams itself (`compute`, `result_form`, `budget_ms`...). Floats, integers, booleans
 /// (true/false/1/0/on/off) and enum names in any case ("qf+", "BF", "euclidean", "filter_and_cluster").
-/// kInvalidArgument naming the key or value, with the valid keys for an unknown key.
+/// kInvalidArgument naming the key or value; for an unknown key, the nearest keys when one is
+/// near enough to be a typo of it, and the valid keys.
 Status assign_param(const std::string& key_value, wire::SetParams& out);
 
 /// A get_params/set_params reply as `fqctl params` prints it: every field of `params`, then

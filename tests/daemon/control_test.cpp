@@ -1,4 +1,5 @@
-// The control request handler without sockets: malformed and empty requests get ok = false.
+// The control request handler without sockets: malformed and empty requests get ok = false;
+// set_params changes only streams fqd knows unless asked to create one.
 #include <gtest/gtest.h>
 
 #include "daemon/control_server.h"
@@ -23,6 +24,7 @@ TEST(ControlHandler, SetParamsValidatesAndGetParamsReadsBack) {
   StreamRegistry r(c);
   wire::ControlRequest set;
   set.mutable_set_params()->set_stream_id("s");
+  set.mutable_set_params()->set_create(true);
   set.mutable_set_params()->mutable_params()->set_sigma_r(-1.0f);
   EXPECT_FALSE(handle_control(set, r, c.caps).ok());
   set.mutable_set_params()->mutable_params()->set_sigma_r(0.5f);
@@ -70,6 +72,7 @@ TEST(ControlHandler, SetParamsTakesOnlyStreamIdsTheIngestWouldAdmit) {
   auto set = [&](const std::string& id) {
     wire::ControlRequest q;
     q.mutable_set_params()->set_stream_id(id);
+    q.mutable_set_params()->set_create(true);
     q.mutable_set_params()->mutable_params()->set_sigma_r(0.5f);
     return handle_control(q, r, c.caps);
   };
@@ -86,6 +89,37 @@ TEST(ControlHandler, SetParamsTakesOnlyStreamIdsTheIngestWouldAdmit) {
   wire::ControlRequest get;
   get.mutable_get_params()->set_stream_id("no\nsuch");
   EXPECT_NE(handle_control(get, r, c.caps).error().find("no\\x0asuch"), std::string::npos);
+}
+
+// A typo in a stream id must not make a stream no producer feeds: without `create` only a
+// stream fqd knows (configured or seen) is changed, and the refusal names the nearest one.
+TEST(ControlHandler, SetParamsForAnUnknownStreamNeedsCreate) {
+  DaemonConfig c;
+  c.streams["cam0"] = c.defaults;
+  StreamRegistry r(c);
+  auto set = [&](const std::string& id, bool create) {
+    wire::ControlRequest q;
+    q.mutable_set_params()->set_stream_id(id);
+    if (create) q.mutable_set_params()->set_create(true);
+    q.mutable_set_params()->set_budget_ms(10.0);
+    return handle_control(q, r, c.caps);
+  };
+  const wire::ControlReply typo = set("cam1", false);
+  EXPECT_FALSE(typo.ok());
+  EXPECT_NE(typo.error().find("unknown stream 'cam1' (did you mean 'cam0'?)"), std::string::npos)
+      << typo.error();
+  EXPECT_NE(typo.error().find("create"), std::string::npos) << typo.error();
+  const wire::ControlReply far = set("nosuch", false);
+  EXPECT_FALSE(far.ok());
+  EXPECT_EQ(far.error().find("did you mean"), std::string::npos) << far.error();
+  EXPECT_EQ(r.list(), std::vector<std::string>{"cam0"}) << "a refused set made a stream";
+
+  EXPECT_TRUE(set("cam0", false).ok()) << "a configured stream needs no create";
+  const wire::ControlReply made = set("cam1", true);
+  ASSERT_TRUE(made.ok()) << made.error();
+  EXPECT_EQ(made.budget_ms(), 10.0);
+  EXPECT_EQ(r.list(), (std::vector<std::string>{"cam0", "cam1"}));
+  EXPECT_TRUE(set("cam1", false).ok()) << "once made, it is known";
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // fqctl against a real fqd (child process, ephemeral 127.0.0.1 ports) fed by fqpub:
-// streams, params, set (valid, invalid, unknown key), counters and watch as 80-column tables,
+// streams, params, set (valid, invalid, unknown key, unknown stream), counters and watch as 80-column tables,
 // --json on every subcommand, and a clear error with exit status 1, not a hang, when no fqd
 // answers.
 #include <gtest/gtest.h>
@@ -106,7 +106,7 @@ TEST(Fqctl, SetsModeAndBudgetInTheConfigsSpelling) {
   FqdProcess fqd({"--config", write_temp_file("fqctl_spelling_test.toml", ops_config())});
   const std::string control = fqd.endpoint("control");
   ASSERT_FALSE(control.empty()) << "fqd did not start";
-  const ToolRun set = fqctl(control, {"set", "cam0", "mode=qf+", "budget_ms=250"});
+  const ToolRun set = fqctl(control, {"set", "--create", "cam0", "mode=qf+", "budget_ms=250"});
   ASSERT_EQ(set.status, 0) << set.output;
   const ToolRun params = fqctl(control, {"params", "cam0"});
   ASSERT_EQ(params.status, 0) << params.output;
@@ -131,6 +131,41 @@ TEST(Fqctl, SetsModeAndBudgetInTheConfigsSpelling) {
   EXPECT_EQ(wrong.status, 2);
   EXPECT_NE(wrong.output.find("mode must be one of qf+, qf, bf"), std::string::npos) << wrong.output;
   EXPECT_NE(fqctl(control, {"params", "cam0"}).output.find("budget_ms = 250\n"), std::string::npos);
+  EXPECT_EQ(fqd.stop(), 0);
+}
+
+// A typo must not make a stream no producer feeds: set on a stream fqd does not know fails,
+// naming the nearest known one, unless --create; a misspelled key names the nearest keys.
+TEST(Fqctl, SetRefusesAnUnknownStreamUnlessCreateAndSuggestsNearNames) {
+  FqdProcess fqd({"--config",
+                  write_temp_file("fqctl_create_test.toml", ops_config("[streams.cam0]\nbudget_ms = 50\n"))});
+  const std::string control = fqd.endpoint("control");
+  ASSERT_FALSE(control.empty()) << "fqd did not start";
+
+  const ToolRun typo = fqctl(control, {"set", "cma0", "budget_ms=10"});
+  EXPECT_EQ(typo.status, 1) << typo.output;
+  EXPECT_NE(typo.output.find("unknown stream 'cma0' (did you mean 'cam0'?)"), std::string::npos)
+      << typo.output;
+  EXPECT_NE(typo.output.find("--create"), std::string::npos) << typo.output;
+  const ToolRun far = fqctl(control, {"set", "nosuch", "budget_ms=10"});
+  EXPECT_EQ(far.status, 1) << far.output;
+  EXPECT_NE(far.output.find("unknown stream 'nosuch'"), std::string::npos) << far.output;
+  EXPECT_EQ(far.output.find("did you mean"), std::string::npos) << far.output;
+  EXPECT_EQ(fqctl(control, {"streams"}).output, "cam0\n") << "a refused set made a stream";
+
+  const ToolRun made = fqctl(control, {"set", "--create", "nosuch", "budget_ms=10"});
+  EXPECT_EQ(made.status, 0) << made.output;
+  EXPECT_NE(made.output.find("budget_ms = 10\n"), std::string::npos) << made.output;
+  EXPECT_EQ(fqctl(control, {"streams"}).output, "cam0\nnosuch\n");
+  const ToolRun known = fqctl(control, {"set", "cam0", "budget_ms=20"});
+  EXPECT_EQ(known.status, 0) << known.output;
+  EXPECT_NE(known.output.find("budget_ms = 20\n"), std::string::npos) << known.output;
+
+  const ToolRun key = fqctl(control, {"set", "cam0", "budget_sm=20"});
+  EXPECT_EQ(key.status, 2) << key.output;
+  EXPECT_NE(key.output.find("unknown parameter 'budget_sm' (did you mean 'budget_ms'?)"), std::string::npos)
+      << key.output;
+  EXPECT_EQ(fqctl(control, {"set", "cam0", "create=true"}).status, 2) << "create is a flag, not a setting";
   EXPECT_EQ(fqd.stop(), 0);
 }
 

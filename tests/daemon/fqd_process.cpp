@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <filesystem>
 #include <fstream>
 
 namespace fq::test {
@@ -23,6 +24,12 @@ std::string ops_config(const std::string& extra) {
   std::string base((std::istreambuf_iterator<char>(in)), {});
   EXPECT_FALSE(base.empty()) << "tests/daemon/child_fqd.toml is missing";
   return base + "\n" + extra;
+}
+
+std::string http_without_viewer(const std::string& listen) {
+  const std::filesystem::path empty = std::filesystem::path(testing::TempDir()) / "fq_no_viewer";
+  std::filesystem::create_directories(empty);
+  return "[http]\nlisten = \"" + listen + "\"\nweb_root = \"" + empty.string() + "\"\n";
 }
 
 std::string write_temp_file(const std::string& name, const std::string& text) {

@@ -17,6 +17,10 @@ namespace fq::test {
 /// thread, log level warn, a generous budget) with `extra` appended (more sections).
 std::string ops_config(const std::string& extra = "");
 
+/// An [http] section listening on `listen` whose web_root is an empty folder: / answers with how
+/// to install the viewer whatever the source tree holds (a web_root the file names must exist).
+std::string http_without_viewer(const std::string& listen = "127.0.0.1:0");
+
 /// Writes `text` into the test's temporary folder as `name`; returns the path.
 std::string write_temp_file(const std::string& name, const std::string& text);
 

@@ -17,8 +17,7 @@ namespace {
 const std::string kToken = "9f2c1e0b7a6d5c4b3a29f8e7d6c5b4a3";
 
 std::string http_section(const std::string& extra) {
-  return "[http]\nlisten = \"127.0.0.1:0\"\nweb_root = \"/nonexistent-fq-web\"\n" + extra +
-         "[streams.cam0]\nbudget_ms = 60000\n";
+  return http_without_viewer() + extra + "[streams.cam0]\nbudget_ms = 60000\n";
 }
 
 // A self-signed certificate for 127.0.0.1 (openssl, Debian's openssl package).
@@ -145,9 +144,9 @@ TEST(HttpAuth, HostHeadersOutsideTheAllowListAreRefused) {
 
 TEST(HttpAuth, APublicListenerWithoutTlsOrTokenIsWarnedAbout) {
   const std::string log = testing::TempDir() + "/fq_http_public.log";
-  FqdProcess fqd({"--config", write_temp_file("http_public.toml",
-                                              ops_config("[http]\nlisten = \"0.0.0.0:0\"\nweb_root = \"/nonexistent\"\n"))},
-                 "", "2>" + log);
+  FqdProcess fqd(
+      {"--config", write_temp_file("http_public.toml", ops_config(http_without_viewer("0.0.0.0:0")))}, "",
+      "2>" + log);
   ASSERT_FALSE(fqd.endpoint("http").empty());
   EXPECT_EQ(fqd.stop(), 0);
   std::ifstream in(log);
@@ -161,10 +160,10 @@ TEST(HttpAuth, ASecondFqdOnTheSamePortExitsWithStatus1) {
   const int port = http_port(first.endpoint("http"));
   ASSERT_GT(port, 0);
   const std::string log = testing::TempDir() + "/fq_http_second.log";
-  FqdProcess second({"--config", write_temp_file("http_second.toml",
-                                                 ops_config("[http]\nlisten = \"127.0.0.1:" + std::to_string(port) +
-                                                            "\"\nweb_root = \"/nonexistent\"\n"))},
-                    "", "2>" + log);
+  FqdProcess second(
+      {"--config", write_temp_file("http_second.toml",
+                                   ops_config(http_without_viewer("127.0.0.1:" + std::to_string(port))))},
+      "", "2>" + log);
   EXPECT_TRUE(second.endpoint("http").empty());
   EXPECT_EQ(second.stop(), 1);
   std::ifstream in(log);

@@ -13,7 +13,6 @@
 namespace fq::test {
 namespace {
 
-const std::string kHttp = "[http]\nlisten = \"127.0.0.1:0\"\nweb_root = \"/nonexistent-fq-web\"\n";
 constexpr size_t kMiB = 1 << 20;
 
 // Sends `head` and then `filler` repeated until `total` bytes went out or fqd stopped reading.
@@ -29,7 +28,7 @@ void flood(int port, const std::string& head, const std::string& filler, size_t 
 }
 
 TEST(HttpLimits, HeadsOverTheBoundsAreRefusedBeforeTheyAreKept) {
-  FqdProcess fqd({"--config", write_temp_file("http_heads.toml", ops_config(kHttp))});
+  FqdProcess fqd({"--config", write_temp_file("http_heads.toml", ops_config(http_without_viewer()))});
   const int port = http_port(fqd.endpoint("http"));
   ASSERT_GT(port, 0);
   ASSERT_EQ(get_status(port, "/healthz"), 200);
@@ -67,7 +66,7 @@ TEST(HttpLimits, HeadsOverTheBoundsAreRefusedBeforeTheyAreKept) {
 }
 
 TEST(HttpLimits, BodiesAreRefusedUnread) {
-  FqdProcess fqd({"--config", write_temp_file("http_bodies.toml", ops_config(kHttp))});
+  FqdProcess fqd({"--config", write_temp_file("http_bodies.toml", ops_config(http_without_viewer()))});
   const int port = http_port(fqd.endpoint("http"));
   ASSERT_GT(port, 0);
   const size_t rss0 = rss_bytes(fqd.pid());
@@ -92,7 +91,7 @@ TEST(HttpLimits, BodiesAreRefusedUnread) {
 }
 
 TEST(HttpLimits, StreamIdsInPathsAreCheckedAsOnEveryDoor) {
-  FqdProcess fqd({"--config", write_temp_file("http_ids.toml", ops_config(kHttp))});
+  FqdProcess fqd({"--config", write_temp_file("http_ids.toml", ops_config(http_without_viewer()))});
   const int port = http_port(fqd.endpoint("http"));
   ASSERT_GT(port, 0);
   auto body_of = [&](const std::string& path) {

@@ -22,9 +22,8 @@ using std::chrono::seconds;
 using Connections = std::vector<std::unique_ptr<RawConnection>>;
 
 std::string config(const std::string& http_extra) {
-  return ops_config("[http]\nlisten = \"127.0.0.1:0\"\nweb_root = \"/nonexistent-fq-web\"\nrequest_timeout_s = 2\n"
-                    "idle_timeout_s = 3\n" +
-                    http_extra + "[streams.cam0]\nbudget_ms = 60000\n");
+  return ops_config(http_without_viewer() + "request_timeout_s = 2\nidle_timeout_s = 3\n" + http_extra +
+                    "[streams.cam0]\nbudget_ms = 60000\n");
 }
 
 Connections connect(int port, int count, const std::string& first_bytes = "") {

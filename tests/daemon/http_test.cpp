@@ -23,8 +23,6 @@
 namespace fq::test {
 namespace {
 
-const std::string kHttp = "[http]\nlisten = \"127.0.0.1:0\"\nweb_root = \"/nonexistent-fq-web\"\n";
-
 httplib::Client client(const FqdProcess& fqd) {
   httplib::Client c(fqd.endpoint("http"));
   c.set_read_timeout(30, 0);
@@ -72,7 +70,7 @@ nlohmann::json settled(const FqdProcess& fqd, uint64_t sent, const std::string& 
 
 TEST(Http, MetricsParseAndAgreeWithFqctl) {
   // Two engines of one name, whose series must still be told apart.
-  std::string config = ops_config(kHttp);
+  std::string config = ops_config(http_without_viewer());
   config.replace(config.find("cpu_threads = 1"), 15, "cpu_threads = 1\ncpu_engines = 2");
   FqdProcess fqd({"--config", write_temp_file("http_metrics.toml", config)});
   ASSERT_FALSE(fqd.endpoint("http").empty()) << "fqd did not report an http endpoint";
@@ -111,7 +109,7 @@ TEST(Http, MetricsParseAndAgreeWithFqctl) {
 }
 
 TEST(Http, HealthLatestResultAndViewerHint) {
-  FqdProcess fqd({"--config", write_temp_file("http_health.toml", ops_config(kHttp))});
+  FqdProcess fqd({"--config", write_temp_file("http_health.toml", ops_config(http_without_viewer()))});
   ASSERT_FALSE(fqd.endpoint("http").empty());
   httplib::Client c = client(fqd);
   auto health = c.Get("/healthz");

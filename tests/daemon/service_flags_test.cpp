@@ -71,7 +71,10 @@ TEST(ServiceFlags, JsonLogLinesParse) {
   FqdProcess fqd({"--config", config, "--log-level", "info", "--log-format", "json"}, "", "2>'" + log + "'");
   ASSERT_FALSE(fqd.endpoint("control").empty());
   // A stream id with a quote and a backslash must not break the line's JSON.
-  ASSERT_EQ(run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "set", "cam\"0\\", "sigma_s=2"}).status, 0);
+  ASSERT_EQ(
+      run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "set", "--create", "cam\"0\\", "sigma_s=2"})
+          .status,
+      0);
   EXPECT_EQ(fqd.stop(), 0);
   const std::vector<std::string> lines = lines_of(read_text_file(log));
   ASSERT_GE(lines.size(), 3u);

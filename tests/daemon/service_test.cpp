@@ -94,7 +94,7 @@ bool lists(const FqdProcess& fqd, const std::string& stream) {
 TEST(Service, SighupAppliesCapsAccessAndLogLevelLiveOrRefusesNamingTheSetting) {
   const std::string log = testing::TempDir() + "/fqd_sighup_live.log";
   const std::string t1 = "0123456789abcdef-first", t2 = "0123456789abcdef-second";
-  const std::string http = "[http]\nlisten = \"127.0.0.1:0\"\nweb_root = \"/x\"\ntoken_file = \"";
+  const std::string http = http_without_viewer() + "token_file = \"";
   auto config = [&](const std::string& level, const std::string& allowed, int idle, const std::string& token) {
     std::string text = ops_config("[caps]\nallowed_streams = [\"" + allowed + "\"]\nstream_idle_s = " +
                                   std::to_string(idle) + "\n" + http + write_temp_file("live_token", token) + "\"\n");

@@ -215,6 +215,7 @@ TEST(DaemonStream, InvalidRuntimeParametersAreRejectedAndKeepTheOldOnes) {
   DaemonHarness h;
   wire::ControlRequest set;
   set.mutable_set_params()->set_stream_id("cam");
+  set.mutable_set_params()->set_create(true);
   set.mutable_set_params()->mutable_params()->set_theta(1.5f);
   const wire::ControlReply r = h.control(set);
   EXPECT_FALSE(r.ok());

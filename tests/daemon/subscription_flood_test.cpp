@@ -31,8 +31,7 @@ void flood(zmq::context_t& ctx, const std::string& endpoint, int count, size_t b
 }
 
 TEST(SubscriptionFlood, LongOrManySubscriptionsLeaveFqdsMemoryFlat) {
-  FqdProcess fqd({"--config", write_temp_file("sub_flood.toml",
-                                              ops_config("[http]\nlisten = \"127.0.0.1:0\"\nweb_root = \"/x\"\n"))});
+  FqdProcess fqd({"--config", write_temp_file("sub_flood.toml", ops_config(http_without_viewer()))});
   ASSERT_FALSE(fqd.endpoint("http").empty());
   zmq::context_t ctx(1);
   const size_t rss0 = rss_bytes(fqd.pid());

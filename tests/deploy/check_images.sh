@@ -37,7 +37,9 @@ bash "$src/docker/stage.sh" "$build" "$tmp/fq"
 [[ -f $tmp/fq/share/fq/web/index.html ]] || fail "the staged image has no viewer"
 [[ ! -e $tmp/fq/include ]] || fail "the staged image carries headers"
 # Only the staged libraries and the C library: what the runtime image has.
-env -i LD_LIBRARY_PATH="$tmp/fq/lib" "$tmp/fq/bin/fqd" --config "$tmp/fq/fqd.container.toml" --check-config
+mkdir "$tmp/secrets"
+config=$(bash "$(dirname "$0")/stand_in_secrets.sh" "$tmp/fq/fqd.container.toml" "$tmp/secrets")
+env -i LD_LIBRARY_PATH="$tmp/fq/lib" "$tmp/fq/bin/fqd" --config "$config" --check-config
 missing=$(env -i LD_LIBRARY_PATH="$tmp/fq/lib" ldd "$tmp/fq"/bin/* | grep 'not found' || true)
 [[ -z $missing ]] || fail "staged binaries miss libraries: $missing"
 echo "images: Dockerfiles consistent with setup-deps.sh --build-only; the staged fqd runs on $(ls "$tmp/fq/lib" | wc -l) staged libraries"

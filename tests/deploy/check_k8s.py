@@ -90,8 +90,11 @@ def check_shards(fqd, config, replicas):
             if int(ordinal) != k:
                 fail(f"pod {k} of {replicas} keeps {stream}, which hashes to {ordinal}")
             served.setdefault(stream, set()).add(k)
-        subprocess.run([fqd, "--config", config, "--shard", f"fqd-{k}/{replicas}", "--check-config"], check=True,
-                       stdout=subprocess.DEVNULL)
+        with tempfile.TemporaryDirectory() as tmp:  # the pod's Secrets stood in for: --check-config reads them
+            stand_in = subprocess.run(["bash", f"{os.path.dirname(os.path.abspath(__file__))}/stand_in_secrets.sh",
+                                       config, tmp], check=True, capture_output=True, text=True).stdout.strip()
+            subprocess.run([fqd, "--config", stand_in, "--shard", f"fqd-{k}/{replicas}", "--check-config"],
+                           check=True, stdout=subprocess.DEVNULL)
     streams = yaml.safe_load("x: " + open(config).read().split("streams = ", 1)[1].split("\n", 1)[0])["x"]
     if sorted(served) != sorted(streams) or any(len(v) != 1 for v in served.values()):
         fail(f"streams not served by exactly one of {replicas} pods: {served}")
