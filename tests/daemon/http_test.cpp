@@ -209,8 +209,7 @@ size_t resident_bytes(pid_t pid) {
 // kept result itself: before, each request built its own copy of the body and held it until the
 // last byte left, so 64 slow readers of a 25 MB result held 3 GB.
 TEST(Http, SlowReadersOfALargeResultShareItsBody) {
-  std::string toml = ops_config("[http]\nlisten = \"127.0.0.1:0\"\nweb_root = \"/nonexistent-fq-web\"\n"
-                                "[streams.cam0]\nbudget_ms = 60000\ncompute = \"filter\"\n");
+  std::string toml = ops_config(http_without_viewer() + "[streams.cam0]\nbudget_ms = 60000\ncompute = \"filter\"\n");
   toml.replace(toml.find("kind = \"cpu\""), 12, "kind = \"copy\"");  // the body's size is the point, not the filter
   FqdProcess fqd({"--config", write_temp_file("http_slow_readers.toml", toml)});
   ASSERT_FALSE(fqd.endpoint("http").empty());
