@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
+#include <optional>
+#include <string_view>
+#include <utility>
 #include <numbers>
 #include <random>
 #include <vector>
 
+#include "common/pair_table.h"
 #include "kernels/frame_prep.h"
 #include "kernels/grid_build.h"
 
@@ -86,6 +89,12 @@ void move_along(Mesh& mesh, const std::vector<double>& normals, const std::vecto
     }
   }
 }
+
+constexpr std::pair<NoiseKind, const char*> kNoiseKindNames[] = {{NoiseKind::kIso, "iso"},
+                                                                 {NoiseKind::kNormal, "normal"},
+                                                                 {NoiseKind::kDepth, "depth"},
+                                                                 {NoiseKind::kCorrelated, "correlated"},
+                                                                 {NoiseKind::kRipple, "ripple"}};
 
 /// Depth noise grows as 1 / |cos| of the angle to the view, up to 4 × at grazing angles
 /// (a scanner drops the steepest parts rather than measure them worse still).
@@ -167,30 +176,12 @@ void add_ripple_noise(Mesh& mesh, double sigma_mean_edges, double period_mean_ed
 }
 
 bool parse_noise_kind(const char* name, NoiseKind& kind) {
-  for (NoiseKind k :
-       {NoiseKind::kIso, NoiseKind::kNormal, NoiseKind::kDepth, NoiseKind::kCorrelated, NoiseKind::kRipple})
-    if (std::strcmp(name, noise_kind_name(k)) == 0) {
-      kind = k;
-      return true;
-    }
-  return false;
+  const std::optional<NoiseKind> k = first_of(kNoiseKindNames, std::string_view(name));
+  if (k) kind = *k;
+  return k.has_value();
 }
 
-const char* noise_kind_name(NoiseKind kind) {
-  switch (kind) {
-    case NoiseKind::kIso:
-      return "iso";
-    case NoiseKind::kNormal:
-      return "normal";
-    case NoiseKind::kDepth:
-      return "depth";
-    case NoiseKind::kCorrelated:
-      return "correlated";
-    case NoiseKind::kRipple:
-      return "ripple";
-  }
-  return "?";
-}
+const char* noise_kind_name(NoiseKind kind) { return second_of(kNoiseKindNames, kind).value_or("?"); }
 
 void add_noise(Mesh& mesh, NoiseKind kind, double sigma_mean_edges, double length_mean_edges, uint64_t seed) {
   switch (kind) {
