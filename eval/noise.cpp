@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
+#include <random>
 #include <string_view>
 #include <utility>
-#include <numbers>
-#include <random>
 #include <vector>
 
 #include "common/pair_table.h"
