@@ -79,6 +79,11 @@ double rmse_over_diagonal(const MeshView& reference, const float* positions) {
   return std::sqrt(sum2 / reference.num_vertices) / diag;
 }
 
+std::array<double, 3> face_area_normal(const float* positions, const uint32_t* tri) {
+  const D3 a = load(positions, tri[0]);
+  return cross(sub(load(positions, tri[1]), a), sub(load(positions, tri[2]), a));
+}
+
 double face_normal_angle(const float* pa, const uint32_t* ta, const float* pb, const uint32_t* tb) {
   D3 na, nb;
   if (!face_normal(pa, ta, na) || !face_normal(pb, tb, nb)) return std::numeric_limits<double>::quiet_NaN();

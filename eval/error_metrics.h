@@ -3,6 +3,7 @@
 // denoising comparisons and by fqfilter.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "core/mesh_view.h"
@@ -41,6 +42,10 @@ struct MfneResult {
 /// near-zero area relative to its edge lengths) is skipped and counted, not averaged in.
 /// Precondition: as for rmse_over_diagonal, and reference indices are in range.
 MfneResult mean_face_normal_error(const MeshView& reference, const float* positions);
+
+/// Triangle `tri`'s normal times twice its area (the cross product of its edges from the
+/// first corner), in doubles: what the measures here, the scan error and the noise build on.
+std::array<double, 3> face_area_normal(const float* positions, const uint32_t* tri);
 
 /// The angle, in radians in [0, pi], between the normal of triangle `ta` of positions `pa`
 /// and that of triangle `tb` of positions `pb`; NaN when either is degenerate (the rule of

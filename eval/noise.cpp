@@ -1,6 +1,7 @@
 #include "eval/noise.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "common/pair_table.h"
+#include "eval/error_metrics.h"
 #include "kernels/frame_prep.h"
 #include "kernels/grid_build.h"
 
@@ -60,15 +62,9 @@ double noise_std(const Mesh& mesh, double sigma_mean_edges) {
 std::vector<double> area_normals(const Mesh& mesh) {
   const uint32_t n = mesh.num_vertices();
   std::vector<double> normals(3 * size_t(n), 0.0);
-  const float* p = mesh.positions.data();
   for (size_t t = 0; t < mesh.triangles.size(); t += 3) {
     const uint32_t* tri = &mesh.triangles[t];
-    double e1[3], e2[3];
-    for (int k = 0; k < 3; ++k) {
-      e1[k] = double(p[3 * size_t(tri[1]) + k]) - p[3 * size_t(tri[0]) + k];
-      e2[k] = double(p[3 * size_t(tri[2]) + k]) - p[3 * size_t(tri[0]) + k];
-    }
-    const double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    const std::array<double, 3> c = face_area_normal(mesh.positions.data(), tri);
     for (int corner = 0; corner < 3; ++corner)
       for (int k = 0; k < 3; ++k) normals[3 * size_t(tri[corner]) + k] += c[k];  // area-weighted
   }

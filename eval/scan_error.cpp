@@ -28,16 +28,6 @@ Point3d centroid(const float* positions, const uint32_t* tri) {
   return c;
 }
 
-/// The triangle's normal times twice its area.
-std::array<double, 3> cross_of(const float* positions, const uint32_t* tri) {
-  const float* a = positions + 3 * size_t(tri[0]);
-  const float* b = positions + 3 * size_t(tri[1]);
-  const float* c = positions + 3 * size_t(tri[2]);
-  const double e1[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
-  const double e2[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
-  return {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-}
-
 /// 1 for each vertex on an edge that only one triangle has.
 std::vector<uint8_t> boundary_vertices(const MeshView& m) {
   std::vector<std::pair<uint32_t, uint32_t>> edges;
@@ -69,7 +59,7 @@ double coarse_normal_error(const MeshView& reference, const MeshView& scan, cons
   for (uint32_t t = 0; t < scan.num_triangles; ++t) {
     if (std::isnan(angle[t])) continue;
     const uint32_t* tri = scan.triangles + 3 * size_t(t);
-    const std::array<double, 3> n = cross_of(positions, tri);
+    const std::array<double, 3> n = face_area_normal(positions, tri);
     for (int k = 0; k < 3; ++k) sums[nearest[t]][k] += flipped ? -n[k] : n[k];
     ++counts[nearest[t]];
   }
@@ -77,7 +67,7 @@ double coarse_normal_error(const MeshView& reference, const MeshView& scan, cons
   used = 0;
   for (uint32_t r = 0; r < reference.num_triangles; ++r) {
     if (counts[r] < kCoarseFaces) continue;
-    const std::array<double, 3> n = cross_of(reference.positions, reference.triangles + 3 * size_t(r));
+    const std::array<double, 3> n = face_area_normal(reference.positions, reference.triangles + 3 * size_t(r));
     const std::array<double, 3>& s = sums[r];
     const std::array<double, 3> c = {s[1] * n[2] - s[2] * n[1], s[2] * n[0] - s[0] * n[2],
                                      s[0] * n[1] - s[1] * n[0]};
