@@ -15,7 +15,6 @@
 #include "python/bindings.h"
 #include "python/client_frames.h"
 #include "python/interruptible.h"
-#include "python/numpy_mesh.h"
 #include "python/py_errors.h"
 
 namespace fq::py {
@@ -60,14 +59,7 @@ class Producer {
 
   uint64_t send(const pyb::handle& v, const pyb::handle& f, double timeout_s) {
     check_open();
-    const Mesh mesh = to_mesh(v, f);
-    std::vector<std::string> parts;
-    Status s;
-    {
-      const pyb::gil_scoped_release unlocked;
-      s = client::build_frame(mesh.view(), spec_, sequence_, parts);
-    }
-    throw_if_error(s);
+    const std::vector<std::string> parts = build_parts(v, f, spec_, sequence_);
     std::vector<zmq::const_buffer> buffers;
     for (const std::string& p : parts) buffers.push_back(zmq::buffer(p));
     // A PUSH socket blocks while no fqd is connected or its queue is full.

@@ -70,6 +70,19 @@ client::FrameSpec frame_spec(const std::string& stream, uint32_t chunks, int pos
   return spec;
 }
 
+std::vector<std::string> build_parts(const pyb::handle& v, const pyb::handle& f,
+                                     const client::FrameSpec& spec, uint64_t sequence) {
+  const Mesh mesh = to_mesh(v, f);
+  std::vector<std::string> parts;
+  Status s;
+  {
+    const pyb::gil_scoped_release unlocked;
+    s = client::build_frame(mesh.view(), spec, sequence, parts);
+  }
+  throw_if_error(s);
+  return parts;
+}
+
 void decode_checked(client::ReceivedResult& r) {
   Status s;
   {

@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "clients/common/frame_sender.h"
 #include "clients/common/result_receiver.h"
@@ -19,6 +20,11 @@ namespace fq::py {
 /// ValueError for a bad value, TypeError for a name that is not a wire parameter.
 client::FrameSpec frame_spec(const std::string& stream, uint32_t chunks, int position_bits, int encode_speed,
                              const std::string& compute, const pybind11::dict& overrides);
+
+/// The message parts of frame `sequence` (build_frame, with the GIL released) of V and F as
+/// to_mesh takes them; ValueError for bad arrays or a mesh the codec refuses.
+std::vector<std::string> build_parts(const pybind11::handle& v, const pybind11::handle& f,
+                                     const client::FrameSpec& spec, uint64_t sequence);
 
 /// Decodes and checks a received result with the GIL released; ValueError when it is not a
 /// valid result. An ERROR result decodes to no positions.

@@ -7,7 +7,6 @@
 
 #include "python/bindings.h"
 #include "python/client_frames.h"
-#include "python/numpy_mesh.h"
 #include "python/py_errors.h"
 #include "wire/header_codec.h"
 
@@ -22,16 +21,8 @@ pyb::list encode_frame(const pyb::handle& v, const pyb::handle& f, const std::st
                        uint64_t sequence, uint32_t chunks, int position_bits, int encode_speed,
                        const std::string& compute, const pyb::dict& overrides) {
   const client::FrameSpec spec = frame_spec(stream, chunks, position_bits, encode_speed, compute, overrides);
-  const Mesh mesh = to_mesh(v, f);
-  std::vector<std::string> parts;
-  Status s;
-  {
-    const pyb::gil_scoped_release unlocked;
-    s = client::build_frame(mesh.view(), spec, sequence, parts);
-  }
-  throw_if_error(s);
   pyb::list out;
-  for (const std::string& p : parts) out.append(pyb::bytes(p));
+  for (const std::string& p : build_parts(v, f, spec, sequence)) out.append(pyb::bytes(p));
   return out;
 }
 

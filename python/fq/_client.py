@@ -1,13 +1,28 @@
 """fq.Producer and fq.Consumer: a capture pipeline's frames to fqd and its results back."""
 from __future__ import annotations
 
-from typing import Any, Iterator, Optional
+from typing import Any, Iterator, Optional, TypeVar
 
 from . import _fq
 from .wire import Result, _result
 
+_Self = TypeVar("_Self", bound="_Socket")
 
-class Producer:
+
+class _Socket:
+    """A `with` block closes the socket of a Producer or Consumer."""
+
+    def close(self) -> None:
+        raise NotImplementedError
+
+    def __enter__(self: _Self) -> _Self:
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.close()
+
+
+class Producer(_Socket):
     """Sends frames to fqd's ingest endpoint, as fqpub does (a ZeroMQ PUSH socket that connects).
 
     Frames are numbered 0, 1, 2, ... in the order they are sent. Frames sent while no fqd is
@@ -69,14 +84,8 @@ class Producer:
         """Closes the socket (after up to 5 s for queued frames)."""
         self._producer.close()
 
-    def __enter__(self) -> "Producer":
-        return self
 
-    def __exit__(self, *exc: Any) -> None:
-        self.close()
-
-
-class Consumer:
+class Consumer(_Socket):
     """Receives fqd's results from its publish endpoint, as fqsub does (a ZeroMQ SUB socket).
 
     Results published before a consumer connects are not seen (publish/subscribe), so create
@@ -134,9 +143,3 @@ class Consumer:
     def close(self) -> None:
         """Closes the socket."""
         self._consumer.close()
-
-    def __enter__(self) -> "Consumer":
-        return self
-
-    def __exit__(self, *exc: Any) -> None:
-        self.close()
