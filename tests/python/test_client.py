@@ -72,6 +72,16 @@ def test_recv_times_out_with_none(fqd):
 
 
 @needs_fqd
+def test_consumer_of_every_stream_iterates_until_quiet(fqd, fandisk):
+    V, F = fandisk
+    with fq.Consumer(fqd["publish"], iter_timeout_s=0.5) as consumer, fq.Producer(fqd["ingest"], "other") as producer:
+        assert producer.send(V, F, timeout_s=30) == 0
+        first = consumer.recv(timeout_s=60)
+        assert first.header["stream_id"] == "other" and first.header["sequence"] == 0
+        assert list(consumer) == []  # nothing more within iter_timeout_s
+
+
+@needs_fqd
 def test_per_frame_parameters_reach_fqd(fqd, fandisk):
     V, F = fandisk
     with fq.Consumer(fqd["publish"], "filtered") as consumer, \
