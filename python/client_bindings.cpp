@@ -61,6 +61,7 @@ class Producer {
     check_open();
     const std::vector<std::string> parts = build_parts(v, f, spec_, sequence_);
     std::vector<zmq::const_buffer> buffers;
+    buffers.reserve(parts.size());
     for (const std::string& p : parts) buffers.push_back(zmq::buffer(p));
     // A PUSH socket blocks while no fqd is connected or its queue is full.
     const bool sent = wait_interruptible(
