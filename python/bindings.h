@@ -14,4 +14,10 @@ void bind_stream(pybind11::module_& m);
 /// read_mesh, write_mesh, add_noise, metrics: files, noise and error measures.
 void bind_mesh_functions(pybind11::module_& m);
 
+/// encode_frame, decode_result: fq.wire, frames and results as fqd's multipart messages.
+void bind_wire(pybind11::module_& m);
+
+/// Producer, Consumer: frames to fqd and results from it over ZeroMQ (fq_client).
+void bind_client(pybind11::module_& m);
+
 }  // namespace fq::py

@@ -9,4 +9,6 @@ PYBIND11_MODULE(_fq, m) {
   fq::py::bind_engine_functions(m);
   fq::py::bind_mesh_functions(m);
   fq::py::bind_stream(m);
+  fq::py::bind_wire(m);
+  fq::py::bind_client(m);
 }

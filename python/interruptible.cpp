@@ -2,6 +2,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <future>
@@ -22,9 +23,8 @@ constexpr std::chrono::milliseconds kSignalPoll{50};
 Status run_interruptible(const EngineOptions& options, const MeshView& mesh, const Params& params,
                          FrameResult& out, TemporalHistory* history) {
   std::atomic<bool> stop{false};
-  std::future<Status> run = std::async(std::launch::async, [&] {
-    return run_cached_engine(options, mesh, params, out, &stop, history);
-  });
+  std::future<Status> run = std::async(
+      std::launch::async, [&] { return run_cached_engine(options, mesh, params, out, &stop, history); });
   for (;;) {
     {
       const pybind11::gil_scoped_release unlocked;
@@ -40,6 +40,29 @@ Status run_interruptible(const EngineOptions& options, const MeshView& mesh, con
     }
   }
   return run.get();
+}
+
+bool wait_interruptible(const std::function<bool(int ms)>& attempt, double timeout_s) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  for (;;) {
+    int slice = int(kSignalPoll.count());
+    bool last = false;  // a zero timeout still gets one look
+    if (timeout_s >= 0) {
+      const double left_ms =
+          timeout_s * 1e3 - std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+      slice = std::clamp(int(left_ms), 0, slice);
+      last = left_ms <= slice;
+    }
+    bool done = false;
+    {
+      const pybind11::gil_scoped_release unlocked;
+      done = attempt(slice);
+    }
+    if (done) return true;
+    if (PyErr_CheckSignals() != 0) throw pybind11::error_already_set();
+    if (last) return false;
+  }
 }
 
 }  // namespace fq::py

@@ -5,6 +5,8 @@
 // Python handle pending signals.
 #pragma once
 
+#include <functional>
+
 #include "kernels/engine.h"
 
 namespace fq::py {
@@ -16,5 +18,12 @@ namespace fq::py {
 /// null): the stream history of the run (fq.Stream).
 Status run_interruptible(const EngineOptions& options, const MeshView& mesh, const Params& params,
                          FrameResult& out, TemporalHistory* history = nullptr);
+
+/// Socket waits that Ctrl-C stops, for fq.Producer and fq.Consumer: calls `attempt(ms)` (which
+/// may block up to ms milliseconds) with the GIL released until it returns true or `timeout_s`
+/// seconds have passed (negative: no limit), handling pending signals with the GIL held
+/// between calls. Whether an attempt succeeded; a handler's exception propagates
+/// (pybind11::error_already_set). Call with the GIL held.
+bool wait_interruptible(const std::function<bool(int ms)>& attempt, double timeout_s);
 
 }  // namespace fq::py

@@ -3,8 +3,8 @@
 The stub is made from the package itself, not written by hand: filter's and cluster's keywords
 come from fq's C++ parameter structs at import time (fq/_engine.py), so only the built package
 knows them. Every public function becomes a `def` with its signature's annotations and
-defaults; Mesh and Stream are re-exported from fq.mesh and fq._stream, which carry their own
-annotations (py.typed).
+defaults; Mesh, Stream, Producer, Consumer and the fq.wire module are re-exported from the
+modules that define them, which carry their own annotations (py.typed).
 
 Usage: python3 make_stub.py OUT.pyi   (with the built package on PYTHONPATH)
 """
@@ -23,6 +23,9 @@ from typing import Any, Literal, Optional, Union
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from fq import wire as wire
+from fq._client import Consumer as Consumer
+from fq._client import Producer as Producer
 from fq._stream import Stream as Stream
 from fq.mesh import Mesh as Mesh
 
