@@ -6,7 +6,8 @@
 namespace fq::client {
 
 PeerMonitor::PeerMonitor(zmq::socket_t& socket, const std::string& name) {
-  init(socket, "inproc://fq-peer-monitor-" + name, ZMQ_EVENT_HANDSHAKE_SUCCEEDED | ZMQ_EVENT_DISCONNECTED);
+  init(socket, "inproc://fq-peer-monitor-" + name,
+       ZMQ_EVENT_HANDSHAKE_SUCCEEDED | ZMQ_EVENT_DISCONNECTED | ZMQ_EVENT_HANDSHAKE_FAILED_AUTH);
 }
 
 void PeerMonitor::poll() {
@@ -21,7 +22,7 @@ void PeerMonitor::poll() {
 bool PeerMonitor::wait_for_peer(int ms) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
   poll();
-  while (peers_ == 0) {
+  while (peers_ == 0 && !refused()) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) break;
     try {
@@ -41,6 +42,11 @@ void PeerMonitor::on_event_handshake_succeeded(const zmq_event_t&, const char*) 
 
 void PeerMonitor::on_event_disconnected(const zmq_event_t&, const char*) {
   if (peers_ > 0) --peers_;
+}
+
+void PeerMonitor::on_event_handshake_failed_auth(const zmq_event_t& event, const char* address) {
+  refused_status_ = event.value > 0 ? int(event.value) : 400;
+  refused_by_ = address ? address : "";
 }
 
 }  // namespace fq::client

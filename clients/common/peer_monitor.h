@@ -17,18 +17,27 @@ class PeerMonitor : public zmq::monitor_t {
 
   /// Takes in the events that happened since the last call (does not wait).
   void poll();
-  /// Waits up to `ms` for a peer (events, not sleeps); whether one is connected.
+  /// Waits up to `ms` for a peer (events, not sleeps), or until one refuses our key; whether
+  /// one is connected.
   bool wait_for_peer(int ms);
   /// Peers connected now (handshakes done minus disconnects), and whether one ever was.
   int peers() const { return peers_; }
   bool ever_connected() const { return ever_; }
+  /// Whether a peer refused our CURVE key (ZMQ_EVENT_HANDSHAKE_FAILED_AUTH; ZeroMQ would retry
+  /// for ever while frames wait), the ZAP status it gave (400: key not allowed) and where.
+  bool refused() const { return refused_status_ != 0; }
+  int refused_status() const { return refused_status_; }
+  const std::string& refused_by() const { return refused_by_; }
 
  private:
   void on_event_handshake_succeeded(const zmq_event_t& event, const char* address) override;
   void on_event_disconnected(const zmq_event_t& event, const char* address) override;
+  void on_event_handshake_failed_auth(const zmq_event_t& event, const char* address) override;
 
   int peers_ = 0;
   bool ever_ = false;
+  int refused_status_ = 0;
+  std::string refused_by_;
 };
 
 }  // namespace fq::client

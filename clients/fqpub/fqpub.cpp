@@ -95,6 +95,10 @@ Totals publish(const Args& a, const fq::client::MeshSource& source, zmq::socket_
     }
     t.encode_ms += std::chrono::duration<double, std::milli>(clock::now() - t0).count();
     monitor.poll();
+    if (monitor.refused()) {  // a PUSH socket would wait for a peer that never comes
+      t.failed = true;
+      break;
+    }
     report_peer(a, monitor, warned);
     if (monitor.peers() == 0) ++t.unconnected;
     fq::client::send_parts(push, parts);
@@ -184,9 +188,20 @@ int run(Args& a) {
     return 2;
   }
   monitor->wait_for_peer(kConnectGraceMs);
-  const Totals t = publish(a, source, push, *monitor);
+  const Totals t = monitor->refused() ? Totals{0, 0, 0.0, 0.0, true} : publish(a, source, push, *monitor);
   monitor->poll();
   const bool connected = monitor->ever_connected();
+  if (monitor->refused()) {
+    std::fprintf(stderr,
+                 "%sfqpub: fqd at %s refused our CURVE key (ZAP status %d): add our public key to fqd's "
+                 "[security] client_keys_file, or check --server-key and --key-file\n",
+                 a.quiet || a.json ? "" : "\n", monitor->refused_by().c_str(), monitor->refused_status());
+    monitor.reset();
+    push.set(zmq::sockopt::linger, 0);  // nothing can be delivered: do not wait for it
+    push.close();
+    if (a.json) std::printf("%s\n", summary(a, t, connected).dump().c_str());
+    return 1;
+  }
   monitor.reset();  // before the socket closes (see peer_monitor.h)
   if (!connected) {
     push.set(zmq::sockopt::linger, 0);  // nothing can be delivered: do not wait for it
