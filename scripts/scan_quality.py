@@ -140,7 +140,7 @@ def run_scan(fq, name, scan, reference, cfg, tmp):
     path = os.path.join(tmp, f"{name}.ply")
     fq.write_mesh(path, v, f)
     found, failures = peers.peer_results(path, None, None, cfg.sweeps, tmp, cfg.cache,
-                                         measure=lambda pv, pf: measure(pv, pf))
+                                         measure=measure)
     row["peers"] = found
     return row, failures
 
