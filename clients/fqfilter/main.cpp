@@ -49,6 +49,10 @@ int run(int argc, char** argv) {
   const fq::cli::ParseOutcome parsed = fq::cli::parse_options(argc, argv, o);
   if (!parsed.run) return parsed.exit_code;
   std::error_code ec;
+  if (!fs::exists(o.input, ec)) {  // named as IN's problem, not as a bad OUT
+    std::cerr << "fqfilter: error: IN '" << o.input << "': no such file or folder\n";
+    return 2;
+  }
   const bool folder = fs::is_directory(o.input, ec);
   if (!folder && !o.reference.empty() && fs::is_directory(o.reference, ec)) {
     std::cerr << "fqfilter: error: --reference must be a mesh file\n";

@@ -50,15 +50,20 @@ struct Totals {
 constexpr int kConnectGraceMs = 1000;
 
 // Says once when frames go out with no fqd connected, and again when one connects.
+// Whether the progress line is redrawn in place (a terminal, not --quiet or --json): the lines
+// after it then start on a line of their own; in a log file there is no progress line.
+bool redraws(const Args& a) { return !a.quiet && !a.json && isatty(STDERR_FILENO); }
+const char* after_progress(const Args& a) { return redraws(a) ? "\n" : ""; }
+
 void report_peer(const Args& a, const fq::client::PeerMonitor& monitor, bool& warned) {
   const bool pub = !a.bind_pub.empty();
   if (monitor.peers() == 0 && !warned) {
-    std::fprintf(stderr, "%sfqpub: no fqd connected %s %s: %s\n", a.quiet || a.json ? "" : "\n",
+    std::fprintf(stderr, "%sfqpub: no fqd connected %s %s: %s\n", after_progress(a),
                  pub ? "to our PUB socket at" : "at", (pub ? a.bind_pub : a.endpoint).c_str(),
                  pub ? "frames are dropped until one subscribes" : "frames wait in the queue until one connects");
     warned = true;
   } else if (monitor.peers() > 0 && warned) {
-    std::fprintf(stderr, "%sfqpub: fqd connected\n", a.quiet || a.json ? "" : "\n");
+    std::fprintf(stderr, "%sfqpub: fqd connected\n", after_progress(a));
     warned = false;
   }
 }
@@ -104,7 +109,8 @@ Totals publish(const Args& a, const fq::client::MeshSource& source, zmq::socket_
     fq::client::send_parts(push, parts);
     last_send = clock::now();
     ++t.sent;
-    if (!a.quiet && !a.json)
+    // A line redrawn in place on a terminal; in a log file it would be one line per frame.
+    if (redraws(a))
       std::fprintf(stderr, "\rfqpub: sent %llu frames", static_cast<unsigned long long>(t.sent));
   }
   t.seconds = std::chrono::duration<double>(last_send - start).count();
@@ -195,7 +201,7 @@ int run(Args& a) {
     std::fprintf(stderr,
                  "%sfqpub: fqd at %s refused our CURVE key (ZAP status %d): add our public key to fqd's "
                  "[security] client_keys_file, or check --server-key and --key-file\n",
-                 a.quiet || a.json ? "" : "\n", monitor->refused_by().c_str(), monitor->refused_status());
+                 after_progress(a), monitor->refused_by().c_str(), monitor->refused_status());
     monitor.reset();
     push.set(zmq::sockopt::linger, 0);  // nothing can be delivered: do not wait for it
     push.close();
@@ -217,7 +223,7 @@ int run(Args& a) {
     std::printf("%s\n", summary(a, t, connected).dump().c_str());
   } else {
     std::fprintf(stderr, "%sfqpub: stream '%s': %llu frames in %.2f s (%.1f fps), encode %.2f ms/frame\n",
-                 a.quiet ? "" : "\n", a.spec.stream_id.c_str(), static_cast<unsigned long long>(t.sent),
+                 after_progress(a), a.spec.stream_id.c_str(), static_cast<unsigned long long>(t.sent),
                  t.seconds, fps_of(t), t.sent ? t.encode_ms / static_cast<double>(t.sent) : 0.0);
     if (t.unconnected > 0)
       std::fprintf(stderr, "fqpub: %llu of them were sent while no fqd was connected\n",

@@ -4,6 +4,8 @@
 // Exit status: 0 when every result decoded, passed the checks and was not an error result,
 // and at least one came (or Ctrl-C / SIGTERM ended the run: stopping it is no failure);
 // 1 otherwise; 2 for bad options.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
@@ -106,7 +108,8 @@ std::string receive_loop(const Args& a, zmq::socket_t& sub, fq::client::StreamSt
     if (a.duration > 0 && std::chrono::duration<double>(now - start).count() >= a.duration) break;
     if (a.idle_timeout > 0 && std::chrono::duration<double>(now - last_result).count() >= a.idle_timeout)
       break;
-    if (!a.quiet && !a.json && now - last_line >= std::chrono::seconds(1)) {
+    // Redrawn in place on a terminal; a log file gets only the closing line.
+    if (!a.quiet && !a.json && isatty(STDERR_FILENO) && now - last_line >= std::chrono::seconds(1)) {
       std::fprintf(stderr, "\rfqsub: %s", stats.status_line().c_str());
       last_line = now;
     }
@@ -181,7 +184,7 @@ int run(int argc, char** argv) {
   if (a.json)
     std::printf("%s\n", j.dump(2).c_str());
   else {
-    std::fprintf(stderr, "%sfqsub: %s\n", a.quiet ? "" : "\r", stats.status_line().c_str());
+    std::fprintf(stderr, "%sfqsub: %s\n", !a.quiet && isatty(STDERR_FILENO) ? "\r" : "", stats.status_line().c_str());
     if (!last_ply.empty()) std::fprintf(stderr, "fqsub: last PLY written: %s\n", last_ply.c_str());
   }
   const bool enough = stats.results() > 0 || g_stop;  // stopped by the user: no result is no failure

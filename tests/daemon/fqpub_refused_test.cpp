@@ -1,5 +1,6 @@
 // fqpub against an fqd that refuses its CURVE key: it says so and exits 1 within 5 s (it used to
-// wait for ever, saying only "no fqd connected"), and with an allowed key it still delivers.
+// wait for ever, saying only "no fqd connected"), and with an allowed key it still delivers,
+// writing whole lines where its output goes to a pipe or a log.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -26,11 +27,14 @@ TEST(FqpubCurve, ARefusedKeyExitsOneWithinFiveSecondsSayingWhy) {
   EXPECT_LT(seconds, 5.0);
   EXPECT_NE(refused.output.find("refused our CURVE key"), std::string::npos) << refused.output;
   EXPECT_NE(refused.output.find("client_keys_file"), std::string::npos) << refused.output;
+  // Without --quiet, into a pipe (as into a log file): whole lines, no progress redrawn with \r.
   const ToolRun allowed =
       run_tool(FQPUB_PATH, {mesh, "--endpoint", fqd.endpoint("ingest"), "--stream", "cam0", "--count", "2",
-                            "--server-key", keys.server_pub, "--key-file", keys.client_key, "--quiet"});
+                            "--server-key", keys.server_pub, "--key-file", keys.client_key});
   EXPECT_EQ(allowed.status, 0) << allowed.output;
   EXPECT_EQ(allowed.output.find("refused"), std::string::npos) << allowed.output;
+  EXPECT_EQ(allowed.output.find('\r'), std::string::npos) << allowed.output;
+  EXPECT_NE(allowed.output.find("fqpub: stream 'cam0': 2 frames"), std::string::npos) << allowed.output;
 }
 
 }  // namespace

@@ -99,6 +99,10 @@ def test_fqfilter_reports_the_residual_the_moves_and_the_noise_kind(tmp_path):
         assert isinstance(auto["cuda_refused"], str) and auto["cuda_refused"]
     else:
         assert auto["engine"].startswith("cuda") and auto["cuda_refused"] is None
+    missing = subprocess.run([os.environ["FQFILTER"], "/nonexistent-fq-dir/", str(tmp_path / "out")],
+                             capture_output=True, text=True)
+    assert missing.returncode == 2
+    assert "IN '/nonexistent-fq-dir/': no such file or folder" in missing.stderr  # not blamed on OUT
     human = subprocess.run([os.environ["FQFILTER"], str(DATA / "fandisk.ply"), "--noise", "0.05", "--engine", "cpu"],
                            capture_output=True, text=True, check=True).stdout
     assert "moved: mean" in human and "of a residual" in human
