@@ -17,7 +17,7 @@ namespace {
 std::string temp_path(const std::string& name) { return testing::TempDir() + "/config_check_" + name; }
 
 std::string write_file(const std::string& name, const std::string& text) {
-  const std::string path = temp_path(name);
+  std::string path = temp_path(name);
   std::ofstream(path) << text;
   return path;
 }
