@@ -21,8 +21,7 @@ namespace {
 namespace pyb = pybind11;
 using namespace pybind11::literals;
 
-FrameResult run(const pyb::handle& v, const pyb::handle& f, const Params& params, const EngineOptions& o) {
-  const Mesh mesh = to_mesh(v, f);
+FrameResult run(const Mesh& mesh, const Params& params, const EngineOptions& o) {
   FrameResult result;
   throw_if_error(run_interruptible(o, mesh.view(), params, result));
   return result;
@@ -46,8 +45,7 @@ pyb::object filter(const pyb::handle& v, const pyb::handle& f, const pyb::dict& 
   Params p;  // fqfilter's defaults: the same positions as fqfilter for the same keywords
   apply_keywords("filter", keywords, p);
   const Mesh mesh = to_mesh(v, f);
-  FrameResult r;
-  throw_if_error(run_interruptible(engine_options(engine, threads), mesh.view(), p, r));
+  const FrameResult r = run(mesh, p, engine_options(engine, threads));
   pyb::array positions = positions_array(r.positions, v);
   if (!info) return positions;
   return pyb::make_tuple(positions, filter_info(mesh, p, r));
@@ -59,7 +57,7 @@ pyb::array cluster(const pyb::handle& v, const pyb::handle& f, const pyb::dict& 
   p.filter = false;
   p.cluster = true;
   apply_keywords("cluster", keywords, p);
-  return labels_array(run(v, f, p, engine_options(engine, threads)).labels);
+  return labels_array(run(to_mesh(v, f), p, engine_options(engine, threads)).labels);
 }
 
 }  // namespace
