@@ -31,7 +31,8 @@ FlickerParts flicker_parts(const float* r, const float* r_prev, const float* c, 
     along += dn * dn;
   }
   const double tangential = std::max(total - along, 0.0);  // rounding may take it below 0
-  return {std::sqrt(total / n) / mean_edge, std::sqrt(along / n) / mean_edge, std::sqrt(tangential / n) / mean_edge};
+  return {std::sqrt(total / n) / mean_edge, std::sqrt(along / n) / mean_edge,
+          std::sqrt(tangential / n) / mean_edge};
 }
 
 }  // namespace fq

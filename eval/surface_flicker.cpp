@@ -112,7 +112,8 @@ SurfaceSample sample_surface(const MeshView& clean, const MeshView& result, int 
 }
 
 double height_rms(const SurfaceSample& s) {
-  return weighted(s.area, [&](size_t i) { return s.height[i] * s.height[i]; }, true);
+  return weighted(
+      s.area, [&](size_t i) { return s.height[i] * s.height[i]; }, true);
 }
 
 double smooth_normal_error(const SurfaceSample& s) {

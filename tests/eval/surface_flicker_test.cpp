@@ -27,7 +27,7 @@ Mesh lifted(Mesh m, double dz) {
 // Rotated by `angle` about the line y = 5, z = 0 (the x axis through the middle).
 Mesh tilted(Mesh m, double angle) {
   for (uint32_t v = 0; v < m.num_vertices(); ++v) {
-    float* p = &m.positions[3 * v];
+    float* p = &m.positions[3 * size_t(v)];
     const double y = p[1] - 5.0, z = p[2];
     p[1] = float(5.0 + std::cos(angle) * y - std::sin(angle) * z);
     p[2] = float(std::sin(angle) * y + std::cos(angle) * z);
@@ -148,7 +148,7 @@ TEST(FlickerParts, MotionAcrossTheSurfaceIsNormalMotionAlongItTangential) {
   }();
   const Mesh raised = lifted(clean, 0.3);
   Mesh slid = clean;
-  for (uint32_t v = 0; v < n; ++v) slid.positions[3 * v] += 0.4f;
+  for (uint32_t v = 0; v < n; ++v) slid.positions[3 * size_t(v)] += 0.4f;
   const float* c = clean.positions.data();
   const FlickerParts across = flicker_parts(raised.positions.data(), c, c, c, up.data(), n, 2.0);
   EXPECT_NEAR(across.normal, 0.15, 1e-7);
