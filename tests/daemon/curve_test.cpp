@@ -106,6 +106,7 @@ TEST(DaemonCurve, TheControlSocketTakesOnlyItsOwnKeyList) {
   spec.stream_id = "operator";
   ASSERT_TRUE(client::build_frame(noisy_sphere().view(), spec, 0, parts).ok());
   std::vector<zmq::const_buffer> b;
+  b.reserve(parts.size());
   for (const std::string& p : parts) b.push_back(zmq::buffer(p));
   (void)zmq::send_multipart(push, b, zmq::send_flags::dontwait);
   h.sync_results();
