@@ -164,6 +164,7 @@ Status read_sections(TomlReader& root, DaemonConfig& c) {
     TomlReader r(*t, root.source(), "security");
     r.read("curve_key_file", c.security.curve_key_file);
     r.read("client_keys_file", c.security.client_keys_file);
+    r.read("control_keys_file", c.security.control_keys_file);
     if (Status s = r.finish(); !s.ok()) return s;
   }
   if (const toml::table* t = root.table("caps")) {

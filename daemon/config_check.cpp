@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "common/curve_keys.h"
+#include "daemon/credentials.h"
 #include "daemon/http_access.h"
 #include "daemon/tls_context.h"
 #include "daemon/zmq_endpoint.h"
@@ -36,6 +37,7 @@ class Problems {
 
   /// True when `path` opens for reading as a file; otherwise a problem of `key`.
   bool readable(const std::string& key, const std::string& path) {
+    if (const std::string why = credential_problem(path); !why.empty()) return add(key, path, why), false;
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd < 0) return add(key, path, std::string("cannot be read: ") + std::strerror(errno)), false;
     struct stat st {};
@@ -82,6 +84,18 @@ void check_security(const SecurityConfig& s, Problems& p) {
       p.add("security.client_keys_file", "", st.message());
     else if (keys.empty() && s.enabled())
       p.add("security.client_keys_file", s.client_keys_file, "lists no client key: no client could connect");
+  }
+  if (!s.control_keys_file.empty() && !s.enabled())
+    p.add("security.control_keys_file", "",
+          "is set but security.curve_key_file is not: it applies to CURVE only");
+  if (s.enabled() && !s.control_keys_file.empty() &&
+      p.readable("security.control_keys_file", s.control_keys_file)) {
+    std::vector<std::string> keys;
+    if (Status st = read_public_keys(s.control_keys_file, keys); !st.ok())
+      p.add("security.control_keys_file", "", st.message());
+    else if (keys.empty())
+      p.add("security.control_keys_file", s.control_keys_file,
+            "lists no client key: no client could reach the control socket");
   }
 }
 

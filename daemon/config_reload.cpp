@@ -37,6 +37,9 @@ const std::vector<Setting>& restart_only() {
       field("caps.max_subscriptions", [](C c) { return c.caps.max_subscriptions; }),
       field("caps.max_subscription_bytes", [](C c) { return c.caps.max_subscription_bytes; }),
       field("security.curve_key_file", [](C c) { return c.security.curve_key_file; }),
+      // Whether the control socket has its own list is its ZAP domain, set before bind; the
+      // keys either list holds reload live.
+      field("security.control_keys_file", [](C c) { return c.security.control_keys_file.empty(); }),
       field("http.listen", [](C c) { return c.http.listen; }),
       field("http.web_root", [](C c) { return c.http.web_root; }),
       field("http.max_head_bytes", [](C c) { return c.http.max_head_bytes; }),

@@ -18,13 +18,19 @@ Status load_curve_server_keys(const SecurityConfig& c, CurveServerKeys& out) {
   if (Status s = read_public_keys(c.client_keys_file, keys); !s.ok()) return s;
   if (keys.empty()) return invalid_argument("key file " + c.client_keys_file + ": no client keys");
   out.clients = {keys.begin(), keys.end()};
+  out.control.clear();
+  if (c.control_keys_file.empty()) return {};
+  keys.clear();
+  if (Status s = read_public_keys(c.control_keys_file, keys); !s.ok()) return s;
+  if (keys.empty()) return invalid_argument("key file " + c.control_keys_file + ": no client keys");
+  out.control = {keys.begin(), keys.end()};
   return {};
 }
 
-void make_curve_server(zmq::socket_t& s, const CurveKeyPair& server) {
+void make_curve_server(zmq::socket_t& s, const CurveKeyPair& server, const char* domain) {
   s.set(zmq::sockopt::curve_server, 1);
   s.set(zmq::sockopt::curve_secretkey, server.secret_key);
-  s.set(zmq::sockopt::zap_domain, "fq");
+  s.set(zmq::sockopt::zap_domain, domain);
 }
 
 bool is_local_endpoint(const std::string& e) {
@@ -67,8 +73,9 @@ bool admit_sender(const zmq::message_t& m, const ClientKeys* keys, RefusalCounte
   return false;
 }
 
-ZapHandler::ZapHandler(zmq::context_t& context, const ClientKeys& allowed, RefusalCounters& refusals)
-    : allowed_(allowed), refusals_(refusals) {
+ZapHandler::ZapHandler(zmq::context_t& context, const ClientKeys& allowed, RefusalCounters& refusals,
+                       const ClientKeys* control)
+    : allowed_(allowed), control_(control), refusals_(refusals) {
   zmq::socket_t s(context, zmq::socket_type::rep);
   s.set(zmq::sockopt::linger, 0);
   s.bind("inproc://zeromq.zap.01");  // before any CURVE socket accepts a connection
@@ -100,12 +107,13 @@ void ZapHandler::run(zmq::socket_t socket) {
     if (req.size() >= 7 && req[5].to_string() == "CURVE" && req[6].size() == 32) {
       char z85[41];
       zmq_z85_encode(z85, req[6].data<uint8_t>(), 32);
-      if (allowed_.allowed(z85)) {
+      const bool control = control_ && req[2].to_string() == kControlZapDomain;
+      if ((control ? *control_ : allowed_).allowed(z85)) {
         status = "200", text = "OK", user = z85;
       } else {
         refusals_.add(Refusal::kUnauthenticated);
-        log_.log(spdlog::level::warn, "refused a connection from {}: client key {} is not in security.client_keys_file",
-                 req[3].to_string(), z85);
+        log_.log(spdlog::level::warn, "refused a connection from {}: client key {} is not in security.{}",
+                 req[3].to_string(), z85, control ? "control_keys_file" : "client_keys_file");
       }
     } else {
       refusals_.add(Refusal::kUnauthenticated);

@@ -1,6 +1,7 @@
 // CURVE security for fqd's three sockets: encryption with fqd's key pair, and a ZAP
 // handler (ZeroMQ's authentication protocol, RFC 27) that admits only allow-listed client
-// public keys. One handler runs per ZeroMQ context.
+// public keys. One handler runs per ZeroMQ context. The control socket may have a list of its
+// own (security.control_keys_file): operators' keys, which producers and consumers lack.
 #pragma once
 
 #include <atomic>
@@ -23,6 +24,9 @@ namespace fq::daemon {
 struct SecurityConfig {
   std::string curve_key_file;     ///< fqd's key pair (public + secret); empty: CURVE off
   std::string client_keys_file;   ///< client public keys allowed in; required with CURVE
+  /// Client public keys allowed on the control socket instead of client_keys_file's; empty:
+  /// client_keys_file's keys reach the control socket too.
+  std::string control_keys_file;
   bool enabled() const { return !curve_key_file.empty(); }
 };
 
@@ -30,11 +34,16 @@ struct SecurityConfig {
 struct CurveServerKeys {
   CurveKeyPair server;
   std::set<std::string> clients;  ///< Z85
+  std::set<std::string> control;  ///< Z85, control_keys_file's; empty without one
 };
 Status load_curve_server_keys(const SecurityConfig& c, CurveServerKeys& out);
 
-/// Makes `s` a CURVE server with fqd's keys (before bind).
-void make_curve_server(zmq::socket_t& s, const CurveKeyPair& server);
+/// The ZAP domains: the control socket's is its own when it has its own key list.
+inline constexpr const char* kZapDomain = "fq";
+inline constexpr const char* kControlZapDomain = "fq-control";
+
+/// Makes `s` a CURVE server with fqd's keys (before bind), authenticated in ZAP `domain`.
+void make_curve_server(zmq::socket_t& s, const CurveKeyPair& server, const char* domain = kZapDomain);
 
 /// True when `endpoint` can only be reached from this host (loopback, ipc, inproc).
 bool is_local_endpoint(const std::string& endpoint);
@@ -71,10 +80,12 @@ void cut_sender(const zmq::message_t& m);
 bool admit_sender(const zmq::message_t& m, const ClientKeys* keys, RefusalCounters& refusals);
 
 /// Answers ZAP requests on one context: 200 for an allow-listed client key, 400 (counted as
-/// a refusal) for anything else.
+/// a refusal) for anything else. Requests of kControlZapDomain are checked against `control`
+/// when given, every other request against `allowed`.
 class ZapHandler : NonCopyable {
  public:
-  ZapHandler(zmq::context_t& context, const ClientKeys& allowed, RefusalCounters& refusals);
+  ZapHandler(zmq::context_t& context, const ClientKeys& allowed, RefusalCounters& refusals,
+             const ClientKeys* control = nullptr);
   ~ZapHandler();
   /// Joins the thread; call after the context was shut down or closed.
   void join();
@@ -83,6 +94,7 @@ class ZapHandler : NonCopyable {
   void run(zmq::socket_t socket);
 
   const ClientKeys& allowed_;
+  const ClientKeys* control_;
   RefusalCounters& refusals_;
   LogLimiter log_;  ///< one line per refused connection, at most 5 a second
   std::thread thread_;

@@ -173,10 +173,17 @@ Status Daemon::make_sockets(Sockets& s) {
     FQ_RETURN_IF_ERROR(load_curve_server_keys(config_.security, s.keys));
     client_keys_ = std::make_unique<ClientKeys>(s.keys.clients);
     pipeline_.keys = client_keys_.get();
-    input_zap_ = std::make_unique<ZapHandler>(input_context_, *client_keys_, registry_.refusals());
+    if (!config_.security.control_keys_file.empty())
+      control_keys_ = std::make_unique<ClientKeys>(s.keys.control);
+    input_zap_ = std::make_unique<ZapHandler>(input_context_, *client_keys_, registry_.refusals(),
+                                              control_keys_.get());
     output_zap_ = std::make_unique<ZapHandler>(output_context_, *client_keys_, registry_.refusals());
-    for (zmq::socket_t* socket : {&s.ingest, &s.publish, &s.control}) make_curve_server(*socket, s.keys.server);
-    spdlog::info("fqd: CURVE on every socket, {} client key(s) allowed", s.keys.clients.size());
+    for (zmq::socket_t* socket : {&s.ingest, &s.publish}) make_curve_server(*socket, s.keys.server);
+    make_curve_server(s.control, s.keys.server, control_keys_ ? kControlZapDomain : kZapDomain);
+    spdlog::info("fqd: CURVE on every socket, {} client key(s) allowed{}", s.keys.clients.size(),
+                 control_keys_
+                     ? fmt::format(", {} on the control socket (its own list)", s.keys.control.size())
+                     : std::string());
   } else {
     for (const std::string& e : {config_.endpoints.ingest, config_.endpoints.publish, config_.endpoints.control})
       if (!is_local_endpoint(e))
@@ -236,7 +243,7 @@ Status Daemon::start() {
     });
   control_thread_ = std::thread([this, s = std::move(sockets.control)]() mutable {
     name_this_thread("control");
-    run_control(std::move(s), registry_, caps_, client_keys_.get());
+    run_control(std::move(s), registry_, caps_, control_keys_ ? control_keys_.get() : client_keys_.get());
   });
   if (sockets.sub) {
     ingest_thread_ = std::thread([this, pull = std::move(sockets.ingest), sub = std::move(sockets.sub)]() mutable {
@@ -288,6 +295,7 @@ Status Daemon::reload(const DaemonConfig& fresh) {
   caps_.set(fresh.caps);
   pipeline_.decode_queue.set_bounds(fresh.caps.max_queued_frames, fresh.caps.max_queued_bytes);
   if (client_keys_) client_keys_->set(std::move(keys.clients));  // revoked keys' connections are cut
+  if (control_keys_) control_keys_->set(std::move(keys.control));
   if (http_) http_->set_access(std::move(access));
   spdlog::set_level(spdlog::level::from_str(fresh.log_level));
   return {};

@@ -67,6 +67,7 @@ class Daemon : NonCopyable {
   Pipeline pipeline_;
   std::vector<std::unique_ptr<Engine>> engines_;
   std::unique_ptr<ClientKeys> client_keys_;  ///< with [security]; outlives the ZAP handlers
+  std::unique_ptr<ClientKeys> control_keys_;  ///< with security.control_keys_file; likewise
   // Declared before the contexts, so destroyed after them: closing a context ends its
   // handler's thread.
   std::unique_ptr<ZapHandler> input_zap_, output_zap_;

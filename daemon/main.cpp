@@ -20,6 +20,7 @@
 #include "daemon/config.h"
 #include "daemon/config_check.h"
 #include "daemon/config_lookup.h"
+#include "daemon/credentials.h"
 #include "daemon/daemon.h"
 #include "daemon/log_format.h"
 #include "daemon/service_notify.h"
@@ -43,7 +44,10 @@ fq::Status load(const fq::daemon::ConfigSource& source, const fq::daemon::Comman
                 bool allow_empty = true) {
   if (!source.path.empty()) FQ_RETURN_IF_ERROR(fq::daemon::load_config(source.path, config, allow_empty));
   fq::daemon::resolve_default_web_root(config.http);
-  return fq::daemon::apply_command_line(cl, config, shard_streams);
+  FQ_RETURN_IF_ERROR(fq::daemon::apply_command_line(cl, config, shard_streams));
+  // `credential:NAME` values: files systemd's LoadCredential= put there (daemon/credentials.h).
+  fq::daemon::resolve_credentials(config, std::getenv("CREDENTIALS_DIRECTORY"));
+  return {};
 }
 
 // Start and --check-config alike: every endpoint and file the configuration names, checked

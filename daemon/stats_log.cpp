@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "daemon/drop_reasons.h"
 #include "daemon/late_warning.h"
 
 namespace fq::daemon {
@@ -45,6 +46,7 @@ std::vector<std::string> StatsLog::lines(const std::vector<StreamSnapshot>& now,
                   static_cast<unsigned long long>(c.dropped_stale - before.dropped_stale),
                   static_cast<unsigned long long>(c.errors - before.errors));
     out.push_back(line);
+    for (std::string& d : drop_lines(s.stream_id, c, before)) out.push_back(std::move(d));
   }
   previous.swap(current);
   return out;

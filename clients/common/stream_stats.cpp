@@ -1,6 +1,7 @@
 #include "clients/common/stream_stats.h"
 
 #include <cstdio>
+#include <utility>
 
 #include "common/sample_stats.h"
 
@@ -14,20 +15,38 @@ nlohmann::json summary(const std::vector<double>& v) {
           {"count", v.size()}};
 }
 
+// The reason of an error result whose frame fqd stopped on the engine, from the word fqd's
+// error starts with (daemon/frame_stages.cpp); nullptr for other errors (a bad frame).
+const char* stopped_reason(const std::string& error) {
+  constexpr std::pair<const char*, const char*> kStopped[] = {
+      {"preempted:", "preempted"}, {"time_limit:", "time_limit"}, {"cancelled:", "stopping"}};
+  for (const auto& [prefix, reason] : kStopped)
+    if (error.starts_with(prefix)) return reason;
+  return nullptr;
+}
+
 }  // namespace
+
+uint64_t StreamStats::drops() const {
+  uint64_t n = 0;
+  for (const auto& [reason, count] : drops_by_reason_) n += count;
+  return n;
+}
 
 void StreamStats::add(const ReceivedResult& r, bool ok) {
   const wire::ResultHeader& h = r.header;
   if (results_ == 0) first_ns_ = r.receive_ns;
   last_ns_ = r.receive_ns;
   ++results_;
-  // A gap in a stream's sequence numbers is a frame fqd dropped (superseded or stale).
+  // A gap in a stream's sequence numbers: frames without a result here (the header comment
+  // says why their reason is not known here).
   auto [it, fresh] = next_seq_.try_emplace(h.stream_id(), h.sequence());
-  if (!fresh && h.sequence() > it->second) drops_ += h.sequence() - it->second;
+  if (!fresh && h.sequence() > it->second) drops_by_reason_["gap"] += h.sequence() - it->second;
   it->second = h.sequence() + 1;
   if (!ok) ++bad_;
   if (h.status() == wire::ERROR) {
     ++errors_;
+    if (const char* reason = stopped_reason(h.error())) ++drops_by_reason_[reason];
     return;
   }
   if (h.status() == wire::LATE) ++late_;
@@ -43,14 +62,18 @@ double StreamStats::fps() const {
 }
 
 std::string StreamStats::status_line() const {
-  char line[256];
+  std::string reasons;  // "drops 12 (gap 10, preempted 2)"
+  for (const auto& [reason, count] : drops_by_reason_)
+    reasons += (reasons.empty() ? " (" : ", ") + reason + " " + std::to_string(count);
+  if (!reasons.empty()) reasons += ")";
+  char line[384];
   const int used = std::snprintf(
       line, sizeof line,
-      "%llu results  %.1f fps  latency p50 %.1f p99 %.1f ms  send->recv p50 %.1f p99 %.1f ms  drops %llu  "
+      "%llu results  %.1f fps  latency p50 %.1f p99 %.1f ms  send->recv p50 %.1f p99 %.1f ms  drops %llu%s  "
       "errors %llu  late %llu  bad %llu",
       static_cast<unsigned long long>(results_), fps(), percentile(latency_, 0.5), percentile(latency_, 0.99),
       percentile(send_to_receive_, 0.5), percentile(send_to_receive_, 0.99),
-      static_cast<unsigned long long>(drops_), static_cast<unsigned long long>(errors_),
+      static_cast<unsigned long long>(drops()), reasons.c_str(), static_cast<unsigned long long>(errors_),
       static_cast<unsigned long long>(late_), static_cast<unsigned long long>(bad_));
   if (last_noise_ > 0.f && used > 0 && size_t(used) < sizeof line)
     std::snprintf(line + used, sizeof line - size_t(used), "  noise %.3f", last_noise_);
@@ -63,7 +86,8 @@ nlohmann::json StreamStats::to_json() const {
   return {{"results", results_},
           {"errors", errors_},
           {"bad", bad_},
-          {"drops", drops_},
+          {"drops", drops()},
+          {"drops_by_reason", drops_by_reason_},
           {"late", late_},
           {"fps", fps()},
           {"receive_to_publish", summary(latency_)},

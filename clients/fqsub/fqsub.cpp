@@ -1,6 +1,6 @@
 // fqsub: subscribes to fqd's results, decodes and checks each, writes every Nth as a PLY
-// with cluster colours, shows a live status line and prints a summary. Results in the
-// POSITIONS form take their faces from --faces (the mesh the producer sent).
+// with cluster colours, shows a live status line and prints a summary (drops by reason: --help).
+// Results in the POSITIONS form take their faces from --faces (the mesh the producer sent).
 // Exit status: 0 when every result decoded, passed the checks and was not an error result,
 // and at least one came (or Ctrl-C / SIGTERM ended the run: stopping it is no failure);
 // 1 otherwise; 2 for bad options.
@@ -152,6 +152,16 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--json", a.json, "print the summary as JSON on stdout");
   app.add_flag("-q,--quiet", a.quiet, "no live status line");
+  app.footer(
+      "Drops, by reason as far as results tell them apart:\n"
+      "  gap         sequence numbers of a stream with no result: fqd superseded the frame (a newer one\n"
+      "              came while it waited), dropped it stale (older than budget_ms), or this subscriber\n"
+      "              missed its result (its queue at fqd was full), or the frame never reached fqd.\n"
+      "              fqsub cannot tell these apart; fqd's counters can (fqctl counters STREAM:\n"
+      "              superseded, dropped_stale, subscriber_overflows).\n"
+      "  preempted   error results: fqd stopped the frame to serve another stream's share of engine time\n"
+      "  time_limit  error results: the frame ran past fqd's caps.engine_time_limit_s\n"
+      "  stopping    error results: fqd stopped while the frame was on an engine\n");
   CLI11_PARSE(app, argc, argv);
   if (a.write_every > 0 && a.out_dir.empty()) {
     std::fprintf(stderr, "fqsub: --write-every needs --out DIR\n");

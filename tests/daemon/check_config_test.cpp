@@ -4,6 +4,8 @@
 // folder that does not exist.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <regex>
 
 #include "tests/daemon/fqd_process.h"
@@ -77,6 +79,54 @@ TEST(CheckConfig, EveryProblemIsALineOfItsOwn) {
   EXPECT_EQ(lines, 4u) << r.output;
   for (const char* key : {"endpoints.control", "http.token_file", "http.tls_cert_file", "http.tls_key_file"})
     EXPECT_NE(r.output.find(key), std::string::npos) << key << " not in\n" << r.output;
+}
+
+}  // namespace
+}  // namespace fq::test
+
+namespace fq::test {
+namespace {
+
+// systemd's LoadCredential=: the configuration names `credential:NAME`, fqd finds the file in
+// $CREDENTIALS_DIRECTORY; check and start alike.
+TEST(CheckConfig, ACredentialIsReadFromCredentialsDirectory) {
+  const TestKeys keys;
+  const std::string dir = testing::TempDir() + "/check_credentials";
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(keys.server_key, dir + "/curve_key",
+                             std::filesystem::copy_options::overwrite_existing);
+  std::ofstream(dir + "/http_token") << "0123456789abcdef0123\n";
+  const std::string file = write_temp_file(
+      "check_credentials.toml",
+      ops_config("[security]\ncurve_key_file = \"credential:curve_key\"\nclient_keys_file = \"" +
+                 keys.client_pub + "\"\n" + http_without_viewer() +
+                 "token_file = \"credential:http_token\"\n"));
+  const std::string set = "CREDENTIALS_DIRECTORY=" + dir;
+  const ToolRun ok = run_tool("/usr/bin/env", {set, FQD_PATH, "--config", file, "--check-config"});
+  EXPECT_EQ(ok.status, 0) << ok.output;
+  {
+    FqdProcess fqd({"--config", file}, "CREDENTIALS_DIRECTORY=" + shell_words(dir, {}));
+    EXPECT_FALSE(fqd.endpoint("control").empty()) << "fqd did not start with its credentials";
+  }
+  // Without the variable: exit 2 naming the key and the credential.
+  const ToolRun unset =
+      run_tool("/usr/bin/env", {"-u", "CREDENTIALS_DIRECTORY", FQD_PATH, "--config", file, "--check-config"});
+  EXPECT_EQ(unset.status, 2) << unset.output;
+  EXPECT_NE(unset.output.find("security.curve_key_file credential:curve_key: names a credential, but "
+                              "$CREDENTIALS_DIRECTORY is not set"),
+            std::string::npos)
+      << unset.output;
+  // A credential missing from the directory: exit 2 naming the file, at check and at start.
+  std::filesystem::remove(dir + "/http_token");
+  for (const bool check : {true, false}) {
+    std::vector<std::string> args{set, FQD_PATH, "--config", file};
+    if (check) args.emplace_back("--check-config");
+    const ToolRun missing = run_tool("/usr/bin/env", args, 60);
+    EXPECT_EQ(missing.status, 2) << missing.output;
+    EXPECT_NE(missing.output.find("http.token_file " + dir + "/http_token: cannot be read"),
+              std::string::npos)
+        << missing.output;
+  }
 }
 
 }  // namespace

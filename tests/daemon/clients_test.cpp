@@ -107,6 +107,43 @@ TEST(Clients, FqsubCtrlCExitsZeroWithItsSummaryAndSortableNames) {
   for (FILE* f : {fqd.out, sub.out, pub.out}) std::fclose(f);
 }
 
+// Drops by reason: every frame stopped at a time limit no frame can meet comes as an error
+// result fqsub counts as time_limit; --help says which reasons a subscriber cannot tell apart.
+TEST(Clients, FqsubCountsDropsByReason) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(testing::TempDir()) / "fq_clients_drops_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "fqd.toml") << kConfig + "[caps]\nengine_time_limit_s = 0.000001\n";
+  ASSERT_TRUE(io::write_mesh((dir / "sphere.ply").string(), noisy_sphere().view(), nullptr, 0).ok());
+  Child fqd = spawn(FQD_PATH, {"--config", (dir / "fqd.toml").string(), "--print-endpoints"});
+  char line[1024] = {0};
+  ASSERT_NE(std::fgets(line, sizeof line, fqd.out), nullptr) << "fqd printed no endpoints";
+  const nlohmann::json ep = nlohmann::json::parse(line);
+  Child sub = spawn(FQSUB_PATH, {"--endpoint", ep.at("publish"), "--stream", "cam", "--count", "3",
+                                 "--idle-timeout", "30", "--json", "--quiet"});
+  Child pub = spawn(FQPUB_PATH, {(dir / "sphere.ply").string(), "--endpoint", ep.at("ingest"), "--stream",
+                                 "cam", "--fps", "10", "--count", "20", "--quiet", "--json"});
+  const nlohmann::json summary = nlohmann::json::parse(read_all(sub.out), nullptr, false);
+  EXPECT_EQ(wait_exit(sub.pid), 1);  // error results
+  EXPECT_EQ(wait_exit(pub.pid), 0);
+  kill(fqd.pid, SIGTERM);
+  EXPECT_EQ(wait_exit(fqd.pid), 0);
+  ASSERT_TRUE(summary.is_object());
+  EXPECT_EQ(summary.at("errors"), 3);
+  EXPECT_EQ(summary.at("drops_by_reason").value("time_limit", 0), 3) << summary.dump();
+  EXPECT_EQ(summary.at("drops"), summary.at("drops_by_reason").value("gap", 0) + 3) << summary.dump();
+  for (FILE* f : {fqd.out, sub.out, pub.out}) std::fclose(f);
+
+  Child help = spawn(FQSUB_PATH, {"--help"});
+  const std::string text = read_all(help.out);
+  EXPECT_EQ(wait_exit(help.pid), 0);
+  EXPECT_NE(text.find("fqsub cannot tell these apart"), std::string::npos) << text;
+  for (const char* reason : {"gap", "preempted", "time_limit", "stopping"})
+    EXPECT_NE(text.find(std::string("  ") + reason + " "), std::string::npos) << reason;
+  std::fclose(help.out);
+}
+
 TEST(Clients, FqpubSaysWhenNoFqdIsConnected) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::path(testing::TempDir()) / "fq_clients_no_fqd_test";

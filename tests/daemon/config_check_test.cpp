@@ -127,6 +127,30 @@ TEST(ConfigCheck, ContentsAreCheckedAsTheStartReadsThem) {
   EXPECT_EQ(tls[0].rfind("check.toml:2: http.tls_cert_file " + not_pem + ": ", 0), 0u) << tls[0];
 }
 
+// security.control_keys_file: read like client_keys_file, and only with CURVE on.
+TEST(ConfigCheck, TheControlKeyListIsReadAndNeedsCurve) {
+  CurveKeyPair server, operator_key;
+  ASSERT_TRUE(make_curve_key_pair(server).ok());
+  ASSERT_TRUE(make_curve_key_pair(operator_key).ok());
+  const std::string pair = temp_path("control_server.key"), ops = temp_path("operators.pub");
+  ASSERT_TRUE(write_curve_key_file(pair, server).ok());
+  ASSERT_TRUE(write_curve_key_file(ops, {operator_key.public_key, ""}).ok());
+  const std::string none = write_file("no_keys.pub", "# nobody yet\n");
+  const std::string security =
+      "[security]\ncurve_key_file = \"" + pair + "\"\nclient_keys_file = \"" + ops + "\"\n";
+  EXPECT_TRUE(problems_of(security + "control_keys_file = \"" + ops + "\"\n").empty());
+  std::vector<std::string> p = problems_of(security + "control_keys_file = \"" + none + "\"\n");
+  ASSERT_EQ(p.size(), 1u) << joined(p);
+  EXPECT_EQ(p[0].rfind("check.toml:4: security.control_keys_file " + none + ": lists no client key", 0), 0u)
+      << p[0];
+  p = problems_of("[security]\ncontrol_keys_file = \"" + ops + "\"\n");
+  ASSERT_EQ(p.size(), 1u) << joined(p);
+  EXPECT_EQ(
+      p[0].rfind("check.toml:2: security.control_keys_file: is set but security.curve_key_file is not", 0),
+      0u)
+      << p[0];
+}
+
 // fqd serves how to install the viewer when its default folder has none; only a folder the
 // file names must exist.
 TEST(ConfigCheck, OnlyAViewerFolderTheFileNamesMustExist) {

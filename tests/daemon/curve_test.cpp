@@ -67,6 +67,53 @@ TEST(DaemonCurve, ClientsWithoutAnAllowedKeyGetNothing) {
   EXPECT_GE(h.daemon()->registry().refusals().get(daemon::Refusal::kUnauthenticated), 1u);
 }
 
+// security.control_keys_file: the control socket takes only the keys it lists (an operator's),
+// not those of client_keys_file, which still carry frames and results; its own keys reach
+// no other socket.
+TEST(DaemonCurve, TheControlSocketTakesOnlyItsOwnKeyList) {
+  const TestKeys k;
+  daemon::DaemonConfig c = k.secured(test_config());
+  c.security.control_keys_file = k.stranger_pub;     // the operator's key
+  DaemonHarness h(c, {k.server_pub, k.client_key});  // frames and results with the client key
+  client::FrameSpec spec;
+  spec.stream_id = "cam";
+  h.send(noisy_sphere(), spec, 1);
+  EXPECT_EQ(h.receive("cam").header.status(), wire::OK);
+  zmq::context_t ctx(1);
+  auto control_with = [&](const std::string& key, wire::ControlReply& reply) {
+    zmq::socket_t req(ctx, zmq::socket_type::req);
+    req.set(zmq::sockopt::linger, 0);
+    EXPECT_TRUE(client::apply_curve_client(req, {k.server_pub, key}).ok());
+    req.connect(h.daemon()->endpoints().control);
+    wire::ControlRequest q;
+    q.mutable_get_counters()->set_stream_id("cam");
+    return client::control_call(req, q, reply, 3000);
+  };
+  const uint64_t refused = h.daemon()->registry().refusals().get(daemon::Refusal::kUnauthenticated);
+  wire::ControlReply reply;
+  EXPECT_FALSE(control_with(k.client_key, reply).ok()) << "a client key reached the control socket";
+  EXPECT_GT(h.daemon()->registry().refusals().get(daemon::Refusal::kUnauthenticated), refused);
+  const Status s = control_with(k.stranger_key, reply);
+  ASSERT_TRUE(s.ok()) << s.message();
+  ASSERT_EQ(reply.counters_size(), 1);
+  EXPECT_EQ(reply.counters(0).frames_out(), 1u);
+  // The operator's key on the ingest socket: refused there (not in client_keys_file).
+  zmq::socket_t push(ctx, zmq::socket_type::push);
+  push.set(zmq::sockopt::linger, 0);
+  ASSERT_TRUE(client::apply_curve_client(push, {k.server_pub, k.stranger_key}).ok());
+  push.connect(h.daemon()->endpoints().ingest);
+  std::vector<std::string> parts;
+  spec.stream_id = "operator";
+  ASSERT_TRUE(client::build_frame(noisy_sphere().view(), spec, 0, parts).ok());
+  std::vector<zmq::const_buffer> b;
+  b.reserve(parts.size());
+  for (const std::string& p : parts) b.push_back(zmq::buffer(p));
+  (void)zmq::send_multipart(push, b, zmq::send_flags::dontwait);
+  h.sync_results();
+  daemon::StreamSettings unused;
+  EXPECT_FALSE(h.daemon()->registry().find("operator", unused)) << "the control key got a frame in";
+}
+
 TEST(DaemonCurve, MissingOrBadKeyFilesStopTheStartWithTheirName) {
   const TestKeys k;
   daemon::DaemonConfig c = k.secured(test_config());

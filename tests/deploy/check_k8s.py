@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """deploy/k8s without a cluster: the kustomization's parts exist and fit together, the pods meet
 the restricted Pod Security Standard, have resource requests, scrape annotations and a
-PodDisruptionBudget, every pod gets the shard its ordinal names with the replica count, and
-every listed stream is served by exactly one pod. With kubectl (kustomize built in), the
-rendered output is checked the same way, for the replica count as given and for another.
+PodDisruptionBudget, a NetworkPolicy lets only labelled pods reach the control port, the image
+is set by the kustomization's images: entry, every pod gets the shard its ordinal names with the
+replica count, and every listed stream is served by exactly one pod. With kubectl (kustomize
+built in), the rendered output is checked the same way, for the replica count as given and for
+another, and for another image.
 
     check_k8s.py FQD SOURCE_DIR"""
 import os
@@ -57,9 +59,31 @@ def check_pod_template(ss, replicas):
     return meta["labels"]
 
 
+def check_network_policy(policy, pod_labels, control_label):
+    """Only pods with `control_label` (a one-item dict) reach the control port; the ingest,
+    publish and HTTP ports stay open to every source."""
+    spec = policy["spec"]
+    if any(pod_labels.get(k) != v for k, v in spec["podSelector"]["matchLabels"].items()):
+        fail("the NetworkPolicy selects no fqd pod")
+    if spec.get("policyTypes") != ["Ingress"]:
+        fail("the NetworkPolicy must govern ingress only (fqd connects out to its producers)")
+    open_ports, control_from = set(), []
+    for rule in spec["ingress"]:
+        ports = {p["port"] for p in rule["ports"]}
+        if "from" not in rule:
+            open_ports |= ports
+        elif 5557 in ports:
+            control_from += rule["from"]
+    if open_ports != {5555, 5556, 8080}:
+        fail(f"the NetworkPolicy opens ports {sorted(open_ports)} to everyone, expected 5555, 5556 and 8080")
+    if not control_from or any(f.get("podSelector", {}).get("matchLabels") != control_label or "namespaceSelector" in f
+                               or "ipBlock" in f for f in control_from):
+        fail(f"the control port must be reachable only from pods of the namespace labelled {control_label}")
+
+
 def check_rendered(objects, replicas):
     kinds = {o["kind"]: o for o in objects}
-    for k in ["Namespace", "StatefulSet", "Service", "PodDisruptionBudget", "ConfigMap"]:
+    for k in ["Namespace", "StatefulSet", "Service", "PodDisruptionBudget", "ConfigMap", "NetworkPolicy"]:
         if k not in kinds:
             fail(f"the kustomization renders no {k}")
     ns = kinds["Namespace"]["metadata"]
@@ -69,6 +93,7 @@ def check_rendered(objects, replicas):
     if ss["spec"]["replicas"] != replicas:
         fail(f"StatefulSet replicas {ss['spec']['replicas']}, expected {replicas}")
     labels = check_pod_template(ss, replicas)
+    check_network_policy(kinds["NetworkPolicy"], labels, {"fq-control": "true"})
     pdb = kinds["PodDisruptionBudget"]["spec"]
     if any(labels.get(k) != v for k, v in pdb["selector"]["matchLabels"].items()):
         fail("the PodDisruptionBudget selects no fqd pod")
@@ -124,6 +149,9 @@ def main(fqd, src):
     (rep,) = kz["replacements"]
     if rep["source"]["fieldPath"] != "spec.replicas" or "env.[name=FQ_SHARDS].value" not in rep["targets"][0]["fieldPaths"][0]:
         fail("the replica count does not reach FQ_SHARDS")
+    (image,) = [c["image"] for o in objects if o["kind"] == "StatefulSet" for c in o["spec"]["template"]["spec"]["containers"]]
+    if not any(image.split(":")[0] == i["name"] for i in kz.get("images", [])):
+        fail(f"kustomization.yaml has no images: entry for {image.split(':')[0]} (the image to edit)")
     check_rendered(objects, replicas)
     check_shards(fqd, f"{k8s}/fqd.toml", replicas)
     rendered = "kustomize-free checks only (no kubectl)"
@@ -136,7 +164,18 @@ def main(fqd, src):
                 out = subprocess.run(["kubectl", "kustomize", f"{tmp}/k8s"], check=True, capture_output=True, text=True)
                 check_rendered([d for d in yaml.safe_load_all(out.stdout) if d], count)
             check_shards(fqd, f"{k8s}/fqd.toml", count)
-        rendered = f"kubectl kustomize renders it for {replicas} and {replicas + 1} replicas"
+        # The images: entry is what sets the pods' image.
+        with tempfile.TemporaryDirectory() as tmp:
+            shutil.copytree(k8s, f"{tmp}/k8s")
+            kz_tmp = yaml.safe_load(open(f"{tmp}/k8s/kustomization.yaml"))
+            kz_tmp["images"] = [dict(i, newName="registry.test/fq-x", newTag="t1") for i in kz_tmp["images"]]
+            open(f"{tmp}/k8s/kustomization.yaml", "w").write(yaml.safe_dump(kz_tmp))
+            out = subprocess.run(["kubectl", "kustomize", f"{tmp}/k8s"], check=True, capture_output=True, text=True)
+            (ss,) = [d for d in yaml.safe_load_all(out.stdout) if d and d["kind"] == "StatefulSet"]
+            if ss["spec"]["template"]["spec"]["containers"][0]["image"] != "registry.test/fq-x:t1":
+                fail("the images: entry of kustomization.yaml does not set the fqd container's image")
+        rendered = (f"kubectl kustomize renders it for {replicas} and {replicas + 1} replicas, with the "
+                    "NetworkPolicy and the image from images:")
     print(f"k8s: restricted pods, requests, scrape annotations, PDB, {replicas} shards; {rendered}")
 
 

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
-"""The monitoring files against fqd itself: `promtool check rules` and `promtool test rules` on
-deploy/monitoring/fqd-alerts.yml; then every PromQL expression of the alert rules, the Grafana
+"""The monitoring files against fqd itself: deploy/monitoring/fqd-alerts.yml is what
+render_alerts.py writes for the default job; `promtool check rules` and `promtool test rules` on
+it (fqd-alerts.test.yml) and on the rules written for another job (fqd-alerts.job.test.yml);
+every rule has a runbook_url whose anchor docs/DAEMON.md has; then every PromQL expression of the alert rules, the Grafana
 dashboard (deploy/monitoring/fqd-dashboard.json, panels and variables) and the ```promql blocks of
 docs/DAEMON.md is parsed by promtool (as a recording rule, Grafana's variables replaced) and each
 metric name it reads is looked up among the families a live fqd exports on /metrics.
@@ -94,14 +96,40 @@ def exported_names(fqd, src, tmp):
     return names
 
 
+# The job and labels fqd-alerts.job.test.yml is written for (a Kubernetes pod discovery).
+OTHER_JOB = ["--job", "kubernetes-pods", "--selector", 'namespace="fq"']
+
+
+def check_rendered_and_runbooks(src, mon):
+    render = [sys.executable, f"{mon}/render_alerts.py"]
+    rendered = subprocess.run(render, check=True, capture_output=True, text=True).stdout
+    if rendered != open(f"{mon}/fqd-alerts.yml").read():
+        sys.exit("FAIL: deploy/monitoring/fqd-alerts.yml is not render_alerts.py's output: edit the rules in "
+                 "render_alerts.py and run deploy/monitoring/render_alerts.py -o deploy/monitoring/fqd-alerts.yml")
+    doc = open(f"{src}/docs/DAEMON.md").read()
+    anchors = set(re.findall(r'<a id="([^"]+)"></a>', doc))
+    for g in yaml.safe_load(rendered)["groups"]:
+        for r in g["rules"]:
+            url = r.get("annotations", {}).get("runbook_url", "")
+            if not url.startswith("docs/DAEMON.md#") or url.split("#", 1)[1] not in anchors:
+                sys.exit(f"FAIL: alert {r['alert']}: runbook_url {url!r} is no anchor of docs/DAEMON.md")
+
+
 def main(fqd, src):
     promtool = shutil.which("promtool")
     if not promtool:
         print("SKIP: promtool is not installed (scripts/setup-deps.sh installs Debian's prometheus)")
         return 77
     mon = f"{src}/deploy/monitoring"
+    check_rendered_and_runbooks(src, mon)
     subprocess.run([promtool, "check", "rules", "fqd-alerts.yml"], cwd=mon, check=True)
     subprocess.run([promtool, "test", "rules", "fqd-alerts.test.yml"], cwd=mon, check=True)
+    with tempfile.TemporaryDirectory() as tmp:  # the rules for another job, and their tests
+        subprocess.run([sys.executable, f"{mon}/render_alerts.py", *OTHER_JOB, "-o", f"{tmp}/fqd-alerts.job.yml"],
+                       check=True)
+        shutil.copy(f"{mon}/fqd-alerts.job.test.yml", tmp)
+        subprocess.run([promtool, "check", "rules", "fqd-alerts.job.yml"], cwd=tmp, check=True)
+        subprocess.run([promtool, "test", "rules", "fqd-alerts.job.test.yml"], cwd=tmp, check=True)
     with tempfile.TemporaryDirectory() as tmp:
         exprs = expressions(src)
         # promtool parses each expression: a recording rule per expression.
@@ -116,7 +144,8 @@ def main(fqd, src):
     if unknown:
         print("FAIL: metric names fqd does not export:\n  " + "\n  ".join(unknown), file=sys.stderr)
         return 1
-    print(f"monitoring: rules pass promtool check and test; {len(exprs)} expressions parse and read only the "
+    print(f"monitoring: rules as render_alerts.py writes them, with runbooks; they pass promtool check and test "
+          f"for the job fqd and for {' '.join(OTHER_JOB[1::2])}; {len(exprs)} expressions parse and read only the "
           f"{len(exported)} names fqd exports")
     return 0
 
