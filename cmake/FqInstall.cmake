@@ -51,6 +51,7 @@ install(FILES ${fq_client_sources} DESTINATION "${FQ_INSTALL_INCLUDEDIR}/clients
 install(EXPORT fqClientTargets NAMESPACE fq:: DESTINATION "${FQ_INSTALL_CMAKEDIR}")
 # The protocol's schema, for clients in other languages (protoc --python_out ...).
 install(FILES "${PROJECT_SOURCE_DIR}/wire/fq.proto" DESTINATION "${CMAKE_INSTALL_DATADIR}/fq")
+
 set(FQ_CUDA_ROOT "")
 if(FQ_WITH_CUDA)
   set(FQ_CUDA_ROOT "${CUDAToolkit_LIBRARY_ROOT}")
@@ -73,6 +74,6 @@ file(RELATIVE_PATH FQ_PC_TO_PREFIX "/p/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/p")
 configure_file(cmake/fq.pc.in "${PROJECT_BINARY_DIR}/fq.pc" @ONLY)
 configure_file(cmake/fq-wire.pc.in "${PROJECT_BINARY_DIR}/fq-wire.pc" @ONLY)
 configure_file(cmake/fq-client.pc.in "${PROJECT_BINARY_DIR}/fq-client.pc" @ONLY)
-install(FILES "${PROJECT_BINARY_DIR}/fq.pc" "${PROJECT_BINARY_DIR}/fq-wire.pc" "${PROJECT_BINARY_DIR}/fq-client.pc"
-  DESTINATION "${CMAKE_INSTALL_LIBDIR}/pkgconfig")
+install(FILES "${PROJECT_BINARY_DIR}/fq.pc" "${PROJECT_BINARY_DIR}/fq-wire.pc"
+  "${PROJECT_BINARY_DIR}/fq-client.pc" DESTINATION "${CMAKE_INSTALL_LIBDIR}/pkgconfig")
 install(FILES "${PROJECT_SOURCE_DIR}/LICENSE" DESTINATION "${CMAKE_INSTALL_DATAROOTDIR}/doc/fq")
