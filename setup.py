@@ -9,6 +9,11 @@ Environment:
                              built for this Python: only its module target is brought up to
                              date there and packaged (what the wheel test does); by default
                              the project is configured in build/setuptools/cmake.<python tag>.
+
+The package carries the shared libraries the module needs beyond the system's (Draco, assimp,
+protobuf, ZeroMQ, OpenMP, ... and theirs) in fq.libs/ beside fq/, found through the RUNPATH
+that patchelf (Debian package patchelf) sets, so that the wheel runs where they are not
+installed. This is what auditwheel repair does; auditwheel is not a Debian package.
 """
 import os
 import re
@@ -26,6 +31,10 @@ ROOT = Path(__file__).resolve().parent
 # setuptools' own build and metadata folders, out of the source folders (build/ is also the
 # default CMake build tree of scripts/build.sh: a subfolder there disturbs nothing).
 BUILD_BASE = ROOT / "build" / "setuptools"
+# The libraries a wheel leaves to the system: those of the manylinux policies (PEP 599, 600)
+# that the module can link, and the dynamic loader. Every other library it loads is packaged.
+SYSTEM_LIBRARIES = re.compile(
+    r"(ld-linux.*|lib(c|m|dl|rt|pthread|util|nsl|resolv|gcc_s|stdc\+\+))\.so(\.[0-9]+)*")
 
 
 def project_version():
@@ -55,6 +64,8 @@ class CMakeBuild(build_ext):
             target.parent.mkdir(parents=True, exist_ok=True)
             shutil.copyfile(built, target)
             shutil.copyfile(built.parent / "__init__.pyi", target.parent / "__init__.pyi")
+            if not self.inplace:
+                bundle_libraries(target, target.parent.parent / "fq.libs")
 
     def configure(self, tree):
         """Configures `tree` the first time, and again when CMAKE_ARGS asks for changes; a
@@ -69,10 +80,31 @@ class CMakeBuild(build_ext):
         subprocess.run(args + extra, check=True)
 
 
-BUILD_BASE.mkdir(parents=True, exist_ok=True)
-setup(
-    version=project_version(),
-    ext_modules=[Extension("fq._fq", sources=[])],
-    cmdclass={"build_ext": CMakeBuild},
-    options={"build": {"build_base": str(BUILD_BASE)}, "egg_info": {"egg_base": str(BUILD_BASE)}},
-)
+def bundle_libraries(module, libs):
+    """Copies every non-system library that `module` loads (ldd: directly or through another)
+    into `libs`; the module then finds them through its RUNPATH, and they one another through
+    theirs ($ORIGIN: a RUNPATH serves only the direct needs of its own file)."""
+    patchelf = shutil.which("patchelf")
+    if not patchelf:
+        sys.exit("setup.py: patchelf not found (Debian package patchelf): it packages the module's libraries")
+    shutil.rmtree(libs, ignore_errors=True)
+    libs.mkdir(parents=True)
+    ldd = subprocess.run(["ldd", str(module)], check=True, capture_output=True, text=True).stdout
+    for name, path in re.findall(r"^\s*(\S+) => (.+?)(?: \(0x[0-9a-f]+\))?$", ldd, re.M):
+        if SYSTEM_LIBRARIES.fullmatch(name):
+            continue
+        if not os.path.isabs(path):
+            sys.exit(f"setup.py: {module.name} needs {name}, which ldd does not find: {path}")
+        shutil.copyfile(path, libs / name)
+        subprocess.run([patchelf, "--set-rpath", "$ORIGIN", str(libs / name)], check=True)
+    subprocess.run([patchelf, "--set-rpath", f"$ORIGIN/../{libs.name}", str(module)], check=True)
+
+
+if __name__ == "__main__":  # as pip and `python setup.py` run it; the wheel test imports SYSTEM_LIBRARIES
+    BUILD_BASE.mkdir(parents=True, exist_ok=True)
+    setup(
+        version=project_version(),
+        ext_modules=[Extension("fq._fq", sources=[])],
+        cmdclass={"build_ext": CMakeBuild},
+        options={"build": {"build_base": str(BUILD_BASE)}, "egg_info": {"egg_base": str(BUILD_BASE)}},
+    )

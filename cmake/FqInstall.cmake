@@ -1,6 +1,7 @@
 # Install rules: the tools, the libraries with their headers, a CMake package (find_package(fq)
-# gives fq::kernels, fq::io, fq::eval, fq::wire, with fq::core and fq::common under them) and
-# pkg-config files (fq.pc: everything; fq-wire.pc: the wire format alone, without the engines).
+# gives fq::kernels, fq::io, fq::eval, fq::wire, with fq::core and fq::common under them; its
+# component client gives fq::client), pkg-config files (fq.pc: everything; fq-wire.pc: the wire
+# format alone, without the engines; fq-client.pc: the client library) and fq.proto.
 #
 # Headers go to <prefix>/include/fq/<folder>/, so the installed targets carry include/fq (the
 # root-relative "kernels/engine.h" of the source tree keeps working) and include (for
@@ -36,6 +37,21 @@ install(DIRECTORY "${PROJECT_BINARY_DIR}/generated/" DESTINATION "${FQ_INSTALL_I
   FILES_MATCHING PATTERN "*.h")
 
 install(EXPORT fqTargets NAMESPACE fq:: DESTINATION "${FQ_INSTALL_CMAKEDIR}")
+
+# The client component: fq::client (with fq::curve under it) in an export set of its own, read
+# only when asked for (find_package(fq COMPONENTS client)), so that find_package(fq) alone does
+# not need ZeroMQ. Its headers go to include/fq/clients/common/ ("clients/common/frame_sender.h").
+set_target_properties(fq_client PROPERTIES EXPORT_NAME client)
+set_target_properties(fq_curve PROPERTIES EXPORT_NAME curve)
+install(TARGETS fq_client fq_curve EXPORT fqClientTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+get_target_property(fq_client_sources fq_client SOURCES)
+list(FILTER fq_client_sources INCLUDE REGEX "\\.h$")
+list(TRANSFORM fq_client_sources PREPEND "${PROJECT_SOURCE_DIR}/clients/common/")
+install(FILES ${fq_client_sources} DESTINATION "${FQ_INSTALL_INCLUDEDIR}/clients/common")
+install(EXPORT fqClientTargets NAMESPACE fq:: DESTINATION "${FQ_INSTALL_CMAKEDIR}")
+# The protocol's schema, for clients in other languages (protoc --python_out ...).
+install(FILES "${PROJECT_SOURCE_DIR}/wire/fq.proto" DESTINATION "${CMAKE_INSTALL_DATADIR}/fq")
+
 set(FQ_CUDA_ROOT "")
 if(FQ_WITH_CUDA)
   set(FQ_CUDA_ROOT "${CUDAToolkit_LIBRARY_ROOT}")
@@ -57,6 +73,7 @@ endif()
 file(RELATIVE_PATH FQ_PC_TO_PREFIX "/p/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/p")
 configure_file(cmake/fq.pc.in "${PROJECT_BINARY_DIR}/fq.pc" @ONLY)
 configure_file(cmake/fq-wire.pc.in "${PROJECT_BINARY_DIR}/fq-wire.pc" @ONLY)
+configure_file(cmake/fq-client.pc.in "${PROJECT_BINARY_DIR}/fq-client.pc" @ONLY)
 install(FILES "${PROJECT_BINARY_DIR}/fq.pc" "${PROJECT_BINARY_DIR}/fq-wire.pc"
-  DESTINATION "${CMAKE_INSTALL_LIBDIR}/pkgconfig")
+  "${PROJECT_BINARY_DIR}/fq-client.pc" DESTINATION "${CMAKE_INSTALL_LIBDIR}/pkgconfig")
 install(FILES "${PROJECT_SOURCE_DIR}/LICENSE" DESTINATION "${CMAKE_INSTALL_DATAROOTDIR}/doc/fq")

@@ -8,9 +8,9 @@
 #include <optional>
 #include <string>
 #include <zmq.hpp>
-#include <zmq_addon.hpp>
 
 #include "clients/common/curve_client.h"
+#include "clients/common/frame_sender.h"
 #include "clients/common/peer_monitor.h"
 #include "python/bindings.h"
 #include "python/client_frames.h"
@@ -60,14 +60,11 @@ class Producer {
   uint64_t send(const pyb::handle& v, const pyb::handle& f, double timeout_s) {
     check_open();
     const std::vector<std::string> parts = build_parts(v, f, spec_, sequence_);
-    std::vector<zmq::const_buffer> buffers;
-    buffers.reserve(parts.size());
-    for (const std::string& p : parts) buffers.push_back(zmq::buffer(p));
     // A PUSH socket blocks while no fqd is connected or its queue is full.
     const bool sent = wait_interruptible(
         [&](int ms) {
           push_.set(zmq::sockopt::sndtimeo, ms);
-          return unless_interrupted([&] { return zmq::send_multipart(push_, buffers).has_value(); });
+          return unless_interrupted([&] { return client::send_parts(push_, parts); });
         },
         timeout_s);
     if (!sent) {

@@ -34,6 +34,7 @@ test_packages=(
   libgtest-dev
   python3-dev pybind11-dev python3-numpy python3-pytest python3-open3d
   python3-venv python3-setuptools python3-wheel   # pip install . (pyproject.toml) and its test
+  patchelf   # pip install . and pip wheel: the module's libraries packaged in fq.libs/ (setup.py)
   python3-matplotlib   # the picture of python/examples/fq_vs_open3d.py
   clang-tidy
   python3-zmq python3-protobuf   # clients/examples/consume.py and its test

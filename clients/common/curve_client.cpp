@@ -1,16 +1,8 @@
 #include "clients/common/curve_client.h"
 
-#include <CLI/CLI.hpp>
-
 #include "common/curve_keys.h"
 
 namespace fq::client {
-
-void add_curve_options(CLI::App& app, CurveClientOptions& o) {
-  app.add_option("--server-key", o.server_key, "fqd's CURVE public key: Z85 text or a key file (fqkeys)")
-      ->group("Security");
-  app.add_option("--key-file", o.key_file, "this client's CURVE key pair file (fqkeys)")->group("Security");
-}
 
 Status apply_curve_client(zmq::socket_t& socket, const CurveClientOptions& o) {
   if (!o.enabled()) return {};

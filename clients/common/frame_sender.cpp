@@ -57,11 +57,11 @@ int64_t restamp_frame(std::vector<std::string>& parts, uint64_t sequence) {
   return now;
 }
 
-void send_parts(zmq::socket_t& push, const std::vector<std::string>& parts) {
+bool send_parts(zmq::socket_t& push, const std::vector<std::string>& parts) {
   std::vector<zmq::const_buffer> buffers;
   buffers.reserve(parts.size());
   for (const std::string& p : parts) buffers.push_back(zmq::buffer(p));
-  zmq::send_multipart(push, buffers);
+  return zmq::send_multipart(push, buffers).has_value();
 }
 
 }  // namespace fq::client

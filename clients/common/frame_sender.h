@@ -1,5 +1,6 @@
-// Producer side of the wire protocol, shared by fqpub, fqstreambench and the tests:
-// a mesh becomes [stream id][FrameHeader][draco chunk]... on a PUSH socket.
+// Producer side of the wire protocol, shared by fqpub, fqstreambench, the tests and the
+// installed client library (fq::client): a mesh becomes [stream id][FrameHeader][draco
+// chunk]... on a PUSH socket.
 #pragma once
 
 #include <cstdint>
@@ -47,8 +48,9 @@ Status build_frame(const MeshView& mesh, const FrameSpec& spec, uint64_t sequenc
 /// (now_ns), or 0 when parts[1] is not a frame header (then the parts are left unchanged).
 int64_t restamp_frame(std::vector<std::string>& parts, uint64_t sequence);
 
-/// Sends the parts as one multipart message (blocking while the socket's queue is full).
-void send_parts(zmq::socket_t& push, const std::vector<std::string>& parts);
+/// Sends the parts as one multipart message (blocking while the socket's queue is full or no
+/// fqd is connected); false when the socket's send timeout (ZMQ_SNDTIMEO) passed first.
+bool send_parts(zmq::socket_t& push, const std::vector<std::string>& parts);
 
 /// Wall-clock nanoseconds since the epoch (the clock of every *_time_ns field).
 int64_t now_ns();

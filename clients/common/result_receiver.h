@@ -1,4 +1,4 @@
-// Consumer side of the wire protocol, shared by fqsub, fqstreambench and the tests:
+// Consumer side of the wire protocol, shared by fqsub, fqstreambench, the tests and fq::client:
 // receive [stream id][ResultHeader][chunks...], decode and check it.
 #pragma once
 

@@ -13,8 +13,8 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "clients/common/curve_client.h"
 #include "clients/common/control_client.h"
+#include "clients/common/curve_options.h"
 #include "clients/common/tool_app.h"
 #include "clients/fqctl/counters_table.h"
 #include "clients/fqctl/param_assign.h"

@@ -7,16 +7,16 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <nlohmann/json.hpp>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <thread>
 
-#include "clients/common/curve_client.h"
+#include "clients/common/curve_options.h"
 #include "clients/common/defaulted_option.h"
 #include "clients/common/frame_sender.h"
 #include "clients/common/mesh_source.h"
-#include "clients/common/peer_monitor.h"
 #include "clients/common/override_options.h"
+#include "clients/common/peer_monitor.h"
 #include "clients/common/tool_app.h"
 
 namespace {

@@ -9,13 +9,13 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
 
-#include "clients/common/curve_client.h"
+#include "clients/common/curve_options.h"
 #include "clients/common/result_receiver.h"
 #include "clients/common/stream_stats.h"
 #include "clients/common/tool_app.h"
