@@ -224,6 +224,10 @@ const ParamRow* find_param(std::string_view name) {
   return nullptr;
 }
 
+bool same_params(const Params& a, const Params& b) {
+  return std::ranges::all_of(param_table(), [&](const ParamRow& row) { return row.get(a) == row.get(b); });
+}
+
 std::string format_param(const ParamRow& row, double value) {
   switch (row.kind) {
     case ParamKind::kBool:

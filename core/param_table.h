@@ -80,6 +80,10 @@ std::span<const ParamRow> param_table();
 /// The row named `name` (ParamRow::name), or null.
 const ParamRow* find_param(std::string_view name);
 
+/// Whether every row reads the same value from `a` and `b`: the same settings, as every
+/// surface sees them.
+bool same_params(const Params& a, const Params& b);
+
 /// The value's text in the names every surface uses: "qf+", "true", "0.7", "12".
 std::string format_param(const ParamRow& row, double value);
 /// Parses a value given as text (fqctl, fqpub, TOML strings): numbers whole-string, booleans

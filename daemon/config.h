@@ -20,6 +20,8 @@ struct Endpoints {
   std::string ingest = "tcp://127.0.0.1:5555";   ///< PULL, bound; producers PUSH-connect
   std::string publish = "tcp://127.0.0.1:5556";  ///< PUB, bound; consumers SUB-connect
   std::string control = "tcp://127.0.0.1:5557";  ///< REP, bound; fqctl-style REQ clients
+
+  bool operator==(const Endpoints&) const = default;
 };
 
 struct EngineConfig {
@@ -28,6 +30,8 @@ struct EngineConfig {
   bool cpu_alongside_gpus = false;  ///< also run the CPU engine when GPU engines exist
   int cpu_threads = 0;              ///< threads of each CPU engine; 0 = all hardware threads
   int cpu_engines = 1;              ///< CPU engines (one worker thread each) when the CPU engine is used
+
+  bool operator==(const EngineConfig&) const = default;
 };
 
 struct Caps {
@@ -63,6 +67,8 @@ struct Caps {
   /// ingest thread stops reading until a decoder takes one (backpressure; decode_queue.h).
   uint32_t max_queued_frames = 32;
   uint64_t max_queued_bytes = 256ull << 20;
+
+  bool operator==(const Caps&) const = default;
 };
 
 struct DaemonConfig {
@@ -92,6 +98,9 @@ struct DaemonConfig {
   /// "file:line" of a key from the file (of its table when the file does not set it), "file"
   /// when neither is in the file, "built-in defaults" without a file.
   std::string where(const std::string& key) const;
+
+  /// Equal settings and the same record of where they were read (source, lines).
+  bool operator==(const DaemonConfig&) const = default;
 };
 
 /// Parses TOML text (`source` names it in messages). Unknown keys, wrong types and

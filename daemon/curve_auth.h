@@ -28,6 +28,8 @@ struct SecurityConfig {
   /// client_keys_file's keys reach the control socket too.
   std::string control_keys_file;
   bool enabled() const { return !curve_key_file.empty(); }
+
+  bool operator==(const SecurityConfig&) const = default;
 };
 
 /// The keys a SecurityConfig names, read and checked.

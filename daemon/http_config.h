@@ -42,6 +42,8 @@ struct HttpConfig {
   /// Host header values (port ignored; "*.example.com" for a domain, "*" for any) accepted;
   /// empty: localhost, IP literals and the listen host (against DNS rebinding).
   std::vector<std::string> allowed_hosts;
+
+  bool operator==(const HttpConfig&) const = default;
 };
 
 /// Splits "host:port" ("[::1]:8080" for IPv6); false when it is not of that form or the

@@ -16,10 +16,14 @@ class TomlReader;
 struct SubIngestConfig {
   std::vector<std::string> connect;  ///< producers' PUB endpoints; empty = PULL only
   std::vector<std::string> streams;  ///< stream ids this fqd serves; empty = every stream
+
+  bool operator==(const SubIngestConfig&) const = default;
 };
 
 struct StatsLogConfig {
   double interval_s = 60.0;  ///< seconds between `[stats]` log lines; 0 = none
+
+  bool operator==(const StatsLogConfig&) const = default;
 };
 
 /// Reads [http], [stats] and [ingest] from the root table.

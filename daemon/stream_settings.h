@@ -6,9 +6,10 @@
 #include <cstdint>
 #include <string>
 
+#include "common/status.h"
+#include "core/param_table.h"
 #include "core/params.h"
 #include "wire/fq.pb.h"
-#include "common/status.h"
 
 namespace fq::daemon {
 
@@ -24,12 +25,19 @@ struct OutputEncoding {
   uint32_t chunks = 0;     ///< result chunk count; 0 = same as the input frame
   int encode_speed = 10;   ///< Draco encoder speed 0..10 (10: sequential, fastest; 0: smallest)
   int decode_speed = 10;   ///< Draco decoder speed the encoder aims for, 0..10
+
+  bool operator==(const OutputEncoding&) const = default;
 };
 
 struct StreamSettings {
   Params params;             ///< params.filter / params.cluster are the compute mode
   double budget_ms = 100.0;  ///< receive -> publish budget; older frames are dropped, results flagged late
   OutputEncoding output;
+
+  /// Parameters compared row by row of the parameter table (core/param_table.h).
+  bool operator==(const StreamSettings& o) const {
+    return same_params(params, o.params) && budget_ms == o.budget_ms && output == o.output;
+  }
 };
 
 /// "filter" | "cluster" | "filter_and_cluster" into params.filter / params.cluster.

@@ -350,14 +350,15 @@ unsigned block_size() {
   static const unsigned size = [] {
     const char* env = std::getenv("FQ_CUDA_BLOCK");
     const long v = env ? std::strtol(env, nullptr, 10) : 0;
-    return v >= 32 && v <= 1024 && v % 32 == 0 ? static_cast<unsigned>(v) : 256u;
+    return v >= 32 && v <= 1024 && v % 32 == 0 ? static_cast<unsigned>(v) : tuning::kItemBlock;
   }();
   return size;
 }
 
-unsigned blocks_for(uint64_t n) {
+unsigned grid_size(uint64_t items, uint64_t per_block) {
   if (g_fail_next_launch.exchange(false)) return 0;
-  const uint64_t b = (n + block_size() - 1) / block_size();
+  const uint64_t b = (items + per_block - 1) / per_block;
+  if (b > tuning::kMaxGrid) return 0;
   return b > 0 ? static_cast<unsigned>(b) : 1u;
 }
 

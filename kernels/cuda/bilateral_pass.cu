@@ -53,8 +53,7 @@ __global__ void jones_kernel(uint32_t n, const Point4* points, GridView tg, cons
 // Centroid bounds read back to lay the grid out on the host, as build_grid does.
 GridLayout centroid_layout(DeviceFrame& f, float cell, cudaStream_t s) {
   int* bounds = f.bounds.reserve(6);
-  reset_bounds<<<1, 32, 0, s>>>(bounds);
-  FQ_CUDA_CHECK_LAUNCH("reset_bounds");
+  FQ_LAUNCH(reset_bounds, launch_shape(1, tuning::kResetBoundsBlock), s, bounds);
   FQ_LAUNCH(centroid_points, f.m, s, f.m, f.tri_geom.data(), f.tri_in.reserve(f.m),
                                                            bounds);
   int* h = f.h_bounds.reserve(6);

@@ -32,7 +32,3 @@ inline void check(cudaError_t code, const char* call, const char* file, int line
 
 /// Throws fq::cuda::CudaError naming the call, file, line and error when `call` fails.
 #define FQ_CUDA_CHECK(call) ::fq::cuda::check((call), #call, __FILE__, __LINE__)
-/// After a kernel launch: reports a bad launch configuration (asynchronous faults surface
-/// at the frame's synchronization, which is checked the same way).
-#define FQ_CUDA_CHECK_LAUNCH(kernel) \
-  ::fq::cuda::check(cudaGetLastError(), "launch of " kernel, __FILE__, __LINE__)

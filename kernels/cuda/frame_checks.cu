@@ -19,8 +19,8 @@ namespace {
 
 // The reductions run on a fixed grid, so the partial sums, and the order in which they are
 // combined, are the same on every run: the mean edge is reproducible.
-constexpr unsigned kThreads = 256;
-constexpr unsigned kBlocks = 1024;
+constexpr unsigned kThreads = tuning::kReduceBlock;
+constexpr unsigned kBlocks = tuning::kReduceGrid;
 using ULL = unsigned long long;
 
 struct MinOp {
@@ -122,14 +122,11 @@ __global__ void to_input_kernel(uint32_t n, const uint32_t* rank, const Vec3* mo
 void reduce_frame(DeviceFrame& f, cudaStream_t s) {
   FrameStats* st = f.stats.reserve(1);
   double* partial = f.edge_partials.reserve(kBlocks);
-  reset_stats<<<1, 1, 0, s>>>(st);
-  FQ_CUDA_CHECK_LAUNCH("reset_stats");
-  vertex_checks<<<kBlocks, kThreads, 0, s>>>(f.n, f.in_coords.data(), st);
-  FQ_CUDA_CHECK_LAUNCH("vertex_checks");
-  triangle_checks<<<kBlocks, kThreads, 0, s>>>(f.m, f.n, f.in_tris.data(), f.in_coords.data(), st, partial);
-  FQ_CUDA_CHECK_LAUNCH("triangle_checks");
-  sum_partials<<<1, kThreads, 0, s>>>(partial, st);
-  FQ_CUDA_CHECK_LAUNCH("sum_partials");
+  FQ_LAUNCH(reset_stats, launch_shape(1, tuning::kSingleThread), s, st);
+  FQ_LAUNCH(vertex_checks, launch_shape(kBlocks, kThreads), s, f.n, f.in_coords.data(), st);
+  FQ_LAUNCH(triangle_checks, launch_shape(kBlocks, kThreads), s, f.m, f.n, f.in_tris.data(),
+            f.in_coords.data(), st, partial);
+  FQ_LAUNCH(sum_partials, launch_shape(1, kThreads), s, partial, st);
   FQ_CUDA_CHECK(cudaMemcpyAsync(f.h_stats.reserve(1), st, sizeof(FrameStats), cudaMemcpyDeviceToHost, s));
 }
 

@@ -4,7 +4,7 @@
 // size. Here a block of two warps makes one sample, a warp per vertex, with the lanes
 // building the ring a chunk of candidates at a time, projecting a ring vertex each and
 // summing one entry of XᵀX each; the math is kernels/noise_estimate.h's.
-#include "kernels/cuda/cuda_check.cuh"
+#include "kernels/cuda/launch.cuh"
 #include "kernels/cuda/noise_samples.cuh"
 
 namespace fq::cuda {
@@ -13,6 +13,7 @@ namespace {
 
 constexpr int kWarp = 32;
 constexpr unsigned kAll = 0xffffffffu;
+static_assert(tuning::kNoiseSampleBlock == 2 * kWarp, "a block is the two warps of one sample");
 
 /// A warp's fit in shared memory: the RingFit noise_sample() reads, and the ring in the frame.
 struct WarpFit {
@@ -106,7 +107,7 @@ __device__ double white_covariance_warp(const RingFit& fv, const RingFit& fu, ui
 }
 
 /// Block k (two warps) makes sample k: warp 0 fits v, warp 1 its partner u.
-__global__ void __launch_bounds__(2 * kWarp)
+__global__ void __launch_bounds__(tuning::kNoiseSampleBlock)
     noise_sample_kernel(FanView m, const Vec3* x, uint32_t stride, NoiseSample* out) {
   __shared__ alignas(alignof(WarpFit)) unsigned char raw[2 * sizeof(WarpFit)];
   WarpFit* fits = reinterpret_cast<WarpFit*>(raw);
@@ -135,8 +136,7 @@ __global__ void __launch_bounds__(2 * kWarp)
 void noise_samples(const FanView& fan, const Vec3* x, uint32_t stride, uint32_t count, NoiseSample* out,
                    cudaStream_t s) {
   if (count == 0) return;
-  noise_sample_kernel<<<count, 2 * kWarp, 0, s>>>(fan, x, stride, out);
-  FQ_CUDA_CHECK_LAUNCH("noise_sample_kernel");
+  FQ_LAUNCH(noise_sample_kernel, launch_shape(count, tuning::kNoiseSampleBlock), s, fan, x, stride, out);
 }
 
 }  // namespace fq::cuda

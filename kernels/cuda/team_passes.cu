@@ -6,20 +6,20 @@
 #include <type_traits>
 
 #include "kernels/cluster_math.h"
-#include "kernels/filter_math.h"
-#include "kernels/cuda/cuda_check.cuh"
-#include "kernels/gaussian.h"
 #include "kernels/cuda/launch.cuh"
 #include "kernels/cuda/team_passes.cuh"
 #include "kernels/cuda/team_visit.cuh"
+#include "kernels/filter_math.h"
+#include "kernels/gaussian.h"
 
 // Occupancy experiment (docs/BENCHMARKS.md): build with -DFQ_TEAM_MIN_BLOCKS=6 to cap the
-// team kernels at 40 registers (6 blocks of 256 per SM); 0 leaves the compiler's choice.
+// team kernels at 40 registers (6 blocks of tuning::kItemBlock per SM); 0 leaves the
+// compiler's choice.
 #ifndef FQ_TEAM_MIN_BLOCKS
 #define FQ_TEAM_MIN_BLOCKS 0
 #endif
 #if FQ_TEAM_MIN_BLOCKS > 0
-#define FQ_TEAM_BOUNDS __launch_bounds__(256, FQ_TEAM_MIN_BLOCKS)
+#define FQ_TEAM_BOUNDS __launch_bounds__(tuning::kItemBlock, FQ_TEAM_MIN_BLOCKS)
 #else
 #define FQ_TEAM_BOUNDS
 #endif
@@ -124,8 +124,6 @@ __global__ void FQ_TEAM_BOUNDS team_link(GridView g, const PackedQuadric* qbl, c
   if (s.active && s.lane == 0) next[s.i] = best.target(s.i, cut);
 }
 
-unsigned team_blocks(uint32_t n, int team) { return blocks_for(uint64_t(n) * team); }
-
 /// Calls launch(std::integral_constant<int, T>{}) for the supported team size T that is
 /// `team` (32 for any other value): each kernel is instantiated once per size.
 template <class Launch>
@@ -140,15 +138,13 @@ void with_team_size(int team, Launch&& launch) {
   }
 }
 
-// Launches `kernel` instantiated for the team size asked for.
-#define FQ_TEAM_LAUNCH(kernel, team, n, s, ...)                          \
-  do {                                                                   \
-    with_team_size(team, [&](auto size) {                                \
-      constexpr int T = decltype(size)::value;                           \
-      kernel<T><<<team_blocks(n, T), block_size(), 0, s>>>(__VA_ARGS__); \
-    });                                                                  \
-    FQ_CUDA_CHECK_LAUNCH(#kernel);                                       \
-  } while (0)
+// Launches `kernel` instantiated for the team size asked for, team_blocks() blocks of
+// block_size() threads.
+#define FQ_TEAM_LAUNCH(kernel, team, n, s, ...)                                          \
+  with_team_size(team, [&](auto size) {                                                  \
+    constexpr int T = decltype(size)::value;                                             \
+    FQ_LAUNCH(kernel<T>, launch_shape(team_blocks(n, T), block_size()), s, __VA_ARGS__); \
+  })
 
 }  // namespace
 

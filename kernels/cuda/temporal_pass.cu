@@ -92,8 +92,7 @@ __global__ void normals_kernel(uint32_t n, FanView fan, const Vec3* x, const uin
 template <class T>
 T* ring_means(const FanView& fan, T* a, T* b, int passes, uint32_t n, cudaStream_t s) {
   for (int p = 0; p < passes; ++p) {
-    ring_mean_kernel<T><<<blocks_for(n), block_size(), 0, s>>>(n, fan, a, b);
-    FQ_CUDA_CHECK_LAUNCH("ring_mean_kernel");
+    FQ_LAUNCH(ring_mean_kernel<T>, n, s, n, fan, a, b);
     std::swap(a, b);
   }
   return a;
@@ -136,8 +135,7 @@ void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const Tempo
     GridView prior{};  // no points: no vertex finds a prior
     if (m > 0) {
       Point4* in = prior_in_.reserve(m);
-      prior_points_kernel<<<blocks_for(m), block_size(), 0, s>>>(m, target_->positions.data(), norm, in);
-      FQ_CUDA_CHECK_LAUNCH("prior_points_kernel");
+      FQ_LAUNCH(prior_points_kernel, m, s, m, target_->positions.data(), norm, in);
       // Over the frame's bounds: the history's points outside them go to the open edge cells.
       const GridLayout& frame = f.grid.layout;
       const Vec3 lo = frame.origin;
@@ -150,25 +148,21 @@ void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const Tempo
     const Vec3* motion = nullptr;  // none yet: the first lookups are from x
     for (int it = 0; it < kMotionIterations; ++it) {
       Vec3* offset = motion == buffers[0] ? buffers[1] : buffers[0];
-      offset_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, prior, x, motion, offset);
-      FQ_CUDA_CHECK_LAUNCH("offset_kernel");
+      FQ_LAUNCH(offset_kernel, n, s, n, prior, x, motion, offset);
       motion = ring_means(fan, offset, offset == buffers[0] ? buffers[1] : buffers[0], kMotionPasses, n, s);
     }
     uint32_t* match = match_.reserve(n);
     float* detail = detail_.reserve(n);
     float* level = level_[0].reserve(n);
-    detail_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, prior, grid_.order.data(), target_->normals.data(), x,
-                                                         motion, match, detail, level, covered);
-    FQ_CUDA_CHECK_LAUNCH("detail_kernel");
+    FQ_LAUNCH(detail_kernel, n, s, n, prior, grid_.order.data(), target_->normals.data(), x, motion, match,
+              detail, level, covered);
     const float* local = ring_means(fan, level, level_[1].reserve(n), kAgreementPasses, n, s);
     partials_ = (n + kPullBlock - 1) / kPullBlock;
-    pull_kernel<<<partials_, kPullBlock, 0, s>>>(n, grid_.order.data(), target_->normals.data(), match, detail,
-                                                 local, strength, noise, covered, x,
-                                                 share_partials_.reserve(partials_));
-    FQ_CUDA_CHECK_LAUNCH("pull_kernel");
+    FQ_LAUNCH(pull_kernel, launch_shape(partials_, kPullBlock), s, n, grid_.order.data(),
+              target_->normals.data(), match, detail, local, strength, noise, covered, x,
+              share_partials_.reserve(partials_));
   }
-  normals_kernel<<<blocks_for(n), block_size(), 0, s>>>(n, fan, x, f.grid.rank.data(), next_.normals.reserve(n));
-  FQ_CUDA_CHECK_LAUNCH("normals_kernel");
+  FQ_LAUNCH(normals_kernel, n, s, n, fan, x, f.grid.rank.data(), next_.normals.reserve(n));
 }
 
 void TemporalPass::keep(const DeviceFrame& f, cudaStream_t s) {
