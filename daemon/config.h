@@ -8,11 +8,11 @@
 #include <string_view>
 #include <vector>
 
-#include "kernels/engine.h"
 #include "common/status.h"
-#include "daemon/curve_auth.h"
+#include "daemon/security_config.h"
 #include "daemon/service_config.h"
 #include "daemon/stream_settings.h"
+#include "kernels/engine.h"
 
 namespace fq::daemon {
 

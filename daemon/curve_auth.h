@@ -17,18 +17,10 @@
 #include "common/non_copyable.h"
 #include "common/status.h"
 #include "daemon/log_limiter.h"
+#include "daemon/security_config.h"
 #include "daemon/stream_admission.h"
 
 namespace fq::daemon {
-
-struct SecurityConfig {
-  std::string curve_key_file;     ///< fqd's key pair (public + secret); empty: CURVE off
-  std::string client_keys_file;   ///< client public keys allowed in; required with CURVE
-  /// Client public keys allowed on the control socket instead of client_keys_file's; empty:
-  /// client_keys_file's keys reach the control socket too.
-  std::string control_keys_file;
-  bool enabled() const { return !curve_key_file.empty(); }
-};
 
 /// The keys a SecurityConfig names, read and checked.
 struct CurveServerKeys {

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <vector>
 
-#include "daemon/prometheus_text.h"
+#include "daemon/prometheus_format.h"
 
 namespace fq::daemon {
 namespace {

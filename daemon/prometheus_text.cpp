@@ -5,14 +5,10 @@
 namespace fq::daemon {
 namespace {
 
-void family(std::string& out, const char* name, const char* type, const char* help) {
-  out += std::string("# HELP ") + name + " " + help + "\n# TYPE " + name + " " + type + "\n";
-}
-
-// %.17g round-trips any double; bucket bounds are short decimals and print as such with %g.
-std::string number(double v, const char* format = "%.17g") {
+// Bucket bounds are short decimals and print as such with %g.
+std::string bound(double v) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
+  std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
 
@@ -53,36 +49,37 @@ constexpr CounterFamily kCounters[] = {
 };
 
 void histograms(std::string& out, const std::vector<StreamSnapshot>& streams) {
-  family(out, "fq_stage_latency_seconds", "histogram",
-         "Time per pipeline stage (decode, wait, engine, engine.<pass>, encode, receive_to_publish, "
-         "send_to_publish) of published results.");
+  append_family(out, "fq_stage_latency_seconds", "histogram",
+                "Time per pipeline stage (decode, wait, engine, engine.<pass>, encode, receive_to_publish, "
+                "send_to_publish) of published results.");
   for (const StreamSnapshot& s : streams) {
     for (const auto& [stage, h] : s.histograms) {
       const std::string labels = "stream=\"" + escape_label_value(s.stream_id) + "\",stage=\"" +
                                  escape_label_value(stage) + "\"";
       for (size_t i = 0; i < LatencyHistogram::kBoundsMs.size(); ++i)
         out += "fq_stage_latency_seconds_bucket{" + labels + ",le=\"" +
-               number(LatencyHistogram::kBoundsMs[i] / 1000.0, "%g") + "\"} " + std::to_string(h.bucket(i)) + "\n";
+               bound(LatencyHistogram::kBoundsMs[i] / 1000.0) + "\"} " + std::to_string(h.bucket(i)) + "\n";
       out += "fq_stage_latency_seconds_bucket{" + labels + ",le=\"+Inf\"} " + std::to_string(h.count()) + "\n";
-      out += "fq_stage_latency_seconds_sum{" + labels + "} " + number(h.sum_ms() / 1000.0) + "\n";
+      out += "fq_stage_latency_seconds_sum{" + labels + "} " + metric_number(h.sum_ms() / 1000.0) + "\n";
       out += "fq_stage_latency_seconds_count{" + labels + "} " + std::to_string(h.count()) + "\n";
     }
   }
 }
 
 void engines_and_gpus(std::string& out, const MetricsInput& in) {
-  family(out, "fq_engine_info", "gauge",
-         "One series per engine; kind is cpu or cuda, index tells engines of one name apart.");
+  append_family(out, "fq_engine_info", "gauge",
+                "One series per engine; kind is cpu or cuda, index tells engines of one name apart.");
   for (size_t i = 0; i < in.engines.size(); ++i) {
     const std::string& e = in.engines[i];
     const std::string kind = e.rfind("cuda", 0) == 0 ? "cuda" : "cpu";
     out += "fq_engine_info{engine=\"" + escape_label_value(e) + "\",index=\"" + std::to_string(i) + "\",kind=\"" +
            kind + "\"} 1\n";
   }
-  family(out, "fq_gpu_memory_used_bytes", "gauge", "Device memory in use on each GPU with an engine (device-wide).");
+  append_family(out, "fq_gpu_memory_used_bytes", "gauge",
+                "Device memory in use on each GPU with an engine (device-wide).");
   for (const GpuMemory& g : in.gpus)
     out += "fq_gpu_memory_used_bytes{gpu=\"" + std::to_string(g.device) + "\"} " + std::to_string(g.used_bytes) + "\n";
-  family(out, "fq_gpu_memory_total_bytes", "gauge", "Device memory of each GPU with an engine.");
+  append_family(out, "fq_gpu_memory_total_bytes", "gauge", "Device memory of each GPU with an engine.");
   for (const GpuMemory& g : in.gpus)
     out += "fq_gpu_memory_total_bytes{gpu=\"" + std::to_string(g.device) + "\"} " + std::to_string(g.total_bytes) +
            "\n";
@@ -90,44 +87,16 @@ void engines_and_gpus(std::string& out, const MetricsInput& in) {
 
 }  // namespace
 
-void append_reason_counts(std::string& out, const char* name, const char* help,
-                          const std::vector<std::pair<std::string, uint64_t>>& counts) {
-  family(out, name, "counter", help);
-  for (const auto& [reason, n] : counts)
-    out += std::string(name) + "{reason=\"" + escape_label_value(reason) + "\"} " + std::to_string(n) + "\n";
-}
-
-void append_family(std::string& out, const char* name, const char* type, const char* help) {
-  family(out, name, type, help);
-}
-
-std::string metric_number(double v) { return number(v); }
-
-std::string escape_label_value(const std::string& value) {
-  std::string out;
-  for (char c : value) {
-    if (c == '\\')
-      out += "\\\\";
-    else if (c == '"')
-      out += "\\\"";
-    else if (c == '\n')
-      out += "\\n";
-    else
-      out += c;
-  }
-  return out;
-}
-
 std::string prometheus_text(const MetricsInput& in) {
   std::string out;
   for (const CounterFamily& f : kCounters) {
-    family(out, f.name, "counter", f.help);
+    append_family(out, f.name, "counter", f.help);
     for (const StreamSnapshot& s : in.streams)
       out += std::string(f.name) + "{stream=\"" + escape_label_value(s.stream_id) + "\"} " +
              std::to_string(s.counters.*f.field) + "\n";
   }
   histograms(out, in.streams);
-  family(out, "fq_streams", "gauge", "Streams fqd knows (configured or seen).");
+  append_family(out, "fq_streams", "gauge", "Streams fqd knows (configured or seen).");
   out += "fq_streams " + std::to_string(in.streams.size()) + "\n";
   engines_and_gpus(out, in);
   append_reason_counts(out, "fq_http_refused_total", "HTTP requests and connections refused, by reason.",

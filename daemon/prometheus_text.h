@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "daemon/gpu_memory.h"
+#include "daemon/prometheus_format.h"
 #include "daemon/stream_registry.h"
 
 namespace fq::daemon {
@@ -23,18 +24,5 @@ struct MetricsInput {
 };
 
 std::string prometheus_text(const MetricsInput& in);
-
-/// "# HELP name help" and "# TYPE name type" lines, for families written elsewhere.
-void append_family(std::string& out, const char* name, const char* type, const char* help);
-
-/// A counter family by reason: `name`{reason="…"} for each (reason, count), zeros included.
-void append_reason_counts(std::string& out, const char* name, const char* help,
-                          const std::vector<std::pair<std::string, uint64_t>>& counts);
-
-/// A sample value that round-trips (%.17g).
-std::string metric_number(double v);
-
-/// A label value with \, " and newline escaped as the format requires.
-std::string escape_label_value(const std::string& value);
 
 }  // namespace fq::daemon

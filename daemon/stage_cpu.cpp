@@ -3,7 +3,7 @@
 #include <utility>
 
 #include "common/pair_table.h"
-#include "daemon/prometheus_text.h"
+#include "daemon/prometheus_format.h"
 
 namespace fq::daemon {
 namespace {
