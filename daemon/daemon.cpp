@@ -7,15 +7,15 @@
 #include <mutex>
 
 #include "common/non_copyable.h"
-#include "daemon/config_reload.h"
-#include "daemon/control_server.h"
-#include "daemon/daemon_threads.h"
-#include "daemon/ingest.h"
-#include "daemon/publisher.h"
-#include "daemon/result_socket.h"
-#include "daemon/service_metrics.h"
-#include "daemon/settings_audit.h"
-#include "daemon/sub_ingest.h"
+#include "daemon/service/config_reload.h"
+#include "daemon/control/control_server.h"
+#include "daemon/pipeline/daemon_threads.h"
+#include "daemon/pipeline/ingest.h"
+#include "daemon/pipeline/publisher.h"
+#include "daemon/pipeline/result_socket.h"
+#include "daemon/control/service_metrics.h"
+#include "daemon/control/settings_audit.h"
+#include "daemon/pipeline/sub_ingest.h"
 
 namespace fq::daemon {
 namespace {

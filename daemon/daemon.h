@@ -10,12 +10,12 @@
 #include <zmq.hpp>
 
 #include "common/non_copyable.h"
-#include "daemon/config.h"
+#include "daemon/config/config.h"
 #include "kernels/engine.h"
-#include "daemon/http_server.h"
-#include "daemon/pipeline.h"
-#include "daemon/stats_log.h"
-#include "daemon/stream_registry.h"
+#include "daemon/http/http_server.h"
+#include "daemon/pipeline/pipeline.h"
+#include "daemon/control/stats_log.h"
+#include "daemon/stream/stream_registry.h"
 
 namespace fq::daemon {
 
