@@ -5,7 +5,7 @@
 
 #include <zmq_addon.hpp>
 
-#include "daemon/pipeline/bounded_receive.h"
+#include "daemon/pipeline/daemon_threads.h"
 #include "wire/frame_codec.h"
 #include "wire/header_codec.h"
 
@@ -41,42 +41,42 @@ Status check_header(const wire::FrameHeader& h, const std::string& topic, size_t
 // buffer far larger than its frame needed (a small frame after a huge one), or once frames
 // stopped for 5 s. Not on a timer while frames flow: each trim made the next frames fault
 // their pages in again (tens of MB for a 4M-triangle frame).
-static void hand_back_free_pages(Pipeline& p, int64_t now) {
+void Ingest::hand_back_free_pages(int64_t now) {
   constexpr int64_t kPeriod = 5'000'000'000;
-  if (p.next_arrival != p.arrival_seen) {
-    p.arrival_seen = p.next_arrival;
-    p.arrival_seen_ns = now;
+  if (next_arrival_ != arrival_seen_) {
+    arrival_seen_ = next_arrival_;
+    arrival_seen_ns_ = now;
   }
-  if (now - p.last_malloc_trim_ns < kPeriod) return;
-  const uint64_t oversized = p.results.oversized_freed() + p.meshes.oversized_freed();
-  const bool shrank = oversized != p.oversized_at_trim;
-  const bool went_idle = p.next_arrival != p.arrival_at_trim && now - p.arrival_seen_ns >= kPeriod;
+  if (now - last_malloc_trim_ns_ < kPeriod) return;
+  const uint64_t oversized = p_.results.oversized_freed() + p_.meshes.oversized_freed();
+  const bool shrank = oversized != oversized_at_trim_;
+  const bool went_idle = next_arrival_ != arrival_at_trim_ && now - arrival_seen_ns_ >= kPeriod;
   if (!shrank && !went_idle) return;
-  p.last_malloc_trim_ns = now;
-  p.oversized_at_trim = oversized;
-  p.arrival_at_trim = p.next_arrival;
+  last_malloc_trim_ns_ = now;
+  oversized_at_trim_ = oversized;
+  arrival_at_trim_ = next_arrival_;
   malloc_trim(0);
 }
 
 // Streams without frames for caps.stream_idle_s give their slot back (at most one sweep
 // a second; the ingest socket's receive timeout wakes the thread when nothing arrives).
-void expire_idle_streams(Pipeline& p) {
+void Ingest::expire_idle_streams() {
   const int64_t now = wall_ns();
-  if (now - p.last_sweep_ns < 1'000'000'000) return;
-  p.last_sweep_ns = now;
-  const std::shared_ptr<const Caps> caps = p.caps.get();
+  if (now - last_sweep_ns_ < 1'000'000'000) return;
+  last_sweep_ns_ = now;
+  const std::shared_ptr<const Caps> caps = p_.caps.get();
   const auto idle_ns = static_cast<int64_t>(caps->pool_idle_s * 1e9);
-  p.results.trim(now, idle_ns);
-  p.meshes.trim(now, idle_ns);
-  hand_back_free_pages(p, now);
+  p_.results.trim(now, idle_ns);
+  p_.meshes.trim(now, idle_ns);
+  hand_back_free_pages(now);
   // The codec's buffers (kept per use, not per thread) go back once frames have stopped as
   // long; their pages at the next trim.
-  if (now - p.arrival_seen_ns >= idle_ns) wire::release_memory();
+  if (now - arrival_seen_ns_ >= idle_ns) wire::release_memory();
   // One erase each: what the pipeline keeps for a stream lives in its Stream, freed with the
   // last of its frames still in flight.
-  for (const std::string& id : p.registry.expire_idle(now, caps->stream_idle_s)) {
-    p.expiry_log.log(spdlog::level::info, "stream '{}' expired after {} s without frames", id,
-                     caps->stream_idle_s);
+  for (const std::string& id : p_.registry.expire_idle(now, caps->stream_idle_s)) {
+    p_.expiry_log.log(spdlog::level::info, "stream '{}' expired after {} s without frames", id,
+                      caps->stream_idle_s);
   }
 }
 
@@ -94,96 +94,7 @@ FramePtr refuse(FramePtr f, Refusal why, Status message, Pipeline& p) {
   return f;
 }
 
-// A message that failed a check: a stream that exists already gets the error counted as its
-// own; otherwise it is refused before any state is made for it.
-FramePtr reject(FramePtr f, const std::string& topic, Refusal why, Status s, Pipeline& p) {
-  if ((f->stream = p.registry.find(topic))) {
-    f->settings = f->stream->settings();
-    f->stream->count(Counter::kIn);
-    f->arrival = p.next_arrival++;
-    f->error = std::move(s);
-    return f;
-  }
-  return refuse(std::move(f), why, std::move(s), p);
-}
-
-}  // namespace
-
-FramePtr admit_message(std::vector<zmq::message_t>& parts, Pipeline& p) {
-  auto f = std::make_unique<FrameJob>();
-  f->receive_ns = wall_ns();
-  const std::shared_ptr<const Caps> live = p.caps.get();
-  const Caps& caps = *live;
-  const std::string topic = parts.empty() ? std::string() : parts[0].to_string();
-  f->stream_id = printable_id(topic, caps.max_stream_id_bytes);
-  Refusal why = Refusal::kBadStreamId;
-  if (Status s = check_stream_id(topic, caps, &why); !s.ok()) return refuse(std::move(f), why, std::move(s), p);
-  f->stream_id = topic;
-  // Only a well-formed frame can make a stream: junk never takes a slot.
-  Status s = check_framing(parts);
-  if (s.ok()) s = wire::parse_frame_header(std::string_view(parts[1].data<char>(), parts[1].size()), f->header);
-  if (s.ok()) s = check_header(f->header, f->stream_id, parts.size() - 2, caps);
-  if (!s.ok()) return reject(std::move(f), topic, Refusal::kMalformed, std::move(s), p);
-  f->stream = p.registry.admit(topic, f->receive_ns);
-  if (!f->stream)
-    return refuse(std::move(f), Refusal::kTooManyStreams,
-                  invalid_input("too many streams (caps.max_streams = " + std::to_string(caps.max_streams) + ")"), p);
-  f->settings = f->stream->settings();
-  f->arrival = p.next_arrival++;
-  f->stream->count(Counter::kIn);
-  for (size_t i = 2; i < parts.size(); ++i) f->chunks.push_back(std::move(parts[i]));
-  return f;
-}
-
-namespace {
-
-// A message over the ingest bounds (its parts past them already dropped): an error of its
-// stream, or refused under its (escaped) topic.
-FramePtr refuse_oversized(const std::vector<zmq::message_t>& parts, Received why, Pipeline& p) {
-  auto f = std::make_unique<FrameJob>();
-  f->receive_ns = wall_ns();
-  const std::string topic = parts[0].to_string();
-  const bool valid = check_stream_id(topic, *p.caps.get()).ok();
-  f->stream_id = valid ? topic : printable_id(topic);
-  const std::string what = why == Received::kTooManyParts
-                               ? "more than " + std::to_string(2 + wire::kMaxChunks) + " parts"
-                               : "more than caps.max_frame_bytes = " + std::to_string(p.config.caps.max_frame_bytes) +
-                                     " bytes";
-  Status s = invalid_input("message of " + what);
-  if (!valid) return refuse(std::move(f), Refusal::kOversized, std::move(s), p);
-  return reject(std::move(f), topic, Refusal::kOversized, std::move(s), p);
-}
-
-}  // namespace
-
-bool ingest_one(zmq::socket_t& socket, Pipeline& p, zmq::recv_flags flags, const std::set<std::string>* assigned) {
-  std::vector<zmq::message_t> parts;
-  const MessageBounds bounds{2 + wire::kMaxChunks, p.config.caps.max_frame_bytes};
-  const Received got = receive_bounded(socket, parts, bounds, flags);
-  if (got == Received::kNothing) return false;
-  if (!admit_sender(parts[0], p.keys, p.registry.refusals())) return true;  // a key revoked since it connected
-  // Another fqd's stream (a SUB topic matches by prefix): not ours to count.
-  if (assigned && !assigned->empty() && !assigned->count(parts[0].to_string())) return true;
-  queue_admitted(got == Received::kMessage ? admit_message(parts, p) : refuse_oversized(parts, got, p), p);
-  return true;
-}
-
-void run_ingest(zmq::socket_t socket, Pipeline& p) {
-  LogLimiter errors;
-  for (;;) {
-    // Per message, so the account stays current; a blocked receive costs no CPU time.
-    const CpuScope cpu(p.stage_cpu[CpuStage::kIngest]);
-    expire_idle_streams(p);
-    try {
-      ingest_one(socket, p, zmq::recv_flags::none);  // nothing after the receive timeout
-    } catch (const zmq::error_t& e) {
-      if (e.num() == ETERM) break;
-      errors.log(spdlog::level::err, "ingest: {}", e.what());
-    }
-  }
-  socket.close();
-}
-
+// Hands an admitted job on: refusals and errors to the publisher, frames to the decoders.
 void queue_admitted(FramePtr f, Pipeline& p) {
   if (f->refused) {
     p.publish_queue.push(std::move(f));  // logged (rate-limited) and counted at refusal
@@ -201,6 +112,112 @@ void queue_admitted(FramePtr f, Pipeline& p) {
                      older->header.sequence());
     }
   }
+}
+
+}  // namespace
+
+FramePtr Ingest::reject(FramePtr f, const std::string& topic, Refusal why, Status s) {
+  if ((f->stream = p_.registry.find(topic))) {
+    f->settings = f->stream->settings();
+    f->stream->count(Counter::kIn);
+    f->arrival = next_arrival_++;
+    f->error = std::move(s);
+    return f;
+  }
+  return refuse(std::move(f), why, std::move(s), p_);
+}
+
+FramePtr Ingest::admit_message(std::vector<zmq::message_t>& parts) {
+  auto f = std::make_unique<FrameJob>();
+  f->receive_ns = wall_ns();
+  const std::shared_ptr<const Caps> live = p_.caps.get();
+  const Caps& caps = *live;
+  const std::string topic = parts.empty() ? std::string() : parts[0].to_string();
+  f->stream_id = printable_id(topic, caps.max_stream_id_bytes);
+  Refusal why = Refusal::kBadStreamId;
+  if (Status s = check_stream_id(topic, caps, &why); !s.ok())
+    return refuse(std::move(f), why, std::move(s), p_);
+  f->stream_id = topic;
+  // Only a well-formed frame can make a stream: junk never takes a slot.
+  Status s = check_framing(parts);
+  if (s.ok()) s = wire::parse_frame_header(std::string_view(parts[1].data<char>(), parts[1].size()), f->header);
+  if (s.ok()) s = check_header(f->header, f->stream_id, parts.size() - 2, caps);
+  if (!s.ok()) return reject(std::move(f), topic, Refusal::kMalformed, std::move(s));
+  f->stream = p_.registry.admit(topic, f->receive_ns);
+  if (!f->stream)
+    return refuse(
+        std::move(f), Refusal::kTooManyStreams,
+        invalid_input("too many streams (caps.max_streams = " + std::to_string(caps.max_streams) + ")"), p_);
+  f->settings = f->stream->settings();
+  f->arrival = next_arrival_++;
+  f->stream->count(Counter::kIn);
+  for (size_t i = 2; i < parts.size(); ++i) f->chunks.push_back(std::move(parts[i]));
+  return f;
+}
+
+// Its parts past the bounds were already dropped; refused under its (escaped) topic when the
+// topic is no valid stream id.
+FramePtr Ingest::refuse_oversized(const std::vector<zmq::message_t>& parts, Received why) {
+  auto f = std::make_unique<FrameJob>();
+  f->receive_ns = wall_ns();
+  const std::string topic = parts[0].to_string();
+  const bool valid = check_stream_id(topic, *p_.caps.get()).ok();
+  f->stream_id = valid ? topic : printable_id(topic);
+  const std::string what =
+      why == Received::kTooManyParts
+          ? "more than " + std::to_string(2 + wire::kMaxChunks) + " parts"
+          : "more than caps.max_frame_bytes = " + std::to_string(p_.config.caps.max_frame_bytes) + " bytes";
+  Status s = invalid_input("message of " + what);
+  if (!valid) return refuse(std::move(f), Refusal::kOversized, std::move(s), p_);
+  return reject(std::move(f), topic, Refusal::kOversized, std::move(s));
+}
+
+bool Ingest::ingest_one(zmq::socket_t& socket, zmq::recv_flags flags, const std::set<std::string>* assigned) {
+  std::vector<zmq::message_t> parts;
+  const MessageBounds bounds{2 + wire::kMaxChunks, p_.config.caps.max_frame_bytes};
+  const Received got = receive_bounded(socket, parts, bounds, flags);
+  if (got == Received::kNothing) return false;
+  if (!admit_sender(parts[0], p_.keys, p_.registry.refusals()))
+    return true;  // a key revoked since it connected
+  // Another fqd's stream (a SUB topic matches by prefix): not ours to count.
+  if (assigned && !assigned->empty() && !assigned->count(parts[0].to_string())) return true;
+  queue_admitted(got == Received::kMessage ? admit_message(parts) : refuse_oversized(parts, got), p_);
+  return true;
+}
+
+Ingest::Ingest(zmq::socket_t pull, Pipeline& p, std::unique_ptr<SubProducers> producers,
+               std::set<std::string> assigned)
+    : pull_(std::move(pull)), p_(p), producers_(std::move(producers)), assigned_(std::move(assigned)) {}
+
+Ingest::~Ingest() { join(); }
+
+void Ingest::start() {
+  thread_ = std::thread([this] {
+    name_this_thread("ingest");
+    if (producers_)
+      run_with_producers();
+    else
+      run_pull();
+  });
+}
+
+void Ingest::join() {
+  if (thread_.joinable()) thread_.join();
+}
+
+void Ingest::run_pull() {
+  for (;;) {
+    // Per message, so the account stays current; a blocked receive costs no CPU time.
+    const CpuScope cpu(p_.stage_cpu[CpuStage::kIngest]);
+    expire_idle_streams();
+    try {
+      ingest_one(pull_, zmq::recv_flags::none);  // nothing after the receive timeout
+    } catch (const zmq::error_t& e) {
+      if (e.num() == ETERM) break;
+      errors_.log(spdlog::level::err, "ingest: {}", e.what());
+    }
+  }
+  pull_.close();
 }
 
 }  // namespace fq::daemon

@@ -54,20 +54,11 @@ struct Pipeline {
   FrameSlots slots;
   WorkQueue<FramePtr> encode_queue;
   WorkQueue<FramePtr> publish_queue;
-  /// Arrival index of the next ingest message, across streams (monotonic, so also within
-  /// each stream; one counter instead of one per topic). Ingest thread only.
-  uint64_t next_arrival = 0;
   // Lines any producer can cause, each kind at most 5 a second (log_limiter.h).
   LogLimiter refusal_log;  ///< frames refused at admission
   LogLimiter fail_log;     ///< error results
   LogLimiter drop_log;     ///< superseded and stale frames (debug)
   LogLimiter expiry_log;   ///< streams expired
-  int64_t last_sweep_ns = 0;        ///< idle-stream sweep (expire_idle_streams), ingest thread only
-  int64_t last_malloc_trim_ns = 0;  ///< free pages last handed back, ingest thread only
-  uint64_t oversized_at_trim = 0;   ///< the pools' oversized_freed() then, ingest thread only
-  uint64_t arrival_at_trim = 0;     ///< next_arrival then, ingest thread only
-  uint64_t arrival_seen = 0;        ///< next_arrival at the last sweep, ingest thread only
-  int64_t arrival_seen_ns = 0;      ///< when it last changed, ingest thread only
   /// Engine outputs, reused: the engines keep a result's buffers.
   ObjectPool<FrameResult> results;
   /// Decoded input meshes, reused: decode_frame keeps their capacity, so a steady stream

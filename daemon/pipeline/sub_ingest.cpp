@@ -19,27 +19,29 @@ Status make_sub_producers(zmq::context_t& ctx, const SubIngestConfig& config, ui
   return {};
 }
 
-void run_sub_ingest(zmq::socket_t pull, SubProducers& producers, Pipeline& p, const std::set<std::string>& streams) {
-  LogLimiter errors;
+// The ingest thread with [ingest] connect (Ingest::run_with_producers, declared in ingest.h).
+void Ingest::run_with_producers() {
   std::vector<zmq::pollitem_t> items;
   for (;;) {
-    const CpuScope cpu(p.stage_cpu[CpuStage::kIngest]);
+    const CpuScope cpu(p_.stage_cpu[CpuStage::kIngest]);
     try {
-      expire_idle_streams(p);
-      producers.check();
-      items.assign(1, {pull.handle(), 0, ZMQ_POLLIN, 0});
-      for (size_t i = 0; i < producers.size(); ++i) items.push_back({producers.socket(i).handle(), 0, ZMQ_POLLIN, 0});
+      expire_idle_streams();
+      producers_->check();
+      items.assign(1, {pull_.handle(), 0, ZMQ_POLLIN, 0});
+      for (size_t i = 0; i < producers_->size(); ++i)
+        items.push_back({producers_->socket(i).handle(), 0, ZMQ_POLLIN, 0});
       zmq::poll(items, std::chrono::milliseconds(1000));  // wakes for the idle sweep and check()
-      if (items[0].revents & ZMQ_POLLIN) ingest_one(pull, p, zmq::recv_flags::dontwait);
-      for (size_t i = 0; i < producers.size(); ++i)
-        if (items[i + 1].revents & ZMQ_POLLIN) ingest_one(producers.socket(i), p, zmq::recv_flags::dontwait, &streams);
+      if (items[0].revents & ZMQ_POLLIN) ingest_one(pull_, zmq::recv_flags::dontwait);
+      for (size_t i = 0; i < producers_->size(); ++i)
+        if (items[i + 1].revents & ZMQ_POLLIN)
+          ingest_one(producers_->socket(i), zmq::recv_flags::dontwait, &assigned_);
     } catch (const zmq::error_t& e) {
       if (e.num() == ETERM) break;
-      errors.log(spdlog::level::err, "ingest: {}", e.what());
+      errors_.log(spdlog::level::err, "ingest: {}", e.what());
     }
   }
-  producers.close();
-  pull.close();
+  producers_->close();
+  pull_.close();
 }
 
 }  // namespace fq::daemon

@@ -6,12 +6,11 @@
 
 #include <atomic>
 #include <memory>
-#include <set>
 #include <string>
 #include <zmq.hpp>
 
 #include "common/curve_keys.h"
-#include "daemon/pipeline/pipeline.h"
+#include "daemon/config/service_config.h"
 #include "daemon/pipeline/sub_producers.h"
 
 namespace fq::daemon {
@@ -25,11 +24,5 @@ namespace fq::daemon {
 Status make_sub_producers(zmq::context_t& ctx, const SubIngestConfig& config, uint64_t max_frame_bytes,
                           const CurveKeyPair* curve_server, std::atomic<uint64_t>& reconnects,
                           std::unique_ptr<SubProducers>& out);
-
-/// The ingest thread in this mode: receives from the PULL socket and the SUB sockets (one
-/// thread, so that admission stays single-threaded) until their context is shut down, then
-/// closes them. A SUB message whose topic is not an assigned stream id is ignored without a
-/// count: ZeroMQ topics match by prefix ("cam1" also delivers "cam10"), and another fqd owns it.
-void run_sub_ingest(zmq::socket_t pull, SubProducers& producers, Pipeline& p, const std::set<std::string>& streams);
 
 }  // namespace fq::daemon
