@@ -7,15 +7,15 @@
 #include <mutex>
 
 #include "common/non_copyable.h"
-#include "daemon/config_reload.h"
-#include "daemon/control_server.h"
-#include "daemon/daemon_threads.h"
-#include "daemon/ingest.h"
-#include "daemon/publisher.h"
-#include "daemon/result_socket.h"
-#include "daemon/service_metrics.h"
-#include "daemon/settings_audit.h"
-#include "daemon/sub_ingest.h"
+#include "daemon/service/config_reload.h"
+#include "daemon/control/control_server.h"
+#include "daemon/pipeline/daemon_threads.h"
+#include "daemon/pipeline/ingest.h"
+#include "daemon/pipeline/publisher.h"
+#include "daemon/pipeline/result_socket.h"
+#include "daemon/control/service_metrics.h"
+#include "daemon/control/settings_audit.h"
+#include "daemon/pipeline/sub_ingest.h"
 
 namespace fq::daemon {
 namespace {
@@ -245,18 +245,10 @@ Status Daemon::start() {
     name_this_thread("control");
     run_control(std::move(s), registry_, caps_, control_keys_ ? control_keys_.get() : client_keys_.get());
   });
-  if (sockets.sub) {
-    ingest_thread_ = std::thread([this, pull = std::move(sockets.ingest), sub = std::move(sockets.sub)]() mutable {
-      name_this_thread("ingest");
-      const auto& ids = config_.sub_ingest.streams;
-      run_sub_ingest(std::move(pull), *sub, pipeline_, std::set<std::string>(ids.begin(), ids.end()));
-    });
-  } else {
-    ingest_thread_ = std::thread([this, s = std::move(sockets.ingest)]() mutable {
-      name_this_thread("ingest");
-      run_ingest(std::move(s), pipeline_);
-    });
-  }
+  const auto& ids = config_.sub_ingest.streams;
+  ingest_ = std::make_unique<Ingest>(std::move(sockets.ingest), pipeline_, std::move(sockets.sub),
+                                     std::set<std::string>(ids.begin(), ids.end()));
+  ingest_->start();
   running_ = true;
   healthy_ = true;
   if (config_.stats.interval_s > 0) stats_log_ = std::make_unique<StatsLog>(registry_, config_.stats.interval_s);
@@ -309,7 +301,7 @@ void Daemon::stop() {
   if (stats_log_) stats_log_->stop();
   // Blocking receives on the input sockets return ETERM; their threads close them.
   input_context_.shutdown();
-  if (ingest_thread_.joinable()) ingest_thread_.join();
+  if (ingest_) ingest_->join();
   if (control_thread_.joinable()) control_thread_.join();
   input_context_.close();
   if (input_zap_) input_zap_->join();

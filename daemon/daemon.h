@@ -10,12 +10,13 @@
 #include <zmq.hpp>
 
 #include "common/non_copyable.h"
-#include "daemon/config.h"
+#include "daemon/config/config.h"
+#include "daemon/control/stats_log.h"
+#include "daemon/http/http_server.h"
+#include "daemon/pipeline/ingest.h"
+#include "daemon/pipeline/pipeline.h"
+#include "daemon/stream/stream_registry.h"
 #include "kernels/engine.h"
-#include "daemon/http_server.h"
-#include "daemon/pipeline.h"
-#include "daemon/stats_log.h"
-#include "daemon/stream_registry.h"
 
 namespace fq::daemon {
 
@@ -74,7 +75,8 @@ class Daemon : NonCopyable {
   zmq::context_t input_context_;   // ingest + control: shut down first
   zmq::context_t output_context_;  // publish: closed after the pipeline drained
   BoundEndpoints endpoints_;
-  std::thread ingest_thread_, control_thread_, publisher_thread_;
+  std::unique_ptr<Ingest> ingest_;  ///< the ingest thread and its sockets
+  std::thread control_thread_, publisher_thread_;
   std::vector<std::thread> decoders_, workers_, encoders_;
   bool running_ = false;
   std::atomic<bool> healthy_{false};    ///< every thread started (GET /healthz)

@@ -1,10 +1,10 @@
 // fqd: the streaming daemon. Usage: fqd [--config configs/fqd.toml] [--engine cpu] ...
 // Configuration: --config, else $FQ_CONFIG, else /etc/fq/fqd.toml, else built-in defaults;
-// the flags override the file (daemon/command_line.h). Exit status: 0 after a stop signal,
+// the flags override the file (daemon/service/command_line.h). Exit status: 0 after a stop signal,
 // 1 when it cannot start (a port in use, a GPU missing), 2 for a usage error or an invalid
-// configuration (a file or endpoint it names included: daemon/config_check.h).
+// configuration (a file or endpoint it names included: daemon/service/config_check.h).
 // SIGINT/SIGTERM stop it (frames in flight are finished); SIGHUP reloads the file, the flags
-// over it again (what a reload may change: daemon/config_reload.h).
+// over it again (what a reload may change: daemon/service/config_reload.h).
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
@@ -16,18 +16,18 @@
 #include <nlohmann/json.hpp>
 
 #include "common/tool_main.h"
-#include "daemon/command_line.h"
-#include "daemon/config.h"
-#include "daemon/config_check.h"
-#include "daemon/config_lookup.h"
-#include "daemon/credentials.h"
+#include "daemon/service/command_line.h"
+#include "daemon/config/config.h"
+#include "daemon/service/config_check.h"
+#include "daemon/service/config_lookup.h"
+#include "daemon/service/credentials.h"
 #include "daemon/daemon.h"
-#include "daemon/log_format.h"
-#include "daemon/service_notify.h"
-#include "daemon/signals.h"
-#include "daemon/startup_report.h"
-#include "daemon/stream_shard.h"
-#include "daemon/web_root.h"
+#include "daemon/service/log_format.h"
+#include "daemon/service/service_notify.h"
+#include "daemon/service/signals.h"
+#include "daemon/service/startup_report.h"
+#include "daemon/service/stream_shard.h"
+#include "daemon/http/web_root.h"
 
 namespace {
 
@@ -45,7 +45,7 @@ fq::Status load(const fq::daemon::ConfigSource& source, const fq::daemon::Comman
   if (!source.path.empty()) FQ_RETURN_IF_ERROR(fq::daemon::load_config(source.path, config, allow_empty));
   fq::daemon::resolve_default_web_root(config.http);
   FQ_RETURN_IF_ERROR(fq::daemon::apply_command_line(cl, config, shard_streams));
-  // `credential:NAME` values: files systemd's LoadCredential= put there (daemon/credentials.h).
+  // `credential:NAME` values: files systemd's LoadCredential= put there (daemon/service/credentials.h).
   fq::daemon::resolve_credentials(config, std::getenv("CREDENTIALS_DIRECTORY"));
   return {};
 }

@@ -16,7 +16,7 @@ nlohmann::json summary(const std::vector<double>& v) {
 }
 
 // The reason of an error result whose frame fqd stopped on the engine, from the word fqd's
-// error starts with (daemon/frame_stages.cpp); nullptr for other errors (a bad frame).
+// error starts with (daemon/pipeline/frame_stages.cpp); nullptr for other errors (a bad frame).
 const char* stopped_reason(const std::string& error) {
   constexpr std::pair<const char*, const char*> kStopped[] = {
       {"preempted:", "preempted"}, {"time_limit:", "time_limit"}, {"cancelled:", "stopping"}};

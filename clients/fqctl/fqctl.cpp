@@ -19,7 +19,7 @@
 #include "clients/fqctl/counters_table.h"
 #include "clients/fqctl/param_assign.h"
 #include "common/tool_main.h"
-#include "daemon/counters_json.h"
+#include "daemon/control/counters_json.h"
 
 namespace {
 

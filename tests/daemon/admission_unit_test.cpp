@@ -3,10 +3,10 @@
 
 #include <string>
 
-#include "daemon/log_limiter.h"
-#include "daemon/object_pool.h"
-#include "daemon/stream_admission.h"
-#include "daemon/work_budget.h"
+#include "daemon/pipeline/log_limiter.h"
+#include "daemon/pipeline/object_pool.h"
+#include "daemon/stream/stream_admission.h"
+#include "daemon/pipeline/work_budget.h"
 
 namespace fq::daemon {
 namespace {

@@ -1,7 +1,7 @@
 // What the start reads or binds beyond the TOML text, checked before it (config_check.h): every
 // endpoint parsed as ZeroMQ parses it, every file the configuration names opened and read, one
 // line per problem naming the file, line and key.
-#include "daemon/config_check.h"
+#include "daemon/service/config_check.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <fstream>
 
 #include "common/curve_keys.h"
-#include "daemon/zmq_endpoint.h"
+#include "daemon/service/zmq_endpoint.h"
 
 namespace fq::daemon {
 namespace {

@@ -17,7 +17,7 @@
 
 #include "core/param_table.h"
 #include "core/params.h"
-#include "daemon/config.h"
+#include "daemon/config/config.h"
 
 namespace fq::daemon {
 namespace {

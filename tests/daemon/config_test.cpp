@@ -1,6 +1,6 @@
 // Configuration parsing and validation: the shipped config, defaults, overrides, and a
 // clear message naming the key for each kind of mistake.
-#include "daemon/config.h"
+#include "daemon/config/config.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // set_params changes only streams fqd knows unless asked to create one.
 #include <gtest/gtest.h>
 
-#include "daemon/control_server.h"
+#include "daemon/control/control_server.h"
 #include "wire/header_codec.h"
 
 namespace fq::daemon {

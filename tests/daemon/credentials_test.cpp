@@ -1,14 +1,14 @@
-// `credential:NAME` in a configuration (daemon/credentials.h): the file NAME in the directory
+// `credential:NAME` in a configuration (daemon/service/credentials.h): the file NAME in the directory
 // systemd's LoadCredential= fills ($CREDENTIALS_DIRECTORY), resolved for every file key and then
 // checked like any path; without the directory, or with a NAME that is a path, a problem line.
-#include "daemon/credentials.h"
+#include "daemon/service/credentials.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
-#include "daemon/config_check.h"
+#include "daemon/service/config_check.h"
 
 namespace fq::daemon {
 namespace {

@@ -10,7 +10,7 @@
 #include <vector>
 #include <zmq.hpp>
 
-#include "daemon/config.h"
+#include "daemon/config/config.h"
 #include "clients/common/control_client.h"
 #include "clients/common/curve_client.h"
 #include "daemon/daemon.h"

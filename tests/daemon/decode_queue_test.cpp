@@ -6,7 +6,7 @@
 #include <chrono>
 #include <thread>
 
-#include "daemon/decode_queue.h"
+#include "daemon/pipeline/decode_queue.h"
 
 namespace fq::daemon {
 namespace {

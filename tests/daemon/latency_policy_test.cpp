@@ -1,5 +1,5 @@
 // FrameSlots (the latency policy) and the percentile helper, without sockets.
-#include "daemon/latency_policy.h"
+#include "daemon/pipeline/latency_policy.h"
 
 #include <gtest/gtest.h>
 
@@ -8,9 +8,9 @@
 #include <memory>
 #include <thread>
 
-#include "daemon/stage_metrics.h"
-#include "daemon/stream.h"
-#include "daemon/work_queue.h"
+#include "daemon/stream/stage_metrics.h"
+#include "daemon/stream/stream.h"
+#include "daemon/pipeline/work_queue.h"
 
 namespace fq::daemon {
 namespace {

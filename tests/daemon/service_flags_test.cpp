@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "common/version.h"
-#include "daemon/stream_shard.h"
+#include "daemon/service/stream_shard.h"
 #include "tests/daemon/fqd_process.h"
 
 namespace fq::test {

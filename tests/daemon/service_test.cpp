@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "daemon/config.h"
-#include "daemon/config_lookup.h"
+#include "daemon/config/config.h"
+#include "daemon/service/config_lookup.h"
 #include "tests/daemon/fqd_process.h"
 
 namespace fq::test {

@@ -5,13 +5,13 @@
 #include <filesystem>
 #include <fstream>
 
-#include "daemon/late_warning.h"
-#include "daemon/process_stats.h"
-#include "daemon/service_config.h"
-#include "daemon/settings_audit.h"
-#include "daemon/startup_report.h"
-#include "daemon/stream_shard.h"
-#include "daemon/web_root.h"
+#include "daemon/control/late_warning.h"
+#include "daemon/pipeline/process_stats.h"
+#include "daemon/config/service_config.h"
+#include "daemon/control/settings_audit.h"
+#include "daemon/service/startup_report.h"
+#include "daemon/service/stream_shard.h"
+#include "daemon/http/web_root.h"
 
 namespace fq::daemon {
 namespace {

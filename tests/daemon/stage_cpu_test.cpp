@@ -8,8 +8,8 @@
 #include <set>
 #include <string>
 
-#include "daemon/daemon_threads.h"
-#include "daemon/stage_cpu.h"
+#include "daemon/pipeline/daemon_threads.h"
+#include "daemon/pipeline/stage_cpu.h"
 #include "tests/daemon/daemon_harness.h"
 
 namespace fq::test {

@@ -5,9 +5,9 @@
 
 #include <regex>
 
-#include "daemon/drop_reasons.h"
-#include "daemon/late_warning.h"
-#include "daemon/stats_log.h"
+#include "daemon/control/drop_reasons.h"
+#include "daemon/control/late_warning.h"
+#include "daemon/control/stats_log.h"
 
 namespace fq::daemon {
 namespace {

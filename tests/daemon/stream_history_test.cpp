@@ -1,13 +1,13 @@
-// A stream's temporal history lives in its Stream (daemon/stream_history.h): frames in arrival
+// A stream's temporal history lives in its Stream (daemon/stream/stream_history.h): frames in arrival
 // order update it, a frame that finished after a newer one runs alone, a frame without
 // temporal filtering drops it, and it goes with the stream. Real CPU engine, no sockets.
-#include "daemon/stream_history.h"
+#include "daemon/stream/stream_history.h"
 
 #include <gtest/gtest.h>
 
 #include <memory>
 
-#include "daemon/stream_registry.h"
+#include "daemon/stream/stream_registry.h"
 #include "eval/noise.h"
 #include "kernels/cpu_engine.h"
 #include "tests/support/test_meshes.h"

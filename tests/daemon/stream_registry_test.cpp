@@ -1,6 +1,6 @@
 // The stream registry and the Stream objects it owns, without sockets: which streams are
 // pinned, what expiry frees, and that a metrics snapshot holds no lock a frame waits for.
-#include "daemon/stream_registry.h"
+#include "daemon/stream/stream_registry.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "daemon/stats_log.h"
+#include "daemon/control/stats_log.h"
 
 namespace fq::daemon {
 namespace {

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "daemon/config.h"
+#include "daemon/config/config.h"
 
 namespace fq::test {
 

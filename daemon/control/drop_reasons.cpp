@@ -1,0 +1,49 @@
+#include "daemon/control/drop_reasons.h"
+
+#include <fmt/format.h>
+
+namespace fq::daemon {
+
+const std::vector<DropReason>& drop_reasons() {
+  static const std::vector<DropReason> reasons = {
+      {"superseded", &StreamCounters::superseded,
+       "a newer frame of the stream arrived while this one waited for a decoder or an engine (only the "
+       "latest frame waits), so it got no result",
+       "the engines are slower than the stream's frame rate: lower the rate, make frames cheaper "
+       "(compute = \"filter\", smaller sigmas) or add engines"},
+      {"stale", &StreamCounters::dropped_stale,
+       "the frame was older than budget_ms when a decoder or an engine was free, so it was dropped "
+       "without a result",
+       "frames wait longer than the budget: raise budget_ms if later results are still of use, else "
+       "lower the rate or add engines"},
+      {"preempted", &StreamCounters::preempted,
+       "the frame was stopped on the engine so that a stream under its share of engine time could run "
+       "(an error result)",
+       "this stream's frames cost more than its share of the engines: make them cheaper (compute = "
+       "\"filter\", smaller sigmas) or add an engine"},
+      {"time_limited", &StreamCounters::time_limited,
+       "the frame ran past caps.engine_time_limit_s and was stopped (an error result)",
+       "the frame is too heavy for the limit: fewer vertices or smaller sigmas, or raise "
+       "caps.engine_time_limit_s"},
+      {"subscriber_overflow", &StreamCounters::subscriber_overflows,
+       "a subscriber's queue was full (caps.max_subscriber_results), so it missed results (perhaps "
+       "more than one per overflow)",
+       "a subscriber reads slower than results come: make it read faster, subscribe only to the streams "
+       "it needs, or raise caps.max_subscriber_results"},
+  };
+  return reasons;
+}
+
+std::vector<std::string> drop_lines(const std::string& stream_id, const StreamCounters& now,
+                                    const StreamCounters& before) {
+  std::vector<std::string> out;
+  for (const DropReason& r : drop_reasons()) {
+    const uint64_t n = now.*r.counter - before.*r.counter;
+    if (n > 0)
+      out.push_back(fmt::format("[drops] stream={} reason={} count={}: {} -> {}", stream_id, r.name, n,
+                                r.meaning, r.action));
+  }
+  return out;
+}
+
+}  // namespace fq::daemon

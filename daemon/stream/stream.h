@@ -1,0 +1,166 @@
+// One stream in fqd, all of its state in one object: its settings, counters and latency
+// metrics (under its own lock), its waiting slot and ticket counter (the slots' lock), its
+// publish order (the publisher thread), its cluster id track and its temporal filtering
+// history (a lock each) and its latest result for the viewer (the latest results' lock).
+// The registry owns it and every frame in flight shares it (FrameJob::stream), so expiry is
+// one erase from the registry, and the last frame in flight frees the rest: no other owner
+// keeps a map by stream id that could outlive the stream or grow with every id ever seen.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "common/non_copyable.h"
+#include "daemon/stream/frame_job.h"
+#include "daemon/stream/stage_metrics.h"
+#include "daemon/config/stream_settings.h"
+#include "kernels/label_tracking.h"
+#include "kernels/temporal.h"
+
+namespace fq::daemon {
+
+/// What happened to a stream's frames. Once the pipeline is idle,
+/// frames_in == frames_out + errors + superseded + dropped_stale.
+struct StreamCounters {
+  uint64_t frames_in = 0;      ///< ingest messages attributed to the stream
+  uint64_t frames_out = 0;     ///< results published with status OK or LATE
+  uint64_t superseded = 0;     ///< replaced in the waiting slot by a newer frame
+  uint64_t dropped_stale = 0;  ///< older than the budget when a worker was free
+  uint64_t late = 0;           ///< published after the budget (also in frames_out)
+  uint64_t errors = 0;         ///< error results published
+  uint64_t time_limited = 0;   ///< stopped at caps.engine_time_limit_s (also in errors)
+  /// Times a subscriber's queue was found full (caps.max_subscriber_results), so that it
+  /// missed the result being published; ZeroMQ then skips that subscriber without telling
+  /// until it has read half its queue, so one overflow may stand for many missed results.
+  /// Not part of the sum above: the results were published.
+  uint64_t subscriber_overflows = 0;
+  /// Results whose producer send time was more than an hour before publish or after it (a
+  /// wrong or forged clock): their send_to_publish is left out of the metrics, not folded
+  /// into the histograms. Not part of the sum above.
+  uint64_t bad_send_time = 0;
+  /// Scene cuts of a stream filtered across frames (temporal > 0): frames that found under half
+  /// their vertices near the stream's last result, so its history restarted. Not in the sum.
+  uint64_t temporal_resets = 0;
+  /// Results published with the engine's cluster numbering because id tracking was cut by
+  /// the frame's time limit or the stop (also in frames_out).
+  uint64_t untracked = 0;
+  /// Frames stopped on the engine to serve a stream within its share of engine time (also in
+  /// errors; see latency_policy.h).
+  uint64_t preempted = 0;
+};
+
+enum class Counter {
+  kIn,
+  kOut,
+  kSuperseded,
+  kDroppedStale,
+  kLate,
+  kErrors,
+  kTimeLimited,
+  kSubscriberOverflows,
+  kBadSendTime,
+  kTemporalResets,
+  kUntracked,
+  kPreempted
+};
+
+struct StreamSnapshot {
+  std::string stream_id;
+  StreamCounters counters;
+  std::map<std::string, Percentiles> stages;
+  std::map<std::string, LatencyHistogram> histograms;  ///< since start, by stage (for /metrics)
+};
+
+/// A stream's counters and latency samples as copied under its lock. Percentiles are computed
+/// from the copy (summarize), after the lock is released: a frame that counts or records
+/// never waits for them.
+struct StreamSamples {
+  std::string stream_id;
+  StreamCounters counters;
+  StageMetrics metrics;
+};
+StreamSnapshot summarize(const StreamSamples& s);
+
+/// The waiting slot (latency_policy.h); FrameSlots' lock guards it.
+struct SlotState {
+  FramePtr waiting;
+  uint64_t last_taken_arrival = 0;
+  bool taken_any = false;
+  uint64_t next_ticket = 0;
+  uint64_t served = 0;  ///< when it was last handed out (FrameSlots' count then); 0 = never
+  double usage_s = 0;   ///< recent engine time, decayed to usage_ns (steady clock)
+  int64_t usage_ns = 0;
+  double cost_s = 0;  ///< engine time of its frames (moving average); 0 = none seen yet
+};
+
+/// Results held back until the earlier tickets are published (publisher.h); publisher thread only.
+struct PublishOrder {
+  uint64_t next = 0;
+  std::map<uint64_t, FramePtr> held;
+};
+
+/// The previous frames' cluster ids (label_tracks.h): the previous frame's grid, ids and votes,
+/// and the buffers the next frame is tracked in (about 120 bytes a vertex: tens of MB for a
+/// large frame).
+struct LabelTrack {
+  std::mutex mutex;
+  LabelTracker tracker;
+};
+
+/// Its last result for temporal filtering (kernels/temporal.h) and the arrival of the frame
+/// that made it (stream_history.h): tens of MB for a large frame, like the label track.
+struct TemporalTrack {
+  std::mutex mutex;
+  TemporalHistory history;
+  uint64_t last_arrival = 0;
+};
+
+struct LatestResult;
+/// The latest result kept for the viewer (latest_results.h); LatestResults' lock guards it.
+struct LatestSlot {
+  std::shared_ptr<const LatestResult> latest;
+  uint64_t index = 0;
+  std::chrono::steady_clock::time_point watched_until;
+  std::shared_ptr<const std::vector<uint32_t>> faces;  ///< the last POSITIONS result's
+  uint64_t faces_id = 0;
+};
+
+class Stream : NonCopyable {
+ public:
+  Stream(std::string id, const StreamSettings& settings, int64_t now_ns);
+  ~Stream();
+
+  const std::string& id() const { return id_; }
+
+  StreamSettings settings() const;
+  void set_settings(const StreamSettings& s);
+  void count(Counter c, uint64_t n = 1);
+  void record(const std::string& stage, double ms);
+  /// Counters and samples, copied under the stream's lock (held for the copy only).
+  StreamSamples samples() const;
+
+  /// When a frame (or a control request) last found it, wall_ns(); the registry expires it.
+  std::atomic<int64_t> last_seen_ns{0};
+
+  SlotState slot;          ///< FrameSlots' lock
+  PublishOrder order;      ///< the publisher thread
+  LabelTrack track;        ///< its own lock
+  TemporalTrack temporal;  ///< its own lock
+  LatestSlot latest;   ///< LatestResults' lock
+
+ private:
+  const std::string id_;
+  mutable std::mutex mutex_;  ///< settings_, counters_, metrics_
+  StreamSettings settings_;
+  StreamCounters counters_;
+  StageMetrics metrics_;
+};
+
+using StreamPtr = std::shared_ptr<Stream>;
+
+}  // namespace fq::daemon

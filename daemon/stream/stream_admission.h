@@ -1,0 +1,51 @@
+// Which topics become streams. A stream costs state (settings, counters, latency windows,
+// a slot), so only ids that pass these checks get any; everything else is refused and
+// counted per reason in a fixed set of counters, never per topic.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/status.h"
+#include "daemon/stream/reason_counters.h"
+
+namespace fq::daemon {
+
+struct Caps;
+
+enum class Refusal {
+  kBadStreamId,
+  kMalformed,
+  kNotAllowed,
+  kTooManyStreams,
+  kUnauthenticated,
+  kOversized,      ///< an ingest or control message over its bound on parts or bytes
+  kSubscriptions,  ///< a subscriber over caps.max_subscriptions / max_subscription_bytes (cut)
+  kCount
+};
+
+/// Name of a refusal reason as it appears in counters and logs.
+const char* refusal_name(Refusal r);
+
+/// Ok when `id` can name a stream: 1..max_bytes bytes of valid UTF-8 without control
+/// characters; otherwise a message that shows the id escaped.
+Status validate_stream_id(std::string_view id, uint32_t max_bytes);
+
+/// True when the allow-list is empty or names `id` exactly or by a "prefix*" entry.
+bool stream_allowed(std::string_view id, const std::vector<std::string>& allowed);
+
+/// The one check of a stream id on every door (ingest, SUB ingest, control, HTTP): valid
+/// (validate_stream_id with caps.max_stream_id_bytes) and allowed (caps.allowed_streams). On
+/// failure `why` (when given) says which, and the message shows the id escaped.
+Status check_stream_id(std::string_view id, const Caps& caps, Refusal* why = nullptr);
+
+/// `id` with every byte outside printable ASCII as \xNN, cut to `max_chars`: safe for
+/// logs and for protobuf string fields (always valid UTF-8).
+std::string printable_id(std::string_view id, size_t max_chars = 64);
+
+/// Refusals by reason; thread-safe.
+using RefusalCounters = ReasonCounters<Refusal>;
+
+}  // namespace fq::daemon

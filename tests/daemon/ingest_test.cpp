@@ -1,0 +1,46 @@
+// The ingest thread as an object over a real PULL socket: a message that cannot be a frame is
+// refused before any stream exists for it and handed to the publisher, and the thread ends,
+// closing its socket, when the context is shut down.
+#include "daemon/pipeline/ingest.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <zmq_addon.hpp>
+
+#include "daemon/config/config.h"
+
+namespace fq::daemon {
+namespace {
+
+TEST(Ingest, RefusesAMessageWithoutAFrameAndEndsWhenItsContextShutsDown) {
+  const DaemonConfig config;
+  StreamRegistry registry(config);
+  LiveCaps caps(config.caps);
+  Pipeline p(config, registry, caps);
+  zmq::context_t ctx;
+  zmq::socket_t pull(ctx, zmq::socket_type::pull);
+  pull.bind("inproc://ingest");
+  Ingest ingest(std::move(pull), p);
+  ingest.start();
+
+  zmq::socket_t push(ctx, zmq::socket_type::push);
+  push.connect("inproc://ingest");
+  std::array<zmq::const_buffer, 2> message = {zmq::str_buffer("cam0"), zmq::str_buffer("no header")};
+  ASSERT_TRUE(zmq::send_multipart(push, message));
+
+  std::optional<FramePtr> refused = p.publish_queue.pop();
+  ASSERT_TRUE(refused && *refused);
+  EXPECT_TRUE((*refused)->refused);
+  EXPECT_EQ((*refused)->stream_id, "cam0");
+  EXPECT_EQ(registry.refusals().get(Refusal::kMalformed), 1u);
+  EXPECT_FALSE(registry.find("cam0")) << "junk never makes a stream";
+
+  push.close();
+  ctx.shutdown();
+  ingest.join();
+  ctx.close();  // returns only once the ingest thread closed its socket
+}
+
+}  // namespace
+}  // namespace fq::daemon
