@@ -55,6 +55,10 @@ struct FileReport {
   /// against the last frame (eval/flicker.h; with a reference of the same vertices).
   std::optional<float> prior_coverage, prior_share;
   bool history_reset = false;
+  /// Which temporal track ran ("ids", "space" or "none": kernels/engine.h), and whether the
+  /// ids were refused (same connectivity, but they did not follow a smooth motion).
+  const char* temporal_track = "none";
+  bool ids_refused = false;
   std::optional<double> flicker;
   std::optional<uint32_t> clusters;
   std::optional<float> theta_used;        ///< the theta that gave the labels (found with a target)
