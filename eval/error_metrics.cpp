@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace fq {
 
@@ -82,6 +83,17 @@ double rmse_over_diagonal(const MeshView& reference, const float* positions) {
 std::array<double, 3> face_area_normal(const float* positions, const uint32_t* tri) {
   const D3 a = load(positions, tri[0]);
   return cross(sub(load(positions, tri[1]), a), sub(load(positions, tri[2]), a));
+}
+
+std::vector<double> area_vertex_normals(const MeshView& mesh) {
+  std::vector<double> normals(3 * size_t(mesh.num_vertices), 0.0);
+  for (size_t t = 0; t < 3 * size_t(mesh.num_triangles); t += 3) {
+    const uint32_t* tri = &mesh.triangles[t];
+    const std::array<double, 3> c = face_area_normal(mesh.positions, tri);
+    for (int corner = 0; corner < 3; ++corner)
+      for (int k = 0; k < 3; ++k) normals[3 * size_t(tri[corner]) + k] += c[k];  // area-weighted
+  }
+  return normals;
 }
 
 double face_normal_angle(const float* pa, const uint32_t* ta, const float* pb, const uint32_t* tb) {

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "core/mesh_view.h"
 #include "common/status.h"
@@ -46,6 +47,12 @@ MfneResult mean_face_normal_error(const MeshView& reference, const float* positi
 /// Triangle `tri`'s normal times twice its area (the cross product of its edges from the
 /// first corner), in doubles: what the measures here, the scan error and the noise build on.
 std::array<double, 3> face_area_normal(const float* positions, const uint32_t* tri);
+
+/// Area-weighted vertex normals, unnormalized (the sum of the incident triangles'
+/// face_area_normal; zero where a vertex has none): callers divide by the length where they
+/// use one, as the normal noise always did, so that its noisy meshes stay bit for bit what
+/// they were.
+std::vector<double> area_vertex_normals(const MeshView& mesh);
 
 /// The angle, in radians in [0, pi], between the normal of triangle `ta` of positions `pa`
 /// and that of triangle `tb` of positions `pb`; NaN when either is degenerate (the rule of

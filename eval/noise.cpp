@@ -56,21 +56,6 @@ double noise_std(const Mesh& mesh, double sigma_mean_edges) {
   return std_dev > 0.0 && std::isfinite(std_dev) ? std_dev : 0.0;
 }
 
-/// Area-weighted vertex normals of the mesh as it is, unnormalized (zero where a vertex has
-/// none): callers divide by the length where they use one, as add_normal_noise always did, so
-/// that its noisy meshes stay bit for bit what they were.
-std::vector<double> area_normals(const Mesh& mesh) {
-  const uint32_t n = mesh.num_vertices();
-  std::vector<double> normals(3 * size_t(n), 0.0);
-  for (size_t t = 0; t < mesh.triangles.size(); t += 3) {
-    const uint32_t* tri = &mesh.triangles[t];
-    const std::array<double, 3> c = face_area_normal(mesh.positions.data(), tri);
-    for (int corner = 0; corner < 3; ++corner)
-      for (int k = 0; k < 3; ++k) normals[3 * size_t(tri[corner]) + k] += c[k];  // area-weighted
-  }
-  return normals;
-}
-
 double length(const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
 /// Moves every vertex by offsets[v] along its unit normal (not at all without one).
@@ -101,7 +86,7 @@ constexpr double kGrazingFloor = 0.25;
 void add_normal_noise(Mesh& mesh, double sigma_mean_edges, uint64_t seed) {
   const double std_dev = noise_std(mesh, sigma_mean_edges);
   if (std_dev == 0.0) return;
-  const std::vector<double> normals = area_normals(mesh);
+  const std::vector<double> normals = area_vertex_normals(mesh.view());
   NormalSource normal(seed);
   std::vector<double> offsets(mesh.num_vertices());
   for (double& d : offsets) d = std_dev * normal.next();
@@ -111,7 +96,7 @@ void add_normal_noise(Mesh& mesh, double sigma_mean_edges, uint64_t seed) {
 void add_depth_noise(Mesh& mesh, double sigma_mean_edges, uint64_t seed) {
   const double std_dev = noise_std(mesh, sigma_mean_edges);
   if (std_dev == 0.0) return;
-  const std::vector<double> normals = area_normals(mesh);
+  const std::vector<double> normals = area_vertex_normals(mesh.view());
   NormalSource normal(seed);
   for (uint32_t v = 0; v < mesh.num_vertices(); ++v) {
     const double len = length(&normals[3 * size_t(v)]), draw = normal.next();
@@ -155,7 +140,7 @@ void add_correlated_noise(Mesh& mesh, double sigma_mean_edges, double length_mea
                       });
     offsets[v] = norm2 > 0.0 ? std_dev * sum / std::sqrt(norm2) : 0.0;
   }
-  move_along(mesh, area_normals(mesh), offsets);
+  move_along(mesh, area_vertex_normals(mesh.view()), offsets);
 }
 
 void add_ripple_noise(Mesh& mesh, double sigma_mean_edges, double period_mean_edges, uint64_t seed) {
@@ -168,7 +153,7 @@ void add_ripple_noise(Mesh& mesh, double sigma_mean_edges, double period_mean_ed
   for (uint32_t v = 0; v < mesh.num_vertices(); ++v)
     offsets[v] = std_dev * std::numbers::sqrt2 *
                  std::sin(2.0 * std::numbers::pi * mesh.positions[3 * size_t(v)] / period + phase);
-  move_along(mesh, area_normals(mesh), offsets);
+  move_along(mesh, area_vertex_normals(mesh.view()), offsets);
 }
 
 bool parse_noise_kind(const char* name, NoiseKind& kind) {

@@ -23,6 +23,8 @@ P vertex(const MeshView& m, uint32_t v) {
 
 // Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5):
 // Voronoi regions of vertices, then edges, then the face.
+P cross(P a, P b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+
 P closest_on_triangle(P p, P a, P b, P c) {
   const P ab = b - a, ac = c - a, ap = p - a;
   const double d1 = dot(ab, ap), d2 = dot(ac, ap);
@@ -94,6 +96,65 @@ ClosestPoint TriangleIndex::closest(P p, double start_radius) const {
   const double exact_r = best.distance + max_reach_;
   if (exact_r > r) best = search(p, exact_r * (1.0 + 1e-6));
   return best;
+}
+
+LineHit TriangleIndex::nearest_line_hit(P p, P dir, double max_s) const {
+  LineHit best;
+  if (mesh_.num_triangles == 0 || !(max_s >= 0.0)) return best;
+  // A triangle the segment |s| <= max_s meets has a corner within max_s of p, so its
+  // centroid lies within max_s + max_reach.
+  const double radius = max_s + max_reach_;
+  const GridView g = grid_.view(centroids_.data());
+  // Barycentric slack: a line through a shared edge or corner meets every triangle there.
+  constexpr double kEdgeSlack = 1e-12;
+  for_each_neighbor(g, Vec3{float(p.x), float(p.y), float(p.z)}, float(radius * (1.0 + 1e-6)),
+                    [&](uint32_t j, const Point4&, Vec3, float) {
+                      const uint32_t t = grid_.order[j];
+                      const uint32_t* tri = mesh_.triangles + 3 * size_t(t);
+                      const P a = vertex(mesh_, tri[0]), e1 = vertex(mesh_, tri[1]) - a,
+                              e2 = vertex(mesh_, tri[2]) - a;
+                      // Möller–Trumbore, without the ray's s >= 0: the line goes both ways.
+                      const P h = cross(dir, e2);
+                      const double det = dot(e1, h);
+                      if (!(std::fabs(det) > 1e-300)) return;
+                      const P ap = p - a;
+                      const double u = dot(ap, h) / det;
+                      if (u < -kEdgeSlack || u > 1.0 + kEdgeSlack) return;
+                      const P q = cross(ap, e1);
+                      const double v = dot(dir, q) / det;
+                      if (v < -kEdgeSlack || u + v > 1.0 + kEdgeSlack) return;
+                      const double s = dot(e2, q) / det;
+                      if (std::fabs(s) > max_s) return;
+                      const bool closer = best.triangle == UINT32_MAX || std::fabs(s) < std::fabs(best.s) ||
+                                          (std::fabs(s) == std::fabs(best.s) && t < best.triangle);
+                      if (!closer) return;
+                      best.triangle = t;
+                      best.s = s;
+                      best.point = p + s * dir;
+                      best.weights[0] = 1.0 - u - v;
+                      best.weights[1] = u;
+                      best.weights[2] = v;
+                    });
+  return best;
+}
+
+void TriangleIndex::barycentric(uint32_t triangle, P q, double weights[3]) const {
+  const uint32_t* tri = mesh_.triangles + 3 * size_t(triangle);
+  const P a = vertex(mesh_, tri[0]), e1 = vertex(mesh_, tri[1]) - a, e2 = vertex(mesh_, tri[2]) - a,
+          d = q - a;
+  // Cramer's rule on the normal equations of q - a = u e1 + v e2.
+  const double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
+  const double det = d11 * d22 - d12 * d12;
+  if (!(det > 0.0)) {
+    weights[0] = 1.0;
+    weights[1] = weights[2] = 0.0;
+    return;
+  }
+  const double u = (d22 * dot(d, e1) - d12 * dot(d, e2)) / det;
+  const double v = (d11 * dot(d, e2) - d12 * dot(d, e1)) / det;
+  weights[0] = 1.0 - u - v;
+  weights[1] = u;
+  weights[2] = v;
 }
 
 }  // namespace fq

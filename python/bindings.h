@@ -14,6 +14,8 @@ void bind_stream(pybind11::module_& m);
 /// read_mesh, write_mesh, add_noise, metrics: files, noise and error measures.
 void bind_mesh_functions(pybind11::module_& m);
 
+/// surface_sample, surface_flicker: temporal measures on the result's surface.
+void bind_surface_measures(pybind11::module_& m);
 /// encode_frame, decode_result: fq.wire, frames and results as fqd's multipart messages.
 void bind_wire(pybind11::module_& m);
 

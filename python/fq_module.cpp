@@ -8,6 +8,7 @@ PYBIND11_MODULE(_fq, m) {
   m.attr("built_with_cuda") = fq::built_with_cuda();
   fq::py::bind_engine_functions(m);
   fq::py::bind_mesh_functions(m);
+  fq::py::bind_surface_measures(m);
   fq::py::bind_stream(m);
   fq::py::bind_wire(m);
   fq::py::bind_client(m);

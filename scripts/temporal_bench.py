@@ -10,8 +10,12 @@ Gaussian noise of S mean edges to each frame (seed K + frame index) and filters 
 order, once each frame alone (--temporal 0) and once with the stream's history (--temporal T).
 Per sequence and noise level the table gives, for both runs: mean MFNE (rad) and vertex RMSE
 (mean edges of the clean frame) against the clean frames, mean flicker (eval/flicker.h: RMS of
-|(r_t - r_t-1) - (c_t - c_t-1)| in mean edges), the worst frame's MFNE ratio temporal /
-per-frame, and the median engine time per frame.
+|(r_t - r_t-1) - (c_t - c_t-1)| in mean edges), the surface measures that read the result's
+surface and not its vertex ids (fq.surface_flicker, eval/surface_flicker.h; docs/QUALITY.md):
+height RMS (mean edges along the clean normals), surface flicker SF (its change from frame to
+frame) and shading flicker ShF (the change of the result's smooth-shaded normal the clean one
+does not have), the worst frame's MFNE ratio temporal / per-frame, and the median engine time
+per frame.
 
 Sequences (--only picks some):
   crane        ../shared/meshes/crane frames 0..N-1, noise 0.1 and 0.2 (a real capture)
@@ -45,14 +49,15 @@ def parse_args():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--fqfilter", default=os.path.join(root, "build/clients/fqfilter/fqfilter"))
     p.add_argument("--python", default=os.path.join(root, "build/python"), help="folder with the fq module")
-    p.add_argument("--meshes", default=os.path.join(root, "..", "shared", "meshes"))
+    p.add_argument("--meshes", default=os.environ.get("FQ_MESH_DIR", os.path.join(root, "..", "shared", "meshes")),
+                   help="meshes folder (default: $FQ_MESH_DIR, else ../shared/meshes)")
     p.add_argument("--frames", type=int, default=60, help="frames per sequence")
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--temporal", type=float, default=None, help="temporal strength (default: fqfilter's)")
     p.add_argument("--only", default="crane,crane_fast,crane_remesh,twist,static")
     p.add_argument("--threads", type=int, default=0)
     p.add_argument("--json", help="write every number here")
-    p.add_argument("--plot", help="MFNE and flicker per frame, per-frame vs temporal (PNG)")
+    p.add_argument("--plot", help="MFNE, flicker and SF per frame, per-frame vs temporal (PNG)")
     p.add_argument("--quick", action="store_true", help="6 frames of two sequences (the smoke test)")
     return p.parse_args()
 
@@ -114,8 +119,11 @@ def flip_edges(V, F, share, rng):
 
 
 class Sequence:
-    def __init__(self, name, folder, noise, frames, perms=None):
+    def __init__(self, name, folder, noise, frames, perms=None, tracked=None):
         self.name, self.folder, self.noise, self.frames, self.perms = name, folder, noise, frames, perms
+        # The clean frames in one vertex order (the re-meshed crane's own crane frames): what
+        # the surface measures sample from.
+        self.tracked = tracked
 
 
 def build_sequences(fq, args, work):
@@ -154,7 +162,7 @@ def build_sequences(fq, args, work):
             inverse[perm] = np.arange(len(perm))
             fq.write_mesh(os.path.join(folder, f"f{i:04d}.ply"), V[perm], inverse[F].astype(np.uint32))
             perms.append(perm)
-        out.append(Sequence("crane_remesh", folder, 0.2, n, perms))
+        out.append(Sequence("crane_remesh", folder, 0.2, n, perms, [crane(i) for i in range(n)]))
     if "twist" in wanted:
         folder = os.path.join(work, "twist")
         os.makedirs(folder)
@@ -193,15 +201,16 @@ def run_sequence(args, seq, temporal, out_dir):
     return frames
 
 
-def per_frame(fq, seq, frames, clean):
-    """MFNE, RMSE (mean edges), flicker per frame; flicker through the renumbering when re-meshed."""
+def per_frame(fq, seq, frames, clean, threads):
+    """MFNE, RMSE (mean edges), flicker per frame (through the renumbering when re-meshed), and
+    the surface measures (the results as written, sampled from the tracked clean frames)."""
     mfne = [f["metrics"]["output"]["mfne_rad"] for f in frames]
     rmse, flick = [], [None]
     results = []
     for i, f in enumerate(frames):
         V, F = fq.read_mesh(f["output"])
         R = np.asarray(V, np.float64)
-        C, edge = clean[i]
+        C, _, edge = clean[i]
         if seq.perms is not None:  # back to the crane's own vertex order
             R = R[np.argsort(seq.perms[i])]
         rmse.append(float(np.sqrt(((R - C) ** 2).sum(1).mean()) / edge))
@@ -209,32 +218,51 @@ def per_frame(fq, seq, frames, clean):
         if i > 0:
             d = (R - results[i - 1]) - (C - clean[i - 1][0])
             flick.append(float(np.sqrt((d ** 2).sum(1).mean()) / edge))
-    return mfne, rmse, flick
+
+    def surfaces():
+        for (C, CF, _), f in zip(clean, frames):
+            V, F = fq.read_mesh(f["output"])  # the result's own vertex order and triangles
+            yield C, CF, V, F
+
+    surface = fq.surface_flicker(surfaces(), threads=threads)["frames"]
+    return mfne, rmse, flick, surface
 
 
 def clean_frames(fq, seq):
-    """Per frame its clean positions (in the first frame's vertex order) and mean edge."""
+    """Per frame its clean positions and triangles (in the first frame's vertex order) and mean edge."""
     out = []
-    for i, name in enumerate(sorted(os.listdir(seq.folder))):
-        V, F = fq.read_mesh(os.path.join(seq.folder, name))
+    names = seq.tracked or [os.path.join(seq.folder, name) for name in sorted(os.listdir(seq.folder))]
+    for path in names:
+        V, F = fq.read_mesh(path)
         V, F = np.asarray(V, np.float64), np.asarray(F, np.int64)
-        edge = mean_edge(V, F)
-        if seq.perms is not None:
-            V = V[np.argsort(seq.perms[i])]
-        out.append((V, edge))
+        out.append((V, F, mean_edge(V, F)))
     return out
 
 
-def summarize(mfne, rmse, flick, ms):
-    fl = [x for x in flick if x is not None]
-    return {"mfne": statistics.mean(mfne), "rmse": statistics.mean(rmse),
-            "flicker": statistics.mean(fl) if fl else float("nan"), "ms": statistics.median(ms)}
+def mean_of(values):
+    kept = [x for x in values if x is not None]
+    return statistics.mean(kept) if kept else float("nan")
+
+
+def summarize(mfne, rmse, flick, surface, ms):
+    return {"mfne": statistics.mean(mfne), "rmse": statistics.mean(rmse), "flicker": mean_of(flick),
+            "height_rms": mean_of([f["height_rms"] for f in surface]),
+            "smooth_normal_error": mean_of([f["smooth_normal_error_rad"] for f in surface]),
+            "sf": mean_of([f["surface_flicker"] for f in surface]),
+            "shf": mean_of([f["shading_flicker"] for f in surface]), "ms": statistics.median(ms)}
 
 
 def main():
     args = parse_args()
     if args.quick:
         args.frames, args.only = 6, "crane,static"
+    wanted = args.only.split(",")
+    needed = [os.path.join(args.meshes, "crane", "crane_0000.drc")] if any(w.startswith("crane") for w in wanted) else []
+    needed += [os.path.join(args.meshes, f) for w, f in (("twist", "armadillo.ply"), ("static", "bunny.ply"))
+               if w in wanted]
+    if missing := [p for p in needed if not os.path.exists(p)]:
+        print(f"temporal_bench: skipped: no {missing[0]} (--meshes)")
+        sys.exit(77)
     sys.path.insert(0, args.python)
     import fq  # noqa: E402 (from --python)
 
@@ -248,10 +276,13 @@ def main():
             for label, temporal in (("per_frame", 0.0), ("temporal", args.temporal)):
                 out_dir = os.path.join(work, f"out_{seq.name}_{seq.noise}_{label}")
                 frames = run_sequence(args, seq, temporal, out_dir)
-                mfne, rmse, flick = per_frame(fq, seq, frames, clean)
+                mfne, rmse, flick, surface = per_frame(fq, seq, frames, clean, args.threads)
                 ms = [f["timings_ms"]["total"] for f in frames]
-                row[label] = summarize(mfne, rmse, flick, ms)
-                curves[label] = {"mfne": mfne, "rmse": rmse, "flicker": flick}
+                row[label] = summarize(mfne, rmse, flick, surface, ms)
+                curves[label] = {"mfne": mfne, "rmse": rmse, "flicker": flick,
+                                 "height_rms": [f["height_rms"] for f in surface],
+                                 "sf": [f["surface_flicker"] for f in surface],
+                                 "shf": [f["shading_flicker"] for f in surface]}
                 if label == "temporal":
                     row["scene_cuts"] = sum(1 for f in frames if f.get("temporal", {}).get("history_reset"))
                 shutil.rmtree(out_dir)
@@ -260,6 +291,11 @@ def main():
             row["curves"] = curves
             rows.append(row)
             print_row(row, header=len(rows) == 1)
+    if args.quick:  # the smoke test: every surface measure came back
+        bad = [r["sequence"] for r in rows for label in ("per_frame", "temporal")
+               if not all(math.isfinite(r[label][k]) for k in ("height_rms", "sf", "shf", "smooth_normal_error"))]
+        if bad:
+            sys.exit(f"temporal_bench: surface measures missing for {', '.join(bad)}")
     if args.json:
         with open(args.json, "w") as f:
             json.dump(rows, f, indent=1)
@@ -270,28 +306,33 @@ def main():
 def print_row(r, header):
     if header:
         print("| sequence | noise | frames | MFNE per-frame | MFNE temporal | RMSE per-frame | RMSE temporal "
-              "| flicker per-frame | flicker temporal | worst frame | ms per-frame | ms temporal |")
-        print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+              "| flicker per-frame | flicker temporal | height RMS per-frame | height RMS temporal "
+              "| SF per-frame | SF temporal | ShF per-frame | ShF temporal | worst frame | ms per-frame "
+              "| ms temporal |")
+        print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     p, t = r["per_frame"], r["temporal"]
-    print(f"| {r['sequence']} | {r['noise']} | {r['frames']} | {p['mfne']:.4f} | {t['mfne']:.4f} | {p['rmse']:.4f} "
-          f"| {t['rmse']:.4f} | {p['flicker']:.4f} | {t['flicker']:.4f} | {r['worst_frame_ratio']:.3f} "
-          f"| {p['ms']:.1f} | {t['ms']:.1f} |", flush=True)
+    cells = [r["sequence"], str(r["noise"]), str(r["frames"])]
+    for key in ("mfne", "rmse", "flicker", "height_rms", "sf", "shf"):
+        cells += [f"{p[key]:.4f}", f"{t[key]:.4f}"]
+    cells += [f"{r['worst_frame_ratio']:.3f}", f"{p['ms']:.1f}", f"{t['ms']:.1f}"]
+    print("| " + " | ".join(cells) + " |", flush=True)
 
 
 def plot(rows, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(2, len(rows), figsize=(3.2 * len(rows), 5.5), squeeze=False)
+    what_label = {"mfne": "MFNE (rad)", "flicker": "flicker (mean edges)", "sf": "SF (mean edges)"}
+    fig, axes = plt.subplots(len(what_label), len(rows), figsize=(3.2 * len(rows), 8), squeeze=False)
     for k, r in enumerate(rows):
-        for j, what in enumerate(("mfne", "flicker")):
+        for j, what in enumerate(what_label):
             ax = axes[j][k]
             for label, style in (("per_frame", "C0"), ("temporal", "C3")):
                 ys = r["curves"][label][what]
                 xs = [i for i, y in enumerate(ys) if y is not None]
                 ax.plot(xs, [ys[i] for i in xs], style, lw=1, label=label.replace("_", "-"))
             ax.set_title(f"{r['sequence']} {r['noise']}" if j == 0 else "", fontsize=9)
-            ax.set_ylabel("MFNE (rad)" if what == "mfne" else "flicker (mean edges)", fontsize=8)
+            ax.set_ylabel(what_label[what], fontsize=8)
             ax.set_xlabel("frame", fontsize=8)
             ax.tick_params(labelsize=7)
             ax.set_ylim(bottom=0)

@@ -88,6 +88,38 @@ nlohmann::json error_json(const std::optional<MeshError>& e) {
           {"faces_skipped", e->mfne.faces_skipped}};
 }
 
+nlohmann::json optional_json(const std::optional<double>& x) {
+  return x ? nlohmann::json(*x) : nlohmann::json(nullptr);
+}
+
+// --sequence: the stream's prior and the flicker measures (null where not measured; NaN, a clean
+// frame without area, is written as null by dump()).
+nlohmann::json temporal_json(const FileReport& r) {
+  nlohmann::json t = {{"prior_coverage", *r.prior_coverage},
+                      {"prior_share", *r.prior_share},
+                      {"history_reset", r.history_reset},
+                      {"track", r.temporal_track},
+                      {"ids_refused", r.ids_refused},
+                      {"flicker", optional_json(r.flicker)},
+                      {"flicker_normal", nullptr},
+                      {"flicker_tangential", nullptr},
+                      {"surface_flicker", nullptr},
+                      {"shading_flicker", nullptr},
+                      {"height_rms", nullptr},
+                      {"smooth_normal_error_rad", nullptr}};
+  if (r.flicker_parts) {
+    t["flicker_normal"] = r.flicker_parts->normal;
+    t["flicker_tangential"] = r.flicker_parts->tangential;
+  }
+  if (r.surface) {
+    t["surface_flicker"] = optional_json(r.surface->surface_flicker);
+    t["shading_flicker"] = optional_json(r.surface->shading_flicker);
+    t["height_rms"] = r.surface->height_rms;
+    t["smooth_normal_error_rad"] = r.surface->smooth_normal_error;
+  }
+  return t;
+}
+
 nlohmann::json recall_json(const std::optional<SharpEdgeRecall>& r) {
   if (!r) return nullptr;
   return {{"recall", r->recall},
@@ -155,13 +187,7 @@ nlohmann::json to_json(const FileReport& r) {
             {"clusters", r.clusters ? nlohmann::json(*r.clusters) : nlohmann::json(nullptr)},
             {"theta_used", r.theta_used ? nlohmann::json(as_typed(*r.theta_used)) : nlohmann::json(nullptr)},
             {"warnings", r.warnings}});
-  if (r.prior_coverage)
-    j["temporal"] = {{"prior_coverage", *r.prior_coverage},
-                     {"prior_share", *r.prior_share},
-                     {"history_reset", r.history_reset},
-                     {"track", r.temporal_track},
-                     {"ids_refused", r.ids_refused},
-                     {"flicker", r.flicker ? nlohmann::json(*r.flicker) : nlohmann::json(nullptr)}};
+  if (r.prior_coverage) j["temporal"] = temporal_json(r);
   if (r.reference.empty()) {
     j["metrics"] = nullptr;
   } else {
@@ -218,7 +244,17 @@ void print_human(const FileReport& r, std::ostream& os) {
     if (r.ids_refused) os << " (ids refused: they do not follow a smooth motion)";
     if (r.history_reset) os << " (scene cut: history reset)";
     if (r.flicker) os << ", flicker " << *r.flicker << " mean edges";
+    if (r.flicker_parts)
+      os << " (" << r.flicker_parts->normal << " across the surface, " << r.flicker_parts->tangential
+         << " along it)";
     os << "\n";
+    if (r.surface) {
+      os << "  surface: height RMS " << r.surface->height_rms << " mean edges, smooth-normal error "
+         << r.surface->smooth_normal_error << " rad";
+      if (r.surface->surface_flicker)
+        os << ", SF " << *r.surface->surface_flicker << " mean edges, ShF " << *r.surface->shading_flicker;
+      os << "\n";
+    }
   }
   if (r.clusters) {
     os << "  clusters: " << *r.clusters;

@@ -10,9 +10,11 @@
 
 #include "core/params.h"
 #include "eval/error_metrics.h"
+#include "eval/flicker.h"
 #include "eval/noise.h"
 #include "eval/sharp_edge_recall.h"
 #include "eval/surface_distance.h"
+#include "eval/surface_flicker.h"
 #include "eval/vertex_moves.h"
 #include "kernels/engine.h"
 
@@ -52,7 +54,8 @@ struct FileReport {
   uint32_t welded_vertices = 0;
   /// --sequence: the share of vertices that found a prior in the last result, the mean pull
   /// towards it, whether this frame reset the stream's history (a scene cut), and the flicker
-  /// against the last frame (eval/flicker.h; with a reference of the same vertices).
+  /// against the last frame (eval/flicker.h; with a reference of the same vertices), split
+  /// along the clean normals and across them.
   std::optional<float> prior_coverage, prior_share;
   bool history_reset = false;
   /// Which temporal track ran ("ids", "space" or "none": kernels/engine.h), and whether the
@@ -60,6 +63,11 @@ struct FileReport {
   const char* temporal_track = "none";
   bool ids_refused = false;
   std::optional<double> flicker;
+  std::optional<FlickerParts> flicker_parts;
+  /// --sequence with a reference: the result's surface seen from the clean frame's vertices
+  /// (eval/surface_flicker.h): height RMS, smooth-normal error, and SF and ShF against the
+  /// last frame.
+  std::optional<SurfaceFrameMetrics> surface;
   std::optional<uint32_t> clusters;
   std::optional<float> theta_used;        ///< the theta that gave the labels (found with a target)
   std::optional<SharpEdgeRecall> sharp_edges;  ///< labels vs the reference's creases

@@ -5,9 +5,11 @@
 #include <iostream>
 #include <map>
 #include <optional>
+#include <utility>
 
 #include "clients/fqfilter/file_job.h"
 #include "eval/flicker.h"
+#include "eval/surface_flicker.h"
 #include "io/mesh_io.h"
 #include "kernels/temporal.h"
 
@@ -63,6 +65,7 @@ namespace {
 struct SequenceSummary {
   double mfne_sum = 0.0, flicker_sum = 0.0;
   size_t mfne_frames = 0, flicker_frames = 0, resets = 0;
+  SurfaceFlickerSeries surface;  // the surface measures of every frame with a reference
 
   void add(const FileReport& r) {
     if (r.output_error && std::isfinite(r.output_error->mfne.mean_radians)) {
@@ -79,19 +82,44 @@ struct SequenceSummary {
     os << "fqfilter: sequence: " << resets << " scene cut" << (resets == 1 ? "" : "s");
     if (mfne_frames) os << ", mean MFNE " << mfne_sum / double(mfne_frames) << " rad";
     if (flicker_frames) os << ", mean flicker " << flicker_sum / double(flicker_frames) << " mean edges";
+    if (surface.frames())
+      os << ", mean height RMS " << surface.mean_height_rms() << " mean edges, smooth-normal error "
+         << surface.mean_smooth_normal_error() << " rad";
+    if (surface.transitions())
+      os << ", mean SF " << surface.mean_surface_flicker() << " mean edges, ShF "
+         << surface.mean_shading_flicker();
     os << "\n";
   }
 };
 
-/// Flicker of `now` against the frame before (eval/flicker.h), when both have a reference and
-/// a result and the same triangles (so vertex i is the same surface point in both; a re-meshed
-/// sequence has no flicker by vertex).
-std::optional<double> flicker_between(const FramePositions& before, const FramePositions& now) {
-  if (now.result.empty() || before.result.size() != now.result.size() ||
-      now.reference.size() != now.result.size() || before.triangles != now.triangles)
-    return std::nullopt;
-  return flicker(now.result.data(), before.result.data(), now.reference.data(), before.reference.data(),
-                 static_cast<uint32_t>(now.result.size() / 3), now.reference_mean_edge);
+/// Whether `before` and `now` hold the same vertices of a tracked sequence: both have a
+/// reference and a result and the same triangles (so vertex i is the same surface point in
+/// both; a re-meshed sequence has no flicker by vertex).
+bool same_vertices(const FramePositions& before, const FramePositions& now) {
+  return !now.result.empty() && before.result.size() == now.result.size() &&
+         now.reference.size() == now.result.size() && before.triangles == now.triangles;
+}
+
+/// The measures of a --sequence frame with a reference: the result's surface seen from the
+/// clean frame (eval/surface_flicker.h), and against the frame before the flicker by vertex
+/// (eval/flicker.h), split along the clean normals.
+void measure_frame(const FramePositions& before, const FramePositions& now, int threads, FileReport& report,
+                   SurfaceFlickerSeries& series) {
+  if (now.result.empty()) return;
+  const auto n = static_cast<uint32_t>(now.reference.size() / 3);
+  const auto m = static_cast<uint32_t>(now.triangles.size() / 3);
+  const MeshView clean{now.reference.data(), n, now.triangles.data(), m};
+  const MeshView result{now.result.data(), n, now.triangles.data(), m};
+  SurfaceSample sample = sample_surface(clean, result, threads);
+  if (same_vertices(before, now) && sample.vertices() == n) {
+    report.flicker_parts =
+        flicker_parts(now.result.data(), before.result.data(), now.reference.data(), before.reference.data(),
+                      sample.clean_normal.data(), n, now.reference_mean_edge);
+    report.flicker = report.flicker_parts->total;
+  } else {
+    series.reset();  // other clean vertices: no pair measure against the frame before
+  }
+  report.surface = series.add(std::move(sample));
 }
 
 }  // namespace
@@ -130,7 +158,7 @@ int run_folder(const Options& o, Engine& engine) {
     }
     if (!s.ok()) ++failed;
     if (o.sequence && s.ok()) {
-      report.flicker = flicker_between(before, now);
+      measure_frame(before, now, o.engine.threads, report, summary.surface);
       summary.add(report);
       std::swap(before, now);
     }

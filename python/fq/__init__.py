@@ -12,9 +12,10 @@ from ._client import Consumer, Producer
 from ._engine import _param_names, cluster, engine_name, filter
 from ._fq import __version__, built_with_cuda
 from ._files import read_mesh, write_mesh
-from ._measures import add_noise, metrics, scan_error
+from ._measures import add_noise, metrics, scan_error, surface_flicker, surface_sample
 from ._stream import Stream
 from .mesh import Mesh
 
 __all__ = ["Consumer", "Mesh", "Producer", "Stream", "add_noise", "built_with_cuda", "cluster", "engine_name",
-           "filter", "metrics", "read_mesh", "scan_error", "wire", "write_mesh"]
+           "filter", "metrics", "read_mesh", "scan_error", "surface_flicker", "surface_sample", "wire",
+           "write_mesh"]

@@ -1,8 +1,9 @@
-"""fq.add_noise, fq.metrics and fq.scan_error: the noise and error measures of fqfilter."""
+"""fq.add_noise, fq.metrics, fq.scan_error, fq.surface_sample and fq.surface_flicker: the noise and
+error measures of fqfilter."""
 from __future__ import annotations
 
 import numpy as np
-from typing import Any
+from typing import Any, Iterable
 
 from numpy.typing import ArrayLike, NDArray
 
@@ -111,3 +112,76 @@ def scan_error(V_ref: ArrayLike, F_ref: ArrayLike, V_scan: ArrayLike, F_scan: Ar
         A wrong shape or dtype, an index out of range, or V of another length than V_scan.
     """
     return _fq.scan_error(V_ref, F_ref, V_scan, F_scan, V)
+
+
+def surface_sample(V_clean: ArrayLike, F_clean: ArrayLike, V_result: ArrayLike, F_result: ArrayLike,
+                   threads: int = 0) -> dict[str, Any]:
+    """The result surface seen from every vertex of the clean mesh (``eval/surface_flicker.h``).
+
+    Each clean vertex c, with its unit area-weighted normal n, samples the result along the
+    line c + s·n: the crossing with the result's triangles nearest c within 3 clean mean
+    edges, else the result's closest point (s then its offset along n). Only the result's
+    surface counts, never its vertex order or triangles: the result may be re-meshed.
+
+    Parameters
+    ----------
+    V_clean, F_clean : array_like
+        The clean mesh (n×3 positions, m×3 triangles): where to sample and the unit.
+    V_result, F_result : array_like
+        The result's own positions and triangles.
+    threads : int, default 0
+        Threads to sample with; 0: every hardware thread.
+
+    Returns
+    -------
+    dict
+        ``height`` (n,): s in clean mean edges; ``result_normal`` (n, 3): the result's
+        smooth-shaded unit normal there (barycentric mix of its unit area-weighted vertex
+        normals); ``clean_normal`` (n, 3); ``area`` (n,): a third of each incident clean
+        triangle's area (0 for a vertex without a normal, which does not count); ``hit`` (n,)
+        bool: the line met the result within reach; ``mean_edge``; ``height_rms`` (the
+        area-weighted RMS of height) and ``smooth_normal_error_rad`` (the area-weighted mean
+        angle between the two normals).
+
+    Raises
+    ------
+    ValueError
+        A wrong shape or dtype, or an index out of range.
+    """
+    return _fq.surface_sample(V_clean, F_clean, V_result, F_result, int(threads))
+
+
+def surface_flicker(frames: Iterable[tuple[ArrayLike, ArrayLike, ArrayLike, ArrayLike]],
+                    threads: int = 0) -> dict[str, Any]:
+    """Surface flicker, shading flicker and the per-frame surface measures of a sequence.
+
+    ``frames`` yields (V_clean, F_clean, V_result, F_result) per frame in order, sampled as
+    :func:`surface_sample` does. Surface flicker (SF) is the area-weighted RMS over clean
+    vertices of height_t − height_t−1 (clean mean edges); shading flicker (ShF) the
+    area-weighted RMS of |(n_r,t − n_r,t−1) − (n_c,t − n_c,t−1)| (n_r the result's
+    smooth-shaded normal, n_c the clean one; a chord of unit vectors, about radians). Both
+    need clean frames that share their vertices (a tracked reference): a pair whose clean
+    frames differ in vertex count has neither. The results may be re-meshed.
+
+    Parameters
+    ----------
+    frames : iterable of 4-tuples
+        (V_clean, F_clean, V_result, F_result) for every frame, in order (a generator does:
+        one frame at a time is held).
+    threads : int, default 0
+        Threads to sample with; 0: every hardware thread.
+
+    Returns
+    -------
+    dict
+        ``height_rms`` and ``smooth_normal_error_rad`` (means over frames),
+        ``surface_flicker`` and ``shading_flicker`` (means over transitions; NaN without one),
+        ``transitions``, and ``frames``: per frame a dict of the four (the pair measures None
+        on the first frame).
+
+    Raises
+    ------
+    ValueError
+        A frame that is not four arrays, a wrong shape or dtype, or an index out of range.
+    """
+    return _fq.surface_flicker(frames, int(threads))

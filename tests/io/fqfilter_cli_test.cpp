@@ -316,32 +316,44 @@ TEST(FqfilterCli, SequenceFiltersAcrossFramesAndReportsFlicker) {
     for (size_t at = 0, end; (end = r.out.find('\n', at)) != std::string::npos; at = end + 1)
       frames.push_back(nlohmann::json::parse(r.out.substr(at, end - at)));
     EXPECT_NE(r.err.find("sequence: 0 scene cuts, mean MFNE"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(", mean SF "), std::string::npos) << r.err;
     return frames;
   };
   const std::vector<nlohmann::json> stream = run("0.75"), alone = run("0");
   ASSERT_EQ(stream.size(), 4u);
   ASSERT_EQ(alone.size(), 4u);
-  double stream_mfne = 0, alone_mfne = 0;
+  double stream_mfne = 0, alone_mfne = 0, stream_sf = 0, alone_sf = 0;
   for (size_t i = 0; i < 4; ++i) {
     const nlohmann::json& t = stream[i].at("temporal");
+    EXPECT_GT(t.at("height_rms").get<double>(), 0.0);
+    EXPECT_GT(t.at("smooth_normal_error_rad").get<double>(), 0.0);
     EXPECT_EQ(stream[i].at("noise").at("seed").get<int>(), int(1 + i)) << "fresh noise every frame";
     EXPECT_EQ(stream[i].at("params").at("temporal").get<double>(), 0.75);
     EXPECT_FALSE(t.at("history_reset").get<bool>());
     if (i == 0) {
       EXPECT_EQ(t.at("prior_coverage").get<double>(), 0.0);
       EXPECT_TRUE(t.at("flicker").is_null());
+      EXPECT_TRUE(t.at("surface_flicker").is_null()) << "no frame before the first";
     } else {
       EXPECT_GT(t.at("prior_coverage").get<double>(), 0.9);
       EXPECT_GT(t.at("prior_share").get<double>(), 0.1);
       EXPECT_GT(t.at("flicker").get<double>(), 0.0);
+      // The split adds up: flicker² = normal² + tangential².
+      const double n = t.at("flicker_normal").get<double>(), g = t.at("flicker_tangential").get<double>();
+      EXPECT_NEAR(n * n + g * g, std::pow(t.at("flicker").get<double>(), 2), 1e-9);
+      EXPECT_GT(t.at("surface_flicker").get<double>(), 0.0);
+      EXPECT_GT(t.at("shading_flicker").get<double>(), 0.0);
     }
     if (i > 0) EXPECT_GT(alone[i].at("temporal").at("flicker").get<double>(), 0.0) << "the baseline's flicker";
     if (i >= 2) {
       stream_mfne += stream[i].at("metrics").at("output").at("mfne_rad").get<double>();
       alone_mfne += alone[i].at("metrics").at("output").at("mfne_rad").get<double>();
+      stream_sf += stream[i].at("temporal").at("surface_flicker").get<double>();
+      alone_sf += alone[i].at("temporal").at("surface_flicker").get<double>();
     }
   }
   EXPECT_LT(stream_mfne, alone_mfne) << "the history helps a part that did not move";
+  EXPECT_LT(stream_sf, alone_sf) << "and its surface holds stiller";
 }
 
 TEST(FqfilterCli, SequenceOptionsAreChecked) {
