@@ -55,6 +55,19 @@ void Engine::report_step(const TemporalStep& step, FrameResult& out) {
   out.prior_coverage = step.coverage;
   out.prior_share = step.share;
   out.history_reset = step.reset;
+  out.temporal_track = TemporalTrack::kSpace;
+}
+
+const char* temporal_track_name(TemporalTrack track) {
+  switch (track) {
+    case TemporalTrack::kIds:
+      return "ids";
+    case TemporalTrack::kSpace:
+      return "space";
+    case TemporalTrack::kNone:
+      break;
+  }
+  return "none";
 }
 
 void Engine::follow_stream_history(const MeshView& mesh, const Params& params, FrameResult& out, int threads) {

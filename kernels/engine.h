@@ -26,6 +26,11 @@ struct PassTiming {
 };
 
 /// Output of one frame. Buffers are reused (grow-only) when the same object is passed again.
+enum class TemporalTrack : uint8_t { kNone, kIds, kSpace };
+
+/// "none", "ids" or "space".
+const char* temporal_track_name(TemporalTrack track);
+
 struct FrameResult {
   std::vector<float> positions;   ///< 3 per vertex, input order; the input when !filter
   std::vector<uint32_t> labels;   ///< one per vertex in 0..num_clusters-1; empty when !cluster
@@ -51,6 +56,15 @@ struct FrameResult {
   float prior_coverage = 0.f;
   float prior_share = 0.f;
   bool history_reset = false;
+  /// Which temporal track ran (docs/ALGORITHM.md, "Temporal filtering"): ids (track A: the
+  /// input averaged through the vertex ids, kernels/temporal_ids.h), space (track B: the result
+  /// pulled towards the last one, kernels/temporal.h), or none (no history asked for).
+  TemporalTrack temporal_track = TemporalTrack::kNone;
+  /// Track A: the frame shared the last frame's connectivity but its ids did not follow a
+  /// smooth motion (it fell back to track B); the typical RMS of the displacement the motion
+  /// left (mean edges; 0 when track A did not look).
+  bool ids_refused = false;
+  float ids_residual = 0.f;
   /// Vertices at the exact position of an earlier one (seam twins, kernels/seam_weld.h) that
   /// the frame was filtered without: each is given its first copy's result. 0: none.
   uint32_t welded_vertices = 0;
@@ -162,7 +176,12 @@ class Engine {
   Status run_welded(const MeshView& mesh, const FramePlan& plan, FrameResult& out);
   Status run_frame(const MeshView& mesh, const FramePlan& plan, FrameResult& out);
   Status run_once(const MeshView& mesh, const RunPlan& run, FrameResult& out);
+  /// The frame's own run with the stream's temporal step around it: track A averages the input
+  /// before the run when the ids allow (kernels/temporal_ids.h), else track B pulls the result
+  /// after it (temporal_step).
+  Status run_own(const MeshView& mesh, const RunPlan& run, FrameResult& out);
 
+  std::vector<float> id_input_;  ///< track A's averaged input of the frame
   ClusterRuns cluster_runs_;
   SeamWeld seams_;
   bool weld_seams_ = true;

@@ -30,6 +30,9 @@ void reset_run_outputs(FrameResult& out) {
   out.prior_coverage = 0.f;
   out.prior_share = 0.f;
   out.history_reset = false;
+  out.temporal_track = TemporalTrack::kNone;
+  out.ids_refused = false;
+  out.ids_residual = 0.f;
 }
 
 void append_timings(const char* prefix, const FrameResult& from, FrameResult& to) {
@@ -90,6 +93,50 @@ Status Engine::run_once(const MeshView& mesh, const RunPlan& run, FrameResult& o
   return st;
 }
 
+// Track A when the stream keeps its connectivity and its ids follow a smooth motion: the run
+// filters the averaged input, alone (its params without the temporal strength, so that no
+// engine also takes track B's step), and its result becomes the spatial track's history for
+// when the connectivity changes. Otherwise the run on the frame itself, then track B. The
+// temporal step comes before a clustering run reads the result: both engines then cluster the
+// same positions (the CUDA engine pulls them on the device inside its run, and here its
+// history takes them). A stopped frame does not become the stream's history.
+Status Engine::run_own(const MeshView& mesh, const RunPlan& run, FrameResult& out) {
+  IdStep ids;
+  double id_ms = 0.0;
+  const bool follows = follows_history(run.params);
+  if (follows) {
+    const auto start = std::chrono::steady_clock::now();
+    ids = average_with_ids(mesh, connectivity_fingerprint(mesh, host_threads()), history_->mean_edge,
+                           run.params.filtering.temporal, history_->ids, id_input_, temporal_scratch_,
+                           host_threads());
+    id_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  if (!ids.ran) {
+    FQ_RETURN_IF_ERROR(run_once(mesh, run, out));
+    FQ_RETURN_IF_ERROR(check_cancel());
+    temporal_step(mesh, run.params, out);
+  } else {
+    MeshView averaged = mesh;
+    averaged.positions = id_input_.data();
+    RunPlan alone = run;
+    alone.params.filtering.temporal = 0.f;
+    FQ_RETURN_IF_ERROR(run_once(averaged, alone, out));
+    FQ_RETURN_IF_ERROR(check_cancel());
+    const auto start = std::chrono::steady_clock::now();
+    keep_averaged_result(mesh, out.positions, out.mean_edge, *history_, temporal_scratch_, host_threads());
+    id_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    out.temporal_track = TemporalTrack::kIds;
+    out.prior_coverage = 1.f;
+    out.prior_share = ids.share;
+  }
+  if (follows) {
+    out.ids_refused = ids.refused;
+    out.ids_residual = ids.residual;
+    out.timings.push_back({"temporal_ids", id_ms});
+  }
+  return {};
+}
+
 // The frame's own run writes `out`; the geometry and clustering runs write cluster_runs_
 // (kept for the next frame), and the clustering run reads the positions of the run before it.
 Status Engine::run_frame(const MeshView& mesh, const FramePlan& plan, FrameResult& out) {
@@ -97,13 +144,7 @@ Status Engine::run_frame(const MeshView& mesh, const FramePlan& plan, FrameResul
   for (const RunPlan& run : plan.runs) {
     switch (run.role) {
       case RunRole::kFrame:
-        FQ_RETURN_IF_ERROR(run_once(mesh, run, out));
-        // The temporal step on the frame's own result, before a clustering run reads it: both
-        // engines then cluster the same positions (the CUDA engine pulls them on the device
-        // inside its run, and here its history takes them). A stopped frame does not become
-        // the stream's history.
-        FQ_RETURN_IF_ERROR(check_cancel());
-        temporal_step(mesh, run.params, out);
+        FQ_RETURN_IF_ERROR(run_own(mesh, run, out));
         break;
       case RunRole::kGeometry:
         FQ_RETURN_IF_ERROR(run_once(mesh, run, cluster_runs_.geometry));

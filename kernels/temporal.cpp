@@ -45,6 +45,19 @@ void vertex_normals(const FanView& fan, const std::vector<Vec3>& x, std::vector<
   });
 }
 
+void keep_as_history(const FanView& fan, uint32_t n, const std::vector<float>& positions, double mean_edge,
+                     TemporalHistory& history, TemporalScratch& s, int threads) {
+  const CancelScope whole(nullptr);
+  s.spare.resize(n);  // the result as Vec3, in input units: the CPU's normals are as before bit for bit
+  parallel_for(n, threads, [&](uint32_t v) { s.spare[v] = at(positions.data(), v); });
+  vertex_normals(fan, s.spare, s.normals, threads);
+  history.positions.assign(positions.begin(), positions.begin() + 3 * size_t(n));
+  history.normals.swap(s.normals);
+  history.mean_edge = mean_edge;
+  history.stamp = next_history_stamp();  // the index is built when the next frame needs it
+  ++history.frames;
+}
+
 TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions, double mean_edge, float noise,
                             float strength, TemporalHistory& history, TemporalScratch& s, int threads) {
   // No loop of the step may be skipped (parallel_for skips chunks under an expired token): the
@@ -129,14 +142,7 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
       step.share = float(pulled / n);
     }
   }
-  s.spare.resize(n);  // the result as Vec3, in input units: the CPU's normals are as before bit for bit
-  parallel_for(n, threads, [&](uint32_t v) { s.spare[v] = at(positions.data(), v); });
-  vertex_normals(fan, s.spare, s.normals, threads);
-  history.positions.assign(positions.begin(), positions.begin() + 3 * size_t(n));
-  history.normals.swap(s.normals);
-  history.mean_edge = mean_edge;
-  history.stamp = next_history_stamp();  // the index is built when the next frame needs it
-  ++history.frames;
+  keep_as_history(fan, n, positions, mean_edge, history, s, threads);
   return step;
 }
 

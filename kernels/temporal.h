@@ -15,6 +15,7 @@
 #include "core/mesh_view.h"
 #include "kernels/frame_matcher.h"
 #include "kernels/refine_math.h"
+#include "kernels/temporal_ids.h"
 #include "kernels/vec3.h"
 
 namespace fq {
@@ -32,6 +33,9 @@ struct TemporalHistory {
   /// engine's step when it needs it (the CUDA engine matches on the device and leaves it).
   FrameMatcher index;
   uint64_t index_stamp = 0;
+  /// Track A's memory (kernels/temporal_ids.h): the last averaged input, while the stream keeps
+  /// its connectivity. A scene cut of the spatial track leaves it (clear()); forget() drops both.
+  IdTrack ids;
 
   bool empty() const { return frames == 0; }
   /// Forgets the last result (a new stream, a restart, a scene cut); the reset count stays.
@@ -39,6 +43,10 @@ struct TemporalHistory {
     positions.clear();
     normals.clear();
     frames = 0;
+  }
+  void forget() {
+    clear();
+    ids.clear();
   }
 };
 
@@ -63,6 +71,12 @@ struct TemporalScratch {
 /// estimate, mean edges) set the scales. Then the result becomes the history of the next frame.
 TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions, double mean_edge, float noise,
                             float strength, TemporalHistory& history, TemporalScratch& scratch, int threads);
+
+/// The end of every frame's temporal step, and all of it for a frame that track A averaged:
+/// `positions` (the frame's result, input order, n vertices of `fan`) with its vertex normals
+/// become the history the spatial track follows next.
+void keep_as_history(const FanView& fan, uint32_t n, const std::vector<float>& positions, double mean_edge,
+                     TemporalHistory& history, TemporalScratch& scratch, int threads);
 
 /// A stamp no history has had yet (never 0).
 uint64_t next_history_stamp();

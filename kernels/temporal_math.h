@@ -62,3 +62,33 @@ FQ_HD bool scene_cut(float coverage) { return coverage < kMinPriorCoverage; }
 FQ_HD float prior_detail(Vec3 x, Vec3 m, Vec3 p, Vec3 n) { return dot(n, p - (x + m)); }
 
 }  // namespace fq
+
+// Track A (kernels/temporal_ids.h): the frame's input averaged with the last averaged input
+// through the vertex ids, once the ids are shown to follow a smooth motion.
+
+/// Ring means of the id displacement that make its smooth part, the motion (four rings: about
+/// 60 vertices, so the two frames' noise leaves an eighth of itself in the motion; a ring mean
+/// reproduces a locally affine motion, so rotations and stretches pass whole).
+constexpr int kIdMotionPasses = 4;
+/// Ring means of the squared non-smooth displacement that make a vertex's local level.
+constexpr int kIdAgreementPasses = 2;
+/// A vertex's level may be this many times the frame's typical level (its median) before the
+/// last averaged input loses weight there: local levels of pure noise spread about ±20 % over
+/// two rings, so twice the median is a misfit, not chance.
+constexpr float kIdTolerance = 2.f;
+/// Above this typical RMS of the non-smooth displacement (mean edges) the ids are not the same
+/// surface points from frame to frame (noise of 0.2 mean edges gives about 0.4): track B.
+constexpr float kIdReach = 2.f;
+
+/// The weight of the last averaged input at a vertex whose local level of non-smooth
+/// displacement is `level`, in a frame whose typical level is `typical`: the full `strength`
+/// within kIdTolerance of the typical level, then falling as 1 / level (the misfit the prior
+/// would bring grows as its level, so its weight shrinks in proportion).
+FQ_HD float id_share(float level, float typical, float strength) {
+  const float allowed = kIdTolerance * typical;
+  return level > allowed ? strength * (allowed / level) : strength;
+}
+
+/// Whether a frame whose typical level of non-smooth id displacement is `typical` (squared mean
+/// edges) has ids that follow the surface.
+FQ_HD bool ids_follow(float typical) { return typical <= kIdReach * kIdReach; }

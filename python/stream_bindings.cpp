@@ -38,13 +38,15 @@ class Stream {
     return positions_array(last_.positions, v);
   }
 
-  void reset() { history_.clear(); }
+  void reset() { history_.forget(); }
   uint64_t frames() const { return history_.frames; }
   uint64_t resets() const { return history_.resets; }
   float temporal() const { return params_.filtering.temporal; }
   pyb::dict last() const {
     return pyb::dict("noise_estimate"_a = last_.noise_estimate, "prior_coverage"_a = last_.prior_coverage,
-                     "prior_share"_a = last_.prior_share, "history_reset"_a = last_.history_reset);
+                     "prior_share"_a = last_.prior_share, "history_reset"_a = last_.history_reset,
+                     "track"_a = temporal_track_name(last_.temporal_track),
+                     "ids_refused"_a = last_.ids_refused);
   }
 
  private:

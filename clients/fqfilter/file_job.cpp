@@ -60,6 +60,8 @@ Status run_engine(const Options& o, Engine& engine, const MeshView& view, FrameR
     report.prior_coverage = result.prior_coverage;
     report.prior_share = result.prior_share;
     report.history_reset = result.history_reset;
+    report.temporal_track = temporal_track_name(result.temporal_track);
+    report.ids_refused = result.ids_refused;
   }
   if (o.params.cluster) {
     report.clusters = result.num_clusters;

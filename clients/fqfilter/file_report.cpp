@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <numbers>
 #include <ostream>
+#include <string_view>
 
 #include "clients/fqfilter/cli_options.h"
 #include "common/sample_stats.h"
@@ -97,6 +98,8 @@ nlohmann::json temporal_json(const FileReport& r) {
   nlohmann::json t = {{"prior_coverage", *r.prior_coverage},
                       {"prior_share", *r.prior_share},
                       {"history_reset", r.history_reset},
+                      {"track", r.temporal_track},
+                      {"ids_refused", r.ids_refused},
                       {"flicker", optional_json(r.flicker)},
                       {"flicker_normal", nullptr},
                       {"flicker_tangential", nullptr},
@@ -232,8 +235,13 @@ void print_human(const FileReport& r, std::ostream& os) {
     os << std::setprecision(3) << "  moved: mean " << r.moved->mean << ", p99 " << r.moved->p99 << ", max "
        << r.moved->max << " mean edges\n";
   if (r.prior_coverage) {
-    os << std::setprecision(3) << "  temporal: " << *r.prior_coverage << " of vertices near the last result, pull "
-       << *r.prior_share;
+    if (std::string_view(r.temporal_track) == "ids")
+      os << std::setprecision(3) << "  temporal (ids): input averaged with the last, weight "
+         << *r.prior_share;
+    else
+      os << std::setprecision(3) << "  temporal: " << *r.prior_coverage
+         << " of vertices near the last result, pull " << *r.prior_share;
+    if (r.ids_refused) os << " (ids refused: they do not follow a smooth motion)";
     if (r.history_reset) os << " (scene cut: history reset)";
     if (r.flicker) os << ", flicker " << *r.flicker << " mean edges";
     if (r.flicker_parts)

@@ -58,6 +58,10 @@ struct FileReport {
   /// along the clean normals and across them.
   std::optional<float> prior_coverage, prior_share;
   bool history_reset = false;
+  /// Which temporal track ran ("ids", "space" or "none": kernels/engine.h), and whether the
+  /// ids were refused (same connectivity, but they did not follow a smooth motion).
+  const char* temporal_track = "none";
+  bool ids_refused = false;
   std::optional<double> flicker;
   std::optional<FlickerParts> flicker_parts;
   /// --sequence with a reference: the result's surface seen from the clean frame's vertices

@@ -18,6 +18,18 @@ LogLimiter& send_errors() {
   return log;
 }
 
+wire::TemporalTrack temporal_track_to_wire(TemporalTrack t) {
+  switch (t) {
+    case TemporalTrack::kIds:
+      return wire::TEMPORAL_IDS;
+    case TemporalTrack::kSpace:
+      return wire::TEMPORAL_SPACE;
+    case TemporalTrack::kNone:
+      break;
+  }
+  return wire::TEMPORAL_NONE;
+}
+
 }  // namespace
 
 wire::ResultHeader make_result_header(const FrameJob& f, int64_t publish_ns) {
@@ -53,6 +65,7 @@ wire::ResultHeader make_result_header(const FrameJob& f, int64_t publish_ns) {
   h.set_theta(f.result.theta);
   h.set_noise_estimate(f.result.noise_estimate);
   h.set_filter_noise(f.result.filter_noise);
+  h.set_temporal_track(temporal_track_to_wire(f.result.temporal_track));
   h.set_chunk_count(static_cast<uint32_t>(f.out_chunks.size()));
   h.set_vertex_count(f.mesh.num_vertices());
   h.set_form(to_wire(f.settings.output.form));

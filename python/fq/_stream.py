@@ -11,12 +11,15 @@ from .mesh import moved_like
 class Stream:
     """Frames of one capture stream, filtered in order with qf+ and the stream's history.
 
-    Each frame's result is pulled along the normal towards the stream's last result where
-    the surface held still (once the motion between the frames is taken out), so that
-    static and slowly moving parts average their noise over time and flicker less, while
-    parts that moved are left to the frame (docs/ALGORITHM.md, "Temporal filtering"). The
-    frames need not share vertex ids or triangles: a frame finds its prior in space. This is
-    what ``fqfilter --sequence`` and an fqd stream with ``temporal`` do.
+    When a frame keeps the last frame's vertex count and triangles (a tracked template, a
+    keyframe run), its input is averaged with the stream's last averaged input through the
+    vertex ids, once the ids are seen to follow a smooth motion, and then filtered (track
+    ``'ids'``). Otherwise each frame's result is pulled along the normal towards the stream's
+    last result where the surface held still, once the motion between the frames is taken out
+    (track ``'space'``): such frames need not share vertex ids or triangles, a frame finds its
+    prior in space. Either way static and slowly moving parts average their noise over time and
+    flicker less, while parts that moved are left to the frame (docs/ALGORITHM.md, "Temporal
+    filtering"). This is what ``fqfilter --sequence`` and an fqd stream with ``temporal`` do.
 
     Parameters
     ----------
@@ -74,6 +77,10 @@ class Stream:
     @property
     def last(self) -> dict[str, Any]:
         """What the last frame's filter found: ``noise_estimate`` (mean edges), ``prior_coverage``
-        (share of vertices near the last result), ``prior_share`` (mean pull towards it) and
-        ``history_reset`` (a scene cut)."""
+        (share of vertices near the last result), ``prior_share`` (mean pull towards it, or with
+        track ``ids`` the mean weight of the last averaged input), ``history_reset`` (a scene
+        cut), ``track`` (``'ids'``: the frame kept the last one's connectivity and its input was
+        averaged through the vertex ids; ``'space'``: the result was pulled towards the last
+        one; ``'none'``) and ``ids_refused`` (same connectivity, but the ids did not follow a
+        smooth motion: track ``space`` ran)."""
         return dict(self._stream.last)

@@ -91,34 +91,46 @@ TEST(Temporal, AMovingSurfaceIsNotMadeWorse) {
   for (size_t t = 1; t < r.stream.size(); ++t) EXPECT_LT(r.stream[t], 1.05 * r.alone[t]) << "frame " << t;
 }
 
-TEST(Temporal, VertexIdsPlayNoPart) {
-  // The same frames with the vertices renumbered (and the triangles with them) in the second
-  // frame: the result is the first run's, renumbered.
-  const Mesh sphere = test::make_icosphere(3);
-  const Mesh f0 = noisy(sphere, 1), f1 = noisy(sphere, 2);
-  std::vector<uint32_t> perm(f1.num_vertices());  // new vertex j is old vertex perm[j]
+// `m` with its vertices renumbered by a permutation drawn from `seed` (and the triangles with
+// them); perm[j] is the old id of new vertex j.
+Mesh renumbered(const Mesh& m, uint32_t seed, std::vector<uint32_t>& perm) {
+  perm.resize(m.num_vertices());
   std::iota(perm.begin(), perm.end(), 0u);
-  std::shuffle(perm.begin(), perm.end(), std::mt19937(7));
+  std::shuffle(perm.begin(), perm.end(), std::mt19937(seed));
   std::vector<uint32_t> inverse(perm.size());
   for (uint32_t j = 0; j < perm.size(); ++j) inverse[perm[j]] = j;
-  Mesh shuffled = f1;
+  Mesh out = m;
   for (uint32_t j = 0; j < perm.size(); ++j)
-    for (int c = 0; c < 3; ++c) shuffled.positions[3 * size_t(j) + c] = f1.positions[3 * size_t(perm[j]) + c];
-  for (uint32_t& v : shuffled.triangles) v = inverse[v];
+    for (int c = 0; c < 3; ++c) out.positions[3 * size_t(j) + c] = m.positions[3 * size_t(perm[j]) + c];
+  for (uint32_t& v : out.triangles) v = inverse[v];
+  return out;
+}
 
-  FrameResult plain, renumbered;
-  for (auto [frame, out] : {std::pair<const Mesh*, FrameResult*>{&f1, &plain}, {&shuffled, &renumbered}}) {
+TEST(Temporal, VertexIdsPlayNoPartInTheSpatialTrack) {
+  // The same frames with the vertices renumbered (and the triangles with them) in the second
+  // frame: the result is the first run's, renumbered. The first frame is renumbered too, so
+  // that neither second frame keeps its connectivity (which would take track A, ids).
+  const Mesh sphere = test::make_icosphere(3);
+  std::vector<uint32_t> perm0, perm;
+  const Mesh f0 = renumbered(noisy(sphere, 1), 3, perm0), f1 = noisy(sphere, 2);
+  const Mesh shuffled = renumbered(f1, 7, perm);
+
+  FrameResult plain, renumbered_result;
+  for (auto [frame, out] :
+       {std::pair<const Mesh*, FrameResult*>{&f1, &plain}, {&shuffled, &renumbered_result}}) {
     CpuEngine e(1);
     TemporalHistory h;
     e.set_history(&h);
     FrameResult first;
     ASSERT_TRUE(e.process(f0.view(), temporal_params(0.75f), first).ok());
     ASSERT_TRUE(e.process(frame->view(), temporal_params(0.75f), *out).ok());
+    EXPECT_EQ(out->temporal_track, TemporalTrack::kSpace);
     EXPECT_GT(out->prior_share, 0.1f) << "the history was used";
   }
   for (uint32_t j = 0; j < perm.size(); ++j)
     for (int c = 0; c < 3; ++c)
-      EXPECT_NEAR(renumbered.positions[3 * size_t(j) + c], plain.positions[3 * size_t(perm[j]) + c], 1e-4f)
+      EXPECT_NEAR(renumbered_result.positions[3 * size_t(j) + c], plain.positions[3 * size_t(perm[j]) + c],
+                  1e-4f)
           << "vertex " << j;
 }
 
@@ -162,7 +174,10 @@ TEST(Temporal, ASceneCutRestartsTheHistoryAndLeavesTheFrameAlone) {
   stream.set_history(&history);
   FrameResult r;
   ASSERT_TRUE(stream.process(noisy(sphere, 1).view(), temporal_params(0.75f), r).ok());
-  const Mesh elsewhere = noisy(translated(sphere, 10.f), 2);  // five diameters away
+  // Five diameters away, renumbered: with the connectivity kept, track A would read the jump
+  // as a motion its ids follow (kernels/temporal_ids.h); the spatial track sees a cut.
+  std::vector<uint32_t> perm;
+  const Mesh elsewhere = renumbered(noisy(translated(sphere, 10.f), 2), 9, perm);
   FrameResult cut, single;
   ASSERT_TRUE(stream.process(elsewhere.view(), temporal_params(0.75f), cut).ok());
   ASSERT_TRUE(alone.process(elsewhere.view(), temporal_params(0.75f), single).ok());

@@ -1,0 +1,68 @@
+// Temporal filtering when a stream keeps its connectivity ("track A", docs/ALGORITHM.md,
+// "Temporal filtering"): many capture pipelines track a template, or run keyframes whose frames
+// share faces and vertex count, so vertex i of one frame is vertex i of the next. Then the
+// frame's INPUT is averaged with the stream's last averaged input before the frame is
+// filtered, which takes the noise out of what a viewer sees far better than pulling the
+// filtered surface towards the last one (kernels/temporal.h, "track B", which needs no ids).
+//
+// The ids are not trusted blindly: the displacement d = x_t - a_{t-1} between the raw frame and
+// the last averaged input is split into its smooth part (ring means: the motion) and the rest
+// (the two frames' noise, and wherever an id does not follow the surface). A vertex takes
+// strength x the share of the rest that its local level allows; where the rest is far above
+// the frame's typical level (an id that slid, a tracking error) the frame stays alone; where
+// it is so large across the frame that ids cannot be the same points, the frame falls back to
+// track B.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/mesh_view.h"
+#include "kernels/vec3.h"
+
+namespace fq {
+
+struct TemporalScratch;
+struct TemporalHistory;
+
+/// A stream's memory for track A: its last averaged input and the connectivity it had.
+struct IdTrack {
+  std::vector<float> averaged;  ///< a_{t-1}: 3 floats a vertex, input order and units
+  uint64_t connectivity = 0;    ///< connectivity_fingerprint of the frame it came from
+  uint32_t vertices = 0;        ///< that frame's vertex count
+
+  bool empty() const { return averaged.empty(); }
+  void clear() {
+    averaged.clear();
+    connectivity = 0;
+    vertices = 0;
+  }
+};
+
+/// A hash of a frame's vertex count and triangles: equal for frames that share connectivity
+/// (and almost never for two that do not). Parallel over the triangles.
+uint64_t connectivity_fingerprint(const MeshView& mesh, int threads);
+
+/// What one frame's track-A step did.
+struct IdStep {
+  bool ran = false;      ///< the averaged input replaced the frame's (else: track B or alone)
+  bool refused = false;  ///< same connectivity, but the ids did not follow a smooth motion
+  float share = 0.f;     ///< mean weight of the last averaged input over all vertices
+  float residual = 0.f;  ///< typical RMS of the non-smooth part of the id displacement (mean edges)
+};
+
+/// The track-A step of a frame: when `track` holds an averaged input of the same connectivity
+/// (`fingerprint`), writes the frame's averaged input into `averaged` (3 floats a vertex) and
+/// returns ran = true; `track` then holds it for the next frame. Otherwise (a first frame, a
+/// new connectivity, refused ids) `track` restarts from the raw frame and ran is false.
+/// `mean_edge` (input units) sets the scale; `strength` ∈ [0, 1] is the stream's temporal
+/// strength: the most a vertex takes of the last averaged input.
+IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_edge, float strength,
+                        IdTrack& track, std::vector<float>& averaged, TemporalScratch& scratch, int threads);
+
+/// After a frame that track A averaged: its result (`positions`, input order) becomes the
+/// history the spatial track follows should the connectivity change (keep_as_history).
+void keep_averaged_result(const MeshView& mesh, const std::vector<float>& positions, double mean_edge,
+                          TemporalHistory& history, TemporalScratch& scratch, int threads);
+
+}  // namespace fq
