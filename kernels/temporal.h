@@ -63,6 +63,7 @@ struct TemporalScratch {
   std::vector<Vec3> x, motion, offset, spare;
   std::vector<uint32_t> match;
   std::vector<float> detail, level, spare_level, share, normals;
+  std::vector<float> coherent, white;  ///< track A's coherence test (kernels/temporal_ids.cpp)
 };
 
 /// The temporal step of one frame: `positions` (the frame's filtered result, input order, 3

@@ -33,6 +33,21 @@ uint64_t mix(uint64_t x) {
   return x ^ (x >> 31);
 }
 
+// The sum of the squared weights of vertex v's ring mean (kernels/vertex_ring.h: v once, each
+// corner slot once, so a neighbour in two of v's triangles weighs two): the share of white
+// noise's variance a ring mean keeps.
+float ring_white(const RingView& r, uint32_t v) {
+  const uint32_t begin = 2 * r.vf_offsets[v], end = 2 * r.vf_offsets[v + 1];
+  float count = 1.f, squares = 1.f;  // v itself
+  for (uint32_t k = begin; k < end; ++k) {
+    const uint32_t c = r.corners[k];
+    if (c == RingView::kNoCorner) continue;
+    count += 1.f;
+    for (uint32_t j = begin; j < end; ++j) squares += r.corners[j] == c ? 1.f : 0.f;  // Σ multiplicity²
+  }
+  return squares / (count * count);
+}
+
 void restart(const MeshView& mesh, uint64_t fingerprint, IdTrack& track) {
   track.averaged.assign(mesh.positions, mesh.positions + 3 * size_t(mesh.num_vertices));
   track.connectivity = fingerprint;
@@ -94,6 +109,16 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
     s.level[v] = dot(s.offset[v], s.offset[v]);
   });
   ring_means(ring, s.level, s.spare_level, kIdAgreementPasses, threads);
+  // The coherence test: how much of the rest survives a ring mean, against white noise's share.
+  s.coherent.resize(n);
+  s.white.resize(n);
+  parallel_for(n, threads, [&](uint32_t v) {
+    const Vec3 c = ring_mean(ring, s.offset.data(), v);
+    s.coherent[v] = dot(c, c);
+    s.white[v] = ring_white(ring, v);
+  });
+  ring_means(ring, s.coherent, s.spare_level, kIdAgreementPasses, threads);
+  ring_means(ring, s.white, s.spare_level, kIdAgreementPasses, threads);
   s.detail.assign(s.level.begin(), s.level.end());  // the median's copy
   const auto mid = s.detail.begin() + n / 2;
   std::nth_element(s.detail.begin(), mid, s.detail.end());
@@ -108,7 +133,7 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
   s.share.resize(n);
   const float edge = float(mean_edge);
   parallel_for(n, threads, [&](uint32_t v) {
-    s.share[v] = id_share(s.level[v], typical, strength);
+    s.share[v] = id_share(s.level[v], typical, strength) * noise_part(s.coherent[v], s.level[v], s.white[v]);
     const Vec3 back = (s.share[v] * edge) * s.offset[v];  // x - share * (non-smooth part), input units
     const size_t i = 3 * size_t(v);
     averaged[i] = x[i] - back.x;

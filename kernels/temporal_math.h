@@ -89,6 +89,20 @@ FQ_HD float id_share(float level, float typical, float strength) {
   return level > allowed ? strength * (allowed / level) : strength;
 }
 
+/// The share of a vertex's non-smooth displacement that is noise, from how much of it survives a
+/// ring mean: noise is white from vertex to vertex, so a ring mean keeps `white` (its weights'
+/// sum of squares) of its variance, while a motion the smooth part missed (a swinging limb at
+/// high speed) is smooth over a ring and survives whole. With noise σ² and a missed motion e²,
+/// the ring mean keeps q = (white σ² + e²) / (σ² + e²) of the local level, so
+/// σ² / (σ² + e²) = (1 − q) / (1 − white): the weight the last input deserves by the misfit it
+/// would bring (the rule of id_share). `coherent` and `level` are the local means of the squared
+/// ring mean of the non-smooth displacement and of its square.
+FQ_HD float noise_part(float coherent, float level, float white) {
+  if (!(level > 0.f) || !(white < 1.f)) return 1.f;
+  const float r = (1.f - coherent / level) / (1.f - white);
+  return r < 0.f ? 0.f : (r > 1.f ? 1.f : r);
+}
+
 /// Whether a frame whose typical level of non-smooth id displacement is `typical` (squared mean
 /// edges) has ids that follow the surface.
 FQ_HD bool ids_follow(float typical) { return typical <= kIdReach * kIdReach; }

@@ -18,13 +18,13 @@ LogLimiter& send_errors() {
   return log;
 }
 
-wire::TemporalTrack temporal_track_to_wire(TemporalTrack t) {
+wire::TemporalTrack temporal_track_to_wire(fq::TemporalTrack t) {
   switch (t) {
-    case TemporalTrack::kIds:
+    case fq::TemporalTrack::kIds:
       return wire::TEMPORAL_IDS;
-    case TemporalTrack::kSpace:
+    case fq::TemporalTrack::kSpace:
       return wire::TEMPORAL_SPACE;
-    case TemporalTrack::kNone:
+    case fq::TemporalTrack::kNone:
       break;
   }
   return wire::TEMPORAL_NONE;

@@ -176,6 +176,14 @@ TEST(TemporalIds, WhereIdsStopFollowingTheSurfaceTheFrameIsLeftAlone) {
   EXPECT_GT(back_rest, 0.5) << "the rest is averaged (0.75 of the non-smooth part)";
 }
 
+TEST(TemporalIds, NoisePartReadsHowMuchOfTheRestSurvivesARingMean) {
+  EXPECT_FLOAT_EQ(noise_part(0.15f, 1.f, 0.15f), 1.f) << "white noise keeps its ring mean's share";
+  EXPECT_FLOAT_EQ(noise_part(1.f, 1.f, 0.15f), 0.f) << "all of it survives: a missed motion";
+  // Noise σ² = 1 and a missed motion e² = 1: q = (0.15 + 1) / 2, the noise's part 1/2.
+  EXPECT_NEAR(noise_part(0.575f, 1.f, 0.15f), 0.5f, 1e-6f);
+  EXPECT_FLOAT_EQ(noise_part(0.f, 0.f, 0.15f), 1.f) << "no rest, nothing to weigh";
+}
+
 TEST(TemporalIds, TheEngineTakesTrackAWhileTheConnectivityHoldsAndTrackBWhenItChanges) {
   const Mesh sphere = test::make_icosphere(3);
   CpuEngine e(2);
