@@ -5,6 +5,7 @@
 // device.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -85,9 +86,9 @@ TEST_F(CudaRefineParity, RealMeshesWithNoise) {
   }
 }
 
-// Temporal filtering (kernels/temporal.h): the CPU engine's step on the host and the CUDA
-// engine's on the device (kernels/cuda/temporal_pass.cuh) give the same results within the
-// stated tolerances, frame after frame, with the same pull towards the history.
+// Temporal filtering with the connectivity kept (track A, kernels/temporal_ids.h: the same host
+// step in front of both engines' runs) gives the same results within the stated tolerances,
+// frame after frame, with the same weight of the history.
 TEST_F(CudaRefineParity, TemporalSequence) {
   const Mesh sphere = make_icosphere(5);
   // Alone, and with clustering on the filtered mesh, which reads the frame's positions after
@@ -109,6 +110,8 @@ TEST_F(CudaRefineParity, TemporalSequence) {
       EXPECT_NEAR(r.gpu.prior_share, r.cpu.prior_share, 0.01f) << "frame " << seed;
       EXPECT_NEAR(r.gpu.prior_coverage, r.cpu.prior_coverage, 0.001f) << "frame " << seed;
       EXPECT_EQ(r.gpu.prior_coverage > 0.f, seed > 1);
+      EXPECT_EQ(r.gpu.temporal_track, r.cpu.temporal_track);
+      EXPECT_EQ(r.gpu.temporal_track, seed > 1 ? TemporalTrack::kIds : TemporalTrack::kSpace);
     }
     cpu_->set_history(nullptr);
     gpu_->set_history(nullptr);
@@ -118,7 +121,9 @@ TEST_F(CudaRefineParity, TemporalSequence) {
 }
 
 // A frame far from the last (a scene cut) restarts the history on the device too, and is left
-// exactly as the CUDA engine filters it alone.
+// exactly as the CUDA engine filters it alone. Its first triangle's corners are turned (the
+// same surface, another triangle array): with the connectivity kept, track A would read the
+// jump as a motion its ids follow.
 TEST_F(CudaRefineParity, TemporalSceneCutLeavesTheFrameAlone) {
   const Mesh sphere = make_icosphere(4);
   Params p;
@@ -127,6 +132,7 @@ TEST_F(CudaRefineParity, TemporalSceneCutLeavesTheFrameAlone) {
   add_gaussian_noise(first, 0.2, 1);
   for (uint32_t v = 0; v < elsewhere.num_vertices(); ++v) elsewhere.positions[3 * size_t(v)] += 10.f;
   add_gaussian_noise(elsewhere, 0.2, 2);
+  std::rotate(elsewhere.triangles.begin(), elsewhere.triangles.begin() + 1, elsewhere.triangles.begin() + 3);
   TemporalHistory history;
   FrameResult r, cut, single;
   gpu_->set_history(&history);
