@@ -141,8 +141,9 @@ TEST(DaemonStream, TwoStreamsWithDifferentParametersGiveDifferentResults) {
 }
 
 // A stream with temporal > 0: each frame after the first is filtered with the stream's last
-// result, as a CPU engine with a history gives on the same decoded frames; a frame far from the
-// last one is a scene cut, counted, and filtered alone.
+// result (track A here: the frames keep their connectivity), as a CPU engine with a history gives
+// on the same decoded frames; a frame far from the last one with other triangles is a scene cut
+// for track B, counted, and filtered alone.
 TEST(DaemonStream, TemporalStreamFollowsItsHistoryAndCountsSceneCuts) {
   daemon::DaemonConfig c = test_config();
   c.defaults.params.cluster = false;
@@ -158,6 +159,9 @@ TEST(DaemonStream, TemporalStreamFollowsItsHistoryAndCountsSceneCuts) {
   replay.set_history(&history);
   Mesh far = noisy_sphere(40);
   for (size_t i = 0; i < far.positions.size(); i += 3) far.positions[i] += 20.f;
+  // The first triangle's corners turned: the same surface, another triangle array (with the
+  // connectivity kept, track A would follow the jump as a motion of its ids).
+  std::rotate(far.triangles.begin(), far.triangles.begin() + 1, far.triangles.begin() + 3);
   const std::vector<Mesh> frames = {noisy_sphere(31), noisy_sphere(32), noisy_sphere(33), far};
   for (uint64_t i = 0; i < frames.size(); ++i) {
     h.send(frames[i], spec_for("still"), i);
