@@ -15,16 +15,6 @@ namespace fq {
 
 namespace {
 
-/// `passes` ring means of `a` (kernels/vertex_ring.h), `spare` the other buffer.
-template <class T>
-void ring_means(const RingView& ring, std::vector<T>& a, std::vector<T>& spare, int passes, int threads) {
-  spare.resize(a.size());
-  for (int p = 0; p < passes; ++p) {
-    parallel_for(static_cast<uint32_t>(a.size()), threads, [&](uint32_t v) { spare[v] = ring_mean(ring, a.data(), v); });
-    a.swap(spare);
-  }
-}
-
 Vec3 at(const float* xyz, uint32_t v) { return {xyz[3 * size_t(v)], xyz[3 * size_t(v) + 1], xyz[3 * size_t(v) + 2]}; }
 
 }  // namespace

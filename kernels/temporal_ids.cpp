@@ -14,16 +14,6 @@ namespace fq {
 
 namespace {
 
-template <class T>
-void ring_means(const RingView& ring, std::vector<T>& a, std::vector<T>& spare, int passes, int threads) {
-  spare.resize(a.size());
-  for (int p = 0; p < passes; ++p) {
-    parallel_for(static_cast<uint32_t>(a.size()), threads,
-                 [&](uint32_t v) { spare[v] = ring_mean(ring, a.data(), v); });
-    a.swap(spare);
-  }
-}
-
 // SplitMix64's finaliser: every input bit reaches every output bit.
 uint64_t mix(uint64_t x) {
   x ^= x >> 30;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/parallel_for.h"
 #include "kernels/refine_math.h"
 
 namespace fq {
@@ -36,6 +37,18 @@ T ring_mean(const RingView& r, const T* e, uint32_t v) {
     count += 1.f;
   }
   return (1.f / count) * sum;
+}
+
+/// `passes` ring means of `a` over the table, in parallel on up to `threads` threads; `spare` is
+/// the other buffer (its contents are left over).
+template <class T>
+void ring_means(const RingView& ring, std::vector<T>& a, std::vector<T>& spare, int passes, int threads) {
+  spare.resize(a.size());
+  for (int p = 0; p < passes; ++p) {
+    parallel_for(static_cast<uint32_t>(a.size()), threads,
+                 [&](uint32_t v) { spare[v] = ring_mean(ring, a.data(), v); });
+    a.swap(spare);
+  }
 }
 
 }  // namespace fq
