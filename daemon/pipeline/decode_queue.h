@@ -1,19 +1,32 @@
 // Frames received and waiting for a decoder, bounded in frames and in bytes (caps.
-// max_queued_frames, caps.max_queued_bytes). 300 frames of 4 MiB sent while the decoders were
-// busy took fqd from 64 to 2,278 MB, all of them later dropped as stale. Now:
-//  - a stream has at most one frame waiting: a newer one takes the older one's place (the older
-//    is handed back to be counted `superseded`; it would lose its slot to the newer anyway);
-//  - when the queue is full, push() waits: the ingest thread stops reading, ZeroMQ's receive
-//    mark (a few messages per connection) fills, and producers are held back by their own send
-//    marks (PUSH waits, PUB drops), so nothing piles up in fqd.
-// A frame larger than max_queued_bytes is let in alone, when the queue is empty.
+// max_queued_frames, caps.max_queued_bytes), served in turn across producer connections and
+// across the streams of each. 300 frames of 4 MiB sent while the decoders were busy took fqd
+// from 64 to 2,278 MB, all of them later dropped as stale; later, a stream at 5 fps got 0 of 75
+// results beside 8 connections sending 12 MB frames on 48 stream ids, because a newer frame
+// went to the back of one queue in place of its stream's waiting one, so a stream that kept
+// sending never reached the front. Now:
+//  - each connection (the frame's `connection`, its socket number) has a lane of places, one
+//    per stream, in the order the streams came; a newer frame of a stream takes its older
+//    one's place (the older is handed back, to be counted `superseded`);
+//  - a decoder takes from the lanes in turn, by bytes (deficit round robin: every lane earns
+//    credit at the same rate, a lane is served when its credit covers its first frame), so a
+//    connection of heavy frames gets the decoders' bytes, not their turns, and a lane takes its
+//    streams in turn;
+//  - when the queue is full, the lane holding most bytes (the new frame counted in its own)
+//    gives up its newest place: another connection's frame, or the new frame itself when its
+//    own connection holds most; both are handed back (counted `superseded`). So the ingest
+//    thread never waits for a connection that sends more than the decoders take, and a lighter
+//    connection's frame always gets in;
+//  - a frame larger than max_queued_bytes is let in alone: its push waits until the queue is
+//    empty (the ingest thread then waits, ZeroMQ's receive mark fills and producers wait).
+// What libzmq holds besides: docs/RELIABILITY.md ("Limits").
 #pragma once
 
 #include <condition_variable>
 #include <cstdint>
-#include <deque>
 #include <mutex>
 #include <optional>
+#include <vector>
 
 #include "daemon/stream/frame_job.h"
 
@@ -24,9 +37,11 @@ class DecodeQueue {
   /// The bounds (at start, and when SIGHUP changes them).
   void set_bounds(size_t max_frames, uint64_t max_bytes);
 
-  /// Queues `f`: an older frame of its stream still waiting comes back in `superseded`; then
-  /// waits for room. False (and `f` dropped) when the queue is closed.
-  bool push(FramePtr f, FramePtr& superseded);
+  /// Queues `f` in its stream's place (see above); the frames that lost theirs (its stream's
+  /// older frame, frames shed from a full queue, `f` itself when its connection gives way) are
+  /// appended to `dropped`. Waits only for a frame over the byte bound. False (and `f`
+  /// dropped) when the queue is closed.
+  bool push(FramePtr f, std::vector<FramePtr>& dropped);
   /// Blocks until a frame is waiting; nothing once the queue is closed and empty.
   std::optional<FramePtr> pop();
   /// Wakes every waiter; frames already queued are still handed out.
@@ -36,12 +51,27 @@ class DecodeQueue {
   uint64_t bytes() const;
 
  private:
+  /// One connection's places, oldest stream first.
+  struct Lane {
+    int64_t connection = -1;
+    std::vector<FramePtr> places;
+    uint64_t bytes = 0;
+    uint64_t credit = 0;  ///< bytes it may take before the lanes behind it (deficit round robin)
+  };
+
   static uint64_t bytes_of(const FrameJob& f);
-  bool room_for(uint64_t bytes) const;  // with the lock held
+  bool full(uint64_t more_bytes, size_t more_frames) const;  // with the lock held
+  /// Drops the newest place of the lane holding most bytes (`incoming` counted in `lane`) into
+  /// `dropped`, or `incoming` itself when that lane is its own. With the lock held.
+  void shed(Lane& lane, FramePtr& incoming, std::vector<FramePtr>& dropped);
+  Lane& lane_of(int64_t connection);  // with the lock held; made when missing
+  void erase_empty_lanes();           // with the lock held
 
   mutable std::mutex mutex_;
-  std::condition_variable ready_, room_;
-  std::deque<FramePtr> items_;
+  std::condition_variable ready_, empty_;
+  std::vector<Lane> lanes_;  ///< in turn order; next_ is the next to be asked
+  size_t next_ = 0;
+  size_t frames_ = 0;
   uint64_t bytes_ = 0;
   size_t max_frames_ = 32;
   uint64_t max_bytes_ = 256ull << 20;

@@ -116,9 +116,10 @@ Status run_engine(Pipeline& p, Engine& engine, FrameJob& f, const YieldRequest& 
     return {StatusCode::kCancelled, "cancelled: fqd is stopping (caps.stop_grace_s passed before the frame finished)"};
   if (token.yield_due()) {
     f.stream->count(Counter::kPreempted);
+    f.preempted = true;
     return {StatusCode::kCancelled,
-            "preempted: the engine stopped the frame to serve a stream within its share of engine time (this stream "
-            "had used more than its share; see fqd's fairness rule in docs/DAEMON.md)"};
+            "preempted: the engine stopped the frame, which could not meet its budget, so that another "
+            "stream's frame could meet its own (see fqd's preemption rule in docs/DAEMON.md)"};
   }
   f.stream->count(Counter::kTimeLimited);
   return {StatusCode::kCancelled, fmt::format("time_limit: the engine stopped the frame after caps.engine_time_limit_s "
@@ -199,7 +200,7 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
     const auto t0 = std::chrono::steady_clock::now();
     const Status s = run_engine(p, engine, *f, yield);
     const double total = ms_since(t0);
-    p.slots.finish(&yield, total * 1e-3);
+    p.slots.finish(&yield, total * 1e-3, f->preempted);
     p.engine_busy.add(&engine, static_cast<uint64_t>(total * 1e6));
     last_frame_ns = wall_ns();
     holding = true;

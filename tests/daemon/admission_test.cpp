@@ -3,12 +3,13 @@
 // the socket, oversized neighbourhoods before the engine, and overloaded streams share the
 // engine fairly.
 #include <gtest/gtest.h>
+#include <malloc.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <malloc.h>
 #include <string>
 #include <thread>
 
@@ -202,34 +203,49 @@ TEST(DaemonAdmission, IdenticalStreamsShareAnOverloadedEngineFairly) {
     for (const std::string& id : streams) n += h.counters(id).frames_out();
     return n;
   };
-  const auto end = Clock::now() + std::chrono::seconds(90);
+  constexpr uint64_t kEnough = 240;
+  const auto end = Clock::now() + std::chrono::seconds(120);
   for (int round = 0; Clock::now() < end; ++round) {
     for (auto& parts : frames) h.send_parts(parts);
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    if (round % 20 == 0 && served() >= 60) break;
+    if (round % 20 == 0 && served() >= kEnough) break;
   }
   std::vector<uint64_t> out;
   for (const std::string& id : streams) {
     ASSERT_TRUE(eventually([&] {
       const wire::StreamCounters k = h.counters(id);
-      return k.frames_in() == k.frames_out() + k.errors() + k.superseded() + k.dropped_stale();
+      return k.frames_in() ==
+             k.frames_out() + k.errors() + k.superseded() + k.dropped_stale() + k.preempted();
     }));
     out.push_back(h.counters(id).frames_out());
   }
   const auto [lo, hi] = std::minmax_element(out.begin(), out.end());
-  ASSERT_GE(*hi, 15u) << "the engine served too few frames to judge: " << out[0] << " / " << out[1] << " / "
-                      << out[2];
-  // Within 10% (or one frame, the granularity of a round robin).
-  EXPECT_LE(double(*hi - *lo), std::max(1.0, 0.10 * double(*hi))) << out[0] << " / " << out[1] << " / " << out[2];
+  const double n = double(out[0] + out[1] + out[2]);
+  ASSERT_GE(n, double(kEnough) * 0.9)
+      << "the engine served too few frames to judge: " << out[0] << " / " << out[1] << " / " << out[2];
+  // The engine shares its time, not its frames: on a loaded machine a frame's time varies, and
+  // so do the counts. Allowed: the spread of a fair draw, three standard deviations of the
+  // difference of two streams' counts had each frame gone to one of the three at random
+  // (sqrt(2n/3): 38 frames of 240). The old oldest-first rule gave 25 / 13 / 5 of 43 (16
+  // allowed), 4,105 vs 1,523 before that.
+  const double allowed = 3.0 * std::sqrt(2.0 * n / 3.0);
+  EXPECT_LE(double(*hi - *lo), allowed) << out[0] << " / " << out[1] << " / " << out[2];
+  std::printf("served %llu / %llu / %llu (difference %llu, %.0f allowed)\n",
+              static_cast<unsigned long long>(out[0]), static_cast<unsigned long long>(out[1]),
+              static_cast<unsigned long long>(out[2]), static_cast<unsigned long long>(*hi - *lo), allowed);
 }
 
-TEST(DaemonAdmission, AStreamOfHeavyFramesCannotStarveALightOne) {
+TEST(DaemonAdmission, AStreamOfHeavyFramesOverItsBudgetYieldsToALightOneAndStillProgresses) {
   // One engine thread. The hog's frames (the fandisk with a neighbourhood as wide as the mesh:
-  // seconds each, inside the work budget and the time limit) always have one waiting; the
-  // victim sends a small frame every 200 ms. Round robin by frames gave the victim one result
-  // per hog frame.
+  // seconds each, inside the work budget and the time limit, over the 1 s budget) always have
+  // one waiting; the victim sends a small frame every 200 ms, also with a 1 s budget. Round
+  // robin by frames gave the victim one result per hog frame (6 of 100). A hog frame that
+  // cannot meet its budget is stopped when a victim frame would miss its own behind it, but
+  // after a stop the hog's next frame runs to its end (guaranteed progress), and the victim
+  // waits for it.
   daemon::DaemonConfig c = test_config();
   c.engine.cpu_threads = 1;
+  c.defaults.budget_ms = 1000;
   DaemonHarness h(c);
   Mesh fandisk;
   ASSERT_TRUE(io::read_ply(std::string(FQ_SOURCE_DIR) + "/data/fandisk.ply", fandisk).ok());
@@ -248,19 +264,27 @@ TEST(DaemonAdmission, AStreamOfHeavyFramesCannotStarveALightOne) {
   for (const char* id : {"hog", "victim"}) {
     ASSERT_TRUE(eventually([&] {
       const wire::StreamCounters k = h.counters(id);
-      return k.frames_in() == k.frames_out() + k.errors() + k.superseded() + k.dropped_stale();
+      return k.frames_in() ==
+             k.frames_out() + k.errors() + k.superseded() + k.dropped_stale() + k.preempted();
     }));
   }
   const wire::StreamCounters v = h.counters("victim"), g = h.counters("hog");
-  std::printf("victim: %llu of %d results (%llu superseded, %llu stale); hog: %llu results, %llu preempted, %llu "
-              "superseded\n",
-              static_cast<unsigned long long>(v.frames_out()), victim_frames,
-              static_cast<unsigned long long>(v.superseded()), static_cast<unsigned long long>(v.dropped_stale()),
-              static_cast<unsigned long long>(g.frames_out()), static_cast<unsigned long long>(g.preempted()),
-              static_cast<unsigned long long>(g.superseded()));
-  EXPECT_GE(double(v.frames_out()), 0.8 * victim_frames);
+  std::printf(
+      "victim: %llu of %d results (%llu superseded, %llu stale); hog: %llu results, %llu preempted, %llu "
+      "superseded, %llu errors\n",
+      static_cast<unsigned long long>(v.frames_out()), victim_frames,
+      static_cast<unsigned long long>(v.superseded()), static_cast<unsigned long long>(v.dropped_stale()),
+      static_cast<unsigned long long>(g.frames_out()), static_cast<unsigned long long>(g.preempted()),
+      static_cast<unsigned long long>(g.superseded()), static_cast<unsigned long long>(g.errors()));
   EXPECT_GT(g.preempted(), 0u);
   EXPECT_EQ(v.preempted(), 0u);
+  // Progress: after each stop the hog's next frame ran to its end (the last stop may be the
+  // run's last frame), and a stop is not an error.
+  EXPECT_GE(g.frames_out() + 1, g.preempted());
+  EXPECT_EQ(g.errors(), 0u);
+  // The victim is served whenever no hog frame runs to its end: twice per hog frame at least
+  // (before and after it), where round robin by frames gave it once.
+  EXPECT_GE(v.frames_out(), 2 * g.frames_out());
 }
 
 }  // namespace
