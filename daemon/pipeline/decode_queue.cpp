@@ -1,6 +1,7 @@
 #include "daemon/pipeline/decode_queue.h"
 
 #include <algorithm>
+#include <chrono>
 #include <limits>
 
 namespace fq::daemon {
@@ -9,6 +10,30 @@ uint64_t DecodeQueue::bytes_of(const FrameJob& f) {
   uint64_t n = 0;
   for (const zmq::message_t& c : f.chunks) n += c.size();
   return n;
+}
+
+namespace {
+int64_t steady_ns() { return std::chrono::steady_clock::now().time_since_epoch().count(); }
+}  // namespace
+
+bool DecodeQueue::may_decode(uint64_t bytes) const {
+  if (bytes <= kSmallFrameBytes || decoders_ < 2 || small_seen_ns_ == 0) return true;
+  const bool small_recently = double(steady_ns() - small_seen_ns_) < kSmallWindowS * 1e9;
+  return !small_recently || large_in_decoders_ < decoders_ - 1;
+}
+
+void DecodeQueue::set_decoders(int decoders) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  decoders_ = std::max(1, decoders);
+}
+
+void DecodeQueue::decoded(const FrameJob& f) {
+  if (!f.large_in_decoder) return;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    --large_in_decoders_;
+  }
+  ready_.notify_all();
 }
 
 bool DecodeQueue::full(uint64_t more_bytes, size_t more_frames) const {
@@ -67,6 +92,7 @@ bool DecodeQueue::push(FramePtr f, std::vector<FramePtr>& dropped) {
   {
     std::unique_lock<std::mutex> lock(mutex_);
     if (closed_) return false;
+    if (bytes <= kSmallFrameBytes) small_seen_ns_ = steady_ns();
     // Its stream's place, wherever it is: the newer frame takes it (the place is the stream's,
     // not the connection's; a stream sent over two connections keeps its first).
     for (Lane& l : lanes_) {
@@ -84,7 +110,7 @@ bool DecodeQueue::push(FramePtr f, std::vector<FramePtr>& dropped) {
         bytes_ += bytes;
         ++frames_;
         lock.unlock();
-        ready_.notify_one();
+        ready_.notify_all();
         return true;
       }
       l.places.erase(place);  // a larger frame over the bound: room is made below, at the back
@@ -110,22 +136,37 @@ bool DecodeQueue::push(FramePtr f, std::vector<FramePtr>& dropped) {
     bytes_ += bytes;
     ++frames_;
   }
-  ready_.notify_one();
+  ready_.notify_all();  // a waiting decoder may take only some frames (may_decode)
   return true;
 }
 
 std::optional<FramePtr> DecodeQueue::pop() {
   std::unique_lock<std::mutex> lock(mutex_);
-  ready_.wait(lock, [&] { return closed_ || frames_ > 0; });
-  if (frames_ == 0) return std::nullopt;
-  // Deficit round robin with the smallest quantum: when no lane's credit covers its first
-  // frame, every lane earns what the closest one lacks, so the next in turn whose credit then
-  // covers its frame is served.
+  const auto eligible = [&](const Lane& l) { return may_decode(bytes_of(*l.places.front())); };
+  // Woken by pushes and by decoders that finish; a decoder kept for small frames waits with a
+  // timeout too, since the window of small frames closes without an event.
+  for (;;) {
+    if (frames_ == 0 && closed_) return std::nullopt;
+    if (frames_ > 0 && std::any_of(lanes_.begin(), lanes_.end(), eligible)) break;
+    if (closed_) {
+      // Closing: what is queued is handed out regardless of the decoders kept.
+      if (frames_ > 0) break;
+      return std::nullopt;
+    }
+    if (frames_ == 0)
+      ready_.wait(lock);
+    else
+      ready_.wait_for(lock, std::chrono::milliseconds(100));
+  }
+  // Deficit round robin with the smallest quantum, over the lanes whose first frame may take
+  // a decoder: when no lane's credit covers its first frame, every lane earns what the closest
+  // one lacks, so the next in turn whose credit then covers its frame is served.
   for (;;) {
     uint64_t lack = std::numeric_limits<uint64_t>::max();
     for (size_t k = 0; k < lanes_.size(); ++k) {
       const size_t i = (next_ + k) % lanes_.size();
       Lane& l = lanes_[i];
+      if (!closed_ && !eligible(l)) continue;
       const uint64_t need = bytes_of(*l.places.front());
       if (l.credit < need) {
         lack = std::min(lack, need - l.credit);
@@ -137,6 +178,8 @@ std::optional<FramePtr> DecodeQueue::pop() {
       l.bytes -= need;
       bytes_ -= need;
       --frames_;
+      f->large_in_decoder = need > kSmallFrameBytes;
+      if (f->large_in_decoder) ++large_in_decoders_;
       next_ = i + 1;
       erase_empty_lanes();
       const bool now_empty = frames_ == 0;

@@ -19,6 +19,11 @@
 //    connection's frame always gets in;
 //  - a frame larger than max_queued_bytes is let in alone: its push waits until the queue is
 //    empty (the ingest thread then waits, ZeroMQ's receive mark fills and producers wait).
+//  - while small frames (up to kSmallFrameBytes) have come in the last kSmallWindowS, one
+//    decoder is kept for them: larger frames take at most all decoders but one. A decoder is
+//    held for a frame's whole decode (seconds for a 12 MB frame on a busy machine), so turns
+//    alone let frames that large hold every decoder while a light stream's frames were
+//    superseded behind them.
 // What libzmq holds besides: docs/RELIABILITY.md ("Limits").
 #pragma once
 
@@ -44,11 +49,18 @@ class DecodeQueue {
   bool push(FramePtr f, std::vector<FramePtr>& dropped);
   /// Blocks until a frame is waiting; nothing once the queue is closed and empty.
   std::optional<FramePtr> pop();
+  /// The decode workers that pop (one is kept for small frames when there are two or more).
+  void set_decoders(int decoders);
+  /// A frame popped has been decoded (or dropped): its decoder is free again.
+  void decoded(const FrameJob& f);
   /// Wakes every waiter; frames already queued are still handed out.
   void close();
 
   size_t frames() const;
   uint64_t bytes() const;
+
+  static constexpr uint64_t kSmallFrameBytes = 1 << 20;
+  static constexpr double kSmallWindowS = 2.0;
 
  private:
   /// One connection's places, oldest stream first.
@@ -65,7 +77,9 @@ class DecodeQueue {
   /// `dropped`, or `incoming` itself when that lane is its own. With the lock held.
   void shed(Lane& lane, FramePtr& incoming, std::vector<FramePtr>& dropped);
   Lane& lane_of(int64_t connection);  // with the lock held; made when missing
-  void erase_empty_lanes();           // with the lock held
+  /// Whether a frame of `bytes` may take a free decoder now (see above). With the lock held.
+  bool may_decode(uint64_t bytes) const;
+  void erase_empty_lanes();  // with the lock held
 
   mutable std::mutex mutex_;
   std::condition_variable ready_, empty_;
@@ -75,6 +89,9 @@ class DecodeQueue {
   uint64_t bytes_ = 0;
   size_t max_frames_ = 32;
   uint64_t max_bytes_ = 256ull << 20;
+  int decoders_ = 2;
+  int large_in_decoders_ = 0;  ///< decoders busy with frames over kSmallFrameBytes
+  int64_t small_seen_ns_ = 0;  ///< when a small frame last came (steady clock); 0 never
   bool closed_ = false;
 };
 

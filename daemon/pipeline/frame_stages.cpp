@@ -147,6 +147,7 @@ void run_decode_worker(Pipeline& p) {
     FramePtr f = std::move(*item);
     // Decoding a frame that is already too old would be wasted work under overload.
     if (is_stale(f->receive_ns, wall_ns(), f->settings.budget_ms)) {
+      p.decode_queue.decoded(*f);
       f->stream->count(Counter::kDroppedStale);
       p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: stale before decode", f->stream_id,
                      f->header.sequence());
@@ -156,6 +157,7 @@ void run_decode_worker(Pipeline& p) {
     f->mesh = p.meshes.acquire(wall_ns());
     const std::shared_ptr<const Caps> caps = p.caps.get();
     Status s = guarded("decode", [&] { return decode(*f, *caps); });
+    p.decode_queue.decoded(*f);  // its decoder is free for the queue's next frame
     if (s.ok()) s = resolve_settings(*f);
     if (s.ok()) s = check_work_budget(f->settings.params, f->mesh.num_vertices(), caps->max_neighbour_work);
     f->timings.push_back({"decode", ms_since(t0)});

@@ -45,6 +45,7 @@ struct FrameJob {
   /// The producer connection it came on (its socket number, ZMQ_SRCFD; -1 unknown): the
   /// decode queue serves connections in turn (decode_queue.h).
   int64_t connection = -1;
+  bool large_in_decoder = false;  ///< counted by the decode queue until decoded() (decode_queue.h)
 
   StreamSettings settings;              ///< the stream's settings with the frame's overrides applied
   Mesh mesh;                            ///< decoded input

@@ -94,6 +94,42 @@ TEST(DecodeQueue, AFullQueueShedsTheNewestPlaceOfTheConnectionHoldingMost) {
   EXPECT_EQ(q.frames(), 3u);
 }
 
+TEST(DecodeQueue, OneDecoderIsKeptForSmallFramesWhileTheyCome) {
+  DecodeQueue q;
+  q.set_decoders(2);
+  std::vector<FramePtr> dropped;
+  const size_t large = DecodeQueue::kSmallFrameBytes + 1;
+  ASSERT_TRUE(q.push(frame("small", 10, 0, 2), dropped));  // a small frame came just now
+  EXPECT_EQ(pop_id(q), "small0");
+  for (int i = 0; i < 2; ++i) ASSERT_TRUE(q.push(frame("large" + std::to_string(i), large, 1, 1), dropped));
+  std::optional<FramePtr> first = q.pop();  // one decoder on a large frame
+  ASSERT_TRUE(first);
+  // The other is kept: a pop does not hand the second large frame out...
+  std::string got;
+  std::atomic<bool> popped{false};
+  std::thread waiter([&] {
+    got = pop_id(q);
+    popped = true;
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));  // gives it time to (wrongly) pop
+  EXPECT_FALSE(popped);
+  // ...but a small frame, at once.
+  ASSERT_TRUE(q.push(frame("small", 10, 2, 2), dropped));
+  waiter.join();
+  EXPECT_EQ(got, "small2");
+  // The second large frame once the first is decoded.
+  popped = false;
+  std::thread after([&] {
+    got = pop_id(q);
+    popped = true;
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_FALSE(popped);
+  q.decoded(**first);
+  after.join();
+  EXPECT_EQ(got, "large11");
+}
+
 // Pushes `f` on a thread of its own; done() once the push returned.
 class Pusher {
  public:
