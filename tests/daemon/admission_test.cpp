@@ -23,12 +23,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-client::FrameSpec spec_for(const std::string& stream) {
-  client::FrameSpec s;
-  s.stream_id = stream;
-  return s;
-}
-
 // Waits (bounded) until `done()` holds.
 template <class F>
 bool eventually(F&& done, std::chrono::seconds limit = std::chrono::seconds(60)) {
@@ -64,7 +58,7 @@ TEST(DaemonAdmission, TwentyThousandJunkTopicsLeaveNoStateAndFlatMemory) {
   EXPECT_EQ(r.list(), std::vector<std::string>{"__probe"}) << r.list().size() << " streams";
   // Before, every topic kept its own state: +202 MiB for 20,000 topics.
   EXPECT_LT(after, before + (16u << 20)) << "RSS grew from " << before << " to " << after;
-  h.send(noisy_sphere(), spec_for("cam"), 1);
+  h.send(noisy_sphere(), frame_spec("cam"), 1);
   EXPECT_EQ(h.receive("cam").header.status(), wire::OK);
 }
 
@@ -86,7 +80,7 @@ TEST(DaemonAdmission, FiveThousandStreamIdsComeAndGoWithFlatMemory) {
   auto churn = [&](int from, int to) {
     for (int i = from; i < to; i += kWave) {
       const int end = std::min(to, i + kWave);
-      for (int k = i; k < end; ++k) h.send(mesh, spec_for("churn-" + std::to_string(k)), 0);
+      for (int k = i; k < end; ++k) h.send(mesh, frame_spec("churn-" + std::to_string(k)), 0);
       for (int k = i; k < end; ++k) ASSERT_EQ(h.receive("churn-" + std::to_string(k)).header.status(), wire::OK);
       most_streams = std::max(most_streams, r.list().size());
     }
@@ -116,10 +110,10 @@ TEST(DaemonAdmission, SquattedSlotsComeBackWhenTheSquattersGoIdle) {
   DaemonHarness h(c);
   const Mesh mesh = noisy_sphere();
   for (const char* squatter : {"squat0", "squat1"}) {
-    h.send(mesh, spec_for(squatter), 0);
+    h.send(mesh, frame_spec(squatter), 0);
     EXPECT_EQ(h.receive(squatter).header.status(), wire::OK);
   }
-  h.send(mesh, spec_for("cam"), 41);
+  h.send(mesh, frame_spec("cam"), 41);
   const client::ReceivedResult refused = h.receive("cam");
   EXPECT_EQ(refused.header.status(), wire::ERROR);
   EXPECT_NE(refused.header.error().find("too many streams"), std::string::npos) << refused.header.error();
@@ -128,7 +122,7 @@ TEST(DaemonAdmission, SquattedSlotsComeBackWhenTheSquattersGoIdle) {
   // The squatters send nothing more: after the idle time their slots are free again.
   ASSERT_TRUE(eventually([&] { return h.daemon()->registry().list().empty(); }, std::chrono::seconds(20)))
       << "streams left: " << h.daemon()->registry().list().size();
-  h.send(mesh, spec_for("cam"), 42);
+  h.send(mesh, frame_spec("cam"), 42);
   const client::ReceivedResult served = h.receive("cam");
   EXPECT_EQ(served.header.status(), wire::OK);
   EXPECT_EQ(served.header.sequence(), 42u);
@@ -138,7 +132,7 @@ TEST(DaemonAdmission, ANonUtf8StreamIdGetsAReadableRefusal) {
   DaemonHarness h;
   const Mesh mesh = noisy_sphere();
   std::vector<std::string> parts;
-  ASSERT_TRUE(client::build_frame(mesh.view(), spec_for("cam"), 5, parts).ok());
+  ASSERT_TRUE(client::build_frame(mesh.view(), frame_spec("cam"), 5, parts).ok());
   parts[0] = "\xff\xfe" "cam";
   h.send_parts(parts);
   // Published under the escaped id, in a result header any protobuf reader accepts.
@@ -146,7 +140,7 @@ TEST(DaemonAdmission, ANonUtf8StreamIdGetsAReadableRefusal) {
   EXPECT_EQ(e.header.status(), wire::ERROR);
   EXPECT_NE(e.header.error().find("not valid UTF-8"), std::string::npos) << e.header.error();
   EXPECT_EQ(h.daemon()->registry().refusals().get(daemon::Refusal::kBadStreamId), 1u);
-  h.send(mesh, spec_for("cam"), 6);
+  h.send(mesh, frame_spec("cam"), 6);
   EXPECT_EQ(h.receive("cam").header.status(), wire::OK);
 }
 
@@ -163,7 +157,7 @@ TEST(DaemonAdmission, APartOverTheCapIsRefusedAtTheSocket) {
     std::vector<std::string> parts{"cam", "header", std::string(64u << 20, 'x')};
     client::send_parts(push, parts);
   }
-  h.send(noisy_sphere(), spec_for("cam"), 1);
+  h.send(noisy_sphere(), frame_spec("cam"), 1);
   const client::ReceivedResult r = h.receive("cam");
   EXPECT_EQ(r.header.status(), wire::OK);
   EXPECT_EQ(r.header.sequence(), 1u);
@@ -173,14 +167,14 @@ TEST(DaemonAdmission, APartOverTheCapIsRefusedAtTheSocket) {
 // With clustering, the plan runs the sigma_s neighbourhoods ("qf+" alone does not read sigma_s).
 TEST(DaemonAdmission, AHugeNeighbourhoodIsRefusedBeforeTheEngine) {
   DaemonHarness h;
-  client::FrameSpec s = spec_for("cam");
+  client::FrameSpec s = frame_spec("cam");
   s.compute = wire::FILTER_AND_CLUSTER;
   s.overrides.set_sigma_s(1e4f);
   h.send(noisy_sphere(), s, 1);
   const client::ReceivedResult e = h.receive("cam");
   EXPECT_EQ(e.header.status(), wire::ERROR);
   EXPECT_NE(e.header.error().find("max_neighbour_work"), std::string::npos) << e.header.error();
-  h.send(noisy_sphere(), spec_for("cam"), 2);
+  h.send(noisy_sphere(), frame_spec("cam"), 2);
   EXPECT_EQ(h.receive("cam").header.status(), wire::OK);
 }
 
@@ -194,7 +188,7 @@ TEST(DaemonAdmission, IdenticalStreamsShareAnOverloadedEngineFairly) {
   std::vector<std::vector<std::string>> frames;
   for (const std::string& id : streams) {
     frames.emplace_back();
-    ASSERT_TRUE(client::build_frame(mesh.view(), spec_for(id), 0, frames.back()).ok());
+    ASSERT_TRUE(client::build_frame(mesh.view(), frame_spec(id), 0, frames.back()).ok());
   }
   // Far faster than one engine thread can serve, until it has served enough to judge
   // (counted, not timed: the machine may be busy). A stream the ingest has not admitted yet (a
@@ -252,12 +246,12 @@ TEST(DaemonAdmission, AStreamOfHeavyFramesOverItsBudgetYieldsToALightOneAndStill
   DaemonHarness h(c);
   Mesh fandisk;
   ASSERT_TRUE(io::read_ply(std::string(FQ_SOURCE_DIR) + "/data/fandisk.ply", fandisk).ok());
-  client::FrameSpec hog = spec_for("hog");
+  client::FrameSpec hog = frame_spec("hog");
   hog.overrides.set_sigma_s(40.f);
   hog.overrides.set_sigma_d(40.f);
   std::vector<std::string> hog_frame, victim_frame;
   ASSERT_TRUE(client::build_frame(fandisk.view(), hog, 0, hog_frame).ok());
-  ASSERT_TRUE(client::build_frame(noisy_sphere().view(), spec_for("victim"), 0, victim_frame).ok());
+  ASSERT_TRUE(client::build_frame(noisy_sphere().view(), frame_spec("victim"), 0, victim_frame).ok());
   const int victim_frames = 100;  // 20 s
   for (int i = 0; i < victim_frames; ++i) {
     if (i % 2 == 0) h.send_parts(hog_frame);
@@ -302,20 +296,20 @@ TEST(DaemonAdmission, MemoryReturnsWhenSmallFramesFollowAHugeOne) {
   DaemonHarness h(c);
   const Mesh small = noisy_sphere();
   for (uint64_t i = 0; i < 3; ++i) {
-    h.send(small, spec_for("cam"), i);
+    h.send(small, frame_spec("cam"), i);
     ASSERT_EQ(h.receive("cam").header.status(), wire::OK);
   }
   const size_t base = rss_bytes();
   Mesh huge = make_icosphere(7, 1.0f);  // 163,842 vertices
   add_gaussian_noise(huge, 0.2, 3);
-  client::FrameSpec s = spec_for("cam");
+  client::FrameSpec s = frame_spec("cam");
   s.chunks = 4;
   h.send(huge, s, 10);
   ASSERT_EQ(h.receive("cam").header.status(), wire::OK);
   const size_t peak = rss_bytes();
   ASSERT_GT(peak, base + (40u << 20)) << "the huge frame should have cost memory: " << base << " -> " << peak;
   for (uint64_t i = 11; i < 14; ++i) {
-    h.send(small, spec_for("cam"), i);
+    h.send(small, frame_spec("cam"), i);
     ASSERT_EQ(h.receive("cam").header.status(), wire::OK);
   }
   // Buffers are freed at once; free pages go back to the system within a few seconds. What
@@ -335,12 +329,12 @@ TEST(DaemonAdmission, EngineBuffersReturnWhenIdle) {
   c.defaults.params.cluster = false;
   c.caps.pool_idle_s = 1.0;
   DaemonHarness h(c);
-  h.send(noisy_sphere(), spec_for("cam"), 0);
+  h.send(noisy_sphere(), frame_spec("cam"), 0);
   ASSERT_EQ(h.receive("cam").header.status(), wire::OK);
   const size_t base = rss_bytes();
   Mesh huge = make_icosphere(7, 1.0f);  // 163,842 vertices
   add_gaussian_noise(huge, 0.2, 3);
-  h.send(huge, spec_for("cam"), 1);
+  h.send(huge, frame_spec("cam"), 1);
   ASSERT_EQ(h.receive("cam").header.status(), wire::OK);
   const size_t peak = rss_bytes();
   ASSERT_GT(peak, base + (40u << 20)) << "the huge frame should have cost memory: " << base << " -> " << peak;

@@ -21,15 +21,6 @@ namespace {
 
 constexpr size_t kMiB = 1 << 20;
 
-// `parts` (a frame) renamed to `stream`, header and topic.
-std::vector<std::string> renamed(std::vector<std::string> parts, const std::string& stream) {
-  wire::FrameHeader h;
-  EXPECT_TRUE(wire::parse_frame_header(parts[1], h).ok());
-  h.set_stream_id(stream);
-  parts[0] = stream;
-  parts[1] = h.SerializeAsString();
-  return parts;
-}
 
 TEST(Backpressure, ABurstWhileTheDecoderIsBusyStaysWithinTheQueueBound) {
   FqdProcess fqd({"--config", write_temp_file("backpressure.toml",
@@ -64,8 +55,8 @@ TEST(Backpressure, ABurstWhileTheDecoderIsBusyStaysWithinTheQueueBound) {
     }
   });
   // 60 streams in all, within caps.max_streams.
-  for (int i = 0; i < 20; ++i) client::send_parts(push, renamed(heavy, "heavy" + std::to_string(i)));
-  for (int i = 0; i < 120; ++i) client::send_parts(push, renamed(junk, "junk" + std::to_string(i % 40)));
+  for (int i = 0; i < 20; ++i) client::send_parts(push, renamed_frame(heavy, "heavy" + std::to_string(i)));
+  for (int i = 0; i < 120; ++i) client::send_parts(push, renamed_frame(junk, "junk" + std::to_string(i % 40)));
   // Every frame accounted for: each ended as an error result or superseded by a newer one.
   uint64_t done = 0;
   for (int wait = 0; wait < 600 && done < 140; ++wait) {

@@ -28,22 +28,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-client::FrameSpec spec_for(const std::string& stream) {
-  client::FrameSpec s;
-  s.stream_id = stream;
-  return s;
-}
-
-// `parts` (a frame) renamed to `stream`, header and topic.
-std::vector<std::string> renamed(std::vector<std::string> parts, const std::string& stream) {
-  wire::FrameHeader h;
-  EXPECT_TRUE(wire::parse_frame_header(parts[1], h).ok());
-  h.set_stream_id(stream);
-  parts[0] = stream;
-  parts[1] = h.SerializeAsString();
-  return parts;
-}
-
 // Waits (bounded) until every frame of `stream` has an outcome; its counters then.
 wire::StreamCounters settled(DaemonHarness& h, const std::string& stream) {
   wire::StreamCounters k;
@@ -83,8 +67,8 @@ TEST(FairShare, TinyFramesDoNotPreemptAHeavyStreamWhileTheEngineHasRoom) {
   c.streams["victim"].budget_ms = 200;
   DaemonHarness h(c);
   std::vector<std::string> victim, tiny;
-  ASSERT_TRUE(client::build_frame(noisy_sphere(7, 5).view(), spec_for("victim"), 0, victim).ok());
-  ASSERT_TRUE(client::build_frame(make_icosphere(2, 1.0f).view(), spec_for("tiny"), 0, tiny).ok());
+  ASSERT_TRUE(client::build_frame(noisy_sphere(7, 5).view(), frame_spec("victim"), 0, victim).ok());
+  ASSERT_TRUE(client::build_frame(make_icosphere(2, 1.0f).view(), frame_spec("tiny"), 0, tiny).ok());
   constexpr int kVictimFrames = 18;
   const auto start = Clock::now();
   for (int tick = 0; tick < kVictimFrames * 10; ++tick) {  // a tick every 200 ms
@@ -109,11 +93,11 @@ TEST(FairShare, HeavyFramesOnManyIdsAndConnectionsLeaveALightStreamItsTurn) {
   c.streams["victim"] = c.defaults;
   c.streams["victim"].budget_ms = 1000;
   DaemonHarness h(c);
-  client::FrameSpec heavy_spec = spec_for("heavy");
+  client::FrameSpec heavy_spec = frame_spec("heavy");
   heavy_spec.overrides.set_theta(2.0f);  // invalid: refused after the decode, before the engine
   std::vector<std::string> heavy, victim;
   ASSERT_TRUE(client::build_frame(make_icosphere(6, 1.0f).view(), heavy_spec, 1, heavy).ok());
-  ASSERT_TRUE(client::build_frame(noisy_sphere().view(), spec_for("victim"), 0, victim).ok());
+  ASSERT_TRUE(client::build_frame(noisy_sphere().view(), frame_spec("victim"), 0, victim).ok());
   constexpr int kConnections = 4, kIdsPerConnection = 6, kVictimFrames = 75;
   std::atomic<bool> attacking{true};
   std::atomic<uint64_t> sent{0};
@@ -129,7 +113,7 @@ TEST(FairShare, HeavyFramesOnManyIdsAndConnectionsLeaveALightStreamItsTurn) {
       push.connect(ingest);
       std::vector<std::vector<std::string>> frames;
       for (int i = 0; i < kIdsPerConnection; ++i)
-        frames.push_back(renamed(heavy, "heavy" + std::to_string(a * kIdsPerConnection + i)));
+        frames.push_back(renamed_frame(heavy, "heavy" + std::to_string(a * kIdsPerConnection + i)));
       for (size_t i = 0; attacking; ++i) {
         std::vector<zmq::const_buffer> parts;
         for (const std::string& p : frames[i % frames.size()]) parts.push_back(zmq::buffer(p));
@@ -184,7 +168,7 @@ TEST(FairShare, SlotsMadeBySetParamsAloneGiveWayToAProducer) {
   });
   while (made < 7) std::this_thread::sleep_for(std::chrono::milliseconds(20));  // every slot held
   std::vector<std::string> frame;
-  ASSERT_TRUE(client::build_frame(noisy_sphere().view(), spec_for("cam"), 0, frame).ok());
+  ASSERT_TRUE(client::build_frame(noisy_sphere().view(), frame_spec("cam"), 0, frame).ok());
   constexpr int kFrames = 75;
   const auto start = Clock::now();
   for (int i = 0; i < kFrames; ++i) {
