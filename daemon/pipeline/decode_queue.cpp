@@ -118,19 +118,32 @@ bool DecodeQueue::push(FramePtr f, std::vector<FramePtr>& dropped) {
     }
     if (bytes > max_bytes_) {
       // Over the byte bound: alone, once the queue is empty.
+      erase_empty_lanes();  // the decoders never see an empty lane
       empty_.wait(lock, [&] { return closed_ || frames_ == 0; });
       if (closed_) return false;
     }
-    Lane* lane = &lane_of(f->connection);
+    const auto own_bytes = [&] {
+      for (const Lane& l : lanes_)
+        if (l.connection == f->connection) return l.bytes;
+      return uint64_t{0};
+    };
     while (frames_ > 0 && full(bytes, 1)) {
-      shed(*lane, f, dropped);
+      // A connection alone in the queue starves nobody by waiting: it is held back (the
+      // ingest thread waits, then ZeroMQ's marks), as a single producer of many streams expects.
+      if (own_bytes() == bytes_) {
+        erase_empty_lanes();  // the decoders never see an empty lane
+        room_.wait(lock, [&] { return closed_ || !full(bytes, 1) || own_bytes() != bytes_; });
+        if (closed_) return false;
+        continue;
+      }
+      shed(lane_of(f->connection), f, dropped);
       if (!f) {
         erase_empty_lanes();
         return true;
       }
     }
     erase_empty_lanes();
-    lane = &lane_of(f->connection);  // erase_empty_lanes may have moved it
+    Lane* lane = &lane_of(f->connection);
     lane->places.push_back(std::move(f));
     lane->bytes += bytes;
     bytes_ += bytes;
@@ -184,6 +197,7 @@ std::optional<FramePtr> DecodeQueue::pop() {
       erase_empty_lanes();
       const bool now_empty = frames_ == 0;
       lock.unlock();
+      room_.notify_all();
       if (now_empty) empty_.notify_all();
       return f;
     }
@@ -198,6 +212,7 @@ void DecodeQueue::close() {
   }
   ready_.notify_all();
   empty_.notify_all();
+  room_.notify_all();
 }
 
 size_t DecodeQueue::frames() const {

@@ -15,8 +15,9 @@
 //  - when the queue is full, the lane holding most bytes (the new frame counted in its own)
 //    gives up its newest place: another connection's frame, or the new frame itself when its
 //    own connection holds most; both are handed back (counted `superseded`). So the ingest
-//    thread never waits for a connection that sends more than the decoders take, and a lighter
-//    connection's frame always gets in;
+//    thread does not wait for a connection that sends more than the decoders take while
+//    others have frames queued, and a lighter connection's frame always gets in. A connection
+//    alone in the queue waits for room instead (nobody else is served later for it);
 //  - a frame larger than max_queued_bytes is let in alone: its push waits until the queue is
 //    empty (the ingest thread then waits, ZeroMQ's receive mark fills and producers wait).
 //  - while small frames (up to kSmallFrameBytes) have come in the last kSmallWindowS, one
@@ -82,7 +83,7 @@ class DecodeQueue {
   void erase_empty_lanes();  // with the lock held
 
   mutable std::mutex mutex_;
-  std::condition_variable ready_, empty_;
+  std::condition_variable ready_, empty_, room_;
   std::vector<Lane> lanes_;  ///< in turn order; next_ is the next to be asked
   size_t next_ = 0;
   size_t frames_ = 0;
