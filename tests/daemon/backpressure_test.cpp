@@ -21,7 +21,6 @@ namespace {
 
 constexpr size_t kMiB = 1 << 20;
 
-
 TEST(Backpressure, ABurstWhileTheDecoderIsBusyStaysWithinTheQueueBound) {
   FqdProcess fqd({"--config", write_temp_file("backpressure.toml",
                                               ops_config("[threads]\ndecode = 1\n[caps]\nmax_queued_frames = 8\n"
@@ -56,7 +55,8 @@ TEST(Backpressure, ABurstWhileTheDecoderIsBusyStaysWithinTheQueueBound) {
   });
   // 60 streams in all, within caps.max_streams.
   for (int i = 0; i < 20; ++i) client::send_parts(push, renamed_frame(heavy, "heavy" + std::to_string(i)));
-  for (int i = 0; i < 120; ++i) client::send_parts(push, renamed_frame(junk, "junk" + std::to_string(i % 40)));
+  for (int i = 0; i < 120; ++i)
+    client::send_parts(push, renamed_frame(junk, "junk" + std::to_string(i % 40)));
   // Every frame accounted for: each ended as an error result or superseded by a newer one.
   uint64_t done = 0;
   for (int wait = 0; wait < 600 && done < 140; ++wait) {

@@ -2,6 +2,8 @@
 // of the connection holding most), one place per stream (a newer frame takes the older one's
 // place, which is handed back), connections served in turn by bytes and the streams of each in
 // turn, a frame over the byte bound let in alone, and close() releasing a waiting push.
+#include "daemon/pipeline/decode_queue.h"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -9,8 +11,6 @@
 #include <string>
 #include <thread>
 #include <vector>
-
-#include "daemon/pipeline/decode_queue.h"
 
 namespace fq::daemon {
 namespace {
