@@ -102,6 +102,7 @@ TEST(FairShare, HeavyFramesOnManyIdsAndConnectionsLeaveALightStreamItsTurn) {
   std::atomic<bool> attacking{true};
   std::atomic<uint64_t> sent{0};
   std::vector<std::thread> attackers;
+  attackers.reserve(kConnections);
   const std::string ingest = h.daemon()->endpoints().ingest;
   for (int a = 0; a < kConnections; ++a) {
     attackers.emplace_back([&, a] {
@@ -112,6 +113,7 @@ TEST(FairShare, HeavyFramesOnManyIdsAndConnectionsLeaveALightStreamItsTurn) {
       push.set(zmq::sockopt::sndtimeo, 100);
       push.connect(ingest);
       std::vector<std::vector<std::string>> frames;
+      frames.reserve(kIdsPerConnection);
       for (int i = 0; i < kIdsPerConnection; ++i)
         frames.push_back(renamed_frame(heavy, "heavy" + std::to_string(a * kIdsPerConnection + i)));
       for (size_t i = 0; attacking; ++i) {
