@@ -236,6 +236,7 @@ Status Daemon::start() {
       name_this_thread("engine");
       run_engine_worker(pipeline_, *eng);
     });
+  pipeline_.decode_queue.set_decoders(config_.decode_threads);
   for (int i = 0; i < config_.decode_threads; ++i)
     decoders_.emplace_back([this] {
       name_this_thread("decode");

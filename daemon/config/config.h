@@ -64,7 +64,8 @@ struct Caps {
   uint32_t max_subscriptions = 128;
   uint32_t max_subscription_bytes = 16384;
   /// Frames received and waiting for a decoder, and their bytes: when either is reached the
-  /// ingest thread stops reading until a decoder takes one (backpressure; decode_queue.h).
+  /// connection holding most bytes gives up its newest frame (counted `superseded`;
+  /// decode_queue.h). A frame over max_queued_bytes waits for an empty queue (backpressure).
   uint32_t max_queued_frames = 32;
   uint64_t max_queued_bytes = 256ull << 20;
 

@@ -8,7 +8,8 @@ const std::vector<DropReason>& drop_reasons() {
   static const std::vector<DropReason> reasons = {
       {"superseded", &StreamCounters::superseded,
        "a newer frame of the stream arrived while this one waited for a decoder or an engine (only the "
-       "latest frame waits), so it got no result",
+       "latest frame waits), or the decode queue was full and this frame's connection held the most "
+       "bytes, so it got no result",
        "the engines are slower than the stream's frame rate: lower the rate, make frames cheaper "
        "(compute = \"filter\", smaller sigmas) or add engines"},
       {"stale", &StreamCounters::dropped_stale,
@@ -17,10 +18,10 @@ const std::vector<DropReason>& drop_reasons() {
        "frames wait longer than the budget: raise budget_ms if later results are still of use, else "
        "lower the rate or add engines"},
       {"preempted", &StreamCounters::preempted,
-       "the frame was stopped on the engine so that a stream under its share of engine time could run "
-       "(an error result)",
-       "this stream's frames cost more than its share of the engines: make them cheaper (compute = "
-       "\"filter\", smaller sigmas) or add an engine"},
+       "the frame, which could not meet budget_ms, was stopped on the engine so that a lighter "
+       "stream's frame could meet its own, the engines being oversubscribed (an error result)",
+       "this stream's frames take longer than its budget on engines other streams need: raise "
+       "budget_ms, make them cheaper (compute = \"filter\", smaller sigmas) or add an engine"},
       {"time_limited", &StreamCounters::time_limited,
        "the frame ran past caps.engine_time_limit_s and was stopped (an error result)",
        "the frame is too heavy for the limit: fewer vertices or smaller sigmas, or raise "

@@ -43,8 +43,8 @@ constexpr CounterFamily kCounters[] = {
      "stopping.",
      &StreamCounters::untracked},
     {"fq_preempted_total",
-     "Frames stopped on the engine so that a stream within its share of engine time was served (also in "
-     "fq_errors_total).",
+     "Frames stopped on the engine, unable to meet their budget, so that a lighter stream's frame could "
+     "meet its own (not in fq_errors_total).",
      &StreamCounters::preempted},
 };
 

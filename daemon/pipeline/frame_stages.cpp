@@ -116,9 +116,10 @@ Status run_engine(Pipeline& p, Engine& engine, FrameJob& f, const YieldRequest& 
     return {StatusCode::kCancelled, "cancelled: fqd is stopping (caps.stop_grace_s passed before the frame finished)"};
   if (token.yield_due()) {
     f.stream->count(Counter::kPreempted);
+    f.preempted = true;
     return {StatusCode::kCancelled,
-            "preempted: the engine stopped the frame to serve a stream within its share of engine time (this stream "
-            "had used more than its share; see fqd's fairness rule in docs/DAEMON.md)"};
+            "preempted: the engine stopped the frame, which could not meet its budget, so that another "
+            "stream's frame could meet its own (see fqd's preemption rule in docs/DAEMON.md)"};
   }
   f.stream->count(Counter::kTimeLimited);
   return {StatusCode::kCancelled, fmt::format("time_limit: the engine stopped the frame after caps.engine_time_limit_s "
@@ -146,6 +147,7 @@ void run_decode_worker(Pipeline& p) {
     FramePtr f = std::move(*item);
     // Decoding a frame that is already too old would be wasted work under overload.
     if (is_stale(f->receive_ns, wall_ns(), f->settings.budget_ms)) {
+      p.decode_queue.decoded(*f);
       f->stream->count(Counter::kDroppedStale);
       p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: stale before decode", f->stream_id,
                      f->header.sequence());
@@ -155,6 +157,7 @@ void run_decode_worker(Pipeline& p) {
     f->mesh = p.meshes.acquire(wall_ns());
     const std::shared_ptr<const Caps> caps = p.caps.get();
     Status s = guarded("decode", [&] { return decode(*f, *caps); });
+    p.decode_queue.decoded(*f);  // its decoder is free for the queue's next frame
     if (s.ok()) s = resolve_settings(*f);
     if (s.ok()) s = check_work_budget(f->settings.params, f->mesh.num_vertices(), caps->max_neighbour_work);
     f->timings.push_back({"decode", ms_since(t0)});
@@ -199,7 +202,7 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
     const auto t0 = std::chrono::steady_clock::now();
     const Status s = run_engine(p, engine, *f, yield);
     const double total = ms_since(t0);
-    p.slots.finish(&yield, total * 1e-3);
+    p.slots.finish(&yield, total * 1e-3, f->preempted);
     p.engine_busy.add(&engine, static_cast<uint64_t>(total * 1e6));
     last_frame_ns = wall_ns();
     holding = true;

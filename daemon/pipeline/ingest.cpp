@@ -102,14 +102,15 @@ void queue_admitted(FramePtr f, Pipeline& p) {
     const Status why = f->error;
     p.fail(std::move(f), why);
   } else {
-    // Waits while the queue is full: this thread stops reading, and ZeroMQ's marks hold the
-    // producers back. An older frame of the stream still waiting gives its place up.
-    FramePtr older;
-    p.decode_queue.push(std::move(f), older);
-    if (older) {
-      older->stream->count(Counter::kSuperseded);
-      p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: superseded before decode", older->stream_id,
-                     older->header.sequence());
+    // An older frame of the stream still waiting gives its place up; a full queue sheds the
+    // newest place of the connection holding most (decode_queue.h). Only a frame over the
+    // byte bound waits here (for an empty queue): then ZeroMQ's marks hold the producers back.
+    std::vector<FramePtr> dropped;
+    p.decode_queue.push(std::move(f), dropped);
+    for (const FramePtr& d : dropped) {
+      d->stream->count(Counter::kSuperseded);
+      p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: superseded before decode", d->stream_id,
+                     d->header.sequence());
     }
   }
 }
@@ -181,7 +182,11 @@ bool Ingest::ingest_one(zmq::socket_t& socket, zmq::recv_flags flags, const std:
     return true;  // a key revoked since it connected
   // Another fqd's stream (a SUB topic matches by prefix): not ours to count.
   if (assigned && !assigned->empty() && !assigned->count(parts[0].to_string())) return true;
-  queue_admitted(got == Received::kMessage ? admit_message(parts) : refuse_oversized(parts, got), p_);
+  // The connection, for the decode queue's turns; read before the parts move into the frame.
+  const int connection = zmq_msg_get(parts[0].handle(), ZMQ_SRCFD);
+  FramePtr f = got == Received::kMessage ? admit_message(parts) : refuse_oversized(parts, got);
+  f->connection = connection;
+  queue_admitted(std::move(f), p_);
   return true;
 }
 

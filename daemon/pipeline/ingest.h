@@ -20,7 +20,10 @@
 namespace fq::daemon {
 
 /// The receive mark of the ingest sockets, in messages per producer connection: what libzmq
-/// holds while fqd's decode queue is full and the ingest thread waits (then producers wait).
+/// holds for a connection before the ingest thread reads it (then that producer waits). The
+/// thread waits only for a frame over caps.max_queued_bytes (decode_queue.h), so a connection
+/// costs fqd at most this many messages plus the one being received, each within
+/// caps.max_frame_bytes per part (ZMQ_MAXMSGSIZE) and in all once read (bounded_receive.h).
 inline constexpr int kIngestMark = 4;
 
 class Ingest : NonCopyable {

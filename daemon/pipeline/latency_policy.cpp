@@ -30,14 +30,18 @@ FramePtr FrameSlots::offer(FramePtr frame) {
     SlotState& s = stream.slot;
     const bool behind_taken = s.taken_any && frame->arrival <= s.last_taken_arrival;
     if (behind_taken || (s.waiting && s.waiting->arrival > frame->arrival)) return frame;
+    // The stream's frame interval, from receipt times (a frame decoded late says nothing).
+    if (s.last_receive_ns > 0 && frame->receive_ns > s.last_receive_ns) {
+      const double dt = double(frame->receive_ns - s.last_receive_ns) * 1e-9;
+      s.interval_s = s.interval_s > 0 ? 0.7 * s.interval_s + 0.3 * dt : dt;
+    }
+    s.last_receive_ns = std::max(s.last_receive_ns, frame->receive_ns);
     if (s.waiting)
       loser = std::move(s.waiting);
     else
       waiting_.push_back(&stream);
     s.waiting = std::move(frame);
-    const int64_t now = steady_ns();
-    offered_[stream.id()] = now;
-    review_runs(now);
+    review_runs(steady_ns());
   }
   ready_.notify_one();
   return loser;
@@ -92,7 +96,8 @@ bool FrameSlots::take(FramePtr& out, std::vector<FramePtr>& stale, std::chrono::
     f->ticketed = true;
     if (yield != nullptr) {
       yield->requested.store(false);
-      runs_.push_back({f->stream, yield, now, best_usage});
+      const auto budget_ns = static_cast<int64_t>(f->settings.budget_ms * 1e6);
+      runs_.push_back({f->stream, yield, now, f->receive_ns + budget_ns + (now - wall_ns())});
     }
     out = std::move(f);
     review_runs(now);
@@ -101,7 +106,7 @@ bool FrameSlots::take(FramePtr& out, std::vector<FramePtr>& stale, std::chrono::
   return true;  // only stale frames this time
 }
 
-void FrameSlots::finish(YieldRequest* yield, double seconds) {
+void FrameSlots::finish(YieldRequest* yield, double seconds, bool preempted) {
   StreamPtr stream;  // released after the lock: the slots never end a stream under their lock
   std::lock_guard<std::mutex> lock(mutex_);
   const auto run = std::find_if(runs_.begin(), runs_.end(), [&](const Run& r) { return r.yield == yield; });
@@ -110,7 +115,12 @@ void FrameSlots::finish(YieldRequest* yield, double seconds) {
   SlotState& s = stream->slot;
   usage_at(s, steady_ns());
   s.usage_s += seconds;
-  s.cost_s = s.cost_s > 0 ? 0.7 * s.cost_s + 0.3 * seconds : seconds;
+  // A stopped run says only that the frame costs at least this much.
+  if (preempted)
+    s.cost_s = std::max(s.cost_s, seconds);
+  else
+    s.cost_s = s.cost_s > 0 ? 0.7 * s.cost_s + 0.3 * seconds : seconds;
+  s.preempted = preempted;
   runs_.erase(run);
 }
 
@@ -125,39 +135,52 @@ void FrameSlots::set_engines(int engines) {
   engines_ = std::max(1, engines);
 }
 
+double FrameSlots::demand(const SlotState& s) { return s.interval_s > 0 ? s.cost_s / s.interval_s : 0.0; }
+
+int64_t FrameSlots::stop_time(const Run& r, const Stream& w, int64_t now_ns, int64_t wall_to_steady_ns) {
+  const FrameJob& f = *w.slot.waiting;
+  // The latest start at which the waiting frame still meets its budget.
+  const int64_t w_latest = f.receive_ns + wall_to_steady_ns +
+                           static_cast<int64_t>(f.settings.budget_ms * 1e6) -
+                           static_cast<int64_t>(w.slot.cost_s * 1e9);
+  // The running frame's expected end: its stream's cost, or later (now, at least).
+  const int64_t r_end = r.start_ns + static_cast<int64_t>(r.stream->slot.cost_s * 1e9);
+  // From when the waiting frame misses its budget unless the engine is given up, and from when
+  // the running frame cannot meet its own.
+  const int64_t other_lost = r_end > w_latest ? now_ns : w_latest;
+  const int64_t own_lost = r_end > r.deadline_ns ? now_ns : r.deadline_ns;
+  const int64_t at = std::max({other_lost, own_lost, r.start_ns + static_cast<int64_t>(kSliceS * 1e9)});
+  // Stopping later than the waiting frame's latest start would not save it.
+  return at <= w_latest ? at : -1;
+}
+
 void FrameSlots::review_runs(int64_t now_ns) {
-  for (auto it = offered_.begin(); it != offered_.end();)
-    it = double(now_ns - it->second) < kWindowNs ? std::next(it) : offered_.erase(it);
   if (runs_.empty()) return;
-  // How many streams are active: offered a frame within the window, waiting or running.
-  int active = static_cast<int>(offered_.size());
-  const auto recent = [&](const Stream& s) { return offered_.count(s.id()) != 0; };
-  for (const Stream* s : waiting_)
-    if (!recent(*s)) ++active;
+  const int64_t wall_to_steady = now_ns - wall_ns();
+  // What the streams running and waiting ask for (each stream once).
+  double asked = 0;
+  for (const Stream* w : waiting_) asked += demand(w->slot);
   for (size_t i = 0; i < runs_.size(); ++i) {
-    const Stream& s = *runs_[i].stream;
-    const bool counted = recent(s) || s.slot.waiting ||
-                         std::any_of(runs_.begin(), runs_.begin() + i, [&](const Run& r) { return r.stream.get() == &s; });
-    if (!counted) ++active;
+    const Stream* s = runs_[i].stream.get();
+    const bool seen = s->slot.waiting != nullptr ||
+                      std::any_of(runs_.begin(), runs_.begin() + static_cast<std::ptrdiff_t>(i),
+                                  [&](const Run& r) { return r.stream.get() == s; });
+    if (!seen) asked += demand(s->slot);
   }
-  // The waiting stream of least usage.
-  Stream* waiting = nullptr;
-  double waiting_usage = 0;
-  for (Stream* s : waiting_) {
-    const double u = usage_at(s->slot, now_ns);
-    if (!waiting || u < waiting_usage) {
-      waiting = s;
-      waiting_usage = u;
-    }
-  }
-  const double waiting_cost = waiting ? waiting->slot.cost_s : 0;
-  const double share = kShareWindowS * engines_ / std::max(1, active);
-  // The run to stop, if any: the one whose stream had used most when it started.
+  // The run to stop, if any, and when: the earliest stop that saves a waiting frame.
   Run* to_stop = nullptr;
-  if (idle_takers_ == 0 && waiting != nullptr && waiting_usage < 0.5 * share) {
+  int64_t stop_at = 0;
+  if (idle_takers_ == 0 && asked > engines_) {
     for (Run& r : runs_) {
-      if (r.stream.get() == waiting) continue;
-      if (!to_stop || r.usage_at_start_s > to_stop->usage_at_start_s) to_stop = &r;
+      if (r.stream->slot.preempted) continue;  // guaranteed progress
+      for (const Stream* w : waiting_) {
+        if (w == r.stream.get() || demand(r.stream->slot) <= demand(w->slot)) continue;
+        const int64_t at = stop_time(r, *w, now_ns, wall_to_steady);
+        if (at >= 0 && (!to_stop || at < stop_at)) {
+          to_stop = &r;
+          stop_at = at;
+        }
+      }
     }
   }
   for (Run& r : runs_) {
@@ -165,11 +188,7 @@ void FrameSlots::review_runs(int64_t now_ns) {
       r.yield->requested.store(false);
       continue;
     }
-    // Due after a slice and four of the waiting stream's frames, once the stream's usage with
-    // this run's time passes twice the waiting stream's and a slice.
-    const double frames_s = waiting_cost > 0 ? 4.0 * waiting_cost : kColdSliceS;
-    const double after_s = std::max({kSliceS, frames_s, 2.0 * waiting_usage + kSliceS - r.usage_at_start_s});
-    r.yield->after_ns.store(r.start_ns + static_cast<int64_t>(after_s * 1e9));
+    r.yield->after_ns.store(stop_at);
     r.yield->requested.store(true);
   }
 }

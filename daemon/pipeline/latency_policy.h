@@ -5,24 +5,33 @@
 // engines. Thread-safe. A stream's slot and ticket counter live in its Stream (stream.h),
 // under this object's lock; only the streams with a frame waiting are listed here.
 //
-// Fairness by engine time. Each stream's recent engine time (seconds of engine and cluster-id
-// tracking, decayed with time constant kShareWindowS, kept in its slot) is its usage; a free engine takes the
-// waiting stream of least usage. A stream's share is kShareWindowS x engines / active streams
-// (those with a frame in the last kShareWindowS). Engines do not interleave frames, so without
-// more a stream whose frames run for seconds would still hold the engine while a light stream's
-// frames were superseded behind it (one waiting slot); so a frame on an engine is stopped (error
-// result, counted `preempted`) when no engine is free, a stream under half its share is waiting,
-// the frame has run kSliceS and four of the waiting stream's frames (its moving average of
-// engine time; kColdSliceS while none of its frames has run), and its stream, with this
-// frame's time so far, has used more than twice the waiting stream's usage plus kSliceS.
-// Frames of like cost do not stop each other (a frame runs four of the other's frames), and a
-// lone stream is never stopped (nobody waits).
+// Order by engine time. Each stream's recent engine time (seconds of engine and cluster-id
+// tracking, decayed with time constant kShareWindowS, kept in its slot) is its usage; a free
+// engine takes the waiting stream of least usage, so a stream of light frames goes before one
+// of heavy frames.
+//
+// Preemption, a last resort. Engines do not interleave frames, so a frame that runs for seconds
+// holds its engine while the other streams' frames wait. A frame on an engine is stopped (error
+// result, counted `preempted`, not `errors`) only when all of these hold: no engine is free; the
+// streams running and waiting ask for more engine time than the engines have (a stream's demand:
+// its frame cost over its frame interval), and the running stream asks for more than the waiting
+// one; a waiting frame of that stream would miss its own budget if it waited for the running
+// frame to end (its stream's frame cost included), and can still meet it if the engine is given
+// up then; the running frame cannot meet its own budget (it is past it, or its stream's frames
+// cost more than it has left); the frame has run kSliceS; and its stream was not preempted since
+// its last frame that ran to its end (guaranteed progress: after a preemption the stream's next
+// frame on an engine is never stopped for another stream). So a stream of tiny frames never
+// stops a heavy stream while the engines have room for both (a 1 fps stream of 0.6 s frames
+// beside 162-vertex frames at 5 fps), and a frame within its own budget is never stopped. A
+// frame's cost is its stream's moving average of engine time over frames that ran to their end
+// (the longest preempted run when larger); its interval, the moving average of the time between
+// its frames' receipt. A stream with either unknown asks for nothing yet, so its first frame
+// on an engine is not stopped.
 #pragma once
 
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
-#include <map>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -56,18 +65,17 @@ class FrameSlots {
             std::chrono::milliseconds wait = std::chrono::milliseconds::max(), YieldRequest* yield = nullptr);
 
   /// The run of `yield` (taken with it) is over after `seconds` on its engine: charged to its
-  /// stream, unregistered.
-  void finish(YieldRequest* yield, double seconds);
+  /// stream, unregistered. `preempted`: the run was stopped by its yield request.
+  void finish(YieldRequest* yield, double seconds, bool preempted = false);
+
+  /// Engines that take from the slots (the engine time there is to ask for).
+  void set_engines(int engines);
 
   /// Charges `seconds` of other work of a frame (cluster-id tracking) to its stream.
   void charge(Stream& stream, double seconds);
 
-  /// Engines that take from the slots (the share of each stream is in engines' time).
-  void set_engines(int engines);
-
   static constexpr double kShareWindowS = 6.0;
   static constexpr double kSliceS = 0.1;
-  static constexpr double kColdSliceS = 1.0;
 
   /// Wakes every waiting worker; waiting frames are still handed out.
   void close();
@@ -83,23 +91,24 @@ class FrameSlots {
   struct Run {
     StreamPtr stream;
     YieldRequest* yield;
-    int64_t start_ns;
-    double usage_at_start_s;
+    int64_t start_ns;     ///< steady clock
+    int64_t deadline_ns;  ///< the end of the frame's budget, steady clock
   };
 
   /// The slot's usage decayed to `now_ns` (steady clock).
   static double usage_at(SlotState& s, int64_t now_ns);
   /// Sets or withdraws the yield requests of the runs (see above). Under mutex_.
   void review_runs(int64_t now_ns);
+  /// Engine seconds per second the stream asks for (see above); 0 while unknown.
+  static double demand(const SlotState& s);
+  /// When `r` may be stopped for the waiting stream `w` (steady clock), or -1 when never.
+  static int64_t stop_time(const Run& r, const Stream& w, int64_t now_ns, int64_t wall_to_steady_ns);
 
   mutable std::mutex mutex_;
   std::condition_variable ready_;
   /// The streams whose slot holds a frame; that frame keeps its stream alive.
   std::vector<Stream*> waiting_;
   std::vector<Run> runs_;
-  /// When each stream last offered a frame (steady clock), for the count of active streams;
-  /// entries older than kShareWindowS are dropped, so it holds only recent stream ids.
-  std::map<std::string, int64_t> offered_;
   uint64_t served_ = 0;
   int engines_ = 1;
   int idle_takers_ = 0;  ///< workers blocked in take()

@@ -133,7 +133,7 @@ void Publisher::account(const FrameJob& f, const wire::ResultHeader& h) {
   if (!f.stream) return;  // refused before it had a stream: counted with the refusals
   Stream& s = *f.stream;
   if (h.status() == wire::ERROR) {
-    s.count(Counter::kErrors);
+    if (!f.preempted) s.count(Counter::kErrors);  // a preempted frame is counted as such
     return;
   }
   s.count(Counter::kOut);

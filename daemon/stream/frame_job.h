@@ -42,6 +42,10 @@ struct FrameJob {
   wire::FrameHeader header;            ///< as received (empty for messages whose header failed)
   std::vector<zmq::message_t> chunks;  ///< Draco payloads, released after decode
   int64_t receive_ns = 0;
+  /// The producer connection it came on (its socket number, ZMQ_SRCFD; -1 unknown): the
+  /// decode queue serves connections in turn (decode_queue.h).
+  int64_t connection = -1;
+  bool large_in_decoder = false;  ///< counted by the decode queue until decoded() (decode_queue.h)
 
   StreamSettings settings;              ///< the stream's settings with the frame's overrides applied
   Mesh mesh;                            ///< decoded input
@@ -58,6 +62,7 @@ struct FrameJob {
   /// and the cluster-id tracking after it both stop there (max(): no limit).
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   Status error;  ///< non-ok: published as an ERROR result
+  bool preempted = false;  ///< stopped for another stream (counted `preempted`, not `errors`)
   bool refused = false;  ///< refused at admission: no stream state, counted in the refusals
 };
 

@@ -25,7 +25,7 @@
 namespace fq::daemon {
 
 /// What happened to a stream's frames. Once the pipeline is idle,
-/// frames_in == frames_out + errors + superseded + dropped_stale.
+/// frames_in == frames_out + errors + superseded + dropped_stale + preempted.
 struct StreamCounters {
   uint64_t frames_in = 0;      ///< ingest messages attributed to the stream
   uint64_t frames_out = 0;     ///< results published with status OK or LATE
@@ -49,8 +49,8 @@ struct StreamCounters {
   /// Results published with the engine's cluster numbering because id tracking was cut by
   /// the frame's time limit or the stop (also in frames_out).
   uint64_t untracked = 0;
-  /// Frames stopped on the engine to serve a stream within its share of engine time (also in
-  /// errors; see latency_policy.h).
+  /// Frames stopped on the engine so that another stream's waiting frame meets its budget
+  /// (latency_policy.h); an error result is published, but not counted in errors.
   uint64_t preempted = 0;
 };
 
@@ -96,6 +96,10 @@ struct SlotState {
   double usage_s = 0;   ///< recent engine time, decayed to usage_ns (steady clock)
   int64_t usage_ns = 0;
   double cost_s = 0;  ///< engine time of its frames (moving average); 0 = none seen yet
+  /// Its last run was preempted: its next one is not (guaranteed progress).
+  bool preempted = false;
+  int64_t last_receive_ns = 0;  ///< the newest receipt of its frames offered (wall clock)
+  double interval_s = 0;        ///< time between its frames (moving average); 0 = unknown
 };
 
 /// Results held back until the earlier tickets are published (publisher.h); publisher thread only.
@@ -146,6 +150,9 @@ class Stream : NonCopyable {
 
   /// When a frame (or a control request) last found it, wall_ns(); the registry expires it.
   std::atomic<int64_t> last_seen_ns{0};
+  /// A frame has found it (the registry's lock): a stream only set_params made, without one,
+  /// gives its slot up to a producer's new stream when max_streams are registered.
+  bool fed = false;
 
   SlotState slot;          ///< FrameSlots' lock
   PublishOrder order;      ///< the publisher thread

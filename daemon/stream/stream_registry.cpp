@@ -15,20 +15,40 @@ const StreamSettings& StreamRegistry::configured(const std::string& stream_id) c
   return it != configured_.end() ? it->second : defaults_;
 }
 
-StreamPtr StreamRegistry::entry(const std::string& stream_id, int64_t now_ns) {
+StreamPtr StreamRegistry::entry(const std::string& stream_id, int64_t now_ns, bool frame) {
   auto it = streams_.find(stream_id);
-  if (it != streams_.end()) return it->second;
-  if (streams_.size() >= config_.caps.max_streams) return nullptr;
+  if (it != streams_.end()) {
+    if (frame) it->second->fed = true;
+    return it->second;
+  }
+  if (streams_.size() >= config_.caps.max_streams) {
+    // set_params with create on 8 ids every 0.5 s held every slot (max_streams 8) and a new
+    // producer got none of its 75 frames in: a slot no frame has used is the first to go.
+    auto idle = streams_.end();
+    for (auto c = streams_.begin(); frame && c != streams_.end(); ++c) {
+      if (c->second->fed || configured_.contains(c->first)) continue;
+      if (idle == streams_.end() || c->second->last_seen_ns.load(std::memory_order_relaxed) <
+                                        idle->second->last_seen_ns.load(std::memory_order_relaxed))
+        idle = c;
+    }
+    if (idle == streams_.end()) return nullptr;
+    streams_.erase(idle);  // no frame holds it: nothing of it is in flight
+  }
   StreamPtr s = std::make_shared<Stream>(stream_id, configured(stream_id), now_ns);
+  s->fed = frame;
   streams_.emplace(stream_id, s);
   return s;
 }
 
 StreamPtr StreamRegistry::admit(const std::string& stream_id, int64_t now_ns) {
+  return touch(stream_id, now_ns, true);
+}
+
+StreamPtr StreamRegistry::touch(const std::string& stream_id, int64_t now_ns, bool frame) {
   StreamPtr s;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    s = entry(stream_id, now_ns);
+    s = entry(stream_id, now_ns, frame);
   }
   if (s) {
     int64_t seen = s->last_seen_ns.load(std::memory_order_relaxed);
@@ -45,14 +65,14 @@ StreamPtr StreamRegistry::find(const std::string& stream_id) const {
 }
 
 bool StreamRegistry::settings(const std::string& stream_id, StreamSettings& out) {
-  const StreamPtr s = admit(stream_id, wall_ns());
+  const StreamPtr s = touch(stream_id, wall_ns(), false);
   if (!s) return false;
   out = s->settings();
   return true;
 }
 
 bool StreamRegistry::set_settings(const std::string& stream_id, const StreamSettings& settings) {
-  const StreamPtr s = admit(stream_id, wall_ns());
+  const StreamPtr s = touch(stream_id, wall_ns(), false);
   if (!s) return false;
   s->set_settings(settings);
   return true;

@@ -22,9 +22,11 @@ class StreamRegistry {
   explicit StreamRegistry(const DaemonConfig& config);
 
   /// The stream a frame belongs to, registering it (from its config entry or the defaults)
-  /// on first sight, and noting it as active at `now_ns`. Null when the stream is new and
-  /// max_streams are already registered. The only call that registers a stream from a frame:
-  /// the ingest thread calls it once the stream id has been admitted.
+  /// on first sight, and noting it as active at `now_ns`. When the stream is new and
+  /// max_streams are already registered, the stream that only control requests made (no frame
+  /// ever found it, not configured) and that was touched longest ago gives its slot up; null
+  /// when there is none. The only call that registers a stream from a frame: the ingest thread
+  /// calls it once the stream id has been admitted.
   StreamPtr admit(const std::string& stream_id, int64_t now_ns);
   /// A registered stream; null when unknown.
   StreamPtr find(const std::string& stream_id) const;
@@ -61,7 +63,10 @@ class StreamRegistry {
   const RefusalCounters& refusals() const { return refusals_; }
 
  private:
-  StreamPtr entry(const std::string& stream_id, int64_t now_ns);  // registers; null when full
+  // Registers; null when full. `frame`: for a frame, which may take the slot of a stream no
+  // frame has found (see admit()), and marks the stream fed.
+  StreamPtr entry(const std::string& stream_id, int64_t now_ns, bool frame);
+  StreamPtr touch(const std::string& stream_id, int64_t now_ns, bool frame);
   const StreamSettings& configured(const std::string& stream_id) const;
 
   const DaemonConfig& config_;

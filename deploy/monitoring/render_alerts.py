@@ -103,6 +103,20 @@ groups:
           description: "Bad frames, invalid parameters, the engine time limit or an engine failure; fqd's log names each."
           runbook_url: "@RUNBOOK@#runbook-fqdstreamerrors"
 
+      - alert: FqdStreamPreempted
+        expr: |
+          sum by (instance, stream) (rate(fq_preempted_total[5m]))
+            / sum by (instance, stream) (rate(fq_frames_in_total[5m])) > 0.1
+        for: 10m
+        labels: {severity: warning}
+        annotations:
+          summary: "stream {{ $labels.stream }} on {{ $labels.instance }}: over 10% of frames preempted"
+          description: >-
+            fqd stops a frame on an engine only when it cannot meet its budget and another stream's
+            frame would miss its own behind it. The stream's frames take longer than its budget_ms on
+            an engine that other streams need: raise its budget, lighten its parameters, or add an engine.
+          runbook_url: "@RUNBOOK@#runbook-fqdstreampreempted"
+
       - alert: FqdRefusingFrames
         expr: sum by (instance, reason) (rate(fq_refused_total[5m])) > 0
         for: 5m

@@ -3,12 +3,13 @@
 // the socket, oversized neighbourhoods before the engine, and overloaded streams share the
 // engine fairly.
 #include <gtest/gtest.h>
+#include <malloc.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <malloc.h>
 #include <string>
 #include <thread>
 
@@ -21,12 +22,6 @@ namespace fq::test {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-client::FrameSpec spec_for(const std::string& stream) {
-  client::FrameSpec s;
-  s.stream_id = stream;
-  return s;
-}
 
 // Waits (bounded) until `done()` holds.
 template <class F>
@@ -63,7 +58,7 @@ TEST(DaemonAdmission, TwentyThousandJunkTopicsLeaveNoStateAndFlatMemory) {
   EXPECT_EQ(r.list(), std::vector<std::string>{"__probe"}) << r.list().size() << " streams";
   // Before, every topic kept its own state: +202 MiB for 20,000 topics.
   EXPECT_LT(after, before + (16u << 20)) << "RSS grew from " << before << " to " << after;
-  h.send(noisy_sphere(), spec_for("cam"), 1);
+  h.send(noisy_sphere(), frame_spec("cam"), 1);
   EXPECT_EQ(h.receive("cam").header.status(), wire::OK);
 }
 
@@ -85,7 +80,7 @@ TEST(DaemonAdmission, FiveThousandStreamIdsComeAndGoWithFlatMemory) {
   auto churn = [&](int from, int to) {
     for (int i = from; i < to; i += kWave) {
       const int end = std::min(to, i + kWave);
-      for (int k = i; k < end; ++k) h.send(mesh, spec_for("churn-" + std::to_string(k)), 0);
+      for (int k = i; k < end; ++k) h.send(mesh, frame_spec("churn-" + std::to_string(k)), 0);
       for (int k = i; k < end; ++k) ASSERT_EQ(h.receive("churn-" + std::to_string(k)).header.status(), wire::OK);
       most_streams = std::max(most_streams, r.list().size());
     }
@@ -115,10 +110,10 @@ TEST(DaemonAdmission, SquattedSlotsComeBackWhenTheSquattersGoIdle) {
   DaemonHarness h(c);
   const Mesh mesh = noisy_sphere();
   for (const char* squatter : {"squat0", "squat1"}) {
-    h.send(mesh, spec_for(squatter), 0);
+    h.send(mesh, frame_spec(squatter), 0);
     EXPECT_EQ(h.receive(squatter).header.status(), wire::OK);
   }
-  h.send(mesh, spec_for("cam"), 41);
+  h.send(mesh, frame_spec("cam"), 41);
   const client::ReceivedResult refused = h.receive("cam");
   EXPECT_EQ(refused.header.status(), wire::ERROR);
   EXPECT_NE(refused.header.error().find("too many streams"), std::string::npos) << refused.header.error();
@@ -127,7 +122,7 @@ TEST(DaemonAdmission, SquattedSlotsComeBackWhenTheSquattersGoIdle) {
   // The squatters send nothing more: after the idle time their slots are free again.
   ASSERT_TRUE(eventually([&] { return h.daemon()->registry().list().empty(); }, std::chrono::seconds(20)))
       << "streams left: " << h.daemon()->registry().list().size();
-  h.send(mesh, spec_for("cam"), 42);
+  h.send(mesh, frame_spec("cam"), 42);
   const client::ReceivedResult served = h.receive("cam");
   EXPECT_EQ(served.header.status(), wire::OK);
   EXPECT_EQ(served.header.sequence(), 42u);
@@ -137,7 +132,7 @@ TEST(DaemonAdmission, ANonUtf8StreamIdGetsAReadableRefusal) {
   DaemonHarness h;
   const Mesh mesh = noisy_sphere();
   std::vector<std::string> parts;
-  ASSERT_TRUE(client::build_frame(mesh.view(), spec_for("cam"), 5, parts).ok());
+  ASSERT_TRUE(client::build_frame(mesh.view(), frame_spec("cam"), 5, parts).ok());
   parts[0] = "\xff\xfe" "cam";
   h.send_parts(parts);
   // Published under the escaped id, in a result header any protobuf reader accepts.
@@ -145,7 +140,7 @@ TEST(DaemonAdmission, ANonUtf8StreamIdGetsAReadableRefusal) {
   EXPECT_EQ(e.header.status(), wire::ERROR);
   EXPECT_NE(e.header.error().find("not valid UTF-8"), std::string::npos) << e.header.error();
   EXPECT_EQ(h.daemon()->registry().refusals().get(daemon::Refusal::kBadStreamId), 1u);
-  h.send(mesh, spec_for("cam"), 6);
+  h.send(mesh, frame_spec("cam"), 6);
   EXPECT_EQ(h.receive("cam").header.status(), wire::OK);
 }
 
@@ -162,7 +157,7 @@ TEST(DaemonAdmission, APartOverTheCapIsRefusedAtTheSocket) {
     std::vector<std::string> parts{"cam", "header", std::string(64u << 20, 'x')};
     client::send_parts(push, parts);
   }
-  h.send(noisy_sphere(), spec_for("cam"), 1);
+  h.send(noisy_sphere(), frame_spec("cam"), 1);
   const client::ReceivedResult r = h.receive("cam");
   EXPECT_EQ(r.header.status(), wire::OK);
   EXPECT_EQ(r.header.sequence(), 1u);
@@ -172,14 +167,14 @@ TEST(DaemonAdmission, APartOverTheCapIsRefusedAtTheSocket) {
 // With clustering, the plan runs the sigma_s neighbourhoods ("qf+" alone does not read sigma_s).
 TEST(DaemonAdmission, AHugeNeighbourhoodIsRefusedBeforeTheEngine) {
   DaemonHarness h;
-  client::FrameSpec s = spec_for("cam");
+  client::FrameSpec s = frame_spec("cam");
   s.compute = wire::FILTER_AND_CLUSTER;
   s.overrides.set_sigma_s(1e4f);
   h.send(noisy_sphere(), s, 1);
   const client::ReceivedResult e = h.receive("cam");
   EXPECT_EQ(e.header.status(), wire::ERROR);
   EXPECT_NE(e.header.error().find("max_neighbour_work"), std::string::npos) << e.header.error();
-  h.send(noisy_sphere(), spec_for("cam"), 2);
+  h.send(noisy_sphere(), frame_spec("cam"), 2);
   EXPECT_EQ(h.receive("cam").header.status(), wire::OK);
 }
 
@@ -193,52 +188,70 @@ TEST(DaemonAdmission, IdenticalStreamsShareAnOverloadedEngineFairly) {
   std::vector<std::vector<std::string>> frames;
   for (const std::string& id : streams) {
     frames.emplace_back();
-    ASSERT_TRUE(client::build_frame(mesh.view(), spec_for(id), 0, frames.back()).ok());
+    ASSERT_TRUE(client::build_frame(mesh.view(), frame_spec(id), 0, frames.back()).ok());
   }
   // Far faster than one engine thread can serve, until it has served enough to judge
-  // (counted, not timed: the machine may be busy).
+  // (counted, not timed: the machine may be busy). A stream the ingest has not admitted yet (a
+  // loaded machine) has served nothing; asking fqd for its counters then would fail the test.
   auto served = [&] {
     uint64_t n = 0;
-    for (const std::string& id : streams) n += h.counters(id).frames_out();
+    for (const std::string& id : streams)
+      if (h.daemon()->registry().find(id)) n += h.counters(id).frames_out();
     return n;
   };
-  const auto end = Clock::now() + std::chrono::seconds(90);
+  constexpr uint64_t kEnough = 240;
+  const auto end = Clock::now() + std::chrono::seconds(120);
   for (int round = 0; Clock::now() < end; ++round) {
     for (auto& parts : frames) h.send_parts(parts);
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    if (round % 20 == 0 && served() >= 60) break;
+    if (round % 20 == 0 && served() >= kEnough) break;
   }
   std::vector<uint64_t> out;
   for (const std::string& id : streams) {
     ASSERT_TRUE(eventually([&] {
       const wire::StreamCounters k = h.counters(id);
-      return k.frames_in() == k.frames_out() + k.errors() + k.superseded() + k.dropped_stale();
+      return k.frames_in() ==
+             k.frames_out() + k.errors() + k.superseded() + k.dropped_stale() + k.preempted();
     }));
     out.push_back(h.counters(id).frames_out());
   }
   const auto [lo, hi] = std::minmax_element(out.begin(), out.end());
-  ASSERT_GE(*hi, 15u) << "the engine served too few frames to judge: " << out[0] << " / " << out[1] << " / "
-                      << out[2];
-  // Within 10% (or one frame, the granularity of a round robin).
-  EXPECT_LE(double(*hi - *lo), std::max(1.0, 0.10 * double(*hi))) << out[0] << " / " << out[1] << " / " << out[2];
+  const double n = double(out[0] + out[1] + out[2]);
+  ASSERT_GE(n, double(kEnough) * 0.9)
+      << "the engine served too few frames to judge: " << out[0] << " / " << out[1] << " / " << out[2];
+  // The engine shares its time, not its frames: on a loaded machine a frame's time varies, and
+  // so do the counts. Allowed: the spread of a fair draw, three standard deviations of the
+  // difference of two streams' counts had each frame gone to one of the three at random
+  // (sqrt(2n/3): 38 frames of 240). The old oldest-first rule gave 25 / 13 / 5 of 43 (16
+  // allowed), 4,105 vs 1,523 before that.
+  const double allowed = 3.0 * std::sqrt(2.0 * n / 3.0);
+  EXPECT_LE(double(*hi - *lo), allowed) << out[0] << " / " << out[1] << " / " << out[2];
+  std::printf("served %llu / %llu / %llu (difference %llu, %.0f allowed)\n",
+              static_cast<unsigned long long>(out[0]), static_cast<unsigned long long>(out[1]),
+              static_cast<unsigned long long>(out[2]), static_cast<unsigned long long>(*hi - *lo), allowed);
 }
 
-TEST(DaemonAdmission, AStreamOfHeavyFramesCannotStarveALightOne) {
+TEST(DaemonAdmission, AStreamOfHeavyFramesOverItsBudgetYieldsToALightOneAndStillProgresses) {
   // One engine thread. The hog's frames (the fandisk with a neighbourhood as wide as the mesh:
-  // seconds each, inside the work budget and the time limit) always have one waiting; the
-  // victim sends a small frame every 200 ms. Round robin by frames gave the victim one result
-  // per hog frame.
+  // seconds each, inside the work budget and the time limit, over the 1 s budget) always have
+  // one waiting; the victim sends a small frame every 200 ms, also with a 1 s budget. Round
+  // robin by frames gave the victim one result per hog frame (6 of 100). A hog frame that
+  // cannot meet its budget is stopped when a victim frame would miss its own behind it, but
+  // after a stop the hog's next frame runs to its end (guaranteed progress), and the victim
+  // waits for it.
   daemon::DaemonConfig c = test_config();
   c.engine.cpu_threads = 1;
+  c.defaults.budget_ms = 1000;
+  c.caps.engine_time_limit_s = 120;  // a loaded machine may take over 10 s for a hog frame
   DaemonHarness h(c);
   Mesh fandisk;
   ASSERT_TRUE(io::read_ply(std::string(FQ_SOURCE_DIR) + "/data/fandisk.ply", fandisk).ok());
-  client::FrameSpec hog = spec_for("hog");
+  client::FrameSpec hog = frame_spec("hog");
   hog.overrides.set_sigma_s(40.f);
   hog.overrides.set_sigma_d(40.f);
   std::vector<std::string> hog_frame, victim_frame;
   ASSERT_TRUE(client::build_frame(fandisk.view(), hog, 0, hog_frame).ok());
-  ASSERT_TRUE(client::build_frame(noisy_sphere().view(), spec_for("victim"), 0, victim_frame).ok());
+  ASSERT_TRUE(client::build_frame(noisy_sphere().view(), frame_spec("victim"), 0, victim_frame).ok());
   const int victim_frames = 100;  // 20 s
   for (int i = 0; i < victim_frames; ++i) {
     if (i % 2 == 0) h.send_parts(hog_frame);
@@ -248,19 +261,27 @@ TEST(DaemonAdmission, AStreamOfHeavyFramesCannotStarveALightOne) {
   for (const char* id : {"hog", "victim"}) {
     ASSERT_TRUE(eventually([&] {
       const wire::StreamCounters k = h.counters(id);
-      return k.frames_in() == k.frames_out() + k.errors() + k.superseded() + k.dropped_stale();
+      return k.frames_in() ==
+             k.frames_out() + k.errors() + k.superseded() + k.dropped_stale() + k.preempted();
     }));
   }
   const wire::StreamCounters v = h.counters("victim"), g = h.counters("hog");
-  std::printf("victim: %llu of %d results (%llu superseded, %llu stale); hog: %llu results, %llu preempted, %llu "
-              "superseded\n",
-              static_cast<unsigned long long>(v.frames_out()), victim_frames,
-              static_cast<unsigned long long>(v.superseded()), static_cast<unsigned long long>(v.dropped_stale()),
-              static_cast<unsigned long long>(g.frames_out()), static_cast<unsigned long long>(g.preempted()),
-              static_cast<unsigned long long>(g.superseded()));
-  EXPECT_GE(double(v.frames_out()), 0.8 * victim_frames);
+  std::printf(
+      "victim: %llu of %d results (%llu superseded, %llu stale); hog: %llu results, %llu preempted, %llu "
+      "superseded, %llu errors\n",
+      static_cast<unsigned long long>(v.frames_out()), victim_frames,
+      static_cast<unsigned long long>(v.superseded()), static_cast<unsigned long long>(v.dropped_stale()),
+      static_cast<unsigned long long>(g.frames_out()), static_cast<unsigned long long>(g.preempted()),
+      static_cast<unsigned long long>(g.superseded()), static_cast<unsigned long long>(g.errors()));
   EXPECT_GT(g.preempted(), 0u);
   EXPECT_EQ(v.preempted(), 0u);
+  // Progress: after each stop the hog's next frame ran to its end (the last stop may be the
+  // run's last frame), and a stop is not an error.
+  EXPECT_GE(g.frames_out() + 1, g.preempted());
+  EXPECT_EQ(g.errors(), 0u);
+  // The victim is served whenever no hog frame runs to its end: after each such frame, and
+  // when the next one is stopped for it.
+  EXPECT_GE(v.frames_out(), g.frames_out());
 }
 
 }  // namespace
@@ -275,20 +296,20 @@ TEST(DaemonAdmission, MemoryReturnsWhenSmallFramesFollowAHugeOne) {
   DaemonHarness h(c);
   const Mesh small = noisy_sphere();
   for (uint64_t i = 0; i < 3; ++i) {
-    h.send(small, spec_for("cam"), i);
+    h.send(small, frame_spec("cam"), i);
     ASSERT_EQ(h.receive("cam").header.status(), wire::OK);
   }
   const size_t base = rss_bytes();
   Mesh huge = make_icosphere(7, 1.0f);  // 163,842 vertices
   add_gaussian_noise(huge, 0.2, 3);
-  client::FrameSpec s = spec_for("cam");
+  client::FrameSpec s = frame_spec("cam");
   s.chunks = 4;
   h.send(huge, s, 10);
   ASSERT_EQ(h.receive("cam").header.status(), wire::OK);
   const size_t peak = rss_bytes();
   ASSERT_GT(peak, base + (40u << 20)) << "the huge frame should have cost memory: " << base << " -> " << peak;
   for (uint64_t i = 11; i < 14; ++i) {
-    h.send(small, spec_for("cam"), i);
+    h.send(small, frame_spec("cam"), i);
     ASSERT_EQ(h.receive("cam").header.status(), wire::OK);
   }
   // Buffers are freed at once; free pages go back to the system within a few seconds. What
@@ -308,12 +329,12 @@ TEST(DaemonAdmission, EngineBuffersReturnWhenIdle) {
   c.defaults.params.cluster = false;
   c.caps.pool_idle_s = 1.0;
   DaemonHarness h(c);
-  h.send(noisy_sphere(), spec_for("cam"), 0);
+  h.send(noisy_sphere(), frame_spec("cam"), 0);
   ASSERT_EQ(h.receive("cam").header.status(), wire::OK);
   const size_t base = rss_bytes();
   Mesh huge = make_icosphere(7, 1.0f);  // 163,842 vertices
   add_gaussian_noise(huge, 0.2, 3);
-  h.send(huge, spec_for("cam"), 1);
+  h.send(huge, frame_spec("cam"), 1);
   ASSERT_EQ(h.receive("cam").header.status(), wire::OK);
   const size_t peak = rss_bytes();
   ASSERT_GT(peak, base + (40u << 20)) << "the huge frame should have cost memory: " << base << " -> " << peak;

@@ -8,6 +8,7 @@
 
 #include "eval/noise.h"
 #include "tests/support/test_meshes.h"
+#include "wire/header_codec.h"
 
 namespace fq::test {
 
@@ -34,6 +35,21 @@ size_t rss_bytes(int pid) {
     std::getline(in, key);
   }
   return 0;
+}
+
+client::FrameSpec frame_spec(const std::string& stream) {
+  client::FrameSpec s;
+  s.stream_id = stream;
+  return s;
+}
+
+std::vector<std::string> renamed_frame(std::vector<std::string> parts, const std::string& stream) {
+  wire::FrameHeader h;
+  EXPECT_TRUE(wire::parse_frame_header(parts[1], h).ok());
+  h.set_stream_id(stream);
+  parts[0] = stream;
+  parts[1] = h.SerializeAsString();
+  return parts;
 }
 
 Mesh noisy_sphere(uint64_t seed, int subdivisions) {

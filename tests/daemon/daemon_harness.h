@@ -26,6 +26,12 @@ daemon::DaemonConfig test_config();
 /// Noisy icosphere (642 vertices) used by most daemon tests.
 Mesh noisy_sphere(uint64_t seed = 7, int subdivisions = 3);
 
+/// A frame spec for `stream`, everything else as the stream's settings say.
+client::FrameSpec frame_spec(const std::string& stream);
+
+/// `parts` (a built frame) renamed to `stream`: topic and header.
+std::vector<std::string> renamed_frame(std::vector<std::string> parts, const std::string& stream);
+
 /// Resident memory of process `pid` (0: this process) from /proc, in bytes; 0 when unknown.
 size_t rss_bytes(int pid = 0);
 

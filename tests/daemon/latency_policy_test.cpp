@@ -49,7 +49,7 @@ TEST(FrameSlots, NewerFrameReplacesTheWaitingOne) {
   EXPECT_TRUE(stale.empty());
 }
 
-TEST(FrameSlots, TheStreamOfLeastEngineTimeGoesFirstAndAHogYieldsToALightStream) {
+TEST(FrameSlots, TheStreamOfLeastEngineTimeGoesFirst) {
   Streams streams;
   FrameSlots slots;
   const int64_t now = wall_ns();
@@ -69,36 +69,88 @@ TEST(FrameSlots, TheStreamOfLeastEngineTimeGoesFirstAndAHogYieldsToALightStream)
   EXPECT_EQ(out->stream_id, "hog");
   slots.finish(&light_run, 0.01);
   EXPECT_FALSE(run.requested) << "nobody waits";
-  // The light stream's next frame, with the one engine busy on the hog: the hog's run is asked
-  // to yield after a slice (it is over twice the light stream's usage plus a slice).
-  ASSERT_EQ(slots.offer(streams.frame("light", 3, now)), nullptr);
-  EXPECT_TRUE(run.requested);
+}
+
+int64_t steady_now() { return CancelToken::Clock::now().time_since_epoch().count(); }
+
+// One engine runs a frame of `runner` (its stream's frames cost `cost_s` and come every
+// `interval_s`, its budget `budget_ms`, `preempted_before`: its last run was stopped); then a
+// frame of "light" (10 ms every 200 ms: it asks for 5 % of the engine) with a budget of
+// `light_budget_ms` comes. Whether and when the run is asked to yield.
+struct Scene {
+  Streams streams;
+  FrameSlots slots;
+  YieldRequest run;
+
+  void start(double cost_s, double budget_ms, bool preempted_before = false, double interval_s = 0.2) {
+    const int64_t now = wall_ns();
+    const auto ago = [&](double s) { return now - static_cast<int64_t>(s * 1e9); };
+    FramePtr out;
+    std::vector<FramePtr> stale;
+    YieldRequest first;
+    ASSERT_EQ(slots.offer(streams.frame("light", 0, ago(0.2))), nullptr);
+    ASSERT_TRUE(slots.take(out, stale, std::chrono::milliseconds::max(), &first));
+    slots.finish(&first, 0.01);
+    ASSERT_EQ(slots.offer(streams.frame("runner", 1, ago(interval_s))), nullptr);
+    ASSERT_TRUE(slots.take(out, stale, std::chrono::milliseconds::max(), &first));
+    slots.finish(&first, cost_s, preempted_before);
+    ASSERT_EQ(slots.offer(streams.frame("runner", 2, now, budget_ms)), nullptr);
+    ASSERT_TRUE(slots.take(out, stale, std::chrono::milliseconds::max(), &run));
+    ASSERT_EQ(out->stream_id, "runner");
+  }
+  void light_comes(double light_budget_ms) {
+    ASSERT_EQ(slots.offer(streams.frame("light", 3, wall_ns(), light_budget_ms)), nullptr);
+  }
+};
+
+TEST(FrameSlots, ARunIsStoppedOnlyWhenItMissesItsBudgetAndAWaitingFrameWouldMissItsOwn) {
   const int64_t slice_ns = static_cast<int64_t>(FrameSlots::kSliceS * 1e9);
-  EXPECT_LE(run.after_ns, CancelToken::Clock::now().time_since_epoch().count() + slice_ns);
-  slots.finish(&run, 0.1);
-  // Streams of like usage: "b" has used as much as "a" when its frame comes while a's runs.
-  FrameSlots even;
-  YieldRequest a_run, b_run;
-  ASSERT_EQ(even.offer(streams.frame("b", 0, now)), nullptr);
-  ASSERT_TRUE(even.take(out, stale, std::chrono::milliseconds::max(), &b_run));
-  even.finish(&b_run, 1.0);
-  ASSERT_EQ(even.offer(streams.frame("a", 1, now)), nullptr);
-  ASSERT_TRUE(even.take(out, stale, std::chrono::milliseconds::max(), &a_run));
-  even.charge(*streams.by_id["a"], 1.0);
-  ASSERT_EQ(even.offer(streams.frame("b", 2, now)), nullptr);
-  // a may run on for four of b's frames (4 s), not at once.
-  const int64_t due_in_ns = a_run.after_ns - CancelToken::Clock::now().time_since_epoch().count();
-  EXPECT_TRUE(!a_run.requested || due_in_ns > 3'000'000'000) << due_in_ns;
-  // A waiting stream whose frames were never seen to cost (streams that start together) lets
-  // a run go on for a second.
-  FrameSlots cold;
-  YieldRequest c_run;
-  ASSERT_EQ(cold.offer(streams.frame("c", 0, now)), nullptr);
-  ASSERT_TRUE(cold.take(out, stale, std::chrono::milliseconds::max(), &c_run));
-  cold.charge(*streams.by_id["c"], 5.0);
-  ASSERT_EQ(cold.offer(streams.frame("d", 1, now)), nullptr);
-  EXPECT_TRUE(!c_run.requested ||
-              c_run.after_ns - CancelToken::Clock::now().time_since_epoch().count() > 900'000'000);
+  {
+    // Frames of 2 s every 0.2 s against a 1 s budget, a light frame with 0.5 s: stopped after
+    // a slice.
+    Scene s;
+    s.start(2.0, 1000);
+    s.light_comes(500);
+    EXPECT_TRUE(s.run.requested);
+    EXPECT_LE(s.run.after_ns, steady_now() + slice_ns);
+  }
+  {
+    // The same run within its own budget (3 s): never stopped, however light the waiting frame.
+    Scene s;
+    s.start(2.0, 3000);
+    s.light_comes(500);
+    EXPECT_FALSE(s.run.requested);
+  }
+  {
+    // The waiting frame keeps its budget behind the run (5 s): the run goes on, unless it is
+    // still running at the light frame's latest start.
+    Scene s;
+    s.start(2.0, 1000);
+    s.light_comes(5000);
+    EXPECT_TRUE(!s.run.requested || s.run.after_ns - steady_now() > 4'500'000'000);
+  }
+  {
+    // Guaranteed progress: the stream's last run was preempted, so this one is not.
+    Scene s;
+    s.start(2.0, 1000, true);
+    s.light_comes(500);
+    EXPECT_FALSE(s.run.requested);
+  }
+  {
+    // The engine has room for both (0.3 s every 0.4 s and 5 %): though both budgets (100 ms)
+    // are missed, the light stream waits.
+    Scene s;
+    s.start(0.3, 100, false, 0.4);
+    s.light_comes(100);
+    EXPECT_FALSE(s.run.requested);
+  }
+  {
+    // A stream whose frames were never seen to cost asks for nothing yet: its run goes on.
+    Scene s;
+    s.start(0.0, 300);
+    s.light_comes(500);
+    EXPECT_FALSE(s.run.requested);
+  }
 }
 
 TEST(FrameSlots, AnOlderFrameDecodedLateLosesToTheNewerOne) {

@@ -82,6 +82,26 @@ TEST(StreamRegistry, MaxStreamsBoundsTheRegisteredStreams) {
   EXPECT_NE(r.admit("a", now), nullptr) << "a registered stream is always found";
 }
 
+TEST(StreamRegistry, AStreamOnlySetParamsMadeGivesItsSlotToAProducer) {
+  DaemonConfig c;
+  c.caps.max_streams = 3;
+  c.streams["pinned"] = c.defaults;  // configured: never given up
+  StreamRegistry r(c);
+  const int64_t now = wall_ns();
+  StreamSettings s;
+  ASSERT_TRUE(r.set_settings("ctl0", s));
+  ASSERT_TRUE(r.set_settings("ctl1", s));
+  EXPECT_FALSE(r.set_settings("ctl2", s)) << "control requests do not take each other's slots";
+  // A frame of a new stream takes the slot of a stream no frame has found; one that a frame
+  // has found keeps its slot.
+  ASSERT_NE(r.admit("ctl1", now), nullptr);
+  ASSERT_NE(r.admit("cam", now), nullptr);
+  EXPECT_EQ(r.find("ctl0"), nullptr);
+  EXPECT_NE(r.find("ctl1"), nullptr);
+  EXPECT_NE(r.find("pinned"), nullptr);
+  EXPECT_EQ(r.admit("cam2", now), nullptr) << "every slot is a fed or configured stream's";
+}
+
 // A snapshot copies each stream's counters and samples under its lock and computes the
 // percentiles after: while it computes them, a frame of the same stream counts, records and
 // is admitted. (Before, the registry's lock was held over every stream's percentiles.)
