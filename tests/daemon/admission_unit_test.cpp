@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "daemon/config/echo_value.h"
 #include "daemon/pipeline/log_limiter.h"
 #include "daemon/pipeline/object_pool.h"
 #include "daemon/stream/stream_admission.h"
@@ -40,10 +41,47 @@ TEST(StreamId, BadIdsAreRefusedWithAReadableMessage) {
   }
 }
 
-TEST(StreamId, PrintableIdEscapesAndCuts) {
+// Code points that a terminal, a log viewer or a browser acts on instead of showing: each was
+// accepted before as valid UTF-8 that is not an ASCII control.
+TEST(StreamId, CodePointsThatActOnTheDisplayAreRefused) {
+  const char* refused[] = {
+      "cam\x1b[31m",  // ESC: a terminal colour sequence
+      "cam\xc2\x9b"
+      "31m",              // U+009B, CSI as one code point
+      "cam\xc2\x85",      // U+0085, next line
+      "cam\xe2\x80\xa8",  // U+2028, line separator
+      "cam\xe2\x80\xa9",  // U+2029, paragraph separator
+      "cam\xe2\x80\xaa",  // U+202A, left-to-right embedding
+      "cam\xe2\x80\xae"
+      "0",                // U+202E, right-to-left override
+      "cam\xe2\x81\xa6",  // U+2066, left-to-right isolate
+      "cam\xe2\x81\xa9",  // U+2069, pop directional isolate
+  };
+  for (const char* id : refused) {
+    const Status s = validate_stream_id(id, 128);
+    ASSERT_FALSE(s.ok()) << printable_id(id);
+    EXPECT_NE(s.message().find("a line separator or a bidirectional formatting character (U+"),
+              std::string::npos)
+        << s.message();
+  }
+  // Their neighbours are ordinary characters.
+  for (const char* id :
+       {"cam\xc2\xa0", "cam\xe2\x80\xa7", "cam\xe2\x80\xaf", "cam\xe2\x81\xa5", "cam\xe2\x81\xaa"})
+    EXPECT_TRUE(validate_stream_id(id, 128).ok()) << printable_id(id);
+}
+
+TEST(StreamId, PrintableIdEscapesAndCutsWithTheSize) {
   EXPECT_EQ(printable_id("cam"), "cam");
   EXPECT_EQ(printable_id("\xff" "a\\"), "\\xffa\\x5c");
-  EXPECT_EQ(printable_id(std::string(100, 'x'), 8), "xxxxxxxx...");
+  EXPECT_EQ(printable_id(std::string(100, 'x'), 8), "xxxxxxxx...(100 bytes)");
+}
+
+// A 64 MiB value echoed in a message or a log line costs a line of ordinary length.
+TEST(EchoValue, AHugeValueBecomesABoundedPrefixWithItsSize) {
+  const std::string huge(64u << 20, 'v');
+  const std::string e = echo_value(huge);
+  EXPECT_EQ(e, std::string(kEchoBytes, 'v') + "...(67108864 bytes)");
+  EXPECT_EQ(echo_value("a\nb\x1b"), "a\\x0ab\\x1b");
 }
 
 TEST(StreamId, AllowListTakesExactIdsAndPrefixes) {
