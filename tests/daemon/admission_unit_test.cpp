@@ -41,21 +41,20 @@ TEST(StreamId, BadIdsAreRefusedWithAReadableMessage) {
   }
 }
 
-// Code points that a terminal, a log viewer or a browser acts on instead of showing: each was
-// accepted before as valid UTF-8 that is not an ASCII control.
+// Code points that a terminal, a log viewer or a browser acts on instead of showing: ESC was
+// refused before as an ASCII control, the others were accepted as valid UTF-8. (\u escapes end
+// after four digits: "\u202E0" is U+202E then '0'.)
 TEST(StreamId, CodePointsThatActOnTheDisplayAreRefused) {
   const char* refused[] = {
       "cam\x1b[31m",  // ESC: a terminal colour sequence
-      "cam\xc2\x9b"
-      "31m",              // U+009B, CSI as one code point
-      "cam\xc2\x85",      // U+0085, next line
-      "cam\xe2\x80\xa8",  // U+2028, line separator
-      "cam\xe2\x80\xa9",  // U+2029, paragraph separator
-      "cam\xe2\x80\xaa",  // U+202A, left-to-right embedding
-      "cam\xe2\x80\xae"
-      "0",                // U+202E, right-to-left override
-      "cam\xe2\x81\xa6",  // U+2066, left-to-right isolate
-      "cam\xe2\x81\xa9",  // U+2069, pop directional isolate
+      "cam\u009B31m",  // CSI as one code point
+      "cam\u0085",     // next line
+      "cam\u2028",     // line separator
+      "cam\u2029",     // paragraph separator
+      "cam\u202A",     // left-to-right embedding
+      "cam\u202E0",    // right-to-left override
+      "cam\u2066",     // left-to-right isolate
+      "cam\u2069",     // pop directional isolate
   };
   for (const char* id : refused) {
     const Status s = validate_stream_id(id, 128);
@@ -66,7 +65,7 @@ TEST(StreamId, CodePointsThatActOnTheDisplayAreRefused) {
   }
   // Their neighbours are ordinary characters.
   for (const char* id :
-       {"cam\xc2\xa0", "cam\xe2\x80\xa7", "cam\xe2\x80\xaf", "cam\xe2\x81\xa5", "cam\xe2\x81\xaa"})
+       {"cam\u00A0", "cam\u2027", "cam\u202F", "cam\u2065", "cam\u206A"})
     EXPECT_TRUE(validate_stream_id(id, 128).ok()) << printable_id(id);
 }
 
