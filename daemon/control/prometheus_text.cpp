@@ -67,8 +67,8 @@ void each_series(const MetricsInput& in, F f) {
 
 void histograms(std::string& out, const MetricsInput& in) {
   append_family(out, "fq_stage_latency_seconds", "histogram",
-         "Time per pipeline stage (decode, wait, engine, engine.<pass>, encode, receive_to_publish, "
-         "send_to_publish) of published results.");
+                "Time per pipeline stage (decode, wait, engine, engine.<pass>, encode, receive_to_publish, "
+                "send_to_publish) of published results.");
   each_series(in, [&](const std::string& stream, const MetricSeries& s) {
     for (const auto& [stage, h] : s.histograms) {
       const std::string labels =

@@ -23,8 +23,8 @@
 #include "daemon/config/http_config.h"
 #include "daemon/http/http_refusals.h"
 #include "daemon/http/http_sessions.h"
-#include "daemon/pipeline/log_limiter.h"
 #include "daemon/http/source_rate.h"
+#include "daemon/pipeline/log_limiter.h"
 
 namespace fq::daemon {
 

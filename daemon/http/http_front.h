@@ -19,8 +19,8 @@
 #include "daemon/http/http_connections.h"
 #include "daemon/http/http_refusals.h"
 #include "daemon/http/http_stream.h"
-#include "daemon/pipeline/log_limiter.h"
 #include "daemon/http/source_rate.h"
+#include "daemon/pipeline/log_limiter.h"
 
 namespace fq::daemon {
 

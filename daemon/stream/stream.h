@@ -16,10 +16,10 @@
 #include <string>
 
 #include "common/non_copyable.h"
+#include "daemon/config/stream_settings.h"
 #include "daemon/stream/frame_job.h"
 #include "daemon/stream/metric_series.h"
 #include "daemon/stream/stage_metrics.h"
-#include "daemon/config/stream_settings.h"
 #include "kernels/label_tracking.h"
 #include "kernels/temporal.h"
 

@@ -31,7 +31,6 @@ enum class Refusal {
 /// Name of a refusal reason as it appears in counters and logs.
 const char* refusal_name(Refusal r);
 
-
 /// True when the allow-list is empty or names `id` exactly or by a "prefix*" entry.
 bool stream_allowed(std::string_view id, const std::vector<std::string>& allowed);
 

@@ -6,8 +6,8 @@
 #include "daemon/config/echo_value.h"
 #include "daemon/pipeline/log_limiter.h"
 #include "daemon/pipeline/object_pool.h"
-#include "daemon/stream/stream_admission.h"
 #include "daemon/pipeline/work_budget.h"
+#include "daemon/stream/stream_admission.h"
 
 namespace fq::daemon {
 namespace {
@@ -46,7 +46,7 @@ TEST(StreamId, BadIdsAreRefusedWithAReadableMessage) {
 // after four digits: "\u202E0" is U+202E then '0'.)
 TEST(StreamId, CodePointsThatActOnTheDisplayAreRefused) {
   const char* refused[] = {
-      "cam\x1b[31m",  // ESC: a terminal colour sequence
+      "cam\x1b[31m",   // ESC: a terminal colour sequence
       "cam\u009B31m",  // CSI as one code point
       "cam\u0085",     // next line
       "cam\u2028",     // line separator
@@ -64,8 +64,7 @@ TEST(StreamId, CodePointsThatActOnTheDisplayAreRefused) {
         << s.message();
   }
   // Their neighbours are ordinary characters.
-  for (const char* id :
-       {"cam\u00A0", "cam\u2027", "cam\u202F", "cam\u2065", "cam\u206A"})
+  for (const char* id : {"cam\u00A0", "cam\u2027", "cam\u202F", "cam\u2065", "cam\u206A"})
     EXPECT_TRUE(validate_stream_id(id, 128).ok()) << printable_id(id);
 }
 
