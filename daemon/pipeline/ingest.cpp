@@ -201,7 +201,7 @@ bool Ingest::ingest_one(zmq::socket_t& socket, zmq::recv_flags flags, const std:
   // The connection, for the decode queue's turns; read before the parts move into the frame.
   const int connection = zmq_msg_get(parts[0].handle(), ZMQ_SRCFD);
   FramePtr f = got == Received::kMessage ? admit_message(parts) : refuse_oversized(parts, got);
-  f->connection = connection;
+  if (f) f->connection = connection;  // null: junk dropped unanswered
   queue_admitted(std::move(f), p_);
   return true;
 }
