@@ -128,7 +128,7 @@ std::string Daemon::service_metrics() const {
   ServiceMetricsInput in;
   for (size_t r = 0; r < static_cast<size_t>(Refusal::kCount); ++r)
     in.refusals.emplace_back(refusal_name(static_cast<Refusal>(r)), registry_.refusals().get(static_cast<Refusal>(r)));
-  for (const std::string& id : registry_.list()) {
+  for (const std::string& id : registry_.own_series_ids(wall_ns(), caps_.get()->metric_series_idle_s)) {
     StreamSettings s;
     if (registry_.find(id, s)) in.budgets_ms.emplace_back(id, s.budget_ms);
   }

@@ -7,7 +7,8 @@ python3-zmq, then samples every INTERVAL seconds: fqd's RSS, GPU memory in use (
 when there is a GPU), and the counters through `fqctl counters --json`. At the end it prints
 a table and checks that RSS and GPU memory stayed flat (last sample within --rss-slack-mb of
 the first one after warm-up), the latencies stayed bounded, and the counters are consistent:
-frames_in == frames_out + errors + superseded + dropped_stale + preempted for every stream.
+frames_in == frames_out + errors + superseded + dropped_stale + preempted + refused for every
+stream.
 
     /usr/bin/python3 scripts/soak.py --build build --minutes 10 [--engine cuda]
 Exit status 0 when every check holds.
@@ -139,7 +140,7 @@ def main():
         if not s["stream"].startswith("soak"):
             continue
         settled = s["frames_in"] == (s["frames_out"] + s["errors"] + s["superseded"] + s["dropped_stale"]
-                                     + s.get("preempted", 0))
+                                     + s.get("preempted", 0) + s.get("refused", 0))
         p99 = s["stages"].get("receive_to_publish", {}).get("p99_ms", float("nan"))
         print(f"| {s['stream']}: in / out / errors / superseded / stale / late | {s['frames_in']} / {s['frames_out']} / "
               f"{s['errors']} / {s['superseded']} / {s['dropped_stale']} / {s['late']} | "

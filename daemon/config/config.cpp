@@ -7,6 +7,8 @@
 #include <thread>
 
 #include "core/param_table.h"
+#include "daemon/config/echo_value.h"
+#include "daemon/config/stream_id.h"
 #include "daemon/config/toml_reader.h"
 
 namespace fq::daemon {
@@ -54,7 +56,7 @@ void read_row(TomlReader& r, const ParamRow& row, Params& p) {
       if (parse_param(row, name, v).ok())
         row.set(p, v);
       else
-        r.fail(key, "must be " + choice_names(row, " or ", true) + " (got \"" + name + "\")");
+        r.fail(key, "must be " + choice_names(row, " or ", true) + " (got \"" + echo_value(name) + "\")");
       return;
     }
   }
@@ -70,18 +72,23 @@ void read_output(TomlReader& r, OutputEncoding& o) {
   std::string form = result_form_name(o.form);
   r.read("result_form", form);
   if (!parse_result_form(form, o.form))
-    r.fail("result_form", "must be \"positions\" or \"mesh\" (got \"" + form + "\")");
-  r.read("position_bits", o.position_bits, 8, 30);
-  r.read("encode_speed", o.encode_speed, 0, 10);
-  r.read("decode_speed", o.decode_speed, 0, 10);
+    r.fail("result_form", "must be \"positions\" or \"mesh\" (got \"" + echo_value(form) + "\")");
+  auto read_int = [&r](const char* key, int& out, const SettingRange& range) {
+    r.read(key, out, static_cast<int64_t>(range.lo), static_cast<int64_t>(range.hi));
+  };
+  read_int("position_bits", o.position_bits, kPositionBitsRange);
+  read_int("encode_speed", o.encode_speed, kEncodeSpeedRange);
+  read_int("decode_speed", o.decode_speed, kDecodeSpeedRange);
   const toml::node* c = r.raw("chunks");
   if (!c) return;
+  const auto lo = static_cast<int64_t>(kChunksRange.lo), hi = static_cast<int64_t>(kChunksRange.hi);
   if (auto str = c->value_exact<std::string>(); str && *str == "same")
     o.chunks = 0;
-  else if (auto v = c->value_exact<int64_t>(); v && *v >= 1 && *v <= 256)
+  else if (auto v = c->value_exact<int64_t>(); v && *v >= lo && *v <= hi)
     o.chunks = static_cast<uint32_t>(*v);
   else
-    r.fail("chunks", "must be \"same\" or an integer in [1, 256]");
+    r.fail("chunks",
+           "must be \"same\" or an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
 }
 
 // Reads a stream table ([defaults] or [streams.<id>]) over `s`.
@@ -91,8 +98,9 @@ Status read_stream(const toml::table& t, const std::string& source, const std::s
   std::string compute = compute_name(s.params);
   r.read("compute", compute);
   if (!parse_compute(compute, s.params))
-    r.fail("compute", "must be \"filter\", \"cluster\" or \"filter_and_cluster\" (got \"" + compute + "\")");
-  r.read("budget_ms", s.budget_ms, 0.001, 1e6);
+    r.fail("compute",
+           "must be \"filter\", \"cluster\" or \"filter_and_cluster\" (got \"" + echo_value(compute) + "\")");
+  r.read("budget_ms", s.budget_ms, kBudgetRange.lo, kBudgetRange.hi);
   struct Sub {
     const char* key;
     void (*fn)(TomlReader&, StreamSettings&);
@@ -139,7 +147,7 @@ Status read_engine(TomlReader& root, EngineConfig& e) {
   std::string kind = engine_kind_name(e.kind);
   r.read("kind", kind);
   if (!parse_engine_kind(kind, e.kind))
-    r.fail("kind", "must be \"auto\", \"cuda\", \"cpu\" or \"copy\" (got \"" + kind + "\")");
+    r.fail("kind", "must be \"auto\", \"cuda\", \"cpu\" or \"copy\" (got \"" + echo_value(kind) + "\")");
   r.read("gpus", e.gpus, 0, 63);
   r.read("cpu_alongside_gpus", e.cpu_alongside_gpus);
   r.read("cpu_threads", e.cpu_threads, 0, kMaxThreads);
@@ -174,6 +182,7 @@ Status read_sections(TomlReader& root, DaemonConfig& c) {
     r.read("max_streams", c.caps.max_streams, 1, 1 << 20);
     r.read("max_stream_id_bytes", c.caps.max_stream_id_bytes, 1, 4096);
     r.read("stream_idle_s", c.caps.stream_idle_s, 0.0, 1e9);
+    r.read("metric_series_idle_s", c.caps.metric_series_idle_s, 0.0, 1e9);
     r.read("allowed_streams", c.caps.allowed_streams);
     r.read("max_neighbour_work", c.caps.max_neighbour_work, 1e3, 1e18);
     r.read("pool_idle_s", c.caps.pool_idle_s, 0.0, 1e9);
@@ -195,12 +204,18 @@ Status read_streams(TomlReader& root, DaemonConfig& c) {
   }
   const toml::table* streams = root.table("streams");
   if (!streams) return {};
+  const std::string count = std::to_string(streams->size());
+  if (streams->size() > c.caps.max_streams)
+    return invalid_argument(root.source() + ": " + count + " [streams.*] tables, over caps.max_streams = " +
+                            std::to_string(c.caps.max_streams) + " (each is a stream fqd keeps)");
   for (const auto& [k, v] : *streams) {
     const std::string id(k.str());
+    const std::string at = root.source() + ":" + std::to_string(v.source().begin.line) + ": ";
+    // The ingest's own check: a table names a stream that a frame could make.
+    if (Status s = validate_stream_id(id, c.caps.max_stream_id_bytes); !s.ok())
+      return invalid_argument(at + "[streams.<id>]: " + s.message());
     const toml::table* st = v.as_table();
-    if (!st)
-      return invalid_argument(root.source() + ":" + std::to_string(v.source().begin.line) + ": streams." +
-                              id + " must be a table");
+    if (!st) return invalid_argument(at + "streams." + echo_value(id) + " must be a table");
     StreamSettings s = c.defaults;
     FQ_RETURN_IF_ERROR(read_stream(*st, root.source(), "streams." + id, s));
     c.streams[id] = s;
@@ -266,6 +281,9 @@ Status parse_config(std::string_view text, const std::string& source, DaemonConf
   FQ_RETURN_IF_ERROR(read_sections(root, c));
   FQ_RETURN_IF_ERROR(read_streams(root, c));
   FQ_RETURN_IF_ERROR(read_service_sections(root, c.http, c.stats, c.sub_ingest));
+  for (const std::string& id : c.sub_ingest.streams)
+    if (Status s = validate_stream_id(id, c.caps.max_stream_id_bytes); !s.ok())
+      return invalid_argument(source + ": ingest.streams: " + s.message());
   FQ_RETURN_IF_ERROR(root.finish());
   c.source = source;
   record_lines(root_table, "", c.lines);

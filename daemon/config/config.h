@@ -41,6 +41,10 @@ struct Caps {
   uint32_t max_streams = 64;
   uint32_t max_stream_id_bytes = 128;  ///< longer ids are refused (they are topics and log words)
   double stream_idle_s = 300.0;        ///< a stream without frames this long is forgotten; 0 = never
+  /// A stream that is not configured keeps series of its own in /metrics while it has had a
+  /// frame within this long; after it, its counts move to stream="other" (metric_series.h).
+  /// 0 = while it is registered.
+  double metric_series_idle_s = 30.0;
   /// Stream ids admitted: exact ids, or prefixes ending in '*'. Empty: every valid id.
   std::vector<std::string> allowed_streams;
   /// Expected neighbour visits of one frame (vertices x neighbours per vertex from the

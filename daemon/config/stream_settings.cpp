@@ -1,6 +1,7 @@
 #include "daemon/config/stream_settings.h"
 
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <utility>
 
@@ -13,6 +14,13 @@ namespace {
 
 constexpr std::pair<ResultForm, const char*> kResultFormNames[] = {{ResultForm::kPositions, "positions"},
                                                                    {ResultForm::kMesh, "mesh"}};
+
+// A bound as written in the config ("0.001", "1000000", "8").
+std::string format_bound(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.15g", v);
+  return buf;
+}
 
 }  // namespace
 
@@ -33,23 +41,30 @@ const char* result_form_name(ResultForm f) { return second_of(kResultFormNames, 
 wire::ResultForm to_wire(ResultForm f) { return f == ResultForm::kMesh ? wire::MESH : wire::POSITIONS; }
 ResultForm from_wire(wire::ResultForm f) { return f == wire::MESH ? ResultForm::kMesh : ResultForm::kPositions; }
 
+namespace {
+
+// "name must be in [lo, hi] (got v)" when v is outside r (or NaN).
+Status check_range(const SettingRange& r, double v) {
+  if (v >= r.lo && v <= r.hi) return {};
+  char got[64];
+  std::snprintf(got, sizeof got, "%.17g", v);
+  return invalid_argument(std::string(r.name) + " must be in [" + format_bound(r.lo) + ", " +
+                          format_bound(r.hi) + "] (got " + got + ")");
+}
+
+}  // namespace
+
 Status validate(const StreamSettings& s) {
   // The clustering parameters are checked even when the stream only filters: a frame or a
   // control request may switch clustering on at any time.
   Params all = s.params;
   all.filter = all.cluster = true;
   FQ_RETURN_IF_ERROR(fq::validate(all));
-  if (!(s.budget_ms > 0.0 && std::isfinite(s.budget_ms)))
-    return invalid_argument("budget_ms must be > 0 (got " + std::to_string(s.budget_ms) + ")");
-  if (s.output.position_bits < 8 || s.output.position_bits > 30)
-    return invalid_argument("output position_bits must be in [8, 30] (got " +
-                            std::to_string(s.output.position_bits) + ")");
-  if (s.output.encode_speed < 0 || s.output.encode_speed > 10 || s.output.decode_speed < 0 ||
-      s.output.decode_speed > 10)
-    return invalid_argument("output encode_speed and decode_speed must be in [0, 10]");
-  if (s.output.chunks > 256)
-    return invalid_argument("output chunks must be \"same\" or 1..256 (got " +
-                            std::to_string(s.output.chunks) + ")");
+  FQ_RETURN_IF_ERROR(check_range(kBudgetRange, s.budget_ms));
+  FQ_RETURN_IF_ERROR(check_range(kPositionBitsRange, s.output.position_bits));
+  FQ_RETURN_IF_ERROR(check_range(kEncodeSpeedRange, s.output.encode_speed));
+  FQ_RETURN_IF_ERROR(check_range(kDecodeSpeedRange, s.output.decode_speed));
+  if (s.output.chunks != 0) FQ_RETURN_IF_ERROR(check_range(kChunksRange, s.output.chunks));
   return {};
 }
 

@@ -29,6 +29,19 @@ struct OutputEncoding {
   bool operator==(const OutputEncoding&) const = default;
 };
 
+/// The range of a setting beside the parameters (whose ranges are the rows of
+/// core/param_table.h): the config file's reader and validate(), so set_params too, check these
+/// and no other copy.
+struct SettingRange {
+  const char* name;  ///< as in the config's stream tables
+  double lo, hi;
+};
+inline constexpr SettingRange kBudgetRange{"budget_ms", 0.001, 1e6};
+inline constexpr SettingRange kPositionBitsRange{"output.position_bits", 8, 30};
+inline constexpr SettingRange kEncodeSpeedRange{"output.encode_speed", 0, 10};
+inline constexpr SettingRange kDecodeSpeedRange{"output.decode_speed", 0, 10};
+inline constexpr SettingRange kChunksRange{"output.chunks", 1, 256};  ///< or 0: "same" as the input frame
+
 struct StreamSettings {
   Params params;             ///< params.filter / params.cluster are the compute mode
   double budget_ms = 100.0;  ///< receive -> publish budget; older frames are dropped, results flagged late
@@ -52,7 +65,7 @@ wire::ResultForm to_wire(ResultForm f);
 ResultForm from_wire(wire::ResultForm f);
 
 /// fq::validate (of the clustering parameters too, whatever the compute mode) plus the
-/// budget and the encoding ranges.
+/// budget and the encoding ranges (the SettingRange constants above).
 Status validate(const StreamSettings& s);
 
 }  // namespace fq::daemon

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "daemon/config/echo_value.h"
+
 namespace fq::daemon {
 
 TomlReader::TomlReader(const toml::table& table, std::string source, std::string path)
@@ -13,7 +15,7 @@ void TomlReader::fail(const char* key, const std::string& what) {
   if (!error_.ok()) return;
   std::string where = source_;
   if (const toml::node* n = table_.get(key)) where += ":" + std::to_string(n->source().begin.line);
-  error_ = invalid_argument(where + ": " + name(key) + " " + what);
+  error_ = invalid_argument(where + ": " + echo_value(name(key), 4 * kEchoBytes) + " " + what);
 }
 
 const toml::node* TomlReader::get(const char* key) {
@@ -126,7 +128,7 @@ Status TomlReader::finish() {
     const std::string key(k.str());
     if (known_.count(key)) continue;
     return invalid_argument(source_ + ":" + std::to_string(v.source().begin.line) + ": unknown key '" +
-                            name(key.c_str()) + "'");
+                            echo_value(name(key.c_str())) + "'");
   }
   return {};
 }

@@ -115,6 +115,7 @@ wire::ControlReply get_counters(const wire::GetCounters& q, StreamRegistry& regi
     c->set_bad_send_time(s.counters.bad_send_time);
     c->set_untracked(s.counters.untracked);
     c->set_preempted(s.counters.preempted);
+    c->set_refused(s.counters.refused);
     for (const auto& [name, pc] : s.stages) {
       wire::StagePercentiles* sp = c->add_stages();
       sp->set_name(name);

@@ -4,6 +4,7 @@
 // fq_frames_in_total{stream="…"}, stage latencies are fq_stage_latency_seconds{stream, stage}.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -16,7 +17,11 @@
 namespace fq::daemon {
 
 struct MetricsInput {
-  std::vector<StreamSnapshot> streams;
+  /// Streams with series of their own, then the aggregate of every other (stream="other",
+  /// always shown); StreamRegistry::metric_series.
+  std::vector<NamedSeries> series;
+  MetricSeries other;
+  size_t streams = 0;                ///< streams fqd knows (fq_streams)
   std::vector<std::string> engines;  ///< engine names ("cpu", "cuda:<device name>")
   std::vector<GpuMemory> gpus;
   /// HTTP requests and connections refused, by reason (fq_http_refused_total{reason}).

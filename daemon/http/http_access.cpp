@@ -6,13 +6,16 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <fstream>
+
+#include "daemon/config/echo_value.h"
 
 namespace fq::daemon {
 namespace {
 
-constexpr const char* kCookie = "fq_token";
+constexpr const char* kCookie = "fq_session";
 constexpr size_t kMinTokenChars = 16;
 
 // A token must be usable in a header and a cookie as it is: visible ASCII without ; , " \.
@@ -47,13 +50,18 @@ bool same_token(const std::string& given, const std::string& token) {
   return given.size() == token.size() && CRYPTO_memcmp(given.data(), token.data(), token.size()) == 0;
 }
 
-// The token a request carries: the bearer token, else the login cookie; empty when none.
-std::string request_token(const httplib::Request& req) {
+// The bearer token a request carries; empty when none.
+std::string bearer_token(const httplib::Request& req) {
   const std::string auth = req.get_header_value("Authorization");
   const std::string bearer = "Bearer ";
   if (auth.size() > bearer.size() && std::equal(bearer.begin(), bearer.end(), auth.begin(),
                                                 [](char a, char b) { return std::tolower(a) == std::tolower(b); }))
     return auth.substr(bearer.size());
+  return {};
+}
+
+// The login session cookie a request carries; empty when none.
+std::string session_cookie(const httplib::Request& req) {
   const std::string cookies = req.get_header_value("Cookie");
   const std::string key = std::string(kCookie) + "=";
   for (size_t at = 0; at < cookies.size();) {
@@ -69,6 +77,12 @@ httplib::Server::HandlerResponse refuse(httplib::Response& res, int status, cons
   res.status = status;
   res.set_content(text, "text/plain");
   return httplib::Server::HandlerResponse::Handled;
+}
+
+int64_t steady_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 }
 
 }  // namespace
@@ -119,6 +133,7 @@ bool host_allowed(const std::string& host, const HttpAccessRules& rules) {
 void HttpAccess::set(HttpAccessRules rules) {
   auto fresh = std::make_shared<const HttpAccessRules>(std::move(rules));
   std::lock_guard<std::mutex> lock(mutex_);
+  if (fresh->token != rules_->token) sessions_.clear();  // a new token ends what the old one opened
   rules_ = std::move(fresh);
 }
 
@@ -127,8 +142,41 @@ std::shared_ptr<const HttpAccessRules> HttpAccess::rules() const {
   return rules_;
 }
 
+httplib::Server::HandlerResponse HttpAccess::login(const httplib::Request& req, httplib::Response& res,
+                                                   const HttpAccessRules& rules,
+                                                   HttpRefusalCounters& refusals) {
+  int retry_after_s = 1;
+  if (!login_rate_.allow_now(req.remote_addr, retry_after_s)) {
+    refusals.add(HttpRefusal::kLoginRate);
+    login_log_.log(spdlog::level::warn, "http: /login from {} refused: over {} attempts a second",
+                   echo_value(req.remote_addr), kLoginPerSecond);
+    res.set_header("Retry-After", std::to_string(retry_after_s));
+    return refuse(
+        res, 429,
+        "too many login attempts from this address; retry after " + std::to_string(retry_after_s) + " s\n");
+  }
+  if (rules.token.empty() || !same_token(req.get_param_value("token"), rules.token)) {
+    refusals.add(HttpRefusal::kUnauthenticated);
+    login_log_.log(spdlog::level::warn, "http: failed /login from {}", echo_value(req.remote_addr));
+    return refuse(res, 401, "wrong token\n");
+  }
+  const std::string session = sessions_.open(steady_ns());
+  if (session.empty()) return refuse(res, 503, "no session could be opened (no random bytes)\n");
+  res.status = 303;
+  res.set_header("Location", "./");
+  res.set_header("Set-Cookie", std::string(kCookie) + "=" + session + "; Path=/; HttpOnly; SameSite=Strict" +
+                                   (rules.tls ? "; Secure" : ""));
+  return httplib::Server::HandlerResponse::Handled;
+}
+
+bool HttpAccess::authorized(const httplib::Request& req, const HttpAccessRules& rules) const {
+  if (const std::string bearer = bearer_token(req); !bearer.empty()) return same_token(bearer, rules.token);
+  const std::string session = session_cookie(req);
+  return !session.empty() && sessions_.valid(session, steady_ns());
+}
+
 httplib::Server::HandlerResponse HttpAccess::check(const httplib::Request& req, httplib::Response& res,
-                                                   HttpRefusalCounters& refusals) const {
+                                                   HttpRefusalCounters& refusals) {
   using R = httplib::Server::HandlerResponse;
   if (req.path == "/healthz") return R::Unhandled;  // probes: nothing to read there
   const std::shared_ptr<const HttpAccessRules> rules = this->rules();
@@ -136,19 +184,9 @@ httplib::Server::HandlerResponse HttpAccess::check(const httplib::Request& req, 
     refusals.add(HttpRefusal::kBadHost);
     return refuse(res, 421, "Host not allowed (http.allowed_hosts)\n");
   }
-  if (req.path == "/login") {
-    if (rules->token.empty() || !same_token(req.get_param_value("token"), rules->token)) {
-      refusals.add(HttpRefusal::kUnauthenticated);
-      return refuse(res, 401, "wrong token\n");
-    }
-    res.status = 303;
-    res.set_header("Location", "./");
-    res.set_header("Set-Cookie", std::string(kCookie) + "=" + rules->token + "; Path=/; HttpOnly; SameSite=Strict" +
-                                     (rules->tls ? "; Secure" : ""));
-    return R::Handled;
-  }
+  if (req.path == "/login") return login(req, res, *rules, refusals);
   if (!rules->token.empty()) {
-    if (same_token(request_token(req), rules->token)) return R::Unhandled;
+    if (authorized(req, *rules)) return R::Unhandled;
     refusals.add(HttpRefusal::kUnauthenticated);
     res.set_header("WWW-Authenticate", "Bearer realm=\"fqd\"");
     return refuse(res, 401,

@@ -85,8 +85,22 @@ bool HttpFront::process_and_close_socket(int sock) {
   return true;
 }
 
+bool HttpFront::handshake_allowed(const HttpStream& stream) {
+  // Checked before the handshake, whose private-key operation is what a flood of connections costs.
+  std::string peer;
+  int port = 0;
+  stream.get_remote_ip_and_port(peer, port);
+  int retry_after_s = 0;
+  if (tls_rate_.allow_now(peer, retry_after_s)) return true;
+  refusals_.add(HttpRefusal::kTlsRate);
+  tls_rate_log_.log(spdlog::level::warn, "http: TLS connection from {} refused: over {} handshakes a second",
+                    peer, kTlsHandshakesPerSecond);
+  return false;
+}
+
 void HttpFront::serve(int fd) {
   HttpStream stream(fd, tls_, io_timeout_);
+  if (tls_ && !handshake_allowed(stream)) return;
   if (tls_ && !stream.handshake(io_timeout_)) {
     refusals_.add(HttpRefusal::kTls);
     return;

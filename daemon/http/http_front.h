@@ -19,8 +19,16 @@
 #include "daemon/http/http_connections.h"
 #include "daemon/http/http_refusals.h"
 #include "daemon/http/http_stream.h"
+#include "daemon/http/source_rate.h"
+#include "daemon/pipeline/log_limiter.h"
 
 namespace fq::daemon {
+
+/// TLS handshakes per source address: at once, then a second (a token bucket). A handshake costs
+/// fqd a private-key operation (about a millisecond of CPU for RSA 2048), which a peer can ask
+/// for as fast as it connects; a viewer opens a few connections, a proxy more.
+inline constexpr double kTlsHandshakeBurst = 64;
+inline constexpr double kTlsHandshakesPerSecond = 32;
 
 class HttpFront : public httplib::Server {
  public:
@@ -46,6 +54,8 @@ class HttpFront : public httplib::Server {
   bool process_and_close_socket(int sock) override;
   /// Serves requests on `fd` until the peer closes, a bound is hit or the keep-alive ends.
   void serve(int fd);
+  /// The per-source TLS handshake rate (counted and logged when past it).
+  bool handshake_allowed(const HttpStream& stream);
   HandlerResponse pre_routing(const httplib::Request& req, httplib::Response& res);
 
   SSL_CTX* tls_ = nullptr;
@@ -53,6 +63,8 @@ class HttpFront : public httplib::Server {
   std::chrono::milliseconds io_timeout_, idle_timeout_;
   HttpRefusalCounters& refusals_;
   HandlerWithResponse check_;
+  SourceRate tls_rate_{kTlsHandshakesPerSecond, kTlsHandshakeBurst};
+  LogLimiter tls_rate_log_;
   HttpConnections connections_;  // last: its threads use the members above
 };
 

@@ -7,15 +7,17 @@
 namespace fq::daemon {
 
 enum class HttpRefusal {
-  kHeadTooLarge,    ///< request line + headers over http.max_head_bytes (431)
-  kTooManyHeaders,  ///< more header lines than http.max_headers (431)
-  kBody,            ///< a request that carries a body (413): fqd takes none
-  kHeadTimeout,     ///< a head not complete within http.request_timeout_s (408)
+  kHeadTooLarge,        ///< request line + headers over http.max_head_bytes (431)
+  kTooManyHeaders,      ///< more header lines than http.max_headers (431)
+  kBody,                ///< a request that carries a body (413): fqd takes none
+  kHeadTimeout,         ///< a head not complete within http.request_timeout_s (408)
   kTooManyConnections,  ///< http.max_connections open already (503)
   kTooManyLongPolls,    ///< http.max_long_polls waiting already (503)
   kBadHost,             ///< a Host header outside http.allowed_hosts (421)
   kUnauthenticated,     ///< no or a wrong token (401), or none possible with CURVE on (403)
   kTls,                 ///< a TLS handshake that failed or did not finish in time
+  kLoginRate,           ///< /login tried too often from one address (429)
+  kTlsRate,             ///< TLS connections from one address past the handshake rate (closed)
   kCount
 };
 
@@ -40,6 +42,10 @@ inline const char* http_refusal_name(HttpRefusal r) {
       return "unauthenticated";
     case HttpRefusal::kTls:
       return "tls";
+    case HttpRefusal::kLoginRate:
+      return "login_rate";
+    case HttpRefusal::kTlsRate:
+      return "tls_rate";
     case HttpRefusal::kCount:
       break;
   }

@@ -123,7 +123,8 @@ HttpServer::~HttpServer() { stop(); }
 
 std::string HttpServer::metrics() const {
   MetricsInput in;
-  registry_.snapshot("", in.streams);
+  registry_.metric_series(wall_ns(), caps_.get()->metric_series_idle_s, in.series, in.other);
+  in.streams = registry_.list().size();
   in.engines = engines_;
   in.gpus = gpu_memory(gpus_);
   for (size_t r = 0; r < HttpRefusalCounters::kReasons; ++r)

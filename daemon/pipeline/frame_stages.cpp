@@ -136,6 +136,22 @@ void Pipeline::fail(FramePtr frame, Status why) {
   publish_queue.push(std::move(frame));
 }
 
+namespace {
+
+// A frame from a producer without CURVE that failed to decode: refused and dropped, as the
+// ingest drops junk (ingest.cpp), counted under its stream (which the frame's well-formed
+// header made) so that the stream's counters still add up.
+void drop_undecodable(Pipeline& p, FramePtr f, const Status& why) {
+  f->stream->count(Counter::kRefused);
+  p.registry.refusals().add(Refusal::kUndecodable);
+  p.refusal_log.log(spdlog::level::warn,
+                    "dropped frame {} of stream '{}' from a producer without CURVE ({}): {}",
+                    f->header.sequence(), f->stream_id, refusal_name(Refusal::kUndecodable), why.message());
+  p.recycle(*f);
+}
+
+}  // namespace
+
 void Pipeline::recycle(FrameJob& f) {
   results.release(std::move(f.result));
   meshes.release(std::move(f.mesh));
@@ -158,6 +174,10 @@ void run_decode_worker(Pipeline& p) {
     const std::shared_ptr<const Caps> caps = p.caps.get();
     Status s = guarded("decode", [&] { return decode(*f, *caps); });
     p.decode_queue.decoded(*f);  // its decoder is free for the queue's next frame
+    if (!s.ok() && !f->authenticated) {
+      drop_undecodable(p, std::move(f), s);
+      continue;
+    }
     if (s.ok()) s = resolve_settings(*f);
     if (s.ok()) s = check_work_budget(f->settings.params, f->mesh.num_vertices(), caps->max_neighbour_work);
     f->timings.push_back({"decode", ms_since(t0)});

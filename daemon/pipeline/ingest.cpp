@@ -94,8 +94,21 @@ FramePtr refuse(FramePtr f, Refusal why, Status message, Pipeline& p) {
   return f;
 }
 
-// Hands an admitted job on: refusals and errors to the publisher, frames to the decoders.
+// Junk from a producer without CURVE (a malformed or oversized message, an undecodable frame):
+// counted by reason and logged at a bounded rate, but neither published nor counted as any
+// stream's error, since whoever can connect could otherwise put errors on every stream.
+FramePtr drop_junk(const FrameJob& f, Refusal why, const Status& message, Pipeline& p) {
+  p.registry.refusals().add(why);
+  p.refusal_log.log(spdlog::level::warn,
+                    "dropped a message for stream '{}' from a producer without CURVE ({}): {}",
+                    printable_id(f.stream_id), refusal_name(why), message.message());
+  return nullptr;
+}
+
+// Hands an admitted job on: refusals and errors to the publisher, frames to the decoders
+// (null: nothing).
 void queue_admitted(FramePtr f, Pipeline& p) {
+  if (!f) return;  // junk dropped unanswered (counted and logged)
   if (f->refused) {
     p.publish_queue.push(std::move(f));  // logged (rate-limited) and counted at refusal
   } else if (!f->error.ok()) {
@@ -118,6 +131,7 @@ void queue_admitted(FramePtr f, Pipeline& p) {
 }  // namespace
 
 FramePtr Ingest::reject(FramePtr f, const std::string& topic, Refusal why, Status s) {
+  if (!f->authenticated) return drop_junk(*f, why, s, p_);
   if ((f->stream = p_.registry.find(topic))) {
     f->settings = f->stream->settings();
     f->stream->count(Counter::kIn);
@@ -131,6 +145,7 @@ FramePtr Ingest::reject(FramePtr f, const std::string& topic, Refusal why, Statu
 FramePtr Ingest::admit_message(std::vector<zmq::message_t>& parts) {
   auto f = std::make_unique<FrameJob>();
   f->receive_ns = wall_ns();
+  f->authenticated = p_.keys != nullptr;  // admit_sender let only allowed keys through
   const std::shared_ptr<const Caps> live = p_.caps.get();
   const Caps& caps = *live;
   const std::string topic = parts.empty() ? std::string() : parts[0].to_string();
@@ -161,6 +176,7 @@ FramePtr Ingest::admit_message(std::vector<zmq::message_t>& parts) {
 FramePtr Ingest::refuse_oversized(const std::vector<zmq::message_t>& parts, Received why) {
   auto f = std::make_unique<FrameJob>();
   f->receive_ns = wall_ns();
+  f->authenticated = p_.keys != nullptr;
   const std::string topic = parts[0].to_string();
   const bool valid = check_stream_id(topic, *p_.caps.get()).ok();
   f->stream_id = valid ? topic : printable_id(topic);
@@ -185,7 +201,7 @@ bool Ingest::ingest_one(zmq::socket_t& socket, zmq::recv_flags flags, const std:
   // The connection, for the decode queue's turns; read before the parts move into the frame.
   const int connection = zmq_msg_get(parts[0].handle(), ZMQ_SRCFD);
   FramePtr f = got == Received::kMessage ? admit_message(parts) : refuse_oversized(parts, got);
-  f->connection = connection;
+  if (f) f->connection = connection;  // null: junk dropped unanswered
   queue_admitted(std::move(f), p_);
   return true;
 }

@@ -57,12 +57,14 @@ class Ingest : NonCopyable {
   bool ingest_one(zmq::socket_t& socket, zmq::recv_flags flags,
                   const std::set<std::string>* assigned = nullptr);
   /// Builds the job for one ingest message: on success the frame for the decode pool,
-  /// otherwise a job whose `error` is set (its stream id is the message's topic).
+  /// otherwise a job whose `error` is set (its stream id is the message's topic), or null for a
+  /// malformed message from a producer without CURVE (refused and counted, never answered).
   FramePtr admit_message(std::vector<zmq::message_t>& parts);
   /// A message over the ingest bounds: an error of its stream, or refused under its topic.
   FramePtr refuse_oversized(const std::vector<zmq::message_t>& parts, Received why);
-  /// A message that failed a check: counted as its stream's error when the stream exists,
-  /// otherwise refused before any state is made for it.
+  /// A message that failed a check. From an authenticated producer, counted as its stream's
+  /// error when the stream exists, otherwise refused before any state is made for it; from a
+  /// producer without CURVE, dropped unanswered (null).
   FramePtr reject(FramePtr f, const std::string& topic, Refusal why, Status s);
   /// At most once a second: forgets idle streams and frees idle pools.
   void expire_idle_streams();

@@ -1,7 +1,7 @@
 // What SIGHUP may change in a running fqd, and what only a restart can. A reload applies the
 // whole file or nothing: a file that changes a restart-only setting is refused, naming it.
 //   live:    [defaults], [streams.*], log_level, caps.allowed_streams, caps.max_vertices,
-//            caps.stream_idle_s, caps.max_neighbour_work, caps.pool_idle_s,
+//            caps.stream_idle_s, caps.metric_series_idle_s, caps.max_neighbour_work, caps.pool_idle_s,
 //            caps.engine_time_limit_s, caps.stop_grace_s, caps.max_queued_frames,
 //            caps.max_queued_bytes, security.client_keys_file and security.control_keys_file
 //            (the keys they list, revoked ones losing their connections; whether

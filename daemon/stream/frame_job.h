@@ -64,6 +64,10 @@ struct FrameJob {
   Status error;  ///< non-ok: published as an ERROR result
   bool preempted = false;  ///< stopped for another stream (counted `preempted`, not `errors`)
   bool refused = false;  ///< refused at admission: no stream state, counted in the refusals
+  /// Came over CURVE from an allowed client key. Junk from such a producer (a malformed message,
+  /// an undecodable frame) is its stream's error, published; from any other it is refused and
+  /// dropped, since anyone who can connect could otherwise forge errors on every stream.
+  bool authenticated = false;
 };
 
 using FramePtr = std::unique_ptr<FrameJob>;

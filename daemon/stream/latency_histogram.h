@@ -21,6 +21,20 @@ class LatencyHistogram {
     ++count_;
     sum_ms_ += ms;
   }
+  /// Adds another histogram's samples (the /metrics aggregate of streams without own series).
+  void add(const LatencyHistogram& o) {
+    for (size_t i = 0; i < buckets_.size(); ++i) buckets_[i] += o.buckets_[i];
+    count_ += o.count_;
+    sum_ms_ += o.sum_ms_;
+  }
+  /// The samples added since `base`, an earlier copy of this histogram.
+  LatencyHistogram since(const LatencyHistogram& base) const {
+    LatencyHistogram d = *this;
+    for (size_t i = 0; i < buckets_.size(); ++i) d.buckets_[i] -= base.buckets_[i];
+    d.count_ -= base.count_;
+    d.sum_ms_ -= base.sum_ms_;
+    return d;
+  }
   /// Samples at or below kBoundsMs[i] (cumulative).
   uint64_t bucket(size_t i) const { return buckets_[i]; }
   uint64_t count() const { return count_; }

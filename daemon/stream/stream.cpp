@@ -23,15 +23,8 @@ void Stream::set_settings(const StreamSettings& s) {
 }
 
 void Stream::count(Counter c, uint64_t n) {
-  // The field of each Counter, in the enum's order.
-  static constexpr uint64_t StreamCounters::*kFields[] = {
-      &StreamCounters::frames_in,     &StreamCounters::frames_out, &StreamCounters::superseded,
-      &StreamCounters::dropped_stale, &StreamCounters::late,       &StreamCounters::errors,
-      &StreamCounters::time_limited,  &StreamCounters::subscriber_overflows, &StreamCounters::bad_send_time,
-      &StreamCounters::temporal_resets, &StreamCounters::untracked, &StreamCounters::preempted};
-  static_assert(std::size(kFields) == static_cast<size_t>(Counter::kPreempted) + 1, "one field per Counter");
   std::lock_guard<std::mutex> lock(mutex_);
-  counters_.*kFields[static_cast<size_t>(c)] += n;
+  counters_.*kCounterFields[static_cast<size_t>(c)] += n;
 }
 
 void Stream::record(const std::string& stage, double ms) {
@@ -42,6 +35,18 @@ void Stream::record(const std::string& stage, double ms) {
 StreamSamples Stream::samples() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return {id_, counters_, metrics_};
+}
+
+MetricSeries Stream::own_series() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return MetricSeries{counters_, metrics_.histograms()}.since(moved_);
+}
+
+void Stream::move_series(MetricSeries& other) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  MetricSeries now{counters_, metrics_.histograms()};
+  other.add(now.since(moved_));
+  moved_ = std::move(now);
 }
 
 StreamSnapshot summarize(const StreamSamples& s) {

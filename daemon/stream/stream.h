@@ -16,58 +16,14 @@
 #include <string>
 
 #include "common/non_copyable.h"
-#include "daemon/stream/frame_job.h"
-#include "daemon/stream/stage_metrics.h"
 #include "daemon/config/stream_settings.h"
+#include "daemon/stream/frame_job.h"
+#include "daemon/stream/metric_series.h"
+#include "daemon/stream/stage_metrics.h"
 #include "kernels/label_tracking.h"
 #include "kernels/temporal.h"
 
 namespace fq::daemon {
-
-/// What happened to a stream's frames. Once the pipeline is idle,
-/// frames_in == frames_out + errors + superseded + dropped_stale + preempted.
-struct StreamCounters {
-  uint64_t frames_in = 0;      ///< ingest messages attributed to the stream
-  uint64_t frames_out = 0;     ///< results published with status OK or LATE
-  uint64_t superseded = 0;     ///< replaced in the waiting slot by a newer frame
-  uint64_t dropped_stale = 0;  ///< older than the budget when a worker was free
-  uint64_t late = 0;           ///< published after the budget (also in frames_out)
-  uint64_t errors = 0;         ///< error results published
-  uint64_t time_limited = 0;   ///< stopped at caps.engine_time_limit_s (also in errors)
-  /// Times a subscriber's queue was found full (caps.max_subscriber_results), so that it
-  /// missed the result being published; ZeroMQ then skips that subscriber without telling
-  /// until it has read half its queue, so one overflow may stand for many missed results.
-  /// Not part of the sum above: the results were published.
-  uint64_t subscriber_overflows = 0;
-  /// Results whose producer send time was more than an hour before publish or after it (a
-  /// wrong or forged clock): their send_to_publish is left out of the metrics, not folded
-  /// into the histograms. Not part of the sum above.
-  uint64_t bad_send_time = 0;
-  /// Scene cuts of a stream filtered across frames (temporal > 0): frames that found under half
-  /// their vertices near the stream's last result, so its history restarted. Not in the sum.
-  uint64_t temporal_resets = 0;
-  /// Results published with the engine's cluster numbering because id tracking was cut by
-  /// the frame's time limit or the stop (also in frames_out).
-  uint64_t untracked = 0;
-  /// Frames stopped on the engine so that another stream's waiting frame meets its budget
-  /// (latency_policy.h); an error result is published, but not counted in errors.
-  uint64_t preempted = 0;
-};
-
-enum class Counter {
-  kIn,
-  kOut,
-  kSuperseded,
-  kDroppedStale,
-  kLate,
-  kErrors,
-  kTimeLimited,
-  kSubscriberOverflows,
-  kBadSendTime,
-  kTemporalResets,
-  kUntracked,
-  kPreempted
-};
 
 struct StreamSnapshot {
   std::string stream_id;
@@ -147,6 +103,11 @@ class Stream : NonCopyable {
   void record(const std::string& stage, double ms);
   /// Counters and samples, copied under the stream's lock (held for the copy only).
   StreamSamples samples() const;
+  /// Its counters and latency histograms since they last moved to the /metrics aggregate.
+  MetricSeries own_series() const;
+  /// Adds its counts since the last move to `other` (the aggregate, under its owner's lock):
+  /// its own series start again from zero, and no count is moved twice.
+  void move_series(MetricSeries& other);
 
   /// When a frame (or a control request) last found it, wall_ns(); the registry expires it.
   std::atomic<int64_t> last_seen_ns{0};
@@ -166,6 +127,7 @@ class Stream : NonCopyable {
   StreamSettings settings_;
   StreamCounters counters_;
   StageMetrics metrics_;
+  MetricSeries moved_;  ///< its counts when they last moved to the /metrics aggregate
 };
 
 using StreamPtr = std::shared_ptr<Stream>;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/status.h"
+#include "daemon/config/stream_id.h"
 #include "daemon/stream/reason_counters.h"
 
 namespace fq::daemon {
@@ -23,15 +24,12 @@ enum class Refusal {
   kUnauthenticated,
   kOversized,      ///< an ingest or control message over its bound on parts or bytes
   kSubscriptions,  ///< a subscriber over caps.max_subscriptions / max_subscription_bytes (cut)
+  kUndecodable,    ///< a frame from a producer without CURVE that failed to decode (dropped)
   kCount
 };
 
 /// Name of a refusal reason as it appears in counters and logs.
 const char* refusal_name(Refusal r);
-
-/// Ok when `id` can name a stream: 1..max_bytes bytes of valid UTF-8 without control
-/// characters; otherwise a message that shows the id escaped.
-Status validate_stream_id(std::string_view id, uint32_t max_bytes);
 
 /// True when the allow-list is empty or names `id` exactly or by a "prefix*" entry.
 bool stream_allowed(std::string_view id, const std::vector<std::string>& allowed);
@@ -41,8 +39,7 @@ bool stream_allowed(std::string_view id, const std::vector<std::string>& allowed
 /// failure `why` (when given) says which, and the message shows the id escaped.
 Status check_stream_id(std::string_view id, const Caps& caps, Refusal* why = nullptr);
 
-/// `id` with every byte outside printable ASCII as \xNN, cut to `max_chars`: safe for
-/// logs and for protobuf string fields (always valid UTF-8).
+/// echo_value(id, max_chars) (daemon/config/echo_value.h): safe for logs and for protobuf string fields.
 std::string printable_id(std::string_view id, size_t max_chars = 64);
 
 /// Refusals by reason; thread-safe.

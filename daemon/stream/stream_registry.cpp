@@ -114,7 +114,38 @@ std::vector<std::string> StreamRegistry::expire_idle(int64_t now_ns, double idle
       }
     }
   }
+  // Their counts stay in /metrics, in the aggregate: the sums over streams never go down.
+  std::lock_guard<std::mutex> lock(other_mutex_);
+  for (const StreamPtr& s : dropped) s->move_series(other_);
   return gone;
+}
+
+bool StreamRegistry::has_own_series(const std::string& id, const Stream& s, int64_t now_ns,
+                                    double idle_s) const {
+  if (id == kOtherStreams) return false;
+  if (configured_.contains(id) || idle_s <= 0) return true;
+  return double(now_ns - s.last_seen_ns.load(std::memory_order_relaxed)) <= idle_s * 1e9;
+}
+
+void StreamRegistry::metric_series(int64_t now_ns, double idle_s, std::vector<NamedSeries>& named,
+                                   MetricSeries& other) {
+  std::vector<StreamPtr> own, rest;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [id, s] : streams_) (has_own_series(id, *s, now_ns, idle_s) ? own : rest).push_back(s);
+  }
+  for (const StreamPtr& s : own) named.push_back({s->id(), s->own_series()});
+  std::lock_guard<std::mutex> lock(other_mutex_);
+  for (const StreamPtr& s : rest) s->move_series(other_);
+  other = other_;
+}
+
+std::vector<std::string> StreamRegistry::own_series_ids(int64_t now_ns, double idle_s) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<std::string> ids;
+  for (const auto& [id, s] : streams_)
+    if (has_own_series(id, *s, now_ns, idle_s)) ids.push_back(id);
+  return ids;
 }
 
 std::vector<std::string> StreamRegistry::list() const {

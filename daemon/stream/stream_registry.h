@@ -58,6 +58,14 @@ class StreamRegistry {
   bool snapshot(const std::string& stream_id, std::vector<StreamSnapshot>& out,
                 const std::function<void()>& copied = {}) const;
 
+  /// What /metrics shows of the streams at `now_ns` (metric_series.h): in `named`, the series of
+  /// every stream that has series of its own (has_own_series); in `other`, the counts of every
+  /// other stream and of every stream that expired, summed. A stream that loses its own series
+  /// moves its counts to `other` then, and starts from zero should it get them back.
+  void metric_series(int64_t now_ns, double idle_s, std::vector<NamedSeries>& named, MetricSeries& other);
+  /// The ids metric_series() names at `now_ns`.
+  std::vector<std::string> own_series_ids(int64_t now_ns, double idle_s) const;
+
   /// Messages refused before any stream state was made for them, by reason.
   RefusalCounters& refusals() { return refusals_; }
   const RefusalCounters& refusals() const { return refusals_; }
@@ -68,6 +76,9 @@ class StreamRegistry {
   StreamPtr entry(const std::string& stream_id, int64_t now_ns, bool frame);
   StreamPtr touch(const std::string& stream_id, int64_t now_ns, bool frame);
   const StreamSettings& configured(const std::string& stream_id) const;
+  /// Configured, or a frame within `idle_s` (0: every registered stream); never a stream named
+  /// like the aggregate. Under mutex_.
+  bool has_own_series(const std::string& id, const Stream& s, int64_t now_ns, double idle_s) const;
 
   const DaemonConfig& config_;
   mutable std::mutex mutex_;                          ///< the three members below
@@ -75,6 +86,8 @@ class StreamRegistry {
   std::map<std::string, StreamSettings> configured_;  ///< [streams.*]: pinned; replaced by reload()
   std::map<std::string, StreamPtr> streams_;
   RefusalCounters refusals_;
+  std::mutex other_mutex_;  ///< other_ (taken before a stream's lock)
+  MetricSeries other_;      ///< /metrics' stream="other": streams without own series, expired ones
 };
 
 }  // namespace fq::daemon

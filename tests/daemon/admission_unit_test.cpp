@@ -3,10 +3,11 @@
 
 #include <string>
 
+#include "daemon/config/echo_value.h"
 #include "daemon/pipeline/log_limiter.h"
 #include "daemon/pipeline/object_pool.h"
-#include "daemon/stream/stream_admission.h"
 #include "daemon/pipeline/work_budget.h"
+#include "daemon/stream/stream_admission.h"
 
 namespace fq::daemon {
 namespace {
@@ -40,10 +41,45 @@ TEST(StreamId, BadIdsAreRefusedWithAReadableMessage) {
   }
 }
 
-TEST(StreamId, PrintableIdEscapesAndCuts) {
+// Code points that a terminal, a log viewer or a browser acts on instead of showing: ESC was
+// refused before as an ASCII control, the others were accepted as valid UTF-8. (\u escapes end
+// after four digits: "\u202E0" is U+202E then '0'.)
+TEST(StreamId, CodePointsThatActOnTheDisplayAreRefused) {
+  const char* refused[] = {
+      "cam\x1b[31m",   // ESC: a terminal colour sequence
+      "cam\u009B31m",  // CSI as one code point
+      "cam\u0085",     // next line
+      "cam\u2028",     // line separator
+      "cam\u2029",     // paragraph separator
+      "cam\u202A",     // left-to-right embedding
+      "cam\u202E0",    // right-to-left override
+      "cam\u2066",     // left-to-right isolate
+      "cam\u2069",     // pop directional isolate
+  };
+  for (const char* id : refused) {
+    const Status s = validate_stream_id(id, 128);
+    ASSERT_FALSE(s.ok()) << printable_id(id);
+    EXPECT_NE(s.message().find("a line separator or a bidirectional formatting character (U+"),
+              std::string::npos)
+        << s.message();
+  }
+  // Their neighbours are ordinary characters.
+  for (const char* id : {"cam\u00A0", "cam\u2027", "cam\u202F", "cam\u2065", "cam\u206A"})
+    EXPECT_TRUE(validate_stream_id(id, 128).ok()) << printable_id(id);
+}
+
+TEST(StreamId, PrintableIdEscapesAndCutsWithTheSize) {
   EXPECT_EQ(printable_id("cam"), "cam");
   EXPECT_EQ(printable_id("\xff" "a\\"), "\\xffa\\x5c");
-  EXPECT_EQ(printable_id(std::string(100, 'x'), 8), "xxxxxxxx...");
+  EXPECT_EQ(printable_id(std::string(100, 'x'), 8), "xxxxxxxx...(100 bytes)");
+}
+
+// A 64 MiB value echoed in a message or a log line costs a line of ordinary length.
+TEST(EchoValue, AHugeValueBecomesABoundedPrefixWithItsSize) {
+  const std::string huge(64u << 20, 'v');
+  const std::string e = echo_value(huge);
+  EXPECT_EQ(e, std::string(kEchoBytes, 'v') + "...(67108864 bytes)");
+  EXPECT_EQ(echo_value("a\nb\x1b"), "a\\x0ab\\x1b");
 }
 
 TEST(StreamId, AllowListTakesExactIdsAndPrefixes) {

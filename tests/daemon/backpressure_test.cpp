@@ -34,7 +34,8 @@ TEST(Backpressure, ABurstWhileTheDecoderIsBusyStaysWithinTheQueueBound) {
   heavy_spec.compute = wire::FILTER_AND_CLUSTER;
   std::vector<std::string> heavy;
   ASSERT_TRUE(client::build_frame(make_icosphere(7, 1.0f).view(), heavy_spec, 1, heavy).ok());
-  // 2 MiB frames whose chunk is not Draco: admitted, and refused by the decoder at once.
+  // 2 MiB frames whose chunk is not Draco: admitted, and refused by the decoder at once (from a
+  // producer without CURVE: dropped and counted `refused`).
   client::FrameSpec junk_spec;
   std::vector<std::string> junk;
   ASSERT_TRUE(client::build_frame(noisy_sphere().view(), junk_spec, 1, junk).ok());
@@ -57,13 +58,14 @@ TEST(Backpressure, ABurstWhileTheDecoderIsBusyStaysWithinTheQueueBound) {
   for (int i = 0; i < 20; ++i) client::send_parts(push, renamed_frame(heavy, "heavy" + std::to_string(i)));
   for (int i = 0; i < 120; ++i)
     client::send_parts(push, renamed_frame(junk, "junk" + std::to_string(i % 40)));
-  // Every frame accounted for: each ended as an error result or superseded by a newer one.
+  // Every frame accounted for: each ended as an error result, refused, or superseded by a newer one.
   uint64_t done = 0;
   for (int wait = 0; wait < 600 && done < 140; ++wait) {
     done = 0;
     const ToolRun r = run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "counters", "--json"});
     for (const nlohmann::json& s : nlohmann::json::parse(r.output, nullptr, false).value("streams", nlohmann::json::array()))
-      done += s.at("errors").get<uint64_t>() + s.at("superseded").get<uint64_t>();
+      done += s.at("errors").get<uint64_t>() + s.at("refused").get<uint64_t>() +
+              s.at("superseded").get<uint64_t>();
     if (done < 140) std::this_thread::sleep_for(std::chrono::milliseconds(100));  // polling fqd
   }
   sampling = false;

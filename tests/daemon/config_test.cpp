@@ -224,3 +224,48 @@ TEST(DaemonConfig, MissingFileIsAClearError) {
 
 }  // namespace
 }  // namespace fq::daemon
+
+namespace fq::daemon {
+namespace {
+
+// The config's stream tables and [ingest] streams are doors for stream ids like the ingest:
+// before, any TOML key became a stream, a bidirectional override or an escape sequence included.
+TEST(DaemonConfig, StreamTablesAndIngestStreamsTakeOnlyIdsTheIngestAdmits) {
+  for (const char* key : {"\"cam\\u202e0\"", "\"cam\\u001b[31m\"", "\"cam\\u009b\"", "\"cam\\u2028\""}) {
+    const std::string m = error_of(std::string("[streams.") + key + "]\nbudget_ms = 50\n");
+    EXPECT_NE(m.find("stream id holds a control character"), std::string::npos) << m;
+  }
+  const std::string m = error_of("[ingest]\nconnect = [\"tcp://127.0.0.1:1\"]\nstreams = [\"cam\\u2066\"]\n");
+  EXPECT_NE(m.find("ingest.streams: stream id holds"), std::string::npos) << m;
+  DaemonConfig c;
+  EXPECT_TRUE(parse("[streams.\"Kamera-\\u00fc\"]\nbudget_ms = 50\n", c).ok());
+}
+
+// Each [streams.*] table is a stream fqd keeps for good; more than caps.max_streams of them
+// took slots that no frame could then get.
+TEST(DaemonConfig, StreamTablesPastMaxStreamsAreRefused) {
+  std::string text = "[caps]\nmax_streams = 2\n";
+  for (int i = 0; i < 3; ++i) text += "[streams.cam" + std::to_string(i) + "]\nbudget_ms = 50\n";
+  const std::string m = error_of(text);
+  EXPECT_NE(m.find("3 [streams.*] tables, over caps.max_streams = 2"), std::string::npos) << m;
+  DaemonConfig c;
+  EXPECT_TRUE(parse(text.substr(0, text.rfind("[streams.cam2]")), c).ok());
+}
+
+// A bad value is echoed as a bounded prefix with its size: a 1 MiB string made a 1 MiB message
+// (and a log line of that size on a reload).
+TEST(DaemonConfig, AHugeBadValueIsEchoedAsABoundedPrefix) {
+  const std::string huge(1u << 20, 'x');
+  for (const std::string& text :
+       {"[defaults]\ncompute = \"" + huge + "\"\n", "[engine]\nkind = \"" + huge + "\"\n",
+        "[defaults.output]\nresult_form = \"" + huge + "\"\n",
+        "[defaults.filter]\nmethod = \"" + huge + "\"\n", huge + " = 1\n",
+        "[streams." + huge + "]\nbudget_ms = 50\n"}) {
+    const std::string m = error_of(text);
+    EXPECT_LT(m.size(), 1024u) << m.substr(0, 200);
+    EXPECT_NE(m.find("...(1048576 bytes)"), std::string::npos) << m.substr(0, 200);
+  }
+}
+
+}  // namespace
+}  // namespace fq::daemon

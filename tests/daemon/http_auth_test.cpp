@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <thread>
 
 #include "common/curve_keys.h"
+#include "daemon/http/http_front.h"
 #include "tests/daemon/fqd_process.h"
 #include "tests/daemon/http_metrics.h"
 #include "tests/daemon/raw_http.h"
@@ -114,6 +116,46 @@ TEST(HttpAuth, CurveOnRequiresAuthenticationForStreamsResultsAndTheViewer) {
   const int port = http_port(fqd.endpoint("http"));
   EXPECT_EQ(get_status(port, "/streams"), 401);
   EXPECT_EQ(get_status(port, "/streams", std::chrono::seconds(10), "Authorization: Bearer " + kToken + "\r\n"), 200);
+  EXPECT_EQ(fqd.stop(), 0);
+}
+
+// Each TLS handshake costs fqd a private-key operation; before, one address could ask for them as
+// fast as it connected. Connections that send no handshake at all fail it, so the ones past the
+// rate are told apart by their reason (tls_rate: closed before the handshake).
+TEST(HttpAuth, TlsHandshakesFromOneAddressAreRateLimited) {
+  std::string cert, key;
+  make_certificate(cert, key);
+  FqdProcess fqd(
+      {"--config", write_temp_file("http_tls_rate.toml",
+                                   ops_config(http_section("tls_cert_file = \"" + cert +
+                                                           "\"\ntls_key_file = \"" + key + "\"\n")))});
+  const std::string base = fqd.endpoint("http");
+  const int port = http_port(base);
+  ASSERT_GT(port, 0);
+  constexpr int kConnections = 300;
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < kConnections; ++i) {
+    RawConnection c(port);
+    c.send("not a ClientHello\r\n");
+    EXPECT_TRUE(c.closed_by_peer(std::chrono::seconds(10)));
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // The bucket refills (at most 2 s from empty), then a real client gets through.
+  std::this_thread::sleep_for(std::chrono::milliseconds(
+      static_cast<int>(1000 * daemon::kTlsHandshakeBurst / daemon::kTlsHandshakesPerSecond)));
+  std::string m;
+  ASSERT_TRUE(eventually([&] {
+    m = run_tool("/usr/bin/curl", {"-s", "--cacert", cert, base + "/metrics"}).output;
+    return metric_value(m, "fq_http_refused_total{reason=\"tls_rate\"}") > 0;
+  })) << m;
+  const double failed = metric_value(m, "fq_http_refused_total{reason=\"tls\"}");
+  const double limited = metric_value(m, "fq_http_refused_total{reason=\"tls_rate\"}");
+  EXPECT_GE(failed + limited, kConnections) << m;
+  EXPECT_GT(limited, 0) << m;
+  EXPECT_LE(failed, daemon::kTlsHandshakeBurst + daemon::kTlsHandshakesPerSecond * seconds + 1)
+      << seconds << " s";
+  std::printf("%d connections in %.2f s: %.0f handshakes tried, %.0f refused before one\n", kConnections,
+              seconds, failed, limited);
   EXPECT_EQ(fqd.stop(), 0);
 }
 

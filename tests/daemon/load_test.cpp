@@ -11,9 +11,9 @@
 namespace fq::test {
 namespace {
 
-// frames_in == frames_out + errors + superseded + dropped_stale once the pipeline is idle.
+// frames_in == frames_out + errors + superseded + dropped_stale + refused once the pipeline is idle.
 uint64_t accounted(const wire::StreamCounters& c) {
-  return c.frames_out() + c.errors() + c.superseded() + c.dropped_stale();
+  return c.frames_out() + c.errors() + c.superseded() + c.dropped_stale() + c.refused();
 }
 
 // Polls the counters until every frame of `stream` is accounted for (or 60 s pass).
