@@ -140,7 +140,8 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
 
 void keep_averaged_result(const MeshView& mesh, const std::vector<float>& positions, double mean_edge,
                           TemporalHistory& history, TemporalScratch& s, int threads) {
-  build_vertex_faces(mesh.triangles, mesh.num_triangles, mesh.num_vertices, s.vf_offsets, s.vf_faces);
+  // average_with_ids built the frame's vertex -> triangles table into the scratch when it ran,
+  // and the run between does not touch the temporal scratch: no second build.
   const FanView fan{mesh.triangles, s.vf_offsets.data(), s.vf_faces.data()};
   keep_as_history(fan, mesh.num_vertices, positions, mean_edge, history, s, threads);
 }

@@ -61,7 +61,9 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
                         IdTrack& track, std::vector<float>& averaged, TemporalScratch& scratch, int threads);
 
 /// After a frame that track A averaged: its result (`positions`, input order) becomes the
-/// history the spatial track follows should the connectivity change (keep_as_history).
+/// history the spatial track follows should the connectivity change (keep_as_history). Reads
+/// the vertex table average_with_ids left in `scratch` for this mesh (call it only after a step
+/// that ran, with the same scratch).
 void keep_averaged_result(const MeshView& mesh, const std::vector<float>& positions, double mean_edge,
                           TemporalHistory& history, TemporalScratch& scratch, int threads);
 
