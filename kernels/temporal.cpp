@@ -24,11 +24,22 @@ uint64_t next_history_stamp() {
   return next.fetch_add(1, std::memory_order_relaxed);
 }
 
-void vertex_normals(const FanView& fan, const std::vector<Vec3>& x, std::vector<float>& out, int threads) {
-  const auto n = static_cast<uint32_t>(x.size());
+void vertex_normals(const FanView& fan, uint32_t n, const float* positions, std::vector<Vec3>& faces,
+                    std::vector<float>& out, int threads) {
+  // Each triangle's cross product once (vertex_normal computes it once per corner: the same
+  // expression, so the same bits), then each vertex's sum over its fan in fan order.
+  const uint32_t m = fan.vf_offsets[n] / 3;  // every triangle is in the fans of its 3 corners
+  faces.resize(m);
+  parallel_for(m, threads, [&](uint32_t f) {
+    const uint32_t* tri = fan.tris + 3 * size_t(f);
+    const Vec3 a = at(positions, tri[0]);
+    faces[f] = cross(at(positions, tri[1]) - a, at(positions, tri[2]) - a);
+  });
   out.resize(3 * size_t(n));
   parallel_for(n, threads, [&](uint32_t v) {
-    const Vec3 u = vertex_normal(fan, x.data(), v);
+    Vec3 acc{0.f, 0.f, 0.f};
+    for (uint32_t k = fan.vf_offsets[v]; k < fan.vf_offsets[v + 1]; ++k) acc = acc + faces[fan.vf_faces[k]];
+    const Vec3 u = normalized_or_zero(acc);
     out[3 * size_t(v)] = u.x;
     out[3 * size_t(v) + 1] = u.y;
     out[3 * size_t(v) + 2] = u.z;
@@ -38,9 +49,7 @@ void vertex_normals(const FanView& fan, const std::vector<Vec3>& x, std::vector<
 void keep_as_history(const FanView& fan, uint32_t n, const std::vector<float>& positions, double mean_edge,
                      TemporalHistory& history, TemporalScratch& s, int threads) {
   const CancelScope whole(nullptr);
-  s.spare.resize(n);  // the result as Vec3, in input units: the CPU's normals are as before bit for bit
-  parallel_for(n, threads, [&](uint32_t v) { s.spare[v] = at(positions.data(), v); });
-  vertex_normals(fan, s.spare, s.normals, threads);
+  vertex_normals(fan, n, positions.data(), s.spare, s.normals, threads);
   history.positions.assign(positions.begin(), positions.begin() + 3 * size_t(n));
   history.normals.swap(s.normals);
   history.mean_edge = mean_edge;

@@ -63,7 +63,7 @@ struct TemporalScratch {
   std::vector<Vec3> x, motion, offset, spare;
   std::vector<uint32_t> match;
   std::vector<float> detail, level, spare_level, share, normals;
-  std::vector<float> coherent, white;  ///< track A's coherence test (kernels/temporal_ids.cpp)
+  std::vector<float> coherent, spare_coherent;  ///< track A's coherence test (kernels/temporal_ids.cpp)
 };
 
 /// The temporal step of one frame: `positions` (the frame's filtered result, input order, 3
@@ -82,10 +82,11 @@ void keep_as_history(const FanView& fan, uint32_t n, const std::vector<float>& p
 /// A stamp no history has had yet (never 0).
 uint64_t next_history_stamp();
 
-/// Area-weighted unit vertex normals (3 floats a vertex in `out`) of the positions `x`: each
-/// vertex's sum over its fan (kernels/refine_math.h, vertex_normal), as the CUDA engine
-/// computes them; in parallel, and the same sums in the same order as a scatter over the
-/// triangles in index order.
-void vertex_normals(const FanView& fan, const std::vector<Vec3>& x, std::vector<float>& out, int threads);
+/// Area-weighted unit vertex normals (3 floats a vertex in `out`) of the n vertices `positions`
+/// (3 floats a vertex): each vertex's sum over its fan (kernels/refine_math.h, vertex_normal),
+/// as the CUDA engine computes them; in parallel, and the same sums in the same order as a
+/// scatter over the triangles in index order. `faces` holds each triangle's cross product.
+void vertex_normals(const FanView& fan, uint32_t n, const float* positions, std::vector<Vec3>& faces,
+                    std::vector<float>& out, int threads);
 
 }  // namespace fq

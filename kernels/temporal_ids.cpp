@@ -14,6 +14,10 @@ namespace fq {
 
 namespace {
 
+// Vertices a worker of the step takes at a time: a range costs some 20 µs (a few ns a vertex
+// in each loop), more than waking a pool thread, so a small mesh keeps to few threads.
+constexpr int kVertexGrain = 2048;
+
 // SplitMix64's finaliser: every input bit reaches every output bit.
 uint64_t mix(uint64_t x) {
   x ^= x >> 30;
@@ -44,6 +48,56 @@ void restart(const MeshView& mesh, uint64_t fingerprint, IdTrack& track) {
   track.vertices = mesh.num_vertices;
 }
 
+// XXH64's round (Collet, xxHash): the lanes of a chunk carry no dependency on each other, so
+// a chunk hashes at about an index a cycle where one SplitMix chain through every index waited
+// on its two multiplications each time. The ends of the lanes go through mix() in order.
+constexpr uint64_t kPrime1 = 0x9e3779b185ebca87ULL, kPrime2 = 0xc2b2ae3d27d4eb4fULL;
+uint64_t lane_round(uint64_t acc, uint64_t word) {
+  acc += word * kPrime2;
+  acc = (acc << 31) | (acc >> 33);
+  return acc * kPrime1;
+}
+
+uint64_t hash_indices(const uint32_t* t, size_t count, uint32_t chunk) {
+  uint64_t lane[4] = {mix(chunk + 1), mix(chunk + 2), mix(chunk + 3), mix(chunk + 4)};
+  size_t i = 0;
+  for (; i + 8 <= count; i += 8)
+    for (int k = 0; k < 4; ++k)
+      lane[k] = lane_round(lane[k], uint64_t(t[i + 2 * k]) << 32 | t[i + 2 * k + 1]);
+  uint64_t h = mix(count);
+  for (; i < count; ++i) h = mix(h ^ t[i]);
+  for (uint64_t l : lane) h = mix(h ^ l);
+  return h;
+}
+
+// The connectivity's tables in `topo`, built when it holds another one (`s` lends buffers).
+BlockRing keep_topology(const MeshView& mesh, uint64_t fingerprint, IdTopology& topo, TemporalScratch& s,
+                        int threads) {
+  const uint32_t n = mesh.num_vertices;
+  if (!topo.holds(fingerprint, n, mesh.num_triangles)) {
+    build_vertex_faces(mesh.triangles, mesh.num_triangles, n, topo.vf_offsets, topo.vf_faces);
+    const FanView fan{mesh.triangles, topo.vf_offsets.data(), topo.vf_faces.data()};
+    const RingView ring = build_vertex_ring(fan, n, s.ring_corners, threads);
+    build_block_ring(ring, n, topo.ring_rows, topo.ring_slots, topo.ring_inv_count, threads);
+    topo.white.resize(n);
+    parallel_for(n, threads, [&](uint32_t v) { topo.white[v] = ring_white(ring, v); });
+    ring_means(ring, topo.white, s.spare_level, kIdAgreementPasses, threads);
+    topo.fingerprint = fingerprint;
+    topo.vertices = n;
+    topo.triangles = mesh.num_triangles;
+  }
+  return BlockRing{topo.ring_rows.data(), topo.ring_slots.data(), topo.ring_inv_count.data(), n, n};
+}
+
+// The median of the n levels (the element n / 2 of their order, as std::nth_element places it),
+// through `copy`.
+float median_level(const std::vector<float>& level, uint32_t n, std::vector<float>& copy) {
+  copy.assign(level.begin(), level.begin() + n);
+  const auto mid = copy.begin() + copy.size() / 2;
+  std::nth_element(copy.begin(), mid, copy.end());
+  return *mid;
+}
+
 }  // namespace
 
 uint64_t connectivity_fingerprint(const MeshView& mesh, int threads) {
@@ -55,15 +109,21 @@ uint64_t connectivity_fingerprint(const MeshView& mesh, int threads) {
   parallel_for(
       chunks, threads,
       [&](uint32_t c) {
-        uint64_t h = mix(c + 1);
-        const uint32_t end = std::min(m, (c + 1) * kChunk);
-        for (size_t i = 3 * size_t(c) * kChunk; i < 3 * size_t(end); ++i) h = mix(h ^ mesh.triangles[i]);
-        part[c] = h;
+        const uint32_t* t = mesh.triangles + 3 * size_t(c) * kChunk;
+        const size_t count = 3 * size_t(std::min(m, (c + 1) * kChunk) - c * kChunk);  // indices
+        part[c] = hash_indices(t, count, c);
       },
       kOneChunkAtATime);
   uint64_t h = mix(uint64_t(mesh.num_vertices) << 32 | 0x9e3779b9u) ^ mix(m);
   for (uint64_t p : part) h = mix(h ^ p);
   return h;
+}
+
+size_t IdTrack::bytes() const {
+  const IdTopology& t = topology;
+  return sizeof(float) * (averaged.capacity() + t.white.capacity() + t.ring_inv_count.capacity()) +
+         sizeof(uint32_t) * (t.vf_offsets.capacity() + t.vf_faces.capacity() + t.ring_rows.capacity() +
+                             t.ring_slots.capacity());
 }
 
 IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_edge, float strength,
@@ -77,72 +137,106 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
     restart(mesh, fingerprint, track);
     return step;
   }
-  build_vertex_faces(mesh.triangles, mesh.num_triangles, n, s.vf_offsets, s.vf_faces);
-  const FanView fan{mesh.triangles, s.vf_offsets.data(), s.vf_faces.data()};
-  const RingView ring = build_vertex_ring(fan, n, s.ring_corners, threads);
+  const BlockRing ring = keep_topology(mesh, fingerprint, track.topology, s, threads);
+  const float* white = track.topology.white.data();
   // The displacement from the last averaged input, in mean edges (a difference of nearby
-  // points: floats keep their precision without an origin).
+  // points: floats keep their precision without an origin). Each loop below also does what
+  // the ring means before it allow for its vertices: the sums are those of a loop per quantity.
+  // Every array a ring mean reads has the pad element past its n values.
   const float unit = float(1.0 / mean_edge);
   const float* x = mesh.positions;
-  const float* a = track.averaged.data();
-  s.offset.resize(n);
-  parallel_for(n, threads, [&](uint32_t v) {
-    const size_t i = 3 * size_t(v);
-    s.offset[v] = unit * Vec3{x[i] - a[i], x[i + 1] - a[i + 1], x[i + 2] - a[i + 2]};
+  float* a = track.averaged.data();
+  for (std::vector<float>* f : {&s.level, &s.spare_level, &s.coherent, &s.spare_coherent})
+    set_ring_pad(*f, n);
+  for (std::vector<Vec3>* f : {&s.offset, &s.motion, &s.spare}) set_ring_pad(*f, n);
+  s.share.resize(n);
+  averaged.resize(3 * size_t(n));
+  const auto each_block = [&](auto&& body) { for_ring_blocks(n, threads, body, kVertexGrain); };
+  parallel_for(
+      n, threads,
+      [&](uint32_t v) {
+        const size_t i = 3 * size_t(v);
+        s.offset[v] = unit * Vec3{x[i] - a[i], x[i + 1] - a[i + 1], x[i + 2] - a[i + 2]};
+      },
+      kVertexGrain);
+  // The motion: kIdMotionPasses ring means of the offsets, the last of them fused with what
+  // the motion leaves (the non-smooth displacement, in place of the offset) and its square.
+  static_assert(kIdMotionPasses >= 1, "the last pass is fused with the rest");
+  const Vec3* from = s.offset.data();
+  std::vector<Vec3>* to = &s.motion;
+  std::vector<Vec3>* other = &s.spare;
+  for (int p = 0; p + 1 < kIdMotionPasses; ++p) {
+    each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
+      Vec3 m[kRingBlock];
+      block_ring_means(ring, from, b, m);
+      std::copy(m, m + k, to->data() + v0);
+    });
+    from = to->data();
+    std::swap(to, other);
+  }
+  each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
+    Vec3 m[kRingBlock];
+    block_ring_means(ring, from, b, m);
+    for (uint32_t j = 0; j < k; ++j) {
+      const uint32_t v = v0 + j;
+      s.offset[v] = s.offset[v] - m[j];
+      s.level[v] = dot(s.offset[v], s.offset[v]);
+    }
   });
-  s.motion = s.offset;
-  ring_means(ring, s.motion, s.spare, kIdMotionPasses, threads);
-  // What the motion leaves: the non-smooth displacement, and its local level.
-  s.level.resize(n);
-  parallel_for(n, threads, [&](uint32_t v) {
-    s.offset[v] = s.offset[v] - s.motion[v];
-    s.level[v] = dot(s.offset[v], s.offset[v]);
+  // The local level (kIdAgreementPasses ring means of the square) beside the coherence test:
+  // the square of the rest's ring mean, then its ring means, one pass behind.
+  static_assert(kIdAgreementPasses == 2, "the level's and the coherence test's passes are fused in pairs");
+  each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
+    float level[kRingBlock];
+    Vec3 c[kRingBlock];
+    block_ring_means(ring, s.level.data(), b, level);
+    block_ring_means(ring, s.offset.data(), b, c);
+    for (uint32_t j = 0; j < k; ++j) {
+      s.spare_level[v0 + j] = level[j];
+      s.coherent[v0 + j] = dot(c[j], c[j]);
+    }
   });
-  ring_means(ring, s.level, s.spare_level, kIdAgreementPasses, threads);
-  // The coherence test: how much of the rest survives a ring mean, against white noise's share.
-  s.coherent.resize(n);
-  s.white.resize(n);
-  parallel_for(n, threads, [&](uint32_t v) {
-    const Vec3 c = ring_mean(ring, s.offset.data(), v);
-    s.coherent[v] = dot(c, c);
-    s.white[v] = ring_white(ring, v);
+  each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
+    float level[kRingBlock], coherent[kRingBlock];
+    block_ring_means(ring, s.spare_level.data(), b, level);
+    block_ring_means(ring, s.coherent.data(), b, coherent);
+    std::copy(level, level + k, s.level.data() + v0);
+    std::copy(coherent, coherent + k, s.spare_coherent.data() + v0);
   });
-  ring_means(ring, s.coherent, s.spare_level, kIdAgreementPasses, threads);
-  ring_means(ring, s.white, s.spare_level, kIdAgreementPasses, threads);
-  s.detail.assign(s.level.begin(), s.level.end());  // the median's copy
-  const auto mid = s.detail.begin() + n / 2;
-  std::nth_element(s.detail.begin(), mid, s.detail.end());
-  const float typical = *mid;
+  const float typical = median_level(s.level, n, s.detail);
   step.residual = std::sqrt(typical);
   if (!ids_follow(typical)) {
     step.refused = true;
     restart(mesh, fingerprint, track);
     return step;
   }
-  averaged.resize(3 * size_t(n));
-  s.share.resize(n);
+  // The averaged input, which the track keeps for the next frame (it read its offsets above).
   const float edge = float(mean_edge);
-  parallel_for(n, threads, [&](uint32_t v) {
-    s.share[v] = id_share(s.level[v], typical, strength) * noise_part(s.coherent[v], s.level[v], s.white[v]);
-    const Vec3 back = (s.share[v] * edge) * s.offset[v];  // x - share * (non-smooth part), input units
-    const size_t i = 3 * size_t(v);
-    averaged[i] = x[i] - back.x;
-    averaged[i + 1] = x[i + 1] - back.y;
-    averaged[i + 2] = x[i + 2] - back.z;
+  each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
+    float coherent[kRingBlock];
+    block_ring_means(ring, s.spare_coherent.data(), b, coherent);
+    for (uint32_t j = 0; j < k; ++j) {
+      const uint32_t v = v0 + j;
+      s.share[v] = id_share(s.level[v], typical, strength) * noise_part(coherent[j], s.level[v], white[v]);
+      const Vec3 back = (s.share[v] * edge) * s.offset[v];  // x - share * (non-smooth part), input units
+      const size_t i = 3 * size_t(v);
+      averaged[i] = a[i] = x[i] - back.x;
+      averaged[i + 1] = a[i + 1] = x[i + 1] - back.y;
+      averaged[i + 2] = a[i + 2] = x[i + 2] - back.z;
+    }
   });
   double total = 0.0;
   for (uint32_t v = 0; v < n; ++v) total += s.share[v];  // in order: the report is reproducible
   step.share = float(total / n);
   step.ran = true;
-  track.averaged.assign(averaged.begin(), averaged.end());
   return step;
 }
 
 void keep_averaged_result(const MeshView& mesh, const std::vector<float>& positions, double mean_edge,
                           TemporalHistory& history, TemporalScratch& s, int threads) {
-  // average_with_ids built the frame's vertex -> triangles table into the scratch when it ran,
-  // and the run between does not touch the temporal scratch: no second build.
-  const FanView fan{mesh.triangles, s.vf_offsets.data(), s.vf_faces.data()};
+  // The track keeps the connectivity's vertex -> triangles table: no build here.
+  const IdTopology& t = history.ids.topology;
+  const FanView fan{mesh.triangles, t.vf_offsets.data(), t.vf_faces.data()};
   keep_as_history(fan, mesh.num_vertices, positions, mean_edge, history, s, threads);
 }
 

@@ -25,22 +25,51 @@ namespace fq {
 struct TemporalScratch;
 struct TemporalHistory;
 
+/// What the step reads that depends on the connectivity alone, built on the first frame of a
+/// connectivity that the step averages and kept while the fingerprint holds: the vertex ->
+/// triangles table (the result's normals), the ring table in blocks (kernels/vertex_ring.h,
+/// BlockRing) and the white-noise share of the coherence test, smoothed as the test smooths it.
+/// About 94 bytes a vertex on a closed triangle mesh, crane's (two triangles a vertex: 4 + 24
+/// for the fans; 4 × the widest ring of a block of four, some 14, and 4 + 1 for the rings; 4
+/// for the white share), beside the 12 of `averaged`; IdTrack::bytes() counts them.
+struct IdTopology {
+  uint64_t fingerprint = 0;  ///< the connectivity it was built for, with its counts (0, 0: none)
+  uint32_t vertices = 0, triangles = 0;
+  std::vector<uint32_t> vf_offsets, vf_faces, ring_rows, ring_slots;
+  std::vector<float> ring_inv_count;
+  std::vector<float> white;  ///< per vertex, after kIdAgreementPasses ring means
+
+  bool holds(uint64_t f, uint32_t n, uint32_t m) const {
+    return !white.empty() && fingerprint == f && vertices == n && triangles == m;
+  }
+  void clear() {
+    fingerprint = 0;
+    vertices = triangles = 0;
+    white.clear();
+  }
+};
+
 /// A stream's memory for track A: its last averaged input and the connectivity it had.
 struct IdTrack {
   std::vector<float> averaged;  ///< a_{t-1}: 3 floats a vertex, input order and units
   uint64_t connectivity = 0;    ///< connectivity_fingerprint of the frame it came from
   uint32_t vertices = 0;        ///< that frame's vertex count
+  IdTopology topology;          ///< keyed by its own fingerprint: a refused frame leaves it valid
 
   bool empty() const { return averaged.empty(); }
   void clear() {
     averaged.clear();
     connectivity = 0;
     vertices = 0;
+    topology.clear();
   }
+  /// Bytes the track holds (its buffers' capacities), for the memory it costs a stream.
+  size_t bytes() const;
 };
 
 /// A hash of a frame's vertex count and triangles: equal for frames that share connectivity
-/// (and almost never for two that do not). Parallel over the triangles.
+/// (and almost never for two that do not). Parallel over chunks of triangles, each hashed in
+/// four independent lanes, and the same value for any thread count.
 uint64_t connectivity_fingerprint(const MeshView& mesh, int threads);
 
 /// What one frame's track-A step did.
@@ -62,8 +91,7 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
 
 /// After a frame that track A averaged: its result (`positions`, input order) becomes the
 /// history the spatial track follows should the connectivity change (keep_as_history). Reads
-/// the vertex table average_with_ids left in `scratch` for this mesh (call it only after a step
-/// that ran, with the same scratch).
+/// the vertex table the track keeps for this connectivity (call it only after a step that ran).
 void keep_averaged_result(const MeshView& mesh, const std::vector<float>& positions, double mean_edge,
                           TemporalHistory& history, TemporalScratch& scratch, int threads);
 

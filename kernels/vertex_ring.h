@@ -39,6 +39,76 @@ T ring_mean(const RingView& r, const T* e, uint32_t v) {
   return (1.f / count) * sum;
 }
 
+/// Vertices whose ring sums run side by side (block_ring_means).
+inline constexpr uint32_t kRingBlock = 4;
+
+/// The ring table in blocks of kRingBlock vertices, for a stream that keeps its connectivity
+/// (kernels/temporal_ids.h) and runs many ring means over one table. Block b's rows are
+/// [rows[b], rows[b + 1]); row r holds slot r of each of the block's vertices at
+/// slots[kRingBlock r + j], in the table's order without its kNoCorner slots. A vertex with fewer
+/// neighbours than its block's widest, and a lane past the last vertex, reads `pad` (the n-th
+/// element of the summed array, which the caller sets to -0.0: x + (-0.0) is x, bit for bit,
+/// for every float x).
+struct BlockRing {
+  const uint32_t* rows;     ///< blocks + 1
+  const uint32_t* slots;    ///< kRingBlock per row
+  const float* inv_count;   ///< per vertex: 1 / (1 + its neighbours), as ring_mean divides
+  uint32_t n = 0, pad = 0;  ///< pad == n
+};
+
+/// The block table of `ring`'s n vertices into `rows`, `slots` and `inv_count`.
+BlockRing build_block_ring(const RingView& ring, uint32_t n, std::vector<uint32_t>& rows,
+                           std::vector<uint32_t>& slots, std::vector<float>& inv_count, int threads);
+
+/// Sets the pad element of `e` (then n + 1 elements) that block_ring_means reads for missing slots.
+inline void set_ring_pad(std::vector<float>& e, uint32_t n) {
+  e.resize(size_t(n) + 1);
+  e[n] = -0.f;
+}
+inline void set_ring_pad(std::vector<Vec3>& e, uint32_t n) {
+  e.resize(size_t(n) + 1);
+  e[n] = Vec3{-0.f, -0.f, -0.f};
+}
+
+/// ring_mean(r, e, v) (kernels/vertex_ring.h's table) for the vertices of block b, into
+/// out[0 .. kRingBlock) (lanes past the last vertex get the pad's mean). e holds n + 1 elements,
+/// e[n] = -0.0. Each vertex's sum is its own chain of additions in ring_mean's order, padded
+/// with -0.0 (which changes no bit), so the result is ring_mean's; the block's four chains
+/// overlap where one alone would wait on each addition in turn.
+template <class T>
+void block_ring_means(const BlockRing& r, const T* e, uint32_t b, T* out) {
+  static_assert(kRingBlock == 4, "four named sums: an array of them stays in memory, one store a row");
+  const uint32_t v0 = b * kRingBlock;
+  const auto lane = [&](uint32_t j) { return v0 + j < r.n ? v0 + j : r.pad; };
+  T s0 = e[lane(0)], s1 = e[lane(1)], s2 = e[lane(2)], s3 = e[lane(3)];
+  const uint32_t* s = r.slots + size_t(kRingBlock) * r.rows[b];
+  const uint32_t* end = r.slots + size_t(kRingBlock) * r.rows[b + 1];
+  for (; s != end; s += kRingBlock) {
+    s0 = s0 + e[s[0]];
+    s1 = s1 + e[s[1]];
+    s2 = s2 + e[s[2]];
+    s3 = s3 + e[s[3]];
+  }
+  out[0] = r.inv_count[lane(0)] * s0;
+  out[1] = r.inv_count[lane(1)] * s1;
+  out[2] = r.inv_count[lane(2)] * s2;
+  out[3] = r.inv_count[lane(3)] * s3;
+}
+
+/// body(b, v0, count) for each block b of the n vertices (vertices v0 .. v0 + count), in
+/// parallel on up to `threads` threads, `grain` vertices at a time (a multiple of kRingBlock).
+template <class F>
+void for_ring_blocks(uint32_t n, int threads, F&& body, int grain) {
+  const uint32_t blocks = (n + kRingBlock - 1) / kRingBlock;
+  parallel_for(
+      blocks, threads,
+      [&](uint32_t b) {
+        const uint32_t v0 = b * kRingBlock;
+        body(b, v0, n - v0 < kRingBlock ? n - v0 : kRingBlock);
+      },
+      grain / int(kRingBlock));
+}
+
 /// `passes` ring means of `a` over the table, in parallel on up to `threads` threads; `spare` is
 /// the other buffer (its contents are left over).
 template <class T>

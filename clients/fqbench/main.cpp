@@ -2,7 +2,8 @@
 // the median and spread (p10/p90) of device time over repeated frames for the paper's
 // rows of Tables 2 and 3, with the paper's figure, the speed-up, host<->device transfers
 // (pinned) and the CPU engine's time on the same row. Prints a markdown table.
-// With --codec MESH it times the frame codec against plain Draco instead (codec_bench.h).
+// With --codec MESH it times the frame codec against plain Draco instead (codec_bench.h), with
+// --track-ids FRAMES the host step of temporal track A (track_bench.h).
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <chrono>
@@ -18,10 +19,11 @@
 #include "clients/fqbench/bench_stats.h"
 #include "clients/fqbench/codec_bench.h"
 #include "clients/fqbench/neighbour_stats.h"
+#include "clients/fqbench/track_bench.h"
 #include "common/tool_main.h"
+#include "io/mesh_io.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/engine.h"
-#include "io/mesh_io.h"
 
 namespace {
 
@@ -187,8 +189,23 @@ int run(int argc, char** argv) {
   add_ranged(app, "--speed", codec.speed, "codec mode: Draco encoding = decoding speed", 0, 10);
   add_ranged(app, "--bits", codec.position_bits, "codec mode: position quantization bits", 1, 30);
   app.add_flag("--json", codec.json, "codec mode: print one JSON object instead of a table");
+  TrackBenchOptions track;
+  auto* track_opt =
+      app.add_option("--track-ids", track.frames_dir,
+                     "track mode: time temporal track A's host step over the frames of FRAMES (a "
+                     "folder, or a name in the mesh folder: crane) instead of the engine rows");
+  add_ranged(app, "--frames", track.frames, "track mode: the first frames in name order", 2, 100000);
+  add_ranged(app, "--noise", track.noise, "track mode: noise per frame, mean edges", 0.0, 10.0);
+  app.add_option("--track-threads", track.threads,
+                 "track mode: one row per thread count (default: 1 and all)")
+      ->check(CLI::Range(1, 1024));
   CLI11_PARSE(app, argc, argv);
 
+  if (*track_opt) {
+    track.mesh_dir = o.mesh_dir;
+    track.repeat = o.repeat;
+    return run_track_bench(track);
+  }
   if (*codec_opt) {
     codec.mesh_dir = o.mesh_dir;
     codec.repeat = o.repeat;
