@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "kernels/frame_prep.h"
 #include "kernels/temporal.h"
 #include "kernels/temporal_math.h"
+#include "kernels/vertex_faces.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
@@ -229,6 +231,191 @@ TEST(TemporalIds, AveragedFramesBeatFramesAlone) {
   // Measured 0.87 (frames 3-7; the sphere has no detail to lose, its own noise estimate
   // already filters it well).
   EXPECT_LT(err_stream, 0.93 * err_alone);
+}
+
+// The step as it was written before its loops were fused and its connectivity kept: one loop
+// per quantity, every table built from the frame, the ring means over the fan. The step must
+// give its bytes for any thread count.
+struct Reference {
+  std::vector<float> averaged;  // the track's
+  float share = 0.f, residual = 0.f;
+};
+
+template <class T>
+void fan_means(const FanView& fan, std::vector<T>& a, int passes) {
+  std::vector<T> b(a.size());
+  for (int p = 0; p < passes; ++p) {
+    for (uint32_t v = 0; v < a.size(); ++v) b[v] = ring_mean(fan, a.data(), v);
+    a.swap(b);
+  }
+}
+
+// The sum of the squared weights of v's ring mean over the fan: v once, each other corner of
+// each of its triangles once.
+float fan_white(const FanView& fan, uint32_t v) {
+  std::vector<uint32_t> corners;
+  for (uint32_t k = fan.vf_offsets[v]; k < fan.vf_offsets[v + 1]; ++k)
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t w = fan.tris[3 * size_t(fan.vf_faces[k]) + c];
+      if (w != v) corners.push_back(w);
+    }
+  float count = 1.f, squares = 1.f;
+  for (uint32_t c : corners) {
+    count += 1.f;
+    for (uint32_t d : corners) squares += c == d ? 1.f : 0.f;
+  }
+  return squares / (count * count);
+}
+
+// One step of `frame` against r.averaged (the averaged input of the frame before), loop by loop.
+bool reference_step(const Mesh& frame, double mean_edge, float strength, Reference& r) {
+  const uint32_t n = frame.num_vertices();
+  std::vector<uint32_t> vf_offsets, vf_faces;
+  build_vertex_faces(frame.triangles.data(), frame.num_triangles(), n, vf_offsets, vf_faces);
+  const FanView fan{frame.triangles.data(), vf_offsets.data(), vf_faces.data()};
+  const float unit = float(1.0 / mean_edge);
+  const float* x = frame.positions.data();
+  std::vector<Vec3> offset(n);
+  for (uint32_t v = 0; v < n; ++v) {
+    const float* a = &r.averaged[3 * size_t(v)];
+    offset[v] =
+        unit * Vec3{x[3 * size_t(v)] - a[0], x[3 * size_t(v) + 1] - a[1], x[3 * size_t(v) + 2] - a[2]};
+  }
+  std::vector<Vec3> motion = offset;
+  fan_means(fan, motion, kIdMotionPasses);
+  std::vector<float> level(n), coherent(n), white(n);
+  for (uint32_t v = 0; v < n; ++v) {
+    offset[v] = offset[v] - motion[v];
+    level[v] = dot(offset[v], offset[v]);
+  }
+  fan_means(fan, level, kIdAgreementPasses);
+  for (uint32_t v = 0; v < n; ++v) {
+    const Vec3 c = ring_mean(fan, offset.data(), v);
+    coherent[v] = dot(c, c);
+    white[v] = fan_white(fan, v);
+  }
+  fan_means(fan, coherent, kIdAgreementPasses);
+  fan_means(fan, white, kIdAgreementPasses);
+  std::vector<float> sorted = level;
+  std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
+  const float typical = sorted[n / 2];
+  r.residual = std::sqrt(typical);
+  if (!ids_follow(typical)) return false;
+  double total = 0.0;
+  for (uint32_t v = 0; v < n; ++v) {
+    const float share = id_share(level[v], typical, strength) * noise_part(coherent[v], level[v], white[v]);
+    const Vec3 back = (share * float(mean_edge)) * offset[v];
+    for (int k = 0; k < 3; ++k) r.averaged[3 * size_t(v) + k] = x[3 * size_t(v) + k] - (&back.x)[k];
+    total += share;
+  }
+  r.share = float(total / n);
+  return true;
+}
+
+bool same_bytes(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// A sphere turning and swelling a little from frame to frame, with fresh noise each frame.
+Mesh moving_frame(const Mesh& sphere, int t) {
+  Mesh m = noisy(sphere, 300 + t);
+  const float angle = 0.02f * t, c = std::cos(angle), sn = std::sin(angle), scale = 1.f + 0.01f * t;
+  for (uint32_t v = 0; v < m.num_vertices(); ++v) {
+    float* p = &m.positions[3 * size_t(v)];
+    const float x = p[0], y = p[1];
+    p[0] = scale * (c * x - sn * y);
+    p[1] = scale * (sn * x + c * y);
+  }
+  return m;
+}
+
+TEST(TemporalIds, TheStepGivesTheBytesOfItsLoopByLoopFormForAnyThreadCount) {
+  // 10242 vertices: several ranges of kVertexGrain, so four threads do split the loops.
+  const Mesh sphere = test::make_icosphere(5);
+  const double edge = mean_edge_length(sphere.view(), 2);
+  for (int threads : {1, 4}) {
+    IdTrack track;
+    TemporalScratch s;
+    TemporalHistory history;
+    std::vector<float> out;
+    Reference ref;
+    for (int t = 0; t < 5; ++t) {
+      const Mesh frame = moving_frame(sphere, t);
+      const IdStep st = average_with_ids(frame.view(), connectivity_fingerprint(frame.view(), threads), edge,
+                                         0.75f, history.ids, out, s, threads);
+      if (t == 0) {
+        ASSERT_FALSE(st.ran);
+        ref.averaged = frame.positions;
+        continue;
+      }
+      ASSERT_TRUE(reference_step(frame, edge, 0.75f, ref));
+      ASSERT_TRUE(st.ran) << "frame " << t;
+      EXPECT_TRUE(same_bytes(out, ref.averaged)) << "frame " << t << ", " << threads << " threads";
+      EXPECT_TRUE(same_bytes(history.ids.averaged, ref.averaged)) << "the track keeps the averaged input";
+      EXPECT_TRUE(same_bits(st.share, ref.share)) << "frame " << t;
+      EXPECT_TRUE(same_bits(st.residual, ref.residual)) << "frame " << t;
+      // The result (here the averaged input) becomes the spatial track's history, with the
+      // normals vertex_normal gives over the frame's fans.
+      keep_averaged_result(frame.view(), out, edge, history, s, threads);
+      std::vector<uint32_t> vf_offsets, vf_faces;
+      build_vertex_faces(frame.triangles.data(), frame.num_triangles(), frame.num_vertices(), vf_offsets,
+                         vf_faces);
+      const FanView fan{frame.triangles.data(), vf_offsets.data(), vf_faces.data()};
+      std::vector<Vec3> x(frame.num_vertices());
+      for (uint32_t v = 0; v < x.size(); ++v)
+        x[v] = {out[3 * size_t(v)], out[3 * size_t(v) + 1], out[3 * size_t(v) + 2]};
+      std::vector<float> normals;
+      for (uint32_t v = 0; v < x.size(); ++v) {
+        const Vec3 u = vertex_normal(fan, x.data(), v);
+        normals.insert(normals.end(), {u.x, u.y, u.z});
+      }
+      EXPECT_TRUE(same_bytes(history.normals, normals)) << "frame " << t;
+      EXPECT_TRUE(same_bytes(history.positions, out)) << "frame " << t;
+    }
+  }
+}
+
+TEST(TemporalIds, ANewConnectivityOfTheSameSizeRebuildsWhatTheTrackKeeps) {
+  // Frames of one connectivity, then of another with the same vertex and triangle counts (one
+  // edge flipped): the track's tables must be the new ones, as on a track that saw only those.
+  const Mesh sphere = test::make_icosphere(4);
+  Mesh flipped = sphere;
+  {  // the two triangles on the edge (a, b) of triangle 0 become the two on the other diagonal
+    const uint32_t a = flipped.triangles[0], b = flipped.triangles[1], c = flipped.triangles[2];
+    for (uint32_t f = 1; f < flipped.num_triangles(); ++f) {
+      uint32_t* t = &flipped.triangles[3 * size_t(f)];
+      for (int k = 0; k < 3; ++k)
+        if (t[k] == b && t[(k + 1) % 3] == a) {
+          const uint32_t d = t[(k + 2) % 3];
+          const uint32_t first[3] = {a, d, c}, second[3] = {d, b, c};
+          std::copy(first, first + 3, flipped.triangles.begin());
+          std::copy(second, second + 3, t);
+          f = flipped.num_triangles();
+          break;
+        }
+    }
+  }
+  ASSERT_NE(connectivity_fingerprint(flipped.view(), 1), connectivity_fingerprint(sphere.view(), 1));
+  const auto frame_of = [](const Mesh& shape, int t) {
+    Mesh m = shape;
+    add_gaussian_noise(m, 0.2, 400 + t);
+    return m;
+  };
+  IdTrack seen, fresh;
+  TemporalScratch s1, s2;
+  std::vector<float> out1, out2;
+  for (int t = 0; t < 3; ++t) step(frame_of(sphere, t), seen, out1, s1, &sphere);
+  for (int t = 3; t < 6; ++t) {
+    const IdStep a = step(frame_of(flipped, t), seen, out1, s1, &sphere);
+    const IdStep b = step(frame_of(flipped, t), fresh, out2, s2, &sphere);
+    ASSERT_EQ(a.ran, b.ran) << "frame " << t;
+    if (a.ran) {
+      EXPECT_TRUE(same_bytes(out1, out2)) << "frame " << t;
+    }
+  }
+  EXPECT_TRUE(same_bytes(seen.averaged, fresh.averaged));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
-// The ring table (kernels/vertex_ring.h) against ring_mean over the fan, bit for bit: on a
-// closed surface, a grid with a boundary, a non-manifold fin and triangles that repeat a vertex
-// (degenerate: a triangle listed once per corner, each time without the vertex itself).
+// The ring table and its blocks (kernels/vertex_ring.h) against ring_mean over the fan, bit for
+// bit: on a closed surface, a grid with a boundary, a non-manifold fin and triangles that repeat
+// a vertex (degenerate: a triangle listed once per corner, each time without the vertex itself);
+// with values of both signs, and all -0.0 (the value the blocks pad with: it must change nothing).
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -21,7 +22,7 @@ using test::make_plane_grid;
 
 uint32_t bits(float f) { return std::bit_cast<uint32_t>(f); }
 
-void expect_same_ring_means(const Mesh& mesh, int threads) {
+void expect_same_ring_means(const Mesh& mesh, int threads, bool negative_zeros = false) {
   const uint32_t n = mesh.num_vertices();
   std::vector<uint32_t> vf_offsets, vf_faces, corners;
   build_vertex_faces(mesh.triangles.data(), mesh.triangles.size() / 3, n, vf_offsets, vf_faces);
@@ -32,8 +33,29 @@ void expect_same_ring_means(const Mesh& mesh, int threads) {
   std::vector<float> e(n);
   std::vector<Vec3> x(n);
   for (uint32_t v = 0; v < n; ++v) {
-    e[v] = u(rng);
-    x[v] = {u(rng), u(rng), u(rng)};
+    e[v] = negative_zeros ? -0.f : u(rng);
+    x[v] = negative_zeros ? Vec3{-0.f, -0.f, -0.f} : Vec3{u(rng), u(rng), u(rng)};
+  }
+  // The block table reads the pad past the n values.
+  std::vector<uint32_t> rows, slots;
+  std::vector<float> inv_count, block_e = e;
+  std::vector<Vec3> block_x = x;
+  set_ring_pad(block_e, n);
+  set_ring_pad(block_x, n);
+  const BlockRing blocks = build_block_ring(ring, n, rows, slots, inv_count, threads);
+  for (uint32_t b = 0; b * kRingBlock < n; ++b) {
+    float be[kRingBlock];
+    Vec3 bx[kRingBlock];
+    block_ring_means(blocks, block_e.data(), b, be);
+    block_ring_means(blocks, block_x.data(), b, bx);
+    for (uint32_t j = 0; j < kRingBlock && b * kRingBlock + j < n; ++j) {
+      const uint32_t v = b * kRingBlock + j;
+      EXPECT_EQ(bits(be[j]), bits(ring_mean(fan, e.data(), v))) << "block table, vertex " << v;
+      const Vec3 p = ring_mean(fan, x.data(), v);
+      EXPECT_EQ(bits(bx[j].x), bits(p.x)) << "block table, vertex " << v;
+      EXPECT_EQ(bits(bx[j].y), bits(p.y)) << "block table, vertex " << v;
+      EXPECT_EQ(bits(bx[j].z), bits(p.z)) << "block table, vertex " << v;
+    }
   }
   for (uint32_t v = 0; v < n; ++v) {
     const float a = ring_mean(fan, e.data(), v), b = ring_mean(ring, e.data(), v);
@@ -68,6 +90,7 @@ TEST(KernelVertexRing, CountsADegenerateTrianglesCornersAsTheFanDoes) {
   const uint32_t a = m.triangles[0], b = m.triangles[1];
   m.triangles.insert(m.triangles.end(), {a, a, b, b, b, b});  // a repeated corner, then all three
   expect_same_ring_means(m, 2);
+  expect_same_ring_means(m, 2, true);
   std::vector<uint32_t> vf_offsets, vf_faces, corners;
   build_vertex_faces(m.triangles.data(), m.triangles.size() / 3, m.num_vertices(), vf_offsets, vf_faces);
   const FanView fan{m.triangles.data(), vf_offsets.data(), vf_faces.data()};
