@@ -1,6 +1,7 @@
 #include "kernels/temporal_ids.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "core/cancel_token.h"
@@ -89,15 +90,45 @@ BlockRing keep_topology(const MeshView& mesh, uint64_t fingerprint, IdTopology& 
   return BlockRing{topo.ring_rows.data(), topo.ring_slots.data(), topo.ring_inv_count.data(), n, n};
 }
 
-// The median of the n levels (the element n / 2 of their order, as std::nth_element places it),
-// through `copy`.
+// The median of the n levels: the element n / 2 of their order, as std::nth_element places it.
+// Levels are sums of squares, never negative, so their bit patterns sort as their values do: a
+// radix select on the bits (11, 11 and 10 of them) finds that element in three counting passes
+// whatever the order of the values (nth_element's partitions took some 0.1 ms on crane's 10k
+// vertices, a tenth of the step). A negative level, an infinity or a NaN (from a broken input)
+// goes to nth_element, as before.
 float median_level(const std::vector<float>& level, uint32_t n, std::vector<float>& copy) {
-  copy.assign(level.begin(), level.begin() + n);
-  const auto mid = copy.begin() + copy.size() / 2;
-  std::nth_element(copy.begin(), mid, copy.end());
-  return *mid;
+  const auto bits = [](float f) { return std::bit_cast<uint32_t>(f); };
+  constexpr uint32_t kNotFinite = 0x7f800000u >> 21;  // the first bin of infinities and NaNs
+  uint32_t rank = n / 2;
+  uint32_t count[1u << 11] = {};
+  for (uint32_t v = 0; v < n; ++v) ++count[bits(level[v]) >> 21];
+  bool ordinary = true;
+  for (uint32_t b = kNotFinite; b < (1u << 11); ++b) ordinary = ordinary && count[b] == 0;
+  if (!ordinary) {
+    copy.assign(level.begin(), level.begin() + n);
+    const auto mid = copy.begin() + rank;
+    std::nth_element(copy.begin(), mid, copy.end());
+    return *mid;
+  }
+  // The bin that holds the element `rank` of `count`'s values; `rank` becomes its rank there.
+  const auto bin_of = [&](uint32_t bins) {
+    uint32_t b = 0;
+    for (; rank >= count[b] && b + 1 < bins; ++b) rank -= count[b];
+    return b;
+  };
+  const uint32_t high = bin_of(1u << 11);
+  copy.clear();
+  for (uint32_t v = 0; v < n; ++v)
+    if (bits(level[v]) >> 21 == high) copy.push_back(level[v]);
+  std::fill(count, count + (1u << 11), 0u);
+  for (float f : copy) ++count[(bits(f) >> 10) & 0x7ffu];
+  const uint32_t middle = bin_of(1u << 11);
+  std::fill(count, count + (1u << 10), 0u);
+  for (float f : copy)
+    if (((bits(f) >> 10) & 0x7ffu) == middle) ++count[bits(f) & 0x3ffu];
+  const uint32_t low = bin_of(1u << 10);
+  return std::bit_cast<float>(high << 21 | middle << 10 | low);
 }
-
 }  // namespace
 
 uint64_t connectivity_fingerprint(const MeshView& mesh, int threads) {
