@@ -27,23 +27,31 @@ uint64_t next_history_stamp() {
 void vertex_normals(const FanView& fan, uint32_t n, const float* positions, std::vector<Vec3>& faces,
                     std::vector<float>& out, int threads) {
   // Each triangle's cross product once (vertex_normal computes it once per corner: the same
-  // expression, so the same bits), then each vertex's sum over its fan in fan order.
+  // expression, so the same bits), then each vertex's sum over its fan in fan order. A range of
+  // kGrain items is a few µs of work, more than waking a pool thread for it.
+  constexpr int kGrain = 2048;
   const uint32_t m = fan.vf_offsets[n] / 3;  // every triangle is in the fans of its 3 corners
   faces.resize(m);
-  parallel_for(m, threads, [&](uint32_t f) {
-    const uint32_t* tri = fan.tris + 3 * size_t(f);
-    const Vec3 a = at(positions, tri[0]);
-    faces[f] = cross(at(positions, tri[1]) - a, at(positions, tri[2]) - a);
-  });
+  parallel_for(
+      m, threads,
+      [&](uint32_t f) {
+        const uint32_t* tri = fan.tris + 3 * size_t(f);
+        const Vec3 a = at(positions, tri[0]);
+        faces[f] = cross(at(positions, tri[1]) - a, at(positions, tri[2]) - a);
+      },
+      kGrain);
   out.resize(3 * size_t(n));
-  parallel_for(n, threads, [&](uint32_t v) {
-    Vec3 acc{0.f, 0.f, 0.f};
-    for (uint32_t k = fan.vf_offsets[v]; k < fan.vf_offsets[v + 1]; ++k) acc = acc + faces[fan.vf_faces[k]];
-    const Vec3 u = normalized_or_zero(acc);
-    out[3 * size_t(v)] = u.x;
-    out[3 * size_t(v) + 1] = u.y;
-    out[3 * size_t(v) + 2] = u.z;
-  });
+  parallel_for(
+      n, threads,
+      [&](uint32_t v) {
+        Vec3 acc{0.f, 0.f, 0.f};
+        for (uint32_t k = fan.vf_offsets[v]; k < fan.vf_offsets[v + 1]; ++k) acc = acc + faces[fan.vf_faces[k]];
+        const Vec3 u = normalized_or_zero(acc);
+        out[3 * size_t(v)] = u.x;
+        out[3 * size_t(v) + 1] = u.y;
+        out[3 * size_t(v) + 2] = u.z;
+      },
+      kGrain);
 }
 
 void keep_as_history(const FanView& fan, uint32_t n, const std::vector<float>& positions, double mean_edge,

@@ -62,9 +62,13 @@ uint64_t lane_round(uint64_t acc, uint64_t word) {
 uint64_t hash_indices(const uint32_t* t, size_t count, uint32_t chunk) {
   uint64_t lane[4] = {mix(chunk + 1), mix(chunk + 2), mix(chunk + 3), mix(chunk + 4)};
   size_t i = 0;
-  for (; i + 8 <= count; i += 8)
-    for (int k = 0; k < 4; ++k)
-      lane[k] = lane_round(lane[k], uint64_t(t[i + 2 * k]) << 32 | t[i + 2 * k + 1]);
+  for (; i + 8 <= count; i += 8) {
+    const uint32_t* w = t + i;
+    lane[0] = lane_round(lane[0], uint64_t(w[0]) << 32 | w[1]);
+    lane[1] = lane_round(lane[1], uint64_t(w[2]) << 32 | w[3]);
+    lane[2] = lane_round(lane[2], uint64_t(w[4]) << 32 | w[5]);
+    lane[3] = lane_round(lane[3], uint64_t(w[6]) << 32 | w[7]);
+  }
   uint64_t h = mix(count);
   for (; i < count; ++i) h = mix(h ^ t[i]);
   for (uint64_t l : lane) h = mix(h ^ l);
