@@ -45,7 +45,8 @@ void vertex_normals(const FanView& fan, uint32_t n, const float* positions, std:
       n, threads,
       [&](uint32_t v) {
         Vec3 acc{0.f, 0.f, 0.f};
-        for (uint32_t k = fan.vf_offsets[v]; k < fan.vf_offsets[v + 1]; ++k) acc = acc + faces[fan.vf_faces[k]];
+        for (uint32_t k = fan.vf_offsets[v]; k < fan.vf_offsets[v + 1]; ++k)
+          acc = acc + faces[fan.vf_faces[k]];
         const Vec3 u = normalized_or_zero(acc);
         out[3 * size_t(v)] = u.x;
         out[3 * size_t(v) + 1] = u.y;
