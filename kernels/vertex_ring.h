@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "core/parallel_for.h"
@@ -65,9 +66,9 @@ inline void set_ring_pad(std::vector<float>& e, uint32_t n) {
   e.resize(size_t(n) + 1);
   e[n] = -0.f;
 }
-inline void set_ring_pad(std::vector<Vec3>& e, uint32_t n) {
-  e.resize(size_t(n) + 1);
-  e[n] = Vec3{-0.f, -0.f, -0.f};
+inline void set_ring_pad(std::vector<Vec3>& e, uint32_t n) {  // and one more: see Float4 below
+  e.resize(size_t(n) + 2);
+  e[n] = e[n + 1] = Vec3{-0.f, -0.f, -0.f};
 }
 
 /// ring_mean(r, e, v) (kernels/vertex_ring.h's table) for the vertices of block b, into
@@ -93,6 +94,35 @@ void block_ring_means(const BlockRing& r, const T* e, uint32_t b, T* out) {
   out[1] = r.inv_count[lane(1)] * s1;
   out[2] = r.inv_count[lane(2)] * s2;
   out[3] = r.inv_count[lane(3)] * s3;
+}
+
+/// Four floats added lane by lane (GCC's and Clang's vector extension, on every target): a Vec3
+/// sum in one addition a slot, from a 16-byte load of the element and the next one's x, whose
+/// lane is dropped. Each lane's additions are the scalar ones, so x, y and z keep their bits.
+using Float4 = float __attribute__((vector_size(16)));
+
+inline Float4 load4(const Vec3* p) {
+  Float4 v;
+  std::memcpy(&v, p, sizeof v);  // the 4 bytes past a Vec3 array's last element: set_ring_pad's spare
+  return v;
+}
+
+/// block_ring_means for Vec3 (e from set_ring_pad: n + 2 elements).
+inline void block_ring_means(const BlockRing& r, const Vec3* e, uint32_t b, Vec3* out) {
+  const uint32_t v0 = b * kRingBlock;
+  const auto lane = [&](uint32_t j) { return v0 + j < r.n ? v0 + j : r.pad; };
+  Float4 s0 = load4(e + lane(0)), s1 = load4(e + lane(1)), s2 = load4(e + lane(2)), s3 = load4(e + lane(3));
+  const uint32_t* s = r.slots + size_t(kRingBlock) * r.rows[b];
+  const uint32_t* end = r.slots + size_t(kRingBlock) * r.rows[b + 1];
+  for (; s != end; s += kRingBlock) {
+    s0 = s0 + load4(e + s[0]);
+    s1 = s1 + load4(e + s[1]);
+    s2 = s2 + load4(e + s[2]);
+    s3 = s3 + load4(e + s[3]);
+  }
+  const Float4 m[kRingBlock] = {r.inv_count[lane(0)] * s0, r.inv_count[lane(1)] * s1,
+                                r.inv_count[lane(2)] * s2, r.inv_count[lane(3)] * s3};
+  for (uint32_t j = 0; j < kRingBlock; ++j) out[j] = Vec3{m[j][0], m[j][1], m[j][2]};
 }
 
 /// body(b, v0, count) for each block b of the n vertices (vertices v0 .. v0 + count), in
