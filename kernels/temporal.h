@@ -63,7 +63,10 @@ struct TemporalScratch {
   std::vector<Vec3> x, motion, offset, spare;
   std::vector<uint32_t> match;
   std::vector<float> detail, level, spare_level, share, normals;
-  std::vector<float> coherent, spare_coherent;  ///< track A's coherence test (kernels/temporal_ids.cpp)
+  /// Track A's (kernels/temporal_ids.cpp): the coherence test's level, and quantities whose ring
+  /// means run together, one to a lane.
+  std::vector<float> spare_coherent;
+  std::vector<Point4> packed, spare_packed;
 };
 
 /// The temporal step of one frame: `positions` (the frame's filtered result, input order, 3

@@ -181,9 +181,9 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
   const float unit = float(1.0 / mean_edge);
   const float* x = mesh.positions;
   float* a = track.averaged.data();
-  for (std::vector<float>* f : {&s.level, &s.spare_level, &s.coherent, &s.spare_coherent})
-    set_ring_pad(*f, n);
+  for (std::vector<float>* f : {&s.level, &s.spare_coherent}) set_ring_pad(*f, n);
   for (std::vector<Vec3>* f : {&s.offset, &s.motion, &s.spare}) set_ring_pad(*f, n);
+  for (std::vector<Point4>* f : {&s.packed, &s.spare_packed}) set_ring_pad(*f, n);
   s.share.resize(n);
   averaged.resize(3 * size_t(n));
   const auto each_block = [&](auto&& body) { for_ring_blocks(n, threads, body, kVertexGrain); };
@@ -214,29 +214,31 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
     block_ring_means(ring, from, b, m);
     for (uint32_t j = 0; j < k; ++j) {
       const uint32_t v = v0 + j;
-      s.offset[v] = s.offset[v] - m[j];
-      s.level[v] = dot(s.offset[v], s.offset[v]);
+      const Vec3 r = s.offset[v] - m[j];
+      s.offset[v] = r;
+      s.packed[v] = Point4{r.x, r.y, r.z, dot(r, r)};
     }
   });
   // The local level (kIdAgreementPasses ring means of the square) beside the coherence test:
-  // the square of the rest's ring mean, then its ring means, one pass behind.
+  // the square of the rest's ring mean, then its ring means, one pass behind. Each pass's ring
+  // means run together, one quantity to a lane: the rest and its square, then the level and
+  // the coherence test's square.
   static_assert(kIdAgreementPasses == 2, "the level's and the coherence test's passes are fused in pairs");
   each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
-    float level[kRingBlock];
-    Vec3 c[kRingBlock];
-    block_ring_means(ring, s.level.data(), b, level);
-    block_ring_means(ring, s.offset.data(), b, c);
+    Point4 m[kRingBlock];
+    block_ring_means(ring, s.packed.data(), b, m);
     for (uint32_t j = 0; j < k; ++j) {
-      s.spare_level[v0 + j] = level[j];
-      s.coherent[v0 + j] = dot(c[j], c[j]);
+      const Vec3 c = xyz(m[j]);
+      s.spare_packed[v0 + j] = Point4{m[j].w, dot(c, c), 0.f, 0.f};
     }
   });
   each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
-    float level[kRingBlock], coherent[kRingBlock];
-    block_ring_means(ring, s.spare_level.data(), b, level);
-    block_ring_means(ring, s.coherent.data(), b, coherent);
-    std::copy(level, level + k, s.level.data() + v0);
-    std::copy(coherent, coherent + k, s.spare_coherent.data() + v0);
+    Point4 m[kRingBlock];
+    block_ring_means(ring, s.spare_packed.data(), b, m);
+    for (uint32_t j = 0; j < k; ++j) {
+      s.level[v0 + j] = m[j].x;
+      s.spare_coherent[v0 + j] = m[j].y;
+    }
   });
   const float typical = median_level(s.level, n, s.detail);
   step.residual = std::sqrt(typical);

@@ -66,34 +66,49 @@ inline void set_ring_pad(std::vector<float>& e, uint32_t n) {
   e.resize(size_t(n) + 1);
   e[n] = -0.f;
 }
+inline void set_ring_pad(std::vector<Point4>& e, uint32_t n) {
+  e.resize(size_t(n) + 1);
+  e[n] = Point4{-0.f, -0.f, -0.f, -0.f};
+}
 inline void set_ring_pad(std::vector<Vec3>& e, uint32_t n) {  // and one more: see Float4 below
   e.resize(size_t(n) + 2);
   e[n] = e[n + 1] = Vec3{-0.f, -0.f, -0.f};
 }
+
+namespace detail {
+
+/// The block's four sums of load(i) over its vertices' rings, times their 1 / count, in m.
+/// Four named sums: an array of them stays in memory, one store a row.
+template <class S, class Load>
+void block_ring_sums(const BlockRing& r, uint32_t b, Load load, S* m) {
+  static_assert(kRingBlock == 4, "four named sums");
+  const uint32_t v0 = b * kRingBlock;
+  const auto lane = [&](uint32_t j) { return v0 + j < r.n ? v0 + j : r.pad; };
+  S s0 = load(lane(0)), s1 = load(lane(1)), s2 = load(lane(2)), s3 = load(lane(3));
+  const uint32_t* s = r.slots + size_t(kRingBlock) * r.rows[b];
+  const uint32_t* end = r.slots + size_t(kRingBlock) * r.rows[b + 1];
+  for (; s != end; s += kRingBlock) {
+    s0 = s0 + load(s[0]);
+    s1 = s1 + load(s[1]);
+    s2 = s2 + load(s[2]);
+    s3 = s3 + load(s[3]);
+  }
+  m[0] = r.inv_count[lane(0)] * s0;
+  m[1] = r.inv_count[lane(1)] * s1;
+  m[2] = r.inv_count[lane(2)] * s2;
+  m[3] = r.inv_count[lane(3)] * s3;
+}
+
+}  // namespace detail
 
 /// ring_mean(r, e, v) (kernels/vertex_ring.h's table) for the vertices of block b, into
 /// out[0 .. kRingBlock) (lanes past the last vertex get the pad's mean). e holds n + 1 elements,
 /// e[n] = -0.0. Each vertex's sum is its own chain of additions in ring_mean's order, padded
 /// with -0.0 (which changes no bit), so the result is ring_mean's; the block's four chains
 /// overlap where one alone would wait on each addition in turn.
-template <class T>
-void block_ring_means(const BlockRing& r, const T* e, uint32_t b, T* out) {
-  static_assert(kRingBlock == 4, "four named sums: an array of them stays in memory, one store a row");
-  const uint32_t v0 = b * kRingBlock;
-  const auto lane = [&](uint32_t j) { return v0 + j < r.n ? v0 + j : r.pad; };
-  T s0 = e[lane(0)], s1 = e[lane(1)], s2 = e[lane(2)], s3 = e[lane(3)];
-  const uint32_t* s = r.slots + size_t(kRingBlock) * r.rows[b];
-  const uint32_t* end = r.slots + size_t(kRingBlock) * r.rows[b + 1];
-  for (; s != end; s += kRingBlock) {
-    s0 = s0 + e[s[0]];
-    s1 = s1 + e[s[1]];
-    s2 = s2 + e[s[2]];
-    s3 = s3 + e[s[3]];
-  }
-  out[0] = r.inv_count[lane(0)] * s0;
-  out[1] = r.inv_count[lane(1)] * s1;
-  out[2] = r.inv_count[lane(2)] * s2;
-  out[3] = r.inv_count[lane(3)] * s3;
+inline void block_ring_means(const BlockRing& r, const float* e, uint32_t b, float* out) {
+  detail::block_ring_sums(
+      r, b, [e](uint32_t i) { return e[i]; }, out);
 }
 
 /// Four floats added lane by lane (GCC's and Clang's vector extension, on every target): a Vec3
@@ -101,28 +116,35 @@ void block_ring_means(const BlockRing& r, const T* e, uint32_t b, T* out) {
 /// lane is dropped. Each lane's additions are the scalar ones, so x, y and z keep their bits.
 using Float4 = float __attribute__((vector_size(16)));
 
-inline Float4 load4(const Vec3* p) {
+namespace detail {
+
+/// The 16 bytes at p: a Point4, or a Vec3 and the next element's x (set_ring_pad's spare past
+/// the last).
+template <class T>
+Float4 load4(const T* p) {
   Float4 v;
-  std::memcpy(&v, p, sizeof v);  // the 4 bytes past a Vec3 array's last element: set_ring_pad's spare
+  std::memcpy(&v, p, sizeof v);
   return v;
 }
 
+}  // namespace detail
+
 /// block_ring_means for Vec3 (e from set_ring_pad: n + 2 elements).
 inline void block_ring_means(const BlockRing& r, const Vec3* e, uint32_t b, Vec3* out) {
-  const uint32_t v0 = b * kRingBlock;
-  const auto lane = [&](uint32_t j) { return v0 + j < r.n ? v0 + j : r.pad; };
-  Float4 s0 = load4(e + lane(0)), s1 = load4(e + lane(1)), s2 = load4(e + lane(2)), s3 = load4(e + lane(3));
-  const uint32_t* s = r.slots + size_t(kRingBlock) * r.rows[b];
-  const uint32_t* end = r.slots + size_t(kRingBlock) * r.rows[b + 1];
-  for (; s != end; s += kRingBlock) {
-    s0 = s0 + load4(e + s[0]);
-    s1 = s1 + load4(e + s[1]);
-    s2 = s2 + load4(e + s[2]);
-    s3 = s3 + load4(e + s[3]);
-  }
-  const Float4 m[kRingBlock] = {r.inv_count[lane(0)] * s0, r.inv_count[lane(1)] * s1,
-                                r.inv_count[lane(2)] * s2, r.inv_count[lane(3)] * s3};
+  Float4 m[kRingBlock];
+  detail::block_ring_sums(
+      r, b, [e](uint32_t i) { return detail::load4(e + i); }, m);
   for (uint32_t j = 0; j < kRingBlock; ++j) out[j] = Vec3{m[j][0], m[j][1], m[j][2]};
+}
+
+/// block_ring_means for Point4: four quantities of a vertex in one addition a slot (e from
+/// set_ring_pad: n + 1 elements).
+inline void block_ring_means(const BlockRing& r, const Point4* e, uint32_t b, Point4* out) {
+  static_assert(sizeof(Point4) == sizeof(Float4));
+  Float4 m[kRingBlock];
+  detail::block_ring_sums(
+      r, b, [e](uint32_t i) { return detail::load4(e + i); }, m);
+  for (uint32_t j = 0; j < kRingBlock; ++j) out[j] = Point4{m[j][0], m[j][1], m[j][2], m[j][3]};
 }
 
 /// body(b, v0, count) for each block b of the n vertices (vertices v0 .. v0 + count), in

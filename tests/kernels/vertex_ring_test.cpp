@@ -40,21 +40,30 @@ void expect_same_ring_means(const Mesh& mesh, int threads, bool negative_zeros =
   std::vector<uint32_t> rows, slots;
   std::vector<float> inv_count, block_e = e;
   std::vector<Vec3> block_x = x;
+  std::vector<Point4> block_p(n);  // x and e, one to a lane
+  for (uint32_t v = 0; v < n; ++v) block_p[v] = Point4{x[v].x, x[v].y, x[v].z, e[v]};
   set_ring_pad(block_e, n);
   set_ring_pad(block_x, n);
+  set_ring_pad(block_p, n);
   const BlockRing blocks = build_block_ring(ring, n, rows, slots, inv_count, threads);
   for (uint32_t b = 0; b * kRingBlock < n; ++b) {
     float be[kRingBlock];
     Vec3 bx[kRingBlock];
     block_ring_means(blocks, block_e.data(), b, be);
     block_ring_means(blocks, block_x.data(), b, bx);
+    Point4 bp[kRingBlock];
+    block_ring_means(blocks, block_p.data(), b, bp);
     for (uint32_t j = 0; j < kRingBlock && b * kRingBlock + j < n; ++j) {
       const uint32_t v = b * kRingBlock + j;
-      EXPECT_EQ(bits(be[j]), bits(ring_mean(fan, e.data(), v))) << "block table, vertex " << v;
+      const float q = ring_mean(fan, e.data(), v);
+      EXPECT_EQ(bits(be[j]), bits(q)) << "block table, vertex " << v;
+      EXPECT_EQ(bits(bp[j].w), bits(q)) << "block table, lanes, vertex " << v;
       const Vec3 p = ring_mean(fan, x.data(), v);
-      EXPECT_EQ(bits(bx[j].x), bits(p.x)) << "block table, vertex " << v;
-      EXPECT_EQ(bits(bx[j].y), bits(p.y)) << "block table, vertex " << v;
-      EXPECT_EQ(bits(bx[j].z), bits(p.z)) << "block table, vertex " << v;
+      for (const Vec3& got : {bx[j], xyz(bp[j])}) {
+        EXPECT_EQ(bits(got.x), bits(p.x)) << "block table, vertex " << v;
+        EXPECT_EQ(bits(got.y), bits(p.y)) << "block table, vertex " << v;
+        EXPECT_EQ(bits(got.z), bits(p.z)) << "block table, vertex " << v;
+      }
     }
   }
   for (uint32_t v = 0; v < n; ++v) {
