@@ -170,9 +170,11 @@ TEST(KernelRefine, FaceTurnMeasuresHowFarTrianglesTurned) {
   std::vector<Vec3> turned = f.x;
   for (Vec3& x : turned) {  // Rodrigues about `axis` through x[0]
     const Vec3 r = x - f.x[0];
-    x = f.x[0] + std::cos(theta) * r + std::sin(theta) * cross(axis, r) + (1.f - std::cos(theta)) * dot(axis, r) * axis;
+    x = f.x[0] + std::cos(theta) * r + std::sin(theta) * cross(axis, r) +
+        (1.f - std::cos(theta)) * dot(axis, r) * axis;
   }
-  for (uint32_t v = 0; v < 3; ++v) EXPECT_NEAR(face_turn(f.view(), in.data(), turned.data(), v), 0.5f * (1.f - std::cos(theta)), 1e-6f);
+  for (uint32_t v = 0; v < 3; ++v)
+    EXPECT_NEAR(face_turn(f.view(), in.data(), turned.data(), v), 0.5f * (1.f - std::cos(theta)), 1e-6f);
   ASSERT_GT(norm2(n), 0.5f);
   std::vector<Vec3> flipped = f.x;
   std::swap(flipped[1], flipped[2]);  // the same triangle wound the other way
