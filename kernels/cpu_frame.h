@@ -37,7 +37,7 @@ struct CpuFrame {
   std::vector<FreeDirections> refine_free;  ///< per vertex, per round of the vertex update
   std::vector<Vec3> refine_round;    ///< the positions before a fractional last round
   std::vector<Vec3> refine_t;        ///< per vertex: its tangential move (limited_position)
-  std::vector<float> refine_e[2];    ///< per vertex: its squared tangential move, then its local mean
+  std::vector<SlideLevel> refine_e[2];  ///< per vertex: squared tangential move and turn, then local means
   // Bilateral baseline: triangles in centroid-grid order.
   CpuGrid tri_grid;
   std::vector<Point4> tri_points;    ///< centroid, w = area

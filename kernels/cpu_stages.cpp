@@ -143,16 +143,17 @@ void refine_positions(CpuFrame& f, const RefinePlan& plan, int threads) {
   f.refine_e[1].resize(n);
   parallel_for(n, threads, [&](uint32_t v) {
     f.refine_t[v] = tangential_move(xyz(f.points[v]), f.moved[v], vertex_normal(fan, f.moved.data(), v));
-    f.refine_e[0][v] = norm2(f.refine_t[v]);
+    f.refine_e[0][v] = {norm2(f.refine_t[v]), face_turn(fan, f.points.data(), f.moved.data(), v)};
   });
   for (int pass = 0; pass < kEnergyPasses; ++pass) {
-    const float* in = f.refine_e[pass & 1].data();
-    float* out = f.refine_e[(pass + 1) & 1].data();
+    const SlideLevel* in = f.refine_e[pass & 1].data();
+    SlideLevel* out = f.refine_e[(pass + 1) & 1].data();
     parallel_for(n, threads, [&](uint32_t v) { out[v] = ring_mean(fan, in, v); });
   }
-  const float* energy = f.refine_e[kEnergyPasses & 1].data();
+  const SlideLevel* level = f.refine_e[kEnergyPasses & 1].data();
   parallel_for(n, threads, [&](uint32_t v) {
-    f.moved[v] = limited_position(f.moved[v], f.refine_t[v], energy[v], plan.tangential_allowance);
+    f.moved[v] = limited_position(f.moved[v], f.refine_t[v], level[v].energy,
+                                  plan.tangential_allowance * level[v].turn);
   });
 }
 

@@ -222,15 +222,42 @@ FQ_HD T ring_mean(const FanView& m, const T* e, uint32_t v) {
   return (1.f / count) * sum;
 }
 
-/// ring_mean passes that make a vertex's tangential energy a local level (two rings).
+/// Step 3's two per-vertex quantities, made local levels together by the same ring_mean passes.
+struct SlideLevel {
+  float energy;  ///< |t|², the squared tangential move
+  float turn;    ///< how far the filter turned the vertex's triangles (face_turn)
+};
+FQ_HD SlideLevel operator+(SlideLevel a, SlideLevel b) { return {a.energy + b.energy, a.turn + b.turn}; }
+FQ_HD SlideLevel operator*(float s, SlideLevel a) { return {s * a.energy, s * a.turn}; }
+
+/// Step 3, second part. Mean over v's triangles of (1 − n_in·n_out)/2: 0 where the filter left
+/// every triangle's orientation alone, ≈ θ²/4 for triangles turned by θ, 1 for a triangle the
+/// noise had flipped. A triangle with no normal (collapsed) counts 1/2. Noise that moves a vertex
+/// within the surface only turns triangles as far as it distorts them; this measures that harm.
+FQ_HD float face_turn(const FanView& m, const Point4* in, const Vec3* out, uint32_t v) {
+  float sum = 0.f;
+  float count = 0.f;
+  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
+    const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[k]);
+    const Vec3 a = xyz(in[tri[0]]), b = xyz(in[tri[1]]), c = xyz(in[tri[2]]);
+    const Vec3 before = normalized_or_zero(cross(b - a, c - a));
+    const Vec3 after = normalized_or_zero(cross(out[tri[1]] - out[tri[0]], out[tri[2]] - out[tri[0]]));
+    sum += 0.5f * (1.f - dot(before, after));
+    count += 1.f;
+  }
+  return count > 0.f ? sum / count : 0.f;
+}
+
+/// ring_mean passes that make a vertex's tangential energy and turn local levels (two rings).
 constexpr int kEnergyPasses = 2;
 
 /// Step 3. The result `out` of vertex v with its tangential move `t` scaled by g = min(1,
 /// allowance / energy): `energy` is the local mean of |t|² (ring_mean, twice), `allowance` the
-/// part the noise explains (refine_plan.h). Where the vertices slid no more than the noise moved
-/// them, the slide undoes noise and stays; where they slid more (an irregular triangulation
-/// pulled towards regular triangles), only the noise's share of it stays (the Wiener gain of
-/// the slide: signal over signal plus noise).
+/// part the noise explains (refine_plan.h: the slide allowed per unit of turn, times the local
+/// turn). Where the vertices slid no more than that, the slide undoes noise and stays; where they
+/// slid more (an irregular triangulation pulled towards regular triangles, or detail the filter
+/// hardly turned), only that share of it stays (the Wiener gain of the slide: signal over signal
+/// plus noise).
 FQ_HD Vec3 limited_position(Vec3 out, Vec3 t, float energy, float allowance) {
   const float g = energy > allowance ? allowance / energy : 1.f;
   return out - (1.f - g) * t;

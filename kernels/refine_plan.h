@@ -49,7 +49,7 @@ struct RefinePlan {
   Passes vertex_passes;        ///< per round
   Gaussian gs, gr;             ///< the normal filter's spatial and range kernels
   float tangential_step;       ///< share of the move to the 1-ring mean per vertex update
-  float tangential_allowance;  ///< squared tangential move the noise explains (kTangentialAllowance σ²)
+  float tangential_allowance;  ///< squared tangential move kept per unit of turn (kSlidePerTurn σ²)
 };
 
 constexpr float kRoundsPerNoise2 = 16.f;       ///< rounds = 1 + 16σ²
@@ -64,10 +64,15 @@ constexpr float kTangentialStep = 0.1f;
 /// The share fades in linearly up to this noise: a clean frame has no triangles for it to
 /// repair, and at a corner whose fan is uneven it would move the vertex off the surface.
 constexpr float kShareFullFrom = 0.05f;
-/// Isotropic noise moves a vertex 2σ² (squared, mean) within its tangent plane; the slide that
-/// also repairs triangles the noise folded is allowed half as much again (3σ² measured better
-/// than 2σ² at heavy noise on the fitting meshes, the same at light noise).
-constexpr float kTangentialAllowance = 3.f;
+/// The squared slide a vertex keeps, per σ² and per unit of its local turn (face_turn in
+/// refine_math.h): a slide stays where the noise distorted the triangles (the filter turned them)
+/// and is cut where it would only move detail or an irregular triangulation along the surface.
+/// Light white noise turns triangles a little (at σ = 0.05 the slide kept is under σ², where the
+/// noise's own tangential share is 2σ² and sliding it back is invisible in the normals but costs
+/// vertex error), heavy or grazing depth noise turns and flips them (up to 50σ² kept). 100 was
+/// chosen from 10, 20, 30, 50, 60 and 100 on the fitting rows (docs/ALGORITHM.md); before, the
+/// allowance was a fixed 3σ² whatever the triangles.
+constexpr float kSlidePerTurn = 100.f;
 constexpr float kMinRange = 1e-4f;           ///< the range at σ = 0 (a Gaussian needs σ > 0)
 
 /// The plan for a frame whose estimated noise is `estimate` (mean edges; ignored when the
@@ -84,7 +89,7 @@ inline RefinePlan plan_refinement(const RefineParams& r, float estimate) {
   // A clean frame (σ = 0) weights only normals within 1e-4 of the face's own: nothing moves.
   p.gr = Gaussian::with_sigma(std::fmax(range, kMinRange));
   p.tangential_step = kTangentialStep * std::fmin(1.f, s / kShareFullFrom);
-  p.tangential_allowance = kTangentialAllowance * s * s;
+  p.tangential_allowance = kSlidePerTurn * s * s;
   return p;
 }
 

@@ -56,21 +56,21 @@ __global__ void partial_round_kernel(uint32_t n, const Vec3* before, float share
 }
 
 __global__ void tangential_move_kernel(uint32_t n, FanView fan, const Point4* in, const Vec3* x, Vec3* t,
-                                       float* energy) {
+                                       SlideLevel* level) {
   const uint64_t v = item_index();
   if (v >= n) return;
   t[v] = tangential_move(xyz(in[v]), x[v], vertex_normal(fan, x, v));
-  energy[v] = norm2(t[v]);
+  level[v] = {norm2(t[v]), face_turn(fan, in, x, v)};
 }
 
-__global__ void ring_mean_kernel(uint32_t n, FanView fan, const float* in, float* out) {
+__global__ void ring_mean_kernel(uint32_t n, FanView fan, const SlideLevel* in, SlideLevel* out) {
   const uint64_t v = item_index();
   if (v < n) out[v] = ring_mean(fan, in, v);
 }
 
-__global__ void limit_kernel(uint32_t n, const Vec3* t, const float* energy, float allowance, Vec3* x) {
+__global__ void limit_kernel(uint32_t n, const Vec3* t, const SlideLevel* level, float allowance, Vec3* x) {
   const uint64_t v = item_index();
-  if (v < n) x[v] = limited_position(x[v], t[v], energy[v], allowance);
+  if (v < n) x[v] = limited_position(x[v], t[v], level[v].energy, allowance * level[v].turn);
 }
 
 }  // namespace
@@ -122,7 +122,7 @@ void refine_positions(DeviceFrame& f, RefineBuffers& b, const RefinePlan& plan, 
     }
   }
   Vec3* tangent = b.tangent.reserve(n);
-  float* energy[2] = {b.energy[0].reserve(n), b.energy[1].reserve(n)};
+  SlideLevel* energy[2] = {b.energy[0].reserve(n), b.energy[1].reserve(n)};
   FQ_LAUNCH(tangential_move_kernel, n, s, n, fan, f.points.data(), f.moved.data(), tangent,
                                                                 energy[0]);
   for (int pass = 0; pass < kEnergyPasses; ++pass) {

@@ -24,7 +24,7 @@ struct RefineBuffers {
   DeviceBuffer<FreeDirections> dirs;  ///< free_directions per vertex, per round
   DeviceBuffer<Vec3> round;     ///< the positions before a fractional last round
   DeviceBuffer<Vec3> tangent;   ///< per vertex: its tangential move
-  DeviceBuffer<float> energy[2];
+  DeviceBuffer<SlideLevel> energy[2];  ///< squared tangential move and turn, then local means
 };
 
 /// The input positions into f.moved (sorted order) and the noise estimate of them: the samples

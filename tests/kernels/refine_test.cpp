@@ -155,6 +155,74 @@ TEST(KernelRefine, TangentialMovesBeyondTheNoiseAreCutBack) {
   EXPECT_NEAR(limited_position(out, t, 0.1f, 0.f).x, 0.8f, 1e-6f);  // no allowance: all of it undone
 }
 
+// How far the filter turned a vertex's triangles, by hand on one triangle: untouched 0, turned
+// by θ (1 − cos θ)/2, flipped 1, collapsed (no normal) 1/2.
+TEST(KernelRefine, FaceTurnMeasuresHowFarTrianglesTurned) {
+  const Mesh tri = test::make_single_triangle();
+  const Fan f = fan_of(tri);
+  std::vector<Point4> in;
+  for (const Vec3& x : f.x) in.push_back({x.x, x.y, x.z, 0.f});
+  EXPECT_FLOAT_EQ(face_turn(f.view(), in.data(), f.x.data(), 0), 0.f);
+  // Rotate the triangle by θ about an axis in its plane: every vertex sees the same turn.
+  const Vec3 n = normal_of(f, 0);
+  const Vec3 axis = normalized_or_zero(f.x[1] - f.x[0]);
+  const float theta = 0.3f;
+  std::vector<Vec3> turned = f.x;
+  for (Vec3& x : turned) {  // Rodrigues about `axis` through x[0]
+    const Vec3 r = x - f.x[0];
+    x = f.x[0] + std::cos(theta) * r + std::sin(theta) * cross(axis, r) +
+        (1.f - std::cos(theta)) * dot(axis, r) * axis;
+  }
+  for (uint32_t v = 0; v < 3; ++v)
+    EXPECT_NEAR(face_turn(f.view(), in.data(), turned.data(), v), 0.5f * (1.f - std::cos(theta)), 1e-6f);
+  ASSERT_GT(norm2(n), 0.5f);
+  std::vector<Vec3> flipped = f.x;
+  std::swap(flipped[1], flipped[2]);  // the same triangle wound the other way
+  EXPECT_NEAR(face_turn(f.view(), in.data(), flipped.data(), 0), 1.f, 1e-6f);
+  const std::vector<Vec3> collapsed(3, f.x[0]);
+  EXPECT_FLOAT_EQ(face_turn(f.view(), in.data(), collapsed.data(), 0), 0.5f);
+}
+
+// The slide a vertex keeps follows the harm the noise did to its triangles: a vertex pushed so
+// far sideways that its triangles flipped slides back and unflips them; one pushed less far, on
+// the same flat plane (an irregular triangulation, nothing the normals show), stays where it is
+// (a slide there would only make textures swim).
+TEST(KernelRefine, SlidesRepairFlippedTrianglesAndLeaveIrregularOnesAlone) {
+  Params p;
+  p.filtering.refine.known_noise = 0.2f;
+  CpuEngine engine(2);
+  const uint32_t centre = 4 * 10 + 5;  // (5, 4), inside a grid of 9 x 9 cells
+  auto run = [&](float push, std::vector<float>& moved, FrameResult& out) {
+    Mesh plane = test::make_plane_grid(9, 9, 1.f);
+    plane.positions[3 * centre] += push;
+    moved = plane.positions;
+    ASSERT_TRUE(engine.process(plane.view(), p, out).ok());
+  };
+  std::vector<float> irregular;
+  FrameResult kept;
+  run(0.4f, irregular, kept);
+  EXPECT_LT(test::max_displacement(irregular, kept.positions), 1e-4);
+
+  std::vector<float> folded;
+  FrameResult repaired;
+  run(1.4f, folded, repaired);
+  Mesh before = test::make_plane_grid(9, 9, 1.f);
+  before.positions = folded;
+  int flipped_before = 0, flipped_after = 0;
+  for (uint32_t t = 0; t < before.num_triangles(); ++t) {
+    const uint32_t* tri = &before.triangles[3 * size_t(t)];
+    auto z_of = [&](const std::vector<float>& x) {
+      const Vec3 a = test::vertex(x, tri[0]), b = test::vertex(x, tri[1]), c = test::vertex(x, tri[2]);
+      return cross(b - a, c - a).z;
+    };
+    flipped_before += z_of(folded) < 0.f;
+    flipped_after += z_of(repaired.positions) < 0.f;
+  }
+  EXPECT_GT(flipped_before, 0);
+  EXPECT_EQ(flipped_after, 0);
+  EXPECT_LT(std::fabs(repaired.positions[3 * centre] - 5.f), 0.7f);  // back towards its grid place
+}
+
 // On a flat grid whose filtered normals are the plane's, the vertex update's tangential
 // move takes a vertex pushed sideways back toward its 1-ring mean and never off the plane;
 // a boundary vertex gets none.
