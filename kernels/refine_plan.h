@@ -67,11 +67,12 @@ constexpr float kShareFullFrom = 0.05f;
 /// The squared slide a vertex keeps, per σ² and per unit of its local turn (face_turn in
 /// refine_math.h): a slide stays where the noise distorted the triangles (the filter turned them)
 /// and is cut where it would only move detail or an irregular triangulation along the surface.
-/// Light white noise turns triangles a little (at σ = 0.05 the slide kept is under σ², where the
-/// noise's own tangential share is 2σ² and sliding it back is invisible in the normals but costs
-/// vertex error), heavy or grazing depth noise turns and flips them (up to 50σ² kept). 100 was
-/// chosen from 10, 20, 30, 50, 60 and 100 on the fitting rows (docs/ALGORITHM.md); before, the
-/// allowance was a fixed 3σ² whatever the triangles.
+/// Light white noise turns triangles a little (σ = 0.05 on crane and armadillo: 0.2–0.3 σ² kept
+/// at the median face, where the noise's own tangential share is 2σ² and sliding it back is
+/// invisible in the normals but costs vertex error); heavy noise turns them more (σ = 0.2: 4σ²,
+/// σ = 0.5: 20σ²) and grazing depth noise flips some (14σ² at the 90th percentile of bunny at
+/// depth 0.2). 100 was chosen from sweeps of 10–100 (docs/ALGORITHM.md); before, the allowance
+/// was a fixed 3σ² whatever the triangles.
 constexpr float kSlidePerTurn = 100.f;
 constexpr float kMinRange = 1e-4f;           ///< the range at σ = 0 (a Gaussian needs σ > 0)
 
