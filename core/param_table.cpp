@@ -6,33 +6,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
-#include <type_traits>
+
+#include "common/member_value.h"
 
 namespace fq {
 namespace {
-
-/// The member of Params at `Path` (&Params::filtering, &FilterParams::sigma_s), as a double.
-template <auto... Path>
-double get_member(const Params& p) {
-  const auto& v = (p.*....*Path);
-  using T = std::remove_cvref_t<decltype(v)>;
-  if constexpr (std::is_enum_v<T>)
-    return static_cast<double>(static_cast<int>(v));
-  else
-    return static_cast<double>(v);
-}
-
-template <auto... Path>
-void set_member(Params& p, double x) {
-  auto& v = (p.*....*Path);
-  using T = std::remove_cvref_t<decltype(v)>;
-  if constexpr (std::is_enum_v<T>)
-    v = static_cast<T>(static_cast<int>(x));
-  else if constexpr (std::is_same_v<T, bool>)
-    v = x != 0.0;
-  else
-    v = static_cast<T>(x);
-}
 
 template <auto E>
 constexpr int as_int = static_cast<int>(E);

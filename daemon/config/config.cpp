@@ -9,6 +9,7 @@
 #include "core/param_table.h"
 #include "daemon/config/echo_value.h"
 #include "daemon/config/stream_id.h"
+#include "daemon/config/stream_setting_table.h"
 #include "daemon/config/toml_reader.h"
 
 namespace fq::daemon {
@@ -68,29 +69,6 @@ void read_params(TomlReader& r, std::string_view table, Params& p) {
     if (row.on(kToml) && table == toml_table(row.group)) read_row(r, row, p);
 }
 
-void read_output(TomlReader& r, OutputEncoding& o) {
-  std::string form = result_form_name(o.form);
-  r.read("result_form", form);
-  if (!parse_result_form(form, o.form))
-    r.fail("result_form", "must be \"positions\" or \"mesh\" (got \"" + echo_value(form) + "\")");
-  auto read_int = [&r](const char* key, int& out, const SettingRange& range) {
-    r.read(key, out, static_cast<int64_t>(range.lo), static_cast<int64_t>(range.hi));
-  };
-  read_int("position_bits", o.position_bits, kPositionBitsRange);
-  read_int("encode_speed", o.encode_speed, kEncodeSpeedRange);
-  read_int("decode_speed", o.decode_speed, kDecodeSpeedRange);
-  const toml::node* c = r.raw("chunks");
-  if (!c) return;
-  const auto lo = static_cast<int64_t>(kChunksRange.lo), hi = static_cast<int64_t>(kChunksRange.hi);
-  if (auto str = c->value_exact<std::string>(); str && *str == "same")
-    o.chunks = 0;
-  else if (auto v = c->value_exact<int64_t>(); v && *v >= lo && *v <= hi)
-    o.chunks = static_cast<uint32_t>(*v);
-  else
-    r.fail("chunks",
-           "must be \"same\" or an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-}
-
 // Reads a stream table ([defaults] or [streams.<id>]) over `s`.
 Status read_stream(const toml::table& t, const std::string& source, const std::string& path,
                    StreamSettings& s) {
@@ -100,7 +78,7 @@ Status read_stream(const toml::table& t, const std::string& source, const std::s
   if (!parse_compute(compute, s.params))
     r.fail("compute",
            "must be \"filter\", \"cluster\" or \"filter_and_cluster\" (got \"" + echo_value(compute) + "\")");
-  r.read("budget_ms", s.budget_ms, kBudgetRange.lo, kBudgetRange.hi);
+  read_settings(r, nullptr, s);
   struct Sub {
     const char* key;
     void (*fn)(TomlReader&, StreamSettings&);
@@ -108,7 +86,7 @@ Status read_stream(const toml::table& t, const std::string& source, const std::s
   const Sub subs[] = {
       {"filter", [](TomlReader& x, StreamSettings& st) { read_params(x, "filter", st.params); }},
       {"cluster", [](TomlReader& x, StreamSettings& st) { read_params(x, "cluster", st.params); }},
-      {"output", [](TomlReader& x, StreamSettings& st) { read_output(x, st.output); }},
+      {"output", [](TomlReader& x, StreamSettings& st) { read_settings(x, "output", st); }},
   };
   for (const Sub& sub : subs) {
     const toml::table* st = r.table(sub.key);

@@ -1,25 +1,19 @@
 #include "daemon/config/stream_settings.h"
 
-#include <cmath>
-#include <cstdio>
 #include <optional>
-#include <utility>
 
-#include "common/pair_table.h"
+#include "daemon/config/stream_setting_table.h"
 #include "wire/header_codec.h"
 
 namespace fq::daemon {
 
 namespace {
 
-constexpr std::pair<ResultForm, const char*> kResultFormNames[] = {{ResultForm::kPositions, "positions"},
-                                                                   {ResultForm::kMesh, "mesh"}};
-
-// A bound as written in the config ("0.001", "1000000", "8").
-std::string format_bound(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.15g", v);
-  return buf;
+// The first choice (ResultForm's 0) when `f` is none of them.
+const ParamChoice& choice_of(ResultForm f) {
+  for (const ParamChoice& c : kResultForms)
+    if (c.value == static_cast<int>(f)) return c;
+  return kResultForms[0];
 }
 
 }  // namespace
@@ -32,27 +26,21 @@ bool parse_compute(const std::string& s, Params& inout) {
 const char* compute_name(const Params& p) { return wire::compute_name(wire::compute_of(p)); }
 
 bool parse_result_form(const std::string& s, ResultForm& out) {
-  const std::optional<ResultForm> f = first_of(kResultFormNames, s);
-  if (f) out = *f;
-  return f.has_value();
+  for (const ParamChoice& c : kResultForms)
+    if (s == c.name) {
+      out = static_cast<ResultForm>(c.value);
+      return true;
+    }
+  return false;
 }
 
-const char* result_form_name(ResultForm f) { return second_of(kResultFormNames, f).value_or("positions"); }
-wire::ResultForm to_wire(ResultForm f) { return f == ResultForm::kMesh ? wire::MESH : wire::POSITIONS; }
-ResultForm from_wire(wire::ResultForm f) { return f == wire::MESH ? ResultForm::kMesh : ResultForm::kPositions; }
-
-namespace {
-
-// "name must be in [lo, hi] (got v)" when v is outside r (or NaN).
-Status check_range(const SettingRange& r, double v) {
-  if (v >= r.lo && v <= r.hi) return {};
-  char got[64];
-  std::snprintf(got, sizeof got, "%.17g", v);
-  return invalid_argument(std::string(r.name) + " must be in [" + format_bound(r.lo) + ", " +
-                          format_bound(r.hi) + "] (got " + got + ")");
+const char* result_form_name(ResultForm f) { return choice_of(f).name; }
+wire::ResultForm to_wire(ResultForm f) { return static_cast<wire::ResultForm>(choice_of(f).wire); }
+ResultForm from_wire(wire::ResultForm f) {
+  for (const ParamChoice& c : kResultForms)
+    if (c.wire == f) return static_cast<ResultForm>(c.value);
+  return static_cast<ResultForm>(kResultForms[0].value);
 }
-
-}  // namespace
 
 Status validate(const StreamSettings& s) {
   // The clustering parameters are checked even when the stream only filters: a frame or a
@@ -60,11 +48,8 @@ Status validate(const StreamSettings& s) {
   Params all = s.params;
   all.filter = all.cluster = true;
   FQ_RETURN_IF_ERROR(fq::validate(all));
-  FQ_RETURN_IF_ERROR(check_range(kBudgetRange, s.budget_ms));
-  FQ_RETURN_IF_ERROR(check_range(kPositionBitsRange, s.output.position_bits));
-  FQ_RETURN_IF_ERROR(check_range(kEncodeSpeedRange, s.output.encode_speed));
-  FQ_RETURN_IF_ERROR(check_range(kDecodeSpeedRange, s.output.decode_speed));
-  if (s.output.chunks != 0) FQ_RETURN_IF_ERROR(check_range(kChunksRange, s.output.chunks));
+  for (const StreamSettingRow& row : stream_setting_table())
+    FQ_RETURN_IF_ERROR(check_setting(row, row.get(s)));
   return {};
 }
 

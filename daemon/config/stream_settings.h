@@ -29,18 +29,10 @@ struct OutputEncoding {
   bool operator==(const OutputEncoding&) const = default;
 };
 
-/// The range of a setting beside the parameters (whose ranges are the rows of
-/// core/param_table.h): the config file's reader and validate(), so set_params too, check these
-/// and no other copy.
-struct SettingRange {
-  const char* name;  ///< as in the config's stream tables
-  double lo, hi;
-};
-inline constexpr SettingRange kBudgetRange{"budget_ms", 0.001, 1e6};
-inline constexpr SettingRange kPositionBitsRange{"output.position_bits", 8, 30};
-inline constexpr SettingRange kEncodeSpeedRange{"output.encode_speed", 0, 10};
-inline constexpr SettingRange kDecodeSpeedRange{"output.decode_speed", 0, 10};
-inline constexpr SettingRange kChunksRange{"output.chunks", 1, 256};  ///< or 0: "same" as the input frame
+/// ResultForm's names (the config's) and wire numbers.
+inline constexpr ParamChoice kResultForms[] = {
+    {"positions", static_cast<int>(ResultForm::kPositions), wire::POSITIONS},
+    {"mesh", static_cast<int>(ResultForm::kMesh), wire::MESH}};
 
 struct StreamSettings {
   Params params;             ///< params.filter / params.cluster are the compute mode
@@ -64,8 +56,8 @@ const char* result_form_name(ResultForm f);
 wire::ResultForm to_wire(ResultForm f);
 ResultForm from_wire(wire::ResultForm f);
 
-/// fq::validate (of the clustering parameters too, whatever the compute mode) plus the
-/// budget and the encoding ranges (the SettingRange constants above).
+/// fq::validate (of the clustering parameters too, whatever the compute mode) plus the range
+/// of every row of the stream setting table (daemon/config/stream_setting_table.h).
 Status validate(const StreamSettings& s);
 
 }  // namespace fq::daemon

@@ -3,9 +3,10 @@
 #include <spdlog/spdlog.h>
 
 #include "common/nearest_names.h"
+#include "daemon/config/stream_setting_table.h"
+#include "daemon/control/settings_audit.h"
 #include "daemon/pipeline/bounded_receive.h"
 #include "daemon/pipeline/log_limiter.h"
-#include "daemon/control/settings_audit.h"
 #include "wire/header_codec.h"
 
 namespace fq::daemon {
@@ -25,30 +26,14 @@ wire::ControlReply error_reply(const std::string& message) {
   return r;
 }
 
-/// The reply to get_params and set_params: the stream's parameters, compute and result form.
+/// The reply to get_params and set_params: the stream's parameters, compute mode and the
+/// settings of the stream setting table.
 wire::ControlReply settings_reply(const StreamSettings& s) {
   wire::ControlReply r = ok_reply();
   wire::params_to_wire(s.params, *r.mutable_params());
   r.set_compute(wire::compute_of(s.params));
-  r.set_result_form(to_wire(s.output.form));
-  r.set_budget_ms(s.budget_ms);
-  r.set_position_bits(static_cast<uint32_t>(s.output.position_bits));
-  r.set_chunks(s.output.chunks);
-  r.set_encode_speed(static_cast<uint32_t>(s.output.encode_speed));
-  r.set_decode_speed(static_cast<uint32_t>(s.output.decode_speed));
+  settings_to_wire(s, r);
   return r;
-}
-
-/// SetParams' settings beside the parameters, each only when given; validate(s) checks them
-/// (a value beyond int's range becomes -1 here, which the range check refuses).
-void apply_stream_settings(const wire::SetParams& q, StreamSettings& s) {
-  auto to_int = [](uint32_t v) { return v > 1'000'000u ? -1 : static_cast<int>(v); };
-  if (q.has_result_form()) s.output.form = from_wire(q.result_form());
-  if (q.has_budget_ms()) s.budget_ms = q.budget_ms();
-  if (q.has_position_bits()) s.output.position_bits = to_int(q.position_bits());
-  if (q.has_chunks()) s.output.chunks = q.chunks();
-  if (q.has_encode_speed()) s.output.encode_speed = to_int(q.encode_speed());
-  if (q.has_decode_speed()) s.output.decode_speed = to_int(q.decode_speed());
 }
 
 wire::ControlReply unknown_stream(const std::string& id) {
@@ -88,7 +73,7 @@ wire::ControlReply set_params(const wire::SetParams& q, StreamRegistry& registry
   const StreamSettings before = s;
   Status st = wire::apply_overrides(q.params(), s.params);
   if (st.ok() && q.has_compute()) st = wire::apply_compute(q.compute(), s.params);
-  apply_stream_settings(q, s);
+  settings_from_wire(q, s);  // validate(s) below checks them
   if (st.ok()) st = validate(s);
   if (!st.ok()) return error_reply("invalid parameters: " + st.message());
   registry.set_settings(q.stream_id(), s);

@@ -1,9 +1,9 @@
 #include "daemon/control/settings_audit.h"
 
-#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "core/param_table.h"
+#include "daemon/config/stream_setting_table.h"
 #include "daemon/stream/stream_admission.h"
 
 namespace fq::daemon {
@@ -23,12 +23,8 @@ std::vector<std::pair<std::string, std::string>> settings_fields(const StreamSet
   std::vector<std::pair<std::string, std::string>> out;
   out.emplace_back("compute", compute_name(s.params));
   param_fields(s.params, out);
-  out.emplace_back("budget_ms", fmt::format("{}", s.budget_ms));
-  out.emplace_back("result_form", result_form_name(s.output.form));
-  out.emplace_back("position_bits", std::to_string(s.output.position_bits));
-  out.emplace_back("chunks", s.output.chunks == 0 ? std::string("same") : std::to_string(s.output.chunks));
-  out.emplace_back("encode_speed", std::to_string(s.output.encode_speed));
-  out.emplace_back("decode_speed", std::to_string(s.output.decode_speed));
+  for (const StreamSettingRow& row : stream_setting_table())
+    out.emplace_back(row.name, format_setting(row, row.get(s)));
   return out;
 }
 
