@@ -88,19 +88,9 @@ wire::ControlReply get_counters(const wire::GetCounters& q, StreamRegistry& regi
   for (const StreamSnapshot& s : snaps) {
     wire::StreamCounters* c = r.add_counters();
     c->set_stream_id(s.stream_id);
-    c->set_frames_in(s.counters.frames_in);
-    c->set_frames_out(s.counters.frames_out);
-    c->set_superseded(s.counters.superseded);
-    c->set_dropped_stale(s.counters.dropped_stale);
-    c->set_late(s.counters.late);
-    c->set_errors(s.counters.errors);
-    c->set_time_limited(s.counters.time_limited);
-    c->set_temporal_resets(s.counters.temporal_resets);
-    c->set_subscriber_overflows(s.counters.subscriber_overflows);
-    c->set_bad_send_time(s.counters.bad_send_time);
-    c->set_untracked(s.counters.untracked);
-    c->set_preempted(s.counters.preempted);
-    c->set_refused(s.counters.refused);
+#define FQ_COUNTER_TO_WIRE(name, metric, help) c->set_##name(s.counters.name);
+    FQ_STREAM_COUNTERS(FQ_COUNTER_TO_WIRE)
+#undef FQ_COUNTER_TO_WIRE
     for (const auto& [name, pc] : s.stages) {
       wire::StagePercentiles* sp = c->add_stages();
       sp->set_name(name);

@@ -1,26 +1,18 @@
 #include "daemon/control/counters_json.h"
 
+#include "daemon/stream/stream_counters.h"
+
 namespace fq::daemon {
 
 nlohmann::json counters_json(const wire::StreamCounters& c) {
   nlohmann::json stages = nlohmann::json::object();
   for (const wire::StagePercentiles& s : c.stages())
     stages[s.name()] = {{"p50_ms", s.p50_ms()}, {"p95_ms", s.p95_ms()}, {"p99_ms", s.p99_ms()}, {"count", s.count()}};
-  return {{"stream", c.stream_id()},
-          {"frames_in", c.frames_in()},
-          {"frames_out", c.frames_out()},
-          {"superseded", c.superseded()},
-          {"dropped_stale", c.dropped_stale()},
-          {"late", c.late()},
-          {"errors", c.errors()},
-          {"time_limited", c.time_limited()},
-          {"subscriber_overflows", c.subscriber_overflows()},
-          {"bad_send_time", c.bad_send_time()},
-          {"temporal_resets", c.temporal_resets()},
-          {"untracked", c.untracked()},
-          {"preempted", c.preempted()},
-          {"refused", c.refused()},
-          {"stages", std::move(stages)}};
+  nlohmann::json j = {{"stream", c.stream_id()}, {"stages", std::move(stages)}};
+#define FQ_COUNTER_TO_JSON(name, metric, help) j[#name] = c.name();
+  FQ_STREAM_COUNTERS(FQ_COUNTER_TO_JSON)
+#undef FQ_COUNTER_TO_JSON
+  return j;
 }
 
 nlohmann::json counters_json(const wire::ControlReply& reply) {

@@ -9,8 +9,7 @@
 
 namespace fq::daemon {
 
-/// One stream: {"stream", "frames_in", "frames_out", "superseded", "dropped_stale", "late",
-/// "errors", "time_limited", "subscriber_overflows", "temporal_resets",
+/// One stream: {"stream", a key per counter (FQ_STREAM_COUNTERS, daemon/stream/stream_counters.h),
 /// "stages": {name: {"p50_ms", "p95_ms", "p99_ms", "count"}}}.
 nlohmann::json counters_json(const wire::StreamCounters& c);
 

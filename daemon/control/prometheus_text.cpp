@@ -12,52 +12,6 @@ std::string bound(double v) {
   return buf;
 }
 
-struct CounterFamily {
-  const char* name;
-  const char* help;
-  uint64_t StreamCounters::*field;
-};
-
-constexpr CounterFamily kCounters[] = {
-    {"fq_frames_in_total", "Frames received (ingest messages attributed to the stream).",
-     &StreamCounters::frames_in},
-    {"fq_frames_out_total", "Results published with status OK or LATE.", &StreamCounters::frames_out},
-    {"fq_superseded_total", "Frames replaced by a newer frame of their stream before an engine took them.",
-     &StreamCounters::superseded},
-    {"fq_dropped_stale_total",
-     "Frames dropped because they were older than the budget when a worker was free.",
-     &StreamCounters::dropped_stale},
-    {"fq_late_total", "Results published after the stream's budget (also in fq_frames_out_total).",
-     &StreamCounters::late},
-    {"fq_errors_total", "Error results published (bad input, invalid parameters, engine failure).",
-     &StreamCounters::errors},
-    {"fq_time_limited_total", "Frames stopped at the engine time limit (also in fq_errors_total).",
-     &StreamCounters::time_limited},
-    {"fq_subscriber_overflows_total", "Times a subscriber's queue was full and it started missing results.",
-     &StreamCounters::subscriber_overflows},
-    {"fq_bad_send_time_total",
-     "Results whose producer send time was over an hour before publish or after it (left out of "
-     "send_to_publish).",
-     &StreamCounters::bad_send_time},
-    {"fq_temporal_resets_total",
-     "Scene cuts of a stream filtered across frames: its temporal history restarted.",
-     &StreamCounters::temporal_resets},
-    {"fq_untracked_total",
-     "Results published with the engine's cluster numbering because id tracking passed the time limit or fqd "
-     "was "
-     "stopping.",
-     &StreamCounters::untracked},
-    {"fq_preempted_total",
-     "Frames stopped on the engine, unable to meet their budget, so that a lighter stream's frame could "
-     "meet its own (not in fq_errors_total).",
-     &StreamCounters::preempted},
-    {"fq_refused_frames_total",
-     "Frames under the stream's id from a producer without CURVE that failed to decode: dropped unanswered, "
-     "not "
-     "errors (also in fq_refused_total{reason=\"undecodable\"}).",
-     &StreamCounters::refused},
-};
-
 // Each stream with series of its own, then stream="other".
 template <class F>
 void each_series(const MetricsInput& in, F f) {
@@ -106,11 +60,11 @@ void engines_and_gpus(std::string& out, const MetricsInput& in) {
 
 std::string prometheus_text(const MetricsInput& in) {
   std::string out;
-  for (const CounterFamily& f : kCounters) {
-    append_family(out, f.name, "counter", f.help);
+  for (const CounterRow& c : kCounterRows) {
+    append_family(out, c.metric, c.type, c.help);
     each_series(in, [&](const std::string& stream, const MetricSeries& s) {
-      out += std::string(f.name) + "{stream=\"" + escape_label_value(stream) + "\"} " +
-             std::to_string(s.counters.*f.field) + "\n";
+      out += std::string(c.metric) + "{stream=\"" + escape_label_value(stream) + "\"} " +
+             std::to_string(s.counters.*c.field) + "\n";
     });
   }
   histograms(out, in);

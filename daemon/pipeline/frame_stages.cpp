@@ -110,18 +110,18 @@ Status run_engine(Pipeline& p, Engine& engine, FrameJob& f, const YieldRequest& 
     return guarded("engine", [&] { return engine.process(f.mesh.view(), f.settings.params, f.result); });
   });
   engine.set_cancel_token(nullptr);
-  if (s.ok() && f.result.history_reset) f.stream->count(Counter::kTemporalResets);
+  if (s.ok() && f.result.history_reset) f.stream->count(&StreamCounters::temporal_resets);
   if (s.code() != StatusCode::kCancelled) return s;
   if (token.stopped())
     return {StatusCode::kCancelled, "cancelled: fqd is stopping (caps.stop_grace_s passed before the frame finished)"};
   if (token.yield_due()) {
-    f.stream->count(Counter::kPreempted);
+    f.stream->count(&StreamCounters::preempted);
     f.preempted = true;
     return {StatusCode::kCancelled,
             "preempted: the engine stopped the frame, which could not meet its budget, so that another "
             "stream's frame could meet its own (see fqd's preemption rule in docs/DAEMON.md)"};
   }
-  f.stream->count(Counter::kTimeLimited);
+  f.stream->count(&StreamCounters::time_limited);
   return {StatusCode::kCancelled, fmt::format("time_limit: the engine stopped the frame after caps.engine_time_limit_s "
                                               "= {} s (its parameters fit max_neighbour_work but it ran too long)",
                                               limit_s)};
@@ -142,7 +142,7 @@ namespace {
 // ingest drops junk (ingest.cpp), counted under its stream (which the frame's well-formed
 // header made) so that the stream's counters still add up.
 void drop_undecodable(Pipeline& p, FramePtr f, const Status& why) {
-  f->stream->count(Counter::kRefused);
+  f->stream->count(&StreamCounters::refused);
   p.registry.refusals().add(Refusal::kUndecodable);
   p.refusal_log.log(spdlog::level::warn,
                     "dropped frame {} of stream '{}' from a producer without CURVE ({}): {}",
@@ -164,7 +164,7 @@ void run_decode_worker(Pipeline& p) {
     // Decoding a frame that is already too old would be wasted work under overload.
     if (is_stale(f->receive_ns, wall_ns(), f->settings.budget_ms)) {
       p.decode_queue.decoded(*f);
-      f->stream->count(Counter::kDroppedStale);
+      f->stream->count(&StreamCounters::dropped_stale);
       p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: stale before decode", f->stream_id,
                      f->header.sequence());
       continue;
@@ -187,7 +187,7 @@ void run_decode_worker(Pipeline& p) {
     }
     f->decoded_ns = wall_ns();
     if (FramePtr loser = p.slots.offer(std::move(f))) {
-      loser->stream->count(Counter::kSuperseded);
+      loser->stream->count(&StreamCounters::superseded);
       p.recycle(*loser);
       p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: superseded", loser->stream_id,
                      loser->header.sequence());
@@ -210,7 +210,7 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
       holding = false;
     }
     for (FramePtr& s : stale) {
-      s->stream->count(Counter::kDroppedStale);
+      s->stream->count(&StreamCounters::dropped_stale);
       p.recycle(*s);
       p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: dropped stale", s->stream_id, s->header.sequence());
     }
@@ -266,7 +266,7 @@ void run_encode_worker(Pipeline& p) {
           const CancelToken token(&p.cancel_engines, f->deadline);
           tracked = guarded("track_ids", [&] {
             if (Status cut = track_labels(*f, hardware_threads(), token); !cut.ok()) {
-              f->stream->count(Counter::kUntracked);
+              f->stream->count(&StreamCounters::untracked);
               p.fail_log.log(spdlog::level::warn, "stream '{}' frame {}: published with untracked cluster ids: {}",
                              f->stream_id, f->header.sequence(),
                              token.stopped() ? std::string("fqd is stopping")

@@ -121,7 +121,7 @@ void queue_admitted(FramePtr f, Pipeline& p) {
     std::vector<FramePtr> dropped;
     p.decode_queue.push(std::move(f), dropped);
     for (const FramePtr& d : dropped) {
-      d->stream->count(Counter::kSuperseded);
+      d->stream->count(&StreamCounters::superseded);
       p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: superseded before decode", d->stream_id,
                      d->header.sequence());
     }
@@ -134,7 +134,7 @@ FramePtr Ingest::reject(FramePtr f, const std::string& topic, Refusal why, Statu
   if (!f->authenticated) return drop_junk(*f, why, s, p_);
   if ((f->stream = p_.registry.find(topic))) {
     f->settings = f->stream->settings();
-    f->stream->count(Counter::kIn);
+    f->stream->count(&StreamCounters::frames_in);
     f->arrival = next_arrival_++;
     f->error = std::move(s);
     return f;
@@ -166,7 +166,7 @@ FramePtr Ingest::admit_message(std::vector<zmq::message_t>& parts) {
         invalid_input("too many streams (caps.max_streams = " + std::to_string(caps.max_streams) + ")"), p_);
   f->settings = f->stream->settings();
   f->arrival = next_arrival_++;
-  f->stream->count(Counter::kIn);
+  f->stream->count(&StreamCounters::frames_in);
   for (size_t i = 2; i < parts.size(); ++i) f->chunks.push_back(std::move(parts[i]));
   return f;
 }

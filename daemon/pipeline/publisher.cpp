@@ -121,7 +121,7 @@ void Publisher::publish(FrameJob& f) {
   account(f, h);
   if (f.stream) p_.latest.offer(*f.stream, h, f.out_chunks, f.mesh.triangles);
   try {
-    if (!socket_.send(parts) && f.stream) f.stream->count(Counter::kSubscriberOverflows);
+    if (!socket_.send(parts) && f.stream) f.stream->count(&StreamCounters::subscriber_overflows);
   } catch (const zmq::error_t& e) {
     send_errors().log(spdlog::level::err, "publish of stream '{}' frame {} failed: {}", f.stream_id, h.sequence(),
                       e.what());
@@ -133,11 +133,11 @@ void Publisher::account(const FrameJob& f, const wire::ResultHeader& h) {
   if (!f.stream) return;  // refused before it had a stream: counted with the refusals
   Stream& s = *f.stream;
   if (h.status() == wire::ERROR) {
-    if (!f.preempted) s.count(Counter::kErrors);  // a preempted frame is counted as such
+    if (!f.preempted) s.count(&StreamCounters::errors);  // a preempted frame is counted as such
     return;
   }
-  s.count(Counter::kOut);
-  if (h.status() == wire::LATE) s.count(Counter::kLate);
+  s.count(&StreamCounters::frames_out);
+  if (h.status() == wire::LATE) s.count(&StreamCounters::late);
   for (const PassTiming& t : f.timings) s.record(t.name, t.ms);
   s.record("receive_to_publish", h.latency_ms());
   if (h.send_time_ns() > 0) {
@@ -147,7 +147,7 @@ void Publisher::account(const FrameJob& f, const wire::ResultHeader& h) {
     if (ms >= 0 && ms <= kMaxSendToPublishMs)
       s.record("send_to_publish", ms);
     else
-      s.count(Counter::kBadSendTime);
+      s.count(&StreamCounters::bad_send_time);
   }
 }
 

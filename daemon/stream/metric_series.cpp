@@ -3,13 +3,13 @@
 namespace fq::daemon {
 
 void MetricSeries::add(const MetricSeries& o) {
-  for (auto field : kCounterFields) counters.*field += o.counters.*field;
+  for (const CounterRow& c : kCounterRows) counters.*c.field += o.counters.*c.field;
   for (const auto& [stage, h] : o.histograms) histograms[stage].add(h);
 }
 
 MetricSeries MetricSeries::since(const MetricSeries& base) const {
   MetricSeries d;
-  for (auto field : kCounterFields) d.counters.*field = counters.*field - base.counters.*field;
+  for (const CounterRow& c : kCounterRows) d.counters.*c.field = counters.*c.field - base.counters.*c.field;
   for (const auto& [stage, h] : histograms) {
     const auto b = base.histograms.find(stage);
     d.histograms[stage] = b == base.histograms.end() ? h : h.since(b->second);

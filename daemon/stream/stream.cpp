@@ -24,7 +24,7 @@ void Stream::set_settings(const StreamSettings& s) {
 
 void Stream::count(Counter c, uint64_t n) {
   std::lock_guard<std::mutex> lock(mutex_);
-  counters_.*kCounterFields[static_cast<size_t>(c)] += n;
+  counters_.*c += n;
 }
 
 void Stream::record(const std::string& stage, double ms) {

@@ -1,5 +1,8 @@
-// A stream's counters: what happened to its frames. One field per Counter, listed once in
-// kCounterFields, which the stream, the /metrics aggregate and the sums walk.
+// A stream's counters: what happened to its frames. Each counter is one row of
+// FQ_STREAM_COUNTERS (Envoy's stats_macros.h: one list expanded into the struct and every
+// surface): the StreamCounters member, the control socket's StreamCounters field and the key of
+// the counters JSON are its name; /metrics shows it as its Prometheus family. Adding a counter
+// is a row here, its increment site and its fq.proto field (docs/ARCHITECTURE.md).
 #pragma once
 
 #include <cstddef>
@@ -7,66 +10,73 @@
 
 namespace fq::daemon {
 
-/// What happened to a stream's frames. Once the pipeline is idle,
-/// frames_in == frames_out + errors + superseded + dropped_stale + preempted + refused.
+// Once the pipeline is idle,
+//   frames_in == frames_out + errors + superseded + dropped_stale + preempted + refused.
+// Notes beside the help texts:
+// - subscriber_overflows: ZeroMQ skips a subscriber whose queue is full
+//   (caps.max_subscriber_results) without telling until it has read half its queue, so one
+//   overflow may stand for many missed results. Not part of the sum: the results were published.
+// - bad_send_time: a producer clock an hour wrong or forged; such results stay out of the
+//   send_to_publish histograms. Not part of the sum.
+// - temporal_resets: frames of a stream filtered across frames (temporal > 0) that found under
+//   half their vertices near the stream's last result. Not part of the sum.
+// - preempted: stopped so that another stream's waiting frame meets its budget
+//   (latency_policy.h); an error result is published, but not counted in errors.
+//
+// COUNTER(name, Prometheus family, help); the help is /metrics' HELP line.
+#define FQ_STREAM_COUNTERS(COUNTER)                                                                       \
+  COUNTER(frames_in, "fq_frames_in_total", "Frames received (ingest messages attributed to the stream).") \
+  COUNTER(frames_out, "fq_frames_out_total", "Results published with status OK or LATE.")                 \
+  COUNTER(superseded, "fq_superseded_total",                                                              \
+          "Frames replaced by a newer frame of their stream before an engine took them.")                 \
+  COUNTER(dropped_stale, "fq_dropped_stale_total",                                                        \
+          "Frames dropped because they were older than the budget when a worker was free.")               \
+  COUNTER(late, "fq_late_total",                                                                          \
+          "Results published after the stream's budget (also in fq_frames_out_total).")                   \
+  COUNTER(errors, "fq_errors_total",                                                                      \
+          "Error results published (bad input, invalid parameters, engine failure).")                     \
+  COUNTER(time_limited, "fq_time_limited_total",                                                          \
+          "Frames stopped at the engine time limit (also in fq_errors_total).")                           \
+  COUNTER(subscriber_overflows, "fq_subscriber_overflows_total",                                          \
+          "Times a subscriber's queue was full and it started missing results.")                          \
+  COUNTER(bad_send_time, "fq_bad_send_time_total",                                                        \
+          "Results whose producer send time was over an hour before publish or after it (left out of "    \
+          "send_to_publish).")                                                                            \
+  COUNTER(temporal_resets, "fq_temporal_resets_total",                                                    \
+          "Scene cuts of a stream filtered across frames: its temporal history restarted.")               \
+  COUNTER(untracked, "fq_untracked_total",                                                                \
+          "Results published with the engine's cluster numbering because id tracking passed the time "    \
+          "limit or fqd was stopping.")                                                                   \
+  COUNTER(preempted, "fq_preempted_total",                                                                \
+          "Frames stopped on the engine, unable to meet their budget, so that a lighter stream's frame "  \
+          "could meet its own (not in fq_errors_total).")                                                 \
+  COUNTER(refused, "fq_refused_frames_total",                                                             \
+          "Frames under the stream's id from a producer without CURVE that failed to decode: dropped "    \
+          "unanswered, not errors (also in fq_refused_total{reason=\"undecodable\"}).")
+
+/// What happened to a stream's frames: a uint64_t member per row of FQ_STREAM_COUNTERS.
 struct StreamCounters {
-  uint64_t frames_in = 0;      ///< ingest messages attributed to the stream
-  uint64_t frames_out = 0;     ///< results published with status OK or LATE
-  uint64_t superseded = 0;     ///< replaced in the waiting slot by a newer frame
-  uint64_t dropped_stale = 0;  ///< older than the budget when a worker was free
-  uint64_t late = 0;           ///< published after the budget (also in frames_out)
-  uint64_t errors = 0;         ///< error results published
-  uint64_t time_limited = 0;   ///< stopped at caps.engine_time_limit_s (also in errors)
-  /// Times a subscriber's queue was found full (caps.max_subscriber_results), so that it
-  /// missed the result being published; ZeroMQ then skips that subscriber without telling
-  /// until it has read half its queue, so one overflow may stand for many missed results.
-  /// Not part of the sum above: the results were published.
-  uint64_t subscriber_overflows = 0;
-  /// Results whose producer send time was more than an hour before publish or after it (a
-  /// wrong or forged clock): their send_to_publish is left out of the metrics, not folded
-  /// into the histograms. Not part of the sum above.
-  uint64_t bad_send_time = 0;
-  /// Scene cuts of a stream filtered across frames (temporal > 0): frames that found under half
-  /// their vertices near the stream's last result, so its history restarted. Not in the sum.
-  uint64_t temporal_resets = 0;
-  /// Results published with the engine's cluster numbering because id tracking was cut by
-  /// the frame's time limit or the stop (also in frames_out).
-  uint64_t untracked = 0;
-  /// Frames stopped on the engine so that another stream's waiting frame meets its budget
-  /// (latency_policy.h); an error result is published, but not counted in errors.
-  uint64_t preempted = 0;
-  /// Frames under the stream's id from a producer without CURVE that failed to decode: dropped
-  /// unanswered (also in fq_refused_total{reason="undecodable"}), not errors; part of the sum.
-  uint64_t refused = 0;
+#define FQ_COUNTER_MEMBER(name, metric, help) uint64_t name = 0;
+  FQ_STREAM_COUNTERS(FQ_COUNTER_MEMBER)
+#undef FQ_COUNTER_MEMBER
 };
 
-enum class Counter {
-  kIn,
-  kOut,
-  kSuperseded,
-  kDroppedStale,
-  kLate,
-  kErrors,
-  kTimeLimited,
-  kSubscriberOverflows,
-  kBadSendTime,
-  kTemporalResets,
-  kUntracked,
-  kPreempted,
-  kRefused
+/// A counter, as the pipeline names it where it counts (&StreamCounters::late).
+using Counter = uint64_t StreamCounters::*;
+
+/// One row of FQ_STREAM_COUNTERS as data, for the surfaces that walk it.
+struct CounterRow {
+  const char* name;    ///< member, wire field and JSON key
+  const char* metric;  ///< Prometheus family
+  const char* type;    ///< Prometheus type
+  const char* help;
+  Counter field;
 };
 
-/// The field of each Counter, in the enum's order.
-inline constexpr uint64_t StreamCounters::*kCounterFields[] = {
-    &StreamCounters::frames_in,     &StreamCounters::frames_out,
-    &StreamCounters::superseded,    &StreamCounters::dropped_stale,
-    &StreamCounters::late,          &StreamCounters::errors,
-    &StreamCounters::time_limited,  &StreamCounters::subscriber_overflows,
-    &StreamCounters::bad_send_time, &StreamCounters::temporal_resets,
-    &StreamCounters::untracked,     &StreamCounters::preempted,
-    &StreamCounters::refused};
-static_assert(sizeof(kCounterFields) / sizeof(kCounterFields[0]) ==
-                  static_cast<size_t>(Counter::kRefused) + 1,
-              "one field per Counter");
+inline constexpr CounterRow kCounterRows[] = {
+#define FQ_COUNTER_ROW(name, metric, help) {#name, metric, "counter", help, &StreamCounters::name},
+    FQ_STREAM_COUNTERS(FQ_COUNTER_ROW)
+#undef FQ_COUNTER_ROW
+};
 
 }  // namespace fq::daemon

@@ -56,11 +56,11 @@ TEST(StreamRegistry, TheLastFrameInFlightFreesAnExpiredStream) {
   frame->stream = r.admit("cam", now);
   ASSERT_NE(frame->stream, nullptr);
   const std::weak_ptr<Stream> watch = frame->stream;
-  frame->stream->count(Counter::kIn);
+  frame->stream->count(&StreamCounters::frames_in);
   EXPECT_EQ(r.expire_idle(now + 10 * kSecond, 1.0), std::vector<std::string>{"cam"});
   EXPECT_EQ(r.find("cam"), nullptr);
   ASSERT_FALSE(watch.expired()) << "the frame in flight still has its stream";
-  frame->stream->count(Counter::kOut);
+  frame->stream->count(&StreamCounters::frames_out);
   EXPECT_EQ(frame->stream->samples().counters.frames_out, 1u);
   frame.reset();
   EXPECT_TRUE(watch.expired());
@@ -119,7 +119,7 @@ TEST(StreamRegistry, ASnapshotHoldsNoLockAFrameWaitsFor) {
     // a bound against a deadlock, not a measurement: the frame takes microseconds.
     frame = std::async(std::launch::async, [&] {
       const StreamPtr s = r.admit("cam", now + 1);
-      s->count(Counter::kIn);
+      s->count(&StreamCounters::frames_in);
       s->record("engine", 500.0);
       return s->settings().budget_ms > 0.0;
     });
