@@ -265,6 +265,17 @@ Status check_param(const ParamRow& row, double v) {
                           (zero.empty() ? got : " (" + zero + "; got " + show(v) + ")"));
 }
 
+std::string join_names(const std::vector<std::string>& names, std::string_view separator, bool quoted) {
+  std::string out;
+  for (const std::string& n : names) {
+    if (!out.empty()) out += separator;
+    if (quoted) out += '"';
+    out += n;
+    if (quoted) out += '"';
+  }
+  return out;
+}
+
 std::string choice_names(const ParamRow& row, std::string_view separator, bool quoted) {
   std::vector<std::string> names;
   for (const ParamChoice& c : row.choices) names.emplace_back(c.name);

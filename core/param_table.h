@@ -17,6 +17,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "common/status.h"
 #include "core/params.h"
@@ -92,6 +93,9 @@ std::string format_param(const ParamRow& row, double value);
 Status parse_param(const ParamRow& row, std::string_view text, double& out);
 /// Range check of one value; the message names the row, its range and its "0 =" rule.
 Status check_param(const ParamRow& row, double value);
+/// "qf or bf" for messages; `quoted`: "\"qf\" or \"bf\""; `separator` " | " for help texts.
+std::string join_names(const std::vector<std::string>& names, std::string_view separator = " or ",
+                       bool quoted = false);
 /// The names of an enum row joined by `separator` ("qf+ or qf or bf"), quoted if asked.
 std::string choice_names(const ParamRow& row, std::string_view separator = " or ", bool quoted = false);
 /// The wire number of an enum row's native value and back; nullopt outside the table.

@@ -2,10 +2,7 @@
 // mean edge length, as in the paper; neighbourhoods have radius 2 sigma.
 #pragma once
 
-#include <optional>
-#include <string>
-#include <string_view>
-#include <vector>
+#include <cstdint>
 
 #include "common/status.h"
 
@@ -95,35 +92,9 @@ struct Params {
   ClusterParams clustering;  ///< the clustering's parameters
 };
 
-/// "qf+", "qf", "bf": the names of configs, the command line and JSON.
-const char* filter_method_name(FilterMethod m);
-/// Parses a name of filter_method_name(); false for anything else.
-bool parse_filter_method(const std::string& s, FilterMethod& out);
-
-/// "auto" | "input" | "filtered" (command lines, config files).
-bool parse_cluster_geometry(const std::string& s, ClusterGeometry& out);
-const char* cluster_geometry_name(ClusterGeometry g);
-/// Every name parse_cluster_geometry accepts, in enum order (help texts, Python choices).
-std::vector<std::string> cluster_geometry_names();
-
 /// Clear message for the first bad value (sigma <= 0, NaN, theta outside (0, 1], ...): each
 /// row of the parameter table (core/param_table.h) checked against its range; the clustering's
 /// rows only with `cluster`.
 Status validate(const Params& p);
-
-/// The methods' names on command lines, in configs, on fqctl and in JSON, read from the enum
-/// rows of the parameter table (core/param_table.h), which also hold their wire numbers:
-/// "qf+" | "qf" | "bf" (FilterMethod) and "quadric" | "euclidean" (ClusterMethod).
-const char* method_name(FilterMethod m);
-const char* method_name(ClusterMethod m);
-/// The method a name stands for; nullopt for any other string (names are case-sensitive).
-template <typename Method>
-std::optional<Method> parse_method(std::string_view name);
-/// Every name of FilterMethod or ClusterMethod, in enum order (help texts, option checks).
-template <typename Method>
-std::vector<std::string> method_names();
-/// "qf or bf" for messages; `quoted`: "\"qf\" or \"bf\""; `separator` " | " for help texts.
-std::string join_names(const std::vector<std::string>& names, std::string_view separator = " or ",
-                       bool quoted = false);
 
 }  // namespace fq

@@ -11,6 +11,7 @@
 
 #include "kernels/frame_prep.h"
 #include "eval/noise.h"
+#include "tests/support/param_values.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
@@ -185,7 +186,7 @@ TEST(KernelDegenerateInput, IsolatedVertices) {
   Params qf = filter_and_cluster();
   qf.filtering.method = FilterMethod::kQuadric;
   for (const Params& p : {qf, filter_and_cluster()}) {
-    SCOPED_TRACE(method_name(p.filtering.method));
+    SCOPED_TRACE(test::mode_name(p.filtering.method));
     const FrameResult out = expect_ok(m, p), ref = expect_ok(without, p);
     EXPECT_LT(std::sqrt(norm2(vertex(out.positions, far) - Vec3{40.f, 40.f, 40.f})), 1e-4);
     if (p.filtering.method == FilterMethod::kQuadric)

@@ -13,6 +13,7 @@
 #include "kernels/frame_prep.h"
 #include "eval/error_metrics.h"
 #include "eval/noise.h"
+#include "tests/support/param_values.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
@@ -137,7 +138,7 @@ TEST(KernelFilter, CleanCubeStaysOnItsSurfaceWithFlatFaces) {
   Params qf;
   qf.filtering.method = FilterMethod::kQuadric;
   for (const Params& p : {qf, Params{}}) {
-    SCOPED_TRACE(method_name(p.filtering.method));
+    SCOPED_TRACE(test::mode_name(p.filtering.method));
     const std::vector<float> out = filtered(cube, p);
     double worst = 0.0;
     for (uint32_t v = 0; v < cube.num_vertices(); ++v) worst = std::max(worst, distance_to_unit_cube(vertex(out, v)));

@@ -12,6 +12,7 @@
 
 #include "eval/noise.h"
 #include "kernels/cpu_engine.h"
+#include "tests/support/param_values.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
@@ -143,7 +144,7 @@ TEST(KernelFramePlan, FilteredGeometryAddsTheGeometryAndClusteringRuns) {
     p.filtering.constrained = false;  // read by "qf" only: these filters are the geometry filter
     p.filtering.method = m;
     const FramePlan two = plan_frame(p);
-    ASSERT_EQ(two.runs.size(), 2u) << filter_method_name(m);
+    ASSERT_EQ(two.runs.size(), 2u) << test::mode_name(m);
     EXPECT_EQ(two.runs[0].role, RunRole::kFrame);
     EXPECT_EQ(two.runs[1].role, RunRole::kClustering);
   }
@@ -219,7 +220,7 @@ TEST(KernelEngineTemplate, TheCpuEngineRunsThePlansPasses) {
     std::vector<std::string> planned{"normalize"};
     for (const std::string& n : names(plan_frame(p).runs[0])) planned.push_back(n);
     planned.push_back("output");
-    EXPECT_EQ(ran, planned) << filter_method_name(method);
+    EXPECT_EQ(ran, planned) << test::mode_name(method);
   }
 }
 

@@ -148,18 +148,22 @@ TEST(KernelParams, EngineRejectsBadParamsAndKeepsWorking) {
 }
 
 TEST(KernelParams, MethodNamesRoundTrip) {
-  EXPECT_EQ(method_names<FilterMethod>(), (std::vector<std::string>{"qf+", "qf", "bf"}));
-  EXPECT_EQ(method_names<ClusterMethod>(), (std::vector<std::string>{"quadric", "euclidean"}));
-  for (FilterMethod m : {FilterMethod::kQuadricRefined, FilterMethod::kQuadric, FilterMethod::kBilateral})
-    EXPECT_EQ(parse_method<FilterMethod>(method_name(m)), m);
-  for (ClusterMethod m : {ClusterMethod::kQuadric, ClusterMethod::kEuclidean})
-    EXPECT_EQ(parse_method<ClusterMethod>(method_name(m)), m);
-  EXPECT_EQ(parse_method<FilterMethod>("QF"), std::nullopt);
-  EXPECT_EQ(parse_method<FilterMethod>("quadric"), std::nullopt);  // a cluster method's name
-  EXPECT_EQ(parse_method<ClusterMethod>(""), std::nullopt);
-  EXPECT_EQ(join_names(method_names<FilterMethod>()), "qf+ or qf or bf");
-  EXPECT_EQ(join_names(method_names<ClusterMethod>(), " | "), "quadric | euclidean");
-  EXPECT_EQ(join_names(method_names<FilterMethod>(), " or ", true), "\"qf+\" or \"qf\" or \"bf\"");
+  const ParamRow& mode = *find_param("mode");
+  const ParamRow& cluster_method = *find_param("cluster_method");
+  EXPECT_EQ(choice_names(mode), "qf+ or qf or bf");
+  EXPECT_EQ(choice_names(cluster_method, " | "), "quadric | euclidean");
+  EXPECT_EQ(choice_names(mode, " or ", true), "\"qf+\" or \"qf\" or \"bf\"");
+  for (const ParamRow* row : {&mode, &cluster_method})
+    for (const ParamChoice& c : row->choices) {
+      double v = -1;
+      ASSERT_TRUE(parse_param(*row, format_param(*row, c.value), v).ok()) << c.name;
+      EXPECT_EQ(v, c.value) << c.name;
+    }
+  double v = 0;
+  EXPECT_FALSE(parse_param(mode, "QF", v).ok());
+  EXPECT_FALSE(parse_param(mode, "quadric", v).ok());  // a cluster method's name
+  EXPECT_FALSE(parse_param(cluster_method, "", v).ok());
+  EXPECT_EQ(join_names({"a", "b"}, " | ", true), "\"a\" | \"b\"");
 }
 
 TEST(ParamTable, NamesAreUniqueAndEveryValueReadsBackAsText) {

@@ -16,6 +16,7 @@
 #include "kernels/cpu_engine.h"
 #include "kernels/frame_prep.h"
 #include "tests/kernels/frame_result_checks.h"
+#include "tests/support/param_values.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
@@ -158,7 +159,7 @@ TEST(KernelSeamWeld, AMeshWithoutTwinsTakesThePathOfBeforeBitForBit) {
   plain.set_weld_seams(false);
   for (const Params& p : {Params{}, filter_and_clusters(), quadric}) {
     const FrameResult a = run(welding, s.whole, p), b = run(plain, s.whole, p);
-    test::expect_identical(a, b, method_name(p.filtering.method));
+    test::expect_identical(a, b, test::mode_name(p.filtering.method));
     EXPECT_EQ(a.link_p, b.link_p);
     EXPECT_EQ(a.welded_vertices, 0u);
     ASSERT_EQ(a.timings.size(), b.timings.size());

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <string>
 
 #include "core/param_table.h"
 
@@ -25,6 +26,11 @@ inline double other_value(const ParamRow& row) {
   double v = row.lo + (row.hi - row.lo) * 0.375;  // inside every range, open or closed
   if (row.kind == ParamKind::kUint) v = std::floor(v);
   return v == now ? row.hi : v;
+}
+
+/// A filter method's name ("qf+"), as the parameter table spells it, for test messages.
+inline std::string mode_name(FilterMethod m) {
+  return format_param(*find_param("mode"), static_cast<int>(m));
 }
 
 }  // namespace fq::test

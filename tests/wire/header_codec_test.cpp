@@ -8,6 +8,8 @@
 #include <random>
 #include <string>
 
+#include "tests/support/param_values.h"
+
 namespace fq::wire {
 namespace {
 
@@ -258,7 +260,7 @@ TEST(HeaderCodec, EveryFilterMethodRoundTrips) {
     Params back;
     back.filtering.method = m == FilterMethod::kQuadric ? FilterMethod::kBilateral : FilterMethod::kQuadric;
     ASSERT_TRUE(apply_overrides(w, back).ok());
-    EXPECT_EQ(back.filtering.method, m) << filter_method_name(m);
+    EXPECT_EQ(back.filtering.method, m) << test::mode_name(m);
   }
 }
 
