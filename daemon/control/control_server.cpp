@@ -116,6 +116,8 @@ wire::ControlReply get_counters(const wire::GetCounters& q, StreamRegistry& regi
     c->set_untracked(s.counters.untracked);
     c->set_preempted(s.counters.preempted);
     c->set_refused(s.counters.refused);
+    c->set_memory_resets(s.counters.memory_resets);
+    c->set_dropped_memory(s.counters.dropped_memory);
     for (const auto& [name, pc] : s.stages) {
       wire::StagePercentiles* sp = c->add_stages();
       sp->set_name(name);

@@ -20,6 +20,8 @@ nlohmann::json counters_json(const wire::StreamCounters& c) {
           {"untracked", c.untracked()},
           {"preempted", c.preempted()},
           {"refused", c.refused()},
+          {"memory_resets", c.memory_resets()},
+          {"dropped_memory", c.dropped_memory()},
           {"stages", std::move(stages)}};
 }
 

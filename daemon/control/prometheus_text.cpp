@@ -56,6 +56,14 @@ constexpr CounterFamily kCounters[] = {
      "not "
      "errors (also in fq_refused_total{reason=\"undecodable\"}).",
      &StreamCounters::refused},
+    {"fq_memory_resets_total",
+     "Times the stream's temporal history or cluster id track was dropped to stay within "
+     "caps.memory_budget_mb (its next frame ran alone).",
+     &StreamCounters::memory_resets},
+    {"fq_dropped_memory_total",
+     "Frames dropped without a result because they did not fit caps.memory_budget_mb once nothing else "
+     "could be freed.",
+     &StreamCounters::dropped_memory},
 };
 
 // Each stream with series of its own, then stream="other".

@@ -8,7 +8,8 @@
 namespace fq::daemon {
 
 /// What happened to a stream's frames. Once the pipeline is idle,
-/// frames_in == frames_out + errors + superseded + dropped_stale + preempted + refused.
+/// frames_in == frames_out + errors + superseded + dropped_stale + preempted + refused
+/// + dropped_memory.
 struct StreamCounters {
   uint64_t frames_in = 0;      ///< ingest messages attributed to the stream
   uint64_t frames_out = 0;     ///< results published with status OK or LATE
@@ -38,6 +39,12 @@ struct StreamCounters {
   /// Frames under the stream's id from a producer without CURVE that failed to decode: dropped
   /// unanswered (also in fq_refused_total{reason="undecodable"}), not errors; part of the sum.
   uint64_t refused = 0;
+  /// Times what the stream keeps across frames (temporal history, cluster id track) was
+  /// dropped to keep fqd within caps.memory_budget_mb; its next frame ran alone. Not in the sum.
+  uint64_t memory_resets = 0;
+  /// Frames dropped at admission or after decode because they did not fit caps.memory_budget_mb
+  /// once nothing else could go (memory_account.h); no result. Part of the sum.
+  uint64_t dropped_memory = 0;
 };
 
 enum class Counter {
@@ -53,7 +60,9 @@ enum class Counter {
   kTemporalResets,
   kUntracked,
   kPreempted,
-  kRefused
+  kRefused,
+  kMemoryResets,
+  kDroppedMemory
 };
 
 /// The field of each Counter, in the enum's order.
@@ -64,9 +73,10 @@ inline constexpr uint64_t StreamCounters::*kCounterFields[] = {
     &StreamCounters::time_limited,  &StreamCounters::subscriber_overflows,
     &StreamCounters::bad_send_time, &StreamCounters::temporal_resets,
     &StreamCounters::untracked,     &StreamCounters::preempted,
-    &StreamCounters::refused};
+    &StreamCounters::refused,       &StreamCounters::memory_resets,
+    &StreamCounters::dropped_memory};
 static_assert(sizeof(kCounterFields) / sizeof(kCounterFields[0]) ==
-                  static_cast<size_t>(Counter::kRefused) + 1,
+                  static_cast<size_t>(Counter::kDroppedMemory) + 1,
               "one field per Counter");
 
 }  // namespace fq::daemon
