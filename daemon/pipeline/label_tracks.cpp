@@ -24,8 +24,8 @@ Status track_labels(FrameJob& f, int threads, const CancelToken& token) {
   o.triangles = f.mesh.triangles.data();
   o.num_triangles = f.mesh.num_triangles();
   o.sticky_rings = static_cast<int>(c.sticky_rings);
-  const Status s = t.tracker.track_until(token, r.positions.data(), f.mesh.num_vertices(), r.labels,
-                                         r.num_clusters, o, r.num_clusters);
+  Status s = t.tracker.track_until(token, r.positions.data(), f.mesh.num_vertices(), r.labels, r.num_clusters,
+                                   o, r.num_clusters);
   Stream& stream = *f.stream;
   stream.kept_ns.store(wall_ns(), std::memory_order_relaxed);
   if (!t.charge.set(stream.memory, MemoryKind::kLabelTrack, kLabelTrackBytesPerVertex * f.mesh.num_vertices(),

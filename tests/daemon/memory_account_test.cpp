@@ -51,8 +51,8 @@ TEST(MemoryAccount, AChargeHoldsWhatItWasSetToUntilReleasedOrDestroyed) {
     EXPECT_EQ(c.bytes(), 800u);  // a failed set keeps what it held
     EXPECT_TRUE(c.set(&a, MemoryKind::kHistory, 200, Shed::kNone, nullptr));  // less: credited at once
     EXPECT_EQ(a.total(), 200u);
-    MemoryCharge moved = std::move(c);
-    EXPECT_EQ(c.bytes(), 0u);
+    MemoryCharge moved = std::move(c);  // the charge goes with it, not twice
+    EXPECT_EQ(moved.bytes(), 200u);
     EXPECT_EQ(a.total(), 200u);
   }
   EXPECT_EQ(a.total(), 0u);

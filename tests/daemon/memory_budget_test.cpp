@@ -66,6 +66,7 @@ TEST(MemoryBudget, ManyTemporalStreamsStayWithinTheBudgetAndTheLeastRecentlyFedL
   EXPECT_LE(gauge(h, "fq_memory_peak_bytes"), budget);
   EXPECT_GT(gauge(h, "fq_memory_bytes{kind=\"history\"}"), 0);
   std::vector<uint64_t> resets;
+  resets.reserve(kStreams);
   for (int i = 0; i < kStreams; ++i) resets.push_back(h.counters(stream_name(i)).memory_resets());
   // A prefix of the streams, in the order they were fed, lost their histories; the rest kept them.
   int lost = 0;
