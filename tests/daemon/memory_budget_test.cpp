@@ -146,5 +146,26 @@ TEST(MemoryBudget, AFrameThatCannotFitIsDroppedAndCounted) {
   EXPECT_NE(h.daemon()->service_metrics().find("fq_memory_bytes{kind=\"queued\"}"), std::string::npos);
 }
 
+// Cluster id tracks are charged too (120 bytes a vertex): under 2 MiB, two fandisk tracks
+// (0.78 MB each) and a frame in flight (0.4 MB) fit, three do not: the third stream's frame
+// takes the room of the track of the stream fed first, counted there, not of the one fed since.
+TEST(MemoryBudget, ClusterIdTracksAreChargedAndShedOldestFirst) {
+  daemon::DaemonConfig c = temporal_config(2, 3);
+  c.defaults.params.filtering.temporal = 0.f;
+  c.defaults.params.cluster = true;
+  c.defaults.params.clustering.track_ids = true;
+  DaemonHarness h(c);
+  const Mesh mesh = fandisk(1);
+  for (const char* stream : {"c", "d", "e"}) {
+    h.send(mesh, frame_spec(stream), 0);
+    ASSERT_EQ(h.receive(stream).header.status(), wire::OK);
+  }
+  EXPECT_EQ(gauge(h, "fq_memory_bytes{kind=\"label_track\"}"), 2 * 120.0 * mesh.num_vertices());
+  EXPECT_LE(gauge(h, "fq_memory_peak_bytes"), gauge(h, "fq_memory_budget_bytes"));
+  EXPECT_EQ(h.counters("c").memory_resets(), 1u);
+  EXPECT_EQ(h.counters("d").memory_resets(), 0u);
+  EXPECT_EQ(h.counters("e").memory_resets(), 0u);
+}
+
 }  // namespace
 }  // namespace fq::test
