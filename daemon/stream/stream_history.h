@@ -23,9 +23,10 @@ inline bool uses_history(const Params& params) {
 /// points, 12 bytes, the points in cell order, 16, and their ranks, 4).
 inline constexpr uint64_t kHistoryIndexBytesPerVertex = 32;
 
-/// What a history holds in host memory: its vectors' capacity and, once built, its index.
+/// What a history holds in host memory: its vectors' capacity, track A's (its last averaged
+/// input and its connectivity's tables, IdTrack::bytes) and, once built, its index.
 inline uint64_t history_bytes(const TemporalHistory& h) {
-  uint64_t b = sizeof(float) * (h.positions.capacity() + h.normals.capacity() + h.ids.averaged.capacity());
+  uint64_t b = sizeof(float) * (h.positions.capacity() + h.normals.capacity()) + h.ids.bytes();
   if (h.index_stamp != 0) b += kHistoryIndexBytesPerVertex * (h.positions.size() / 3);
   return b;
 }

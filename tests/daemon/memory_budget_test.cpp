@@ -48,8 +48,9 @@ void expect_accounted(DaemonHarness& h, const std::string& stream) {
 }
 
 // 8 streams fed one after another, each frame's result read before the next is sent, under a
-// budget of 1 MiB: a fandisk history is about 0.23 MB (36 bytes a vertex: positions, normals and
-// the last averaged input) and a frame in flight about 0.4 MB, so only a few histories fit. The streams that
+// budget of 1 MiB: a fandisk history after one frame is about 0.23 MB (36 bytes a vertex:
+// positions, normals and the last averaged input) and a frame in flight about 0.4 MB, so only a
+// few histories fit. The streams that
 // lost theirs are the ones fed first, each counted memory_resets once; the last fed keep theirs, and their
 // next frame follows it (track A) while a stream that lost its history runs alone.
 TEST(MemoryBudget, ManyTemporalStreamsStayWithinTheBudgetAndTheLeastRecentlyFedLoseTheirHistories) {
@@ -88,9 +89,9 @@ TEST(MemoryBudget, ManyTemporalStreamsStayWithinTheBudgetAndTheLeastRecentlyFedL
 }
 
 // The done-when, scaled: "64 streams of 1M-vertex frames with temporal filtering stay under the
-// configured memory budget". Everything charged is per vertex (a history 36 bytes a vertex, 68
-// with the grid of track B; a frame in flight its chunks and 52 bytes a vertex), so 64 streams
-// of 1M vertices, each with a history and a frame in flight, want about 64 x 88 MB = 5.6 GB
+// configured memory budget". Everything charged is per vertex (a history about 130 bytes a
+// vertex once track A runs; a frame in flight its chunks and 52 bytes a vertex), so 64 streams
+// of 1M vertices, each with a history and a frame in flight, want about 64 x 183 MB = 11.7 GB
 // against the default 4096 MiB. Here the frames are fandisk's 6,475 vertices, 6.475e-3 of 1M,
 // and the budget is scaled by the same factor (4096 MiB x 6.475e-3 = 26.5 MiB, rounded down to
 // 26 MiB): the same demand against the same budget, 1,000 times smaller. Two frames a stream,
