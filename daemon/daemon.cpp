@@ -138,6 +138,11 @@ std::string Daemon::service_metrics() const {
                {"slots", pipeline_.slots.waiting()},
                {"encode", pipeline_.encode_queue.size()},
                {"publish", pipeline_.publish_queue.size()}};
+  for (size_t k = 0; k < static_cast<size_t>(MemoryKind::kCount); ++k)
+    in.memory.emplace_back(memory_kind_name(static_cast<MemoryKind>(k)),
+                           registry_.memory().bytes(static_cast<MemoryKind>(k)));
+  in.memory_peak = registry_.memory().peak();
+  in.memory_budget = registry_.memory().budget();
   in.ingest_reconnects = sub_reconnects_.load(std::memory_order_relaxed);
   in.process = read_process_stats();
   return service_metrics_text(in) + stage_cpu_metrics_text(pipeline_.stage_cpu, daemon_threads_cpu_seconds());
@@ -287,6 +292,7 @@ Status Daemon::reload(const DaemonConfig& fresh) {
   }
   caps_.set(fresh.caps);
   pipeline_.decode_queue.set_bounds(fresh.caps.max_queued_frames, fresh.caps.max_queued_bytes);
+  registry_.memory().set_budget(fresh.caps.memory_budget_mb << 20);  // what is kept sheds at the next charge
   if (client_keys_) client_keys_->set(std::move(keys.clients));  // revoked keys' connections are cut
   if (control_keys_) control_keys_->set(std::move(keys.control));
   if (http_) http_->set_access(std::move(access));

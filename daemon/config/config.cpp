@@ -171,6 +171,7 @@ Status read_sections(TomlReader& root, DaemonConfig& c) {
     r.read("max_subscription_bytes", c.caps.max_subscription_bytes, 1, 1 << 24);
     r.read("max_queued_frames", c.caps.max_queued_frames, 1, 100000);
     r.read("max_queued_bytes", c.caps.max_queued_bytes, 1, 1ll << 40);
+    r.read("memory_budget_mb", c.caps.memory_budget_mb, 0, 1ll << 24);
     FQ_RETURN_IF_ERROR(r.finish());
   }
   return {};

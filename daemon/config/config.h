@@ -72,6 +72,11 @@ struct Caps {
   /// decode_queue.h). A frame over max_queued_bytes waits for an empty queue (backpressure).
   uint32_t max_queued_frames = 32;
   uint64_t max_queued_bytes = 256ull << 20;
+  /// Host memory, in MiB, for what fqd keeps per stream: temporal histories, cluster id
+  /// tracks, /latest copies and frames from admission to publish (daemon/stream/memory_account.h
+  /// has what goes first at the limit); 0 = unbounded. 4 GiB: a fixed amount, not a share of
+  /// the host's memory, since a container's limit is not what the host reports.
+  uint64_t memory_budget_mb = 4096;
 
   bool operator==(const Caps&) const = default;
 };

@@ -31,6 +31,11 @@ const std::vector<DropReason>& drop_reasons() {
        "more than one per overflow)",
        "a subscriber reads slower than results come: make it read faster, subscribe only to the streams "
        "it needs, or raise caps.max_subscriber_results"},
+      {"memory", &StreamCounters::dropped_memory,
+       "the frame did not fit caps.memory_budget_mb once the idle streams' /latest copies and the other "
+       "streams' temporal histories and id tracks were dropped, so it was dropped without a result",
+       "fqd keeps more per stream than the budget: raise caps.memory_budget_mb (the host has room), lower "
+       "caps.max_streams, send smaller frames, or turn temporal filtering or track_ids off where not needed"},
   };
   return reasons;
 }

@@ -5,7 +5,8 @@
 //   result -> the engines are slower than the stream's frame rate: lower the rate, make frames
 //   cheaper (compute = "filter", smaller sigmas) or add engines
 // The reasons are the per-stream counters of stream.h that stand for a frame without a result
-// (superseded, stale, preempted, time_limited) or a result a subscriber missed (subscriber_overflow).
+// (superseded, stale, preempted, time_limited, memory) or a result a subscriber missed
+// (subscriber_overflow).
 #pragma once
 
 #include <cstdint>

@@ -49,6 +49,18 @@ std::string service_metrics_text(const ServiceMetricsInput& in) {
                 "Frames waiting in each pipeline queue: decode, slots (decoded, waiting for an engine), encode, publish.");
   for (const auto& [queue, n] : in.queues)
     out += "fq_queue_depth{" + label("queue", queue) + "} " + std::to_string(n) + "\n";
+  append_family(
+      out, "fq_memory_bytes", "gauge",
+      "Host bytes fqd keeps per stream, charged to caps.memory_budget_mb, by kind: history (temporal "
+      "filtering), label_track (cluster ids), latest (/latest copies), queued (frames from admission "
+      "to publish).");
+  for (const auto& [kind, bytes] : in.memory)
+    out += "fq_memory_bytes{" + label("kind", kind) + "} " + std::to_string(bytes) + "\n";
+  append_family(out, "fq_memory_peak_bytes", "gauge",
+                "The most host bytes charged to the memory budget at once.");
+  out += "fq_memory_peak_bytes " + std::to_string(in.memory_peak) + "\n";
+  append_family(out, "fq_memory_budget_bytes", "gauge", "caps.memory_budget_mb in bytes (0: unbounded).");
+  out += "fq_memory_budget_bytes " + std::to_string(in.memory_budget) + "\n";
   out += process_metrics_text(in.process);
   return out;
 }

@@ -26,6 +26,9 @@ struct ServiceMetricsInput {
   std::vector<EngineLoad> engines;                         ///< in engine order (label index)
   std::vector<std::pair<std::string, size_t>> queues;      ///< queue name, items waiting
   uint64_t ingest_reconnects = 0;                          ///< SUB producers connected again
+  std::vector<std::pair<std::string, uint64_t>> memory;    ///< kind, bytes charged (memory_account.h)
+  uint64_t memory_peak = 0;                                ///< the highest total charged since start
+  uint64_t memory_budget = 0;                              ///< caps.memory_budget_mb in bytes; 0 = unbounded
   ProcessStats process;
 };
 

@@ -185,6 +185,14 @@ void run_decode_worker(Pipeline& p) {
       p.fail(std::move(f), s);
       continue;
     }
+    // Charged again for what decode made of it: the header's vertex count may have been low.
+    if (!charge_frame(*f)) {
+      p.drop_log.log(spdlog::level::warn,
+                     "stream '{}' frame {}: dropped after decode, over caps.memory_budget_mb", f->stream_id,
+                     f->header.sequence());
+      p.recycle(*f);
+      continue;
+    }
     f->decoded_ns = wall_ns();
     if (FramePtr loser = p.slots.offer(std::move(f))) {
       loser->stream->count(&StreamCounters::superseded);

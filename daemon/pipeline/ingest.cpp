@@ -118,6 +118,13 @@ void queue_admitted(FramePtr f, Pipeline& p) {
     // An older frame of the stream still waiting gives its place up; a full queue sheds the
     // newest place of the connection holding most (decode_queue.h). Only a frame over the
     // byte bound waits here (for an empty queue): then ZeroMQ's marks hold the producers back.
+    // A frame that does not fit the memory budget once idle /latest copies and other streams'
+    // histories are gone is dropped here, counted (memory_account.h).
+    if (!charge_frame(*f)) {
+      p.drop_log.log(spdlog::level::warn, "stream '{}' frame {}: dropped, over caps.memory_budget_mb",
+                     f->stream_id, f->header.sequence());
+      return;
+    }
     std::vector<FramePtr> dropped;
     p.decode_queue.push(std::move(f), dropped);
     for (const FramePtr& d : dropped) {

@@ -12,6 +12,7 @@ Status track_labels(FrameJob& f, int threads, const CancelToken& token) {
   const ClusterParams& c = f.settings.params.clustering;
   if (!f.settings.params.cluster || !c.track_ids || r.labels.empty()) {
     t.tracker.reset();
+    t.charge.release();
     return {};
   }
   // Frames of one stream may finish out of order on several engines: each is matched with
@@ -23,8 +24,18 @@ Status track_labels(FrameJob& f, int threads, const CancelToken& token) {
   o.triangles = f.mesh.triangles.data();
   o.num_triangles = f.mesh.num_triangles();
   o.sticky_rings = static_cast<int>(c.sticky_rings);
-  return t.tracker.track_until(token, r.positions.data(), f.mesh.num_vertices(), r.labels, r.num_clusters, o,
-                               r.num_clusters);
+  Status s = t.tracker.track_until(token, r.positions.data(), f.mesh.num_vertices(), r.labels, r.num_clusters,
+                                   o, r.num_clusters);
+  Stream& stream = *f.stream;
+  stream.kept_ns.store(wall_ns(), std::memory_order_relaxed);
+  if (!t.charge.set(stream.memory, MemoryKind::kLabelTrack, kLabelTrackBytesPerVertex * f.mesh.num_vertices(),
+                    Shed::kHistories, &stream)) {
+    // Over the memory budget with nothing else left to drop: tracking restarts next frame.
+    t.tracker.reset();
+    t.charge.release();
+    stream.count(&StreamCounters::memory_resets);
+  }
+  return s;
 }
 
 }  // namespace fq::daemon

@@ -8,19 +8,20 @@
 #include <atomic>
 
 #include "daemon/config/config.h"
+#include "daemon/config/live_caps.h"
 #include "daemon/pipeline/curve_auth.h"
 #include "daemon/pipeline/decode_queue.h"
 #include "daemon/pipeline/engine_busy.h"
-#include "daemon/stream/frame_job.h"
 #include "daemon/pipeline/latency_policy.h"
-#include "daemon/stream/latest_results.h"
-#include "daemon/config/live_caps.h"
 #include "daemon/pipeline/log_limiter.h"
+#include "daemon/pipeline/memory_shed.h"
 #include "daemon/pipeline/object_pool.h"
 #include "daemon/pipeline/stage_cpu.h"
+#include "daemon/pipeline/work_queue.h"
+#include "daemon/stream/frame_job.h"
+#include "daemon/stream/latest_results.h"
 #include "daemon/stream/stream_admission.h"
 #include "daemon/stream/stream_registry.h"
-#include "daemon/pipeline/work_queue.h"
 
 namespace fq::daemon {
 
@@ -38,11 +39,21 @@ struct Pipeline {
       : config(c),
         registry(r),
         caps(live_caps),
-        results(8, [](const FrameResult& x) { return bytes_held(x.positions) + bytes_held(x.labels); },
-                [](const FrameResult& x) { return bytes_used(x.positions) + bytes_used(x.labels); }),
-        meshes(8, [](const Mesh& m) { return bytes_held(m.positions) + bytes_held(m.triangles); },
-               [](const Mesh& m) { return bytes_used(m.positions) + bytes_used(m.triangles); }),
-        latest(r) {}
+        results(
+            8, [](const FrameResult& x) { return bytes_held(x.positions) + bytes_held(x.labels); },
+            [](const FrameResult& x) { return bytes_used(x.positions) + bytes_used(x.labels); }),
+        meshes(
+            8, [](const Mesh& m) { return bytes_held(m.positions) + bytes_held(m.triangles); },
+            [](const Mesh& m) { return bytes_used(m.positions) + bytes_used(m.triangles); }),
+        latest(r) {
+    // The budget's order (memory_shed.h); removed before the pipeline goes, the registry stays.
+    r.memory().set_shedder([this](uint64_t need, Shed upto, const void* keep) {
+      shed_memory(registry, latest, need, upto, keep);
+    });
+  }
+  ~Pipeline() { registry.memory().set_shedder({}); }
+  Pipeline(const Pipeline&) = delete;
+  Pipeline& operator=(const Pipeline&) = delete;
 
   const DaemonConfig& config;  ///< as started; the caps that SIGHUP changes are in `caps`
   StreamRegistry& registry;

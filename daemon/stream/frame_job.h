@@ -9,10 +9,11 @@
 #include <vector>
 #include <zmq.hpp>
 
-#include "kernels/engine.h"
-#include "wire/fq.pb.h"
 #include "common/status.h"
 #include "daemon/config/stream_settings.h"
+#include "daemon/stream/memory_account.h"
+#include "kernels/engine.h"
+#include "wire/fq.pb.h"
 
 namespace fq::daemon {
 
@@ -68,6 +69,9 @@ struct FrameJob {
   /// an undecodable frame) is its stream's error, published; from any other it is refused and
   /// dropped, since anyone who can connect could otherwise forge errors on every stream.
   bool authenticated = false;
+  /// Its bytes on the host memory budget from admission until it is published or dropped
+  /// (daemon/pipeline/memory_shed.h: charge_frame).
+  MemoryCharge memory;
 };
 
 using FramePtr = std::unique_ptr<FrameJob>;

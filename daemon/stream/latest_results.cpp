@@ -1,5 +1,8 @@
 #include "daemon/stream/latest_results.h"
 
+#include <algorithm>
+#include <utility>
+
 #include "daemon/stream/stream_registry.h"
 
 namespace fq::daemon {
@@ -26,7 +29,14 @@ void LatestResults::offer(Stream& stream, const wire::ResultHeader& header, cons
     faces = std::make_shared<const std::vector<uint32_t>>(triangles);
     faces_id = 0;  // new faces: a new id, given below
   }
+  // Charged before the lock is taken (making room takes it); the slot's old charge is
+  // credited once the lock is released.
+  uint64_t bytes = positions ? faces->size() * sizeof(uint32_t) : 0;
+  for (const std::string& c : chunks) bytes += c.size();
+  MemoryCharge charge;
+  if (!charge.set(stream.memory, MemoryKind::kLatest, bytes, Shed::kIdleLatest, &stream)) return;
   std::lock_guard<std::mutex> lock(mutex_);
+  std::swap(e.charge, charge);
   if (positions) {
     if (faces_id == 0) faces_id = ++faces_ids_;
     e.faces = r->faces = faces;
@@ -48,6 +58,26 @@ std::shared_ptr<const LatestResult> LatestResults::wait_newer(const std::string&
   changed_.wait_for(lock, timeout, [&] { return closed_ || (e.latest && e.latest->index > after); });
   if (closed_ || !e.latest || e.latest->index <= after) return nullptr;
   return e.latest;
+}
+
+uint64_t LatestResults::drop_idle(uint64_t need, const void* keep) {
+  const std::vector<StreamPtr> streams = registry_.all();
+  const auto now = std::chrono::steady_clock::now();
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<LatestSlot*> idle;
+  for (const StreamPtr& s : streams)
+    if (s.get() != keep && s->latest.latest && now > s->latest.watched_until) idle.push_back(&s->latest);
+  std::sort(idle.begin(), idle.end(),
+            [](const LatestSlot* a, const LatestSlot* b) { return a->watched_until < b->watched_until; });
+  uint64_t freed = 0;
+  for (LatestSlot* e : idle) {
+    if (freed >= need) break;
+    freed += e->charge.bytes();
+    e->latest.reset();
+    e->faces.reset();
+    e->charge.release();
+  }
+  return freed;
 }
 
 void LatestResults::close() {

@@ -5,7 +5,9 @@
 // until they change. Copying a result costs a memcpy of its chunks (about 0.5 MB for igea in
 // the POSITIONS form, 3 MB as a MESH), so a stream's results are kept only while someone has
 // asked for them in the last kWatchSeconds; otherwise offer() returns at once. What is kept
-// for a stream lives in its Stream (stream.h, under this object's lock) and goes with it.
+// for a stream lives in its Stream (stream.h, under this object's lock) and goes with it. A
+// copy is charged to the host memory budget (memory_account.h): copies of streams nobody
+// watches now are the first thing it drops, and a copy that does not fit is not kept.
 #pragma once
 
 #include <chrono>
@@ -46,6 +48,9 @@ class LatestResults {
   /// null when none came, when the stream is not registered, or once close() was called.
   std::shared_ptr<const LatestResult> wait_newer(const std::string& stream, uint64_t after,
                                                  std::chrono::milliseconds timeout);
+  /// The memory budget's first step: drops the copies of streams not watched now (the ones
+  /// watched longest ago first) until `need` bytes are freed, never `keep`'s; the bytes freed.
+  uint64_t drop_idle(uint64_t need, const void* keep);
   /// Wakes every waiter and makes later waits return at once (daemon stopping).
   void close();
 

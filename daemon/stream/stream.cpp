@@ -6,8 +6,8 @@
 
 namespace fq::daemon {
 
-Stream::Stream(std::string id, const StreamSettings& settings, int64_t now_ns)
-    : last_seen_ns(now_ns), id_(std::move(id)), settings_(settings) {}
+Stream::Stream(std::string id, const StreamSettings& settings, int64_t now_ns, MemoryAccount* memory)
+    : last_seen_ns(now_ns), memory(memory), id_(std::move(id)), settings_(settings) {}
 
 // Out of line: the frames a stream still holds (waiting, held for order) are destroyed here.
 Stream::~Stream() = default;

@@ -18,6 +18,7 @@
 #include "common/non_copyable.h"
 #include "daemon/config/stream_settings.h"
 #include "daemon/stream/frame_job.h"
+#include "daemon/stream/memory_account.h"
 #include "daemon/stream/metric_series.h"
 #include "daemon/stream/stage_metrics.h"
 #include "kernels/label_tracking.h"
@@ -70,6 +71,7 @@ struct PublishOrder {
 struct LabelTrack {
   std::mutex mutex;
   LabelTracker tracker;
+  MemoryCharge charge;  ///< its bytes on the memory budget (memory_account.h)
 };
 
 /// Its last result for temporal filtering (kernels/temporal.h) and the arrival of the frame
@@ -78,6 +80,7 @@ struct TemporalTrack {
   std::mutex mutex;
   TemporalHistory history;
   uint64_t last_arrival = 0;
+  MemoryCharge charge;  ///< its bytes on the memory budget (memory_account.h)
 };
 
 struct LatestResult;
@@ -88,11 +91,13 @@ struct LatestSlot {
   std::chrono::steady_clock::time_point watched_until;
   std::shared_ptr<const std::vector<uint32_t>> faces;  ///< the last POSITIONS result's
   uint64_t faces_id = 0;
+  MemoryCharge charge;  ///< `latest` and `faces` on the memory budget (memory_account.h)
 };
 
 class Stream : NonCopyable {
  public:
-  Stream(std::string id, const StreamSettings& settings, int64_t now_ns);
+  /// `memory`: the budget what it keeps is charged to (null: none).
+  Stream(std::string id, const StreamSettings& settings, int64_t now_ns, MemoryAccount* memory = nullptr);
   ~Stream();
 
   const std::string& id() const { return id_; }
@@ -114,6 +119,11 @@ class Stream : NonCopyable {
   /// A frame has found it (the registry's lock): a stream only set_params made, without one,
   /// gives its slot up to a producer's new stream when max_streams are registered.
   bool fed = false;
+  /// The memory budget its history, track and /latest copy are charged to (may be null).
+  MemoryAccount* const memory;
+  /// When a frame last used its history or track (wall_ns()): the budget sheds the stream's
+  /// that was used longest ago first (memory_account.h).
+  std::atomic<int64_t> kept_ns{0};
 
   SlotState slot;          ///< FrameSlots' lock
   PublishOrder order;      ///< the publisher thread

@@ -11,7 +11,8 @@
 namespace fq::daemon {
 
 // Once the pipeline is idle,
-//   frames_in == frames_out + errors + superseded + dropped_stale + preempted + refused.
+//   frames_in == frames_out + errors + superseded + dropped_stale + preempted + refused
+//                + dropped_memory.
 // Notes beside the help texts:
 // - subscriber_overflows: ZeroMQ skips a subscriber whose queue is full
 //   (caps.max_subscriber_results) without telling until it has read half its queue, so one
@@ -22,6 +23,10 @@ namespace fq::daemon {
 //   half their vertices near the stream's last result. Not part of the sum.
 // - preempted: stopped so that another stream's waiting frame meets its budget
 //   (latency_policy.h); an error result is published, but not counted in errors.
+// - memory_resets: what the stream keeps across frames (temporal history, cluster id track)
+//   dropped to keep fqd within caps.memory_budget_mb (memory_account.h). Not part of the sum.
+// - dropped_memory: frames that did not fit caps.memory_budget_mb once nothing else could go;
+//   no result. Part of the sum.
 //
 // COUNTER(name, Prometheus family, help); the help is /metrics' HELP line.
 #define FQ_STREAM_COUNTERS(COUNTER)                                                                       \
@@ -52,7 +57,13 @@ namespace fq::daemon {
           "could meet its own (not in fq_errors_total).")                                                 \
   COUNTER(refused, "fq_refused_frames_total",                                                             \
           "Frames under the stream's id from a producer without CURVE that failed to decode: dropped "    \
-          "unanswered, not errors (also in fq_refused_total{reason=\"undecodable\"}).")
+          "unanswered, not errors (also in fq_refused_total{reason=\"undecodable\"}).")                 \
+  COUNTER(memory_resets, "fq_memory_resets_total",                                                        \
+          "Times the stream's temporal history or cluster id track was dropped to stay within "           \
+          "caps.memory_budget_mb (its next frame ran alone).")                                            \
+  COUNTER(dropped_memory, "fq_dropped_memory_total",                                                      \
+          "Frames dropped without a result because they did not fit caps.memory_budget_mb once nothing "  \
+          "else could be freed.")
 
 /// What happened to a stream's frames: a uint64_t member per row of FQ_STREAM_COUNTERS.
 struct StreamCounters {

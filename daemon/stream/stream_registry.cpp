@@ -6,8 +6,10 @@ namespace fq::daemon {
 
 StreamRegistry::StreamRegistry(const DaemonConfig& config)
     : config_(config), defaults_(config.defaults), configured_(config.streams) {
+  memory_.set_budget(config.caps.memory_budget_mb << 20);
   // Configured streams are listed (and controllable) before their first frame.
-  for (const auto& [id, s] : config.streams) streams_[id] = std::make_shared<Stream>(id, s, wall_ns());
+  for (const auto& [id, s] : config.streams)
+    streams_[id] = std::make_shared<Stream>(id, s, wall_ns(), &memory_);
 }
 
 const StreamSettings& StreamRegistry::configured(const std::string& stream_id) const {
@@ -34,7 +36,7 @@ StreamPtr StreamRegistry::entry(const std::string& stream_id, int64_t now_ns, bo
     if (idle == streams_.end()) return nullptr;
     streams_.erase(idle);  // no frame holds it: nothing of it is in flight
   }
-  StreamPtr s = std::make_shared<Stream>(stream_id, configured(stream_id), now_ns);
+  StreamPtr s = std::make_shared<Stream>(stream_id, configured(stream_id), now_ns, &memory_);
   s->fed = frame;
   streams_.emplace(stream_id, s);
   return s;
@@ -92,7 +94,7 @@ void StreamRegistry::reload(const StreamSettings& defaults, const std::map<std::
   const int64_t now = wall_ns();
   for (const auto& [id, s] : configured_) {
     // A stream configured anew is registered like one of the config at start.
-    if (!streams_.contains(id)) streams_[id] = std::make_shared<Stream>(id, s, now);
+    if (!streams_.contains(id)) streams_[id] = std::make_shared<Stream>(id, s, now, &memory_);
   }
   for (auto& [id, s] : streams_) s->set_settings(configured(id));
 }
@@ -154,6 +156,14 @@ std::vector<std::string> StreamRegistry::list() const {
   ids.reserve(streams_.size());
   for (const auto& [id, s] : streams_) ids.push_back(id);
   return ids;
+}
+
+std::vector<StreamPtr> StreamRegistry::all() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<StreamPtr> out;
+  out.reserve(streams_.size());
+  for (const auto& [id, s] : streams_) out.push_back(s);
+  return out;
 }
 
 bool StreamRegistry::snapshot(const std::string& stream_id, std::vector<StreamSnapshot>& out,

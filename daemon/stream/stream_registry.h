@@ -51,6 +51,8 @@ class StreamRegistry {
   void reload(const StreamSettings& defaults, const std::map<std::string, StreamSettings>& streams);
 
   std::vector<std::string> list() const;
+  /// Every registered stream (the memory budget's shedder walks them).
+  std::vector<StreamPtr> all() const;
   /// One stream (false when unknown) or, with an empty id, every stream. Each stream's
   /// counters and samples are copied under its lock, one stream at a time and without the
   /// registry's lock; the percentiles are computed after every lock is released. `copied`
@@ -70,6 +72,11 @@ class StreamRegistry {
   RefusalCounters& refusals() { return refusals_; }
   const RefusalCounters& refusals() const { return refusals_; }
 
+  /// The host memory budget what the streams keep is charged to (memory_account.h); it
+  /// outlives every stream of the registry.
+  MemoryAccount& memory() { return memory_; }
+  const MemoryAccount& memory() const { return memory_; }
+
  private:
   // Registers; null when full. `frame`: for a frame, which may take the slot of a stream no
   // frame has found (see admit()), and marks the stream fed.
@@ -81,6 +88,7 @@ class StreamRegistry {
   bool has_own_series(const std::string& id, const Stream& s, int64_t now_ns, double idle_s) const;
 
   const DaemonConfig& config_;
+  MemoryAccount memory_;  ///< before streams_: destroyed after them, which credit it
   mutable std::mutex mutex_;                          ///< the three members below
   StreamSettings defaults_;                           ///< [defaults], replaced by reload()
   std::map<std::string, StreamSettings> configured_;  ///< [streams.*]: pinned; replaced by reload()
