@@ -242,7 +242,7 @@ FQ_HD float face_turn(const FanView& m, const Point4* in, const Vec3* out, uint3
     const Vec3 a = xyz(in[tri[0]]), b = xyz(in[tri[1]]), c = xyz(in[tri[2]]);
     const Vec3 before = normalized_or_zero(cross(b - a, c - a));
     const Vec3 after = normalized_or_zero(cross(out[tri[1]] - out[tri[0]], out[tri[2]] - out[tri[0]]));
-    sum += 0.5f * (1.f - dot(before, after));
+    sum += fmaxf(0.f, 0.5f * (1.f - dot(before, after)));  // a dot rounded above 1 is no turn
     count += 1.f;
   }
   return count > 0.f ? sum / count : 0.f;
@@ -259,6 +259,7 @@ constexpr int kEnergyPasses = 2;
 /// hardly turned), only that share of it stays (the Wiener gain of the slide: signal over signal
 /// plus noise).
 FQ_HD Vec3 limited_position(Vec3 out, Vec3 t, float energy, float allowance) {
+  allowance = fmaxf(allowance, 0.f);  // below 0 (rounding) the division would give -inf * 0
   const float g = energy > allowance ? allowance / energy : 1.f;
   return out - (1.f - g) * t;
 }

@@ -111,6 +111,7 @@ Status run_engine(Pipeline& p, Engine& engine, FrameJob& f, const YieldRequest& 
   });
   engine.set_cancel_token(nullptr);
   if (s.ok() && f.result.history_reset) f.stream->count(&StreamCounters::temporal_resets);
+  if (s.ok() && f.result.ids_refused) f.stream->count(&StreamCounters::ids_refused);
   if (s.code() != StatusCode::kCancelled) return s;
   if (token.stopped())
     return {StatusCode::kCancelled, "cancelled: fqd is stopping (caps.stop_grace_s passed before the frame finished)"};

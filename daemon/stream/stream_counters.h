@@ -27,6 +27,8 @@ namespace fq::daemon {
 //   dropped to keep fqd within caps.memory_budget_mb (memory_account.h). Not part of the sum.
 // - dropped_memory: frames that did not fit caps.memory_budget_mb once nothing else could go;
 //   no result. Part of the sum.
+// - ids_refused: track A looked at the frame (same triangles as the last) and refused its ids
+//   (kernels/temporal_ids.h); the frame ran track B. Not part of the sum.
 //
 // COUNTER(name, Prometheus family, help); the help is /metrics' HELP line.
 #define FQ_STREAM_COUNTERS(COUNTER)                                                                       \
@@ -63,7 +65,10 @@ namespace fq::daemon {
           "caps.memory_budget_mb (its next frame ran alone).")                                            \
   COUNTER(dropped_memory, "fq_dropped_memory_total",                                                      \
           "Frames dropped without a result because they did not fit caps.memory_budget_mb once nothing "  \
-          "else could be freed.")
+          "else could be freed.")                                                                         \
+  COUNTER(ids_refused, "fq_ids_refused_total",                                                            \
+          "Frames of a stream filtered across frames that kept the last frame's triangles but whose "     \
+          "vertex ids did not follow a smooth motion: filtered through the surface instead (track B).")
 
 /// What happened to a stream's frames: a uint64_t member per row of FQ_STREAM_COUNTERS.
 struct StreamCounters {

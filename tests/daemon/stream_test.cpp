@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <random>
 
 #include "clients/common/frame_sender.h"
 #include "kernels/cpu_engine.h"
@@ -178,6 +179,34 @@ TEST(DaemonStream, TemporalStreamFollowsItsHistoryAndCountsSceneCuts) {
   }
   EXPECT_EQ(history.resets, 1u);
   EXPECT_EQ(h.counters("still").temporal_resets(), 1u);
+}
+
+// A frame with the last frame's triangles whose vertex ids no longer follow the surface (every
+// position handed to another id) is refused by track A: it runs track B, the result header says
+// so, and the stream counts it; frames whose ids follow a smooth motion are not counted.
+TEST(DaemonStream, RefusedVertexIdsAreCountedPerStream) {
+  daemon::DaemonConfig c = test_config();
+  c.defaults.params.cluster = false;
+  c.streams["ids"] = c.defaults;
+  c.streams["ids"].params.filtering.temporal = 0.75f;
+  DaemonHarness h(c);
+  Mesh scrambled = noisy_sphere(43);
+  std::vector<uint32_t> order(scrambled.num_vertices());
+  for (uint32_t v = 0; v < order.size(); ++v) order[v] = v;
+  std::shuffle(order.begin(), order.end(), std::mt19937(7));
+  const Mesh kept = scrambled;
+  for (uint32_t v = 0; v < order.size(); ++v)
+    for (int k = 0; k < 3; ++k) scrambled.positions[3 * size_t(v) + k] = kept.positions[3 * size_t(order[v]) + k];
+  const std::vector<Mesh> frames = {noisy_sphere(41), noisy_sphere(42), scrambled};
+  // The first frame has nothing to follow: track B, with no history.
+  const std::array<wire::TemporalTrack, 3> tracks = {wire::TEMPORAL_SPACE, wire::TEMPORAL_IDS, wire::TEMPORAL_SPACE};
+  for (uint64_t i = 0; i < frames.size(); ++i) {
+    h.send(frames[i], spec_for("ids"), i);
+    const client::ReceivedResult r = h.receive("ids");
+    ASSERT_EQ(r.header.status(), wire::OK) << r.header.error();
+    EXPECT_EQ(r.header.temporal_track(), tracks[i]) << "frame " << i;
+    EXPECT_EQ(h.counters("ids").ids_refused(), i == 2 ? 1u : 0u) << "frame " << i;
+  }
 }
 
 TEST(DaemonStream, RuntimeParameterChangeTakesEffectOnTheNextFrame) {

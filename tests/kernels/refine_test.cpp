@@ -153,6 +153,11 @@ TEST(KernelRefine, TangentialMovesBeyondTheNoiseAreCutBack) {
   EXPECT_NEAR(half.x, 1.f - 0.1f, 1e-6f);
   EXPECT_EQ(half.y, 2.f);
   EXPECT_NEAR(limited_position(out, t, 0.1f, 0.f).x, 0.8f, 1e-6f);  // no allowance: all of it undone
+  // An allowance rounded below zero where nothing slid (a raw scan's boundary vertex): the
+  // vertex stays where it is, finite.
+  const Vec3 still = limited_position(out, Vec3{0.f, 0.f, 0.f}, 0.f, -1.5e-8f);
+  EXPECT_EQ(still.x, 1.f);
+  EXPECT_EQ(still.y, 2.f);
 }
 
 // How far the filter turned a vertex's triangles, by hand on one triangle: untouched 0, turned
