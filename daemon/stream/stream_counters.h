@@ -59,7 +59,7 @@ namespace fq::daemon {
           "could meet its own (not in fq_errors_total).")                                                 \
   COUNTER(refused, "fq_refused_frames_total",                                                             \
           "Frames under the stream's id from a producer without CURVE that failed to decode: dropped "    \
-          "unanswered, not errors (also in fq_refused_total{reason=\"undecodable\"}).")                 \
+          "unanswered, not errors (also in fq_refused_total{reason=\"undecodable\"}).")                   \
   COUNTER(memory_resets, "fq_memory_resets_total",                                                        \
           "Times the stream's temporal history or cluster id track was dropped to stay within "           \
           "caps.memory_budget_mb (its next frame ran alone).")                                            \

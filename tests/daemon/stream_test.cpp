@@ -7,11 +7,11 @@
 #include <random>
 
 #include "clients/common/frame_sender.h"
-#include "kernels/cpu_engine.h"
 #include "core/parallel_for.h"
+#include "kernels/cpu_engine.h"
 #include "tests/daemon/daemon_harness.h"
-#include "wire/frame_codec.h"
 #include "tests/support/test_meshes.h"
+#include "wire/frame_codec.h"
 
 namespace fq::test {
 namespace {
@@ -196,10 +196,12 @@ TEST(DaemonStream, RefusedVertexIdsAreCountedPerStream) {
   std::shuffle(order.begin(), order.end(), std::mt19937(7));
   const Mesh kept = scrambled;
   for (uint32_t v = 0; v < order.size(); ++v)
-    for (int k = 0; k < 3; ++k) scrambled.positions[3 * size_t(v) + k] = kept.positions[3 * size_t(order[v]) + k];
+    for (int k = 0; k < 3; ++k)
+      scrambled.positions[3 * size_t(v) + k] = kept.positions[3 * size_t(order[v]) + k];
   const std::vector<Mesh> frames = {noisy_sphere(41), noisy_sphere(42), scrambled};
   // The first frame has nothing to follow: track B, with no history.
-  const std::array<wire::TemporalTrack, 3> tracks = {wire::TEMPORAL_SPACE, wire::TEMPORAL_IDS, wire::TEMPORAL_SPACE};
+  const std::array<wire::TemporalTrack, 3> tracks = {wire::TEMPORAL_SPACE, wire::TEMPORAL_IDS,
+                                                     wire::TEMPORAL_SPACE};
   for (uint64_t i = 0; i < frames.size(); ++i) {
     h.send(frames[i], spec_for("ids"), i);
     const client::ReceivedResult r = h.receive("ids");
