@@ -199,7 +199,7 @@ TEST(KernelRefine, SlidesRepairFlippedTrianglesAndLeaveIrregularOnesAlone) {
   const uint32_t centre = 4 * 10 + 5;  // (5, 4), inside a grid of 9 x 9 cells
   auto run = [&](float push, std::vector<float>& moved, FrameResult& out) {
     Mesh plane = test::make_plane_grid(9, 9, 1.f);
-    plane.positions[3 * centre] += push;
+    plane.positions[3 * size_t(centre)] += push;
     moved = plane.positions;
     ASSERT_TRUE(engine.process(plane.view(), p, out).ok());
   };
@@ -225,7 +225,7 @@ TEST(KernelRefine, SlidesRepairFlippedTrianglesAndLeaveIrregularOnesAlone) {
   }
   EXPECT_GT(flipped_before, 0);
   EXPECT_EQ(flipped_after, 0);
-  EXPECT_LT(std::fabs(repaired.positions[3 * centre] - 5.f), 0.7f);  // back towards its grid place
+  EXPECT_LT(std::fabs(repaired.positions[3 * size_t(centre)] - 5.f), 0.7f);  // back towards its grid place
 }
 
 // On a flat grid whose filtered normals are the plane's, the vertex update's tangential
