@@ -8,7 +8,8 @@
 //      mean in the directions its filtered normals leave free (keeps triangles from collapsing
 //      into slivers whose normals no longer follow the surface, without rounding creases);
 //   3. limited_position: after the rounds, the part of each vertex's move within its tangent
-//      plane is kept only as far as the frame's noise explains it (refine_plan.h).
+//      plane is kept only as far as the noise turned the vertex's triangles (face_turn,
+//      refine_plan.h).
 // Fractional passes (partial_normal, partial_position) make the result continuous in the plan.
 // Every sum runs over a vertex's triangles in the CSR order (increasing triangle index), so
 // results do not depend on the thread count.
