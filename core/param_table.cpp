@@ -276,23 +276,30 @@ std::string join_names(const std::vector<std::string>& names, std::string_view s
   return out;
 }
 
-std::string choice_names(const ParamRow& row, std::string_view separator, bool quoted) {
+std::string choice_names(std::span<const ParamChoice> choices, std::string_view separator, bool quoted) {
   std::vector<std::string> names;
-  for (const ParamChoice& c : row.choices) names.emplace_back(c.name);
+  for (const ParamChoice& c : choices) names.emplace_back(c.name);
   return join_names(names, separator, quoted);
 }
 
-std::optional<int> choice_wire(const ParamRow& row, int value) {
-  for (const ParamChoice& c : row.choices)
+std::string choice_names(const ParamRow& row, std::string_view separator, bool quoted) {
+  return choice_names(row.choices, separator, quoted);
+}
+
+std::optional<int> choice_wire(std::span<const ParamChoice> choices, int value) {
+  for (const ParamChoice& c : choices)
     if (c.value == value) return c.wire;
   return std::nullopt;
 }
 
-std::optional<int> choice_value(const ParamRow& row, int wire) {
-  for (const ParamChoice& c : row.choices)
+std::optional<int> choice_value(std::span<const ParamChoice> choices, int wire) {
+  for (const ParamChoice& c : choices)
     if (c.wire == wire) return c.value;
   return std::nullopt;
 }
+
+std::optional<int> choice_wire(const ParamRow& row, int value) { return choice_wire(row.choices, value); }
+std::optional<int> choice_value(const ParamRow& row, int wire) { return choice_value(row.choices, wire); }
 
 Status validate(const Params& p) {
   if (!p.filter && !p.cluster) return invalid_argument("nothing to compute: enable filter and/or cluster");

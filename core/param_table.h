@@ -97,8 +97,12 @@ Status check_param(const ParamRow& row, double value);
 std::string join_names(const std::vector<std::string>& names, std::string_view separator = " or ",
                        bool quoted = false);
 /// The names of an enum row joined by `separator` ("qf+ or qf or bf"), quoted if asked.
+std::string choice_names(std::span<const ParamChoice> choices, std::string_view separator = " or ",
+                         bool quoted = false);
 std::string choice_names(const ParamRow& row, std::string_view separator = " or ", bool quoted = false);
-/// The wire number of an enum row's native value and back; nullopt outside the table.
+/// The wire number of an enum's native value and back; nullopt outside the choices.
+std::optional<int> choice_wire(std::span<const ParamChoice> choices, int value);
+std::optional<int> choice_value(std::span<const ParamChoice> choices, int wire);
 std::optional<int> choice_wire(const ParamRow& row, int value);
 std::optional<int> choice_value(const ParamRow& row, int wire);
 

@@ -82,9 +82,8 @@ void read_enum(TomlReader& r, const StreamSettingRow& row, StreamSettings& s) {
     row.set(s, c->value);
     return;
   }
-  std::vector<std::string> names;
-  for (const ParamChoice& c : row.choices) names.emplace_back(c.name);
-  r.fail(row.name, "must be " + join_names(names, " or ", true) + " (got \"" + echo_value(name) + "\")");
+  r.fail(row.name,
+         "must be " + choice_names(row.choices, " or ", true) + " (got \"" + echo_value(name) + "\")");
 }
 
 // A number in [lo, hi]: TomlReader's typed read, which names the range in its message.
@@ -128,10 +127,7 @@ std::optional<double> wire_value(const StreamSettingRow& row, const wire::SetPar
     }
     case pb::FieldDescriptor::CPPTYPE_ENUM: {
       // A number outside the enum (proto3 keeps it) stands for the first choice.
-      const int w = r->GetEnumValue(q, f);
-      for (const ParamChoice& c : row.choices)
-        if (c.wire == w) return c.value;
-      return row.choices.front().value;
+      return choice_value(row.choices, r->GetEnumValue(q, f)).value_or(row.choices.front().value);
     }
     default:
       return std::nullopt;
@@ -150,8 +146,8 @@ void set_wire_value(const StreamSettingRow& row, double v, wire::ControlReply& o
       r->SetUInt32(&out, f, static_cast<uint32_t>(v));
       return;
     case pb::FieldDescriptor::CPPTYPE_ENUM:
-      for (const ParamChoice& c : row.choices)
-        if (c.value == static_cast<int>(v)) r->SetEnumValue(&out, f, c.wire);
+      if (const std::optional<int> w = choice_wire(row.choices, static_cast<int>(v)))
+        r->SetEnumValue(&out, f, *w);
       return;
     default:
       return;

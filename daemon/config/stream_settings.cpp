@@ -37,9 +37,7 @@ bool parse_result_form(const std::string& s, ResultForm& out) {
 const char* result_form_name(ResultForm f) { return choice_of(f).name; }
 wire::ResultForm to_wire(ResultForm f) { return static_cast<wire::ResultForm>(choice_of(f).wire); }
 ResultForm from_wire(wire::ResultForm f) {
-  for (const ParamChoice& c : kResultForms)
-    if (c.wire == f) return static_cast<ResultForm>(c.value);
-  return static_cast<ResultForm>(kResultForms[0].value);
+  return static_cast<ResultForm>(choice_value(kResultForms, f).value_or(kResultForms[0].value));
 }
 
 Status validate(const StreamSettings& s) {
