@@ -26,7 +26,8 @@ bool key_line(const std::string& line, std::string& name, std::string& value) {
   if (eq == std::string::npos) return false;
   name = trim(line.substr(0, eq));
   value = trim(line.substr(eq + 1));
-  if (value.size() >= 2 && value.front() == '"' && value.back() == '"') value = value.substr(1, value.size() - 2);
+  if (value.size() >= 2 && value.front() == '"' && value.back() == '"')
+    value = value.substr(1, value.size() - 2);
   return true;
 }
 
@@ -60,7 +61,8 @@ Status read_curve_key_file(const std::string& path, bool need_secret, CurveKeyPa
     if (line.empty() || line[0] == '#') continue;
     if (!key_line(line, name, value) || (name != "public" && name != "secret"))
       return io_error(path, "line " + std::to_string(n) + ": expected public = \"...\" or secret = \"...\"");
-    if (!valid_z85_key(value)) return io_error(path, "line " + std::to_string(n) + ": not a 40-character Z85 key");
+    if (!valid_z85_key(value))
+      return io_error(path, "line " + std::to_string(n) + ": not a 40-character Z85 key");
     (name == "public" ? out.public_key : out.secret_key) = value;
   }
   if (out.public_key.empty()) return io_error(path, "no public key");
@@ -109,10 +111,12 @@ Status read_public_keys(const std::string& path, std::vector<std::string>& out) 
     // would read as "name = value".
     if (!valid_z85_key(line) && key_line(line, name, value)) {
       if (name == "secret") continue;
-      if (name != "public") return io_error(path, "line " + std::to_string(n) + ": unknown entry '" + name + "'");
+      if (name != "public")
+        return io_error(path, "line " + std::to_string(n) + ": unknown entry '" + name + "'");
       line = value;
     }
-    if (!valid_z85_key(line)) return io_error(path, "line " + std::to_string(n) + ": not a 40-character Z85 key");
+    if (!valid_z85_key(line))
+      return io_error(path, "line " + std::to_string(n) + ": not a 40-character Z85 key");
     out.push_back(line);
   }
   return {};

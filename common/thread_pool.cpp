@@ -54,7 +54,8 @@ ThreadPool& ThreadPool::shared() {
   // Never destroyed: joining at static destruction would deadlock if exit() were called from a
   // pool thread, and could race a loop still running on another thread. The workers sleep in
   // their wait and end with the process.
-  static ThreadPool* pool = new ThreadPool(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) - 1);
+  static ThreadPool* pool =
+      new ThreadPool(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) - 1);
   return *pool;
 }
 

@@ -18,9 +18,9 @@
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
-#include <type_traits>
 #include <mutex>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "common/non_copyable.h"
@@ -50,9 +50,10 @@ class ThreadPool : NonCopyable {
   template <class F>
   void run(size_t count, int max_workers, F&& fn, size_t grain = 1) {
     using Fn = std::remove_reference_t<F>;
-    run_ranges(count, max_workers, grain,
-               [](void* ctx, size_t b, size_t e, size_t w) { (*static_cast<Fn*>(ctx))(b, e, w); },
-               const_cast<void*>(static_cast<const void*>(&fn)));
+    run_ranges(
+        count, max_workers, grain,
+        [](void* ctx, size_t b, size_t e, size_t w) { (*static_cast<Fn*>(ctx))(b, e, w); },
+        const_cast<void*>(static_cast<const void*>(&fn)));
   }
 
  private:

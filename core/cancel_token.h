@@ -26,7 +26,8 @@ class CancelToken {
 
   /// Expired once `*stop` is true (may be null), once `deadline` has passed, or once `*yield`
   /// (may be null) is requested and due.
-  explicit CancelToken(const std::atomic<bool>* stop = nullptr, Clock::time_point deadline = Clock::time_point::max(),
+  explicit CancelToken(const std::atomic<bool>* stop = nullptr,
+                       Clock::time_point deadline = Clock::time_point::max(),
                        const YieldRequest* yield = nullptr)
       : stop_(stop), deadline_(deadline), yield_(yield) {}
 

@@ -15,16 +15,19 @@ namespace {
 template <class Bad>
 uint64_t first_bad(uint64_t n, int threads, Bad bad) {
   std::atomic<uint32_t> first_chunk{UINT32_MAX};
-  parallel_for(fixed_chunks(n), threads_or_all(threads), [&](uint32_t c) {
-    const uint64_t end = std::min<uint64_t>(n, uint64_t(c + 1) * kFixedChunk);
-    // Branch-free over the chunk (the compiler vectorizes it): the valid case reads every item.
-    uint32_t any = 0;
-    for (uint64_t i = uint64_t(c) * kFixedChunk; i < end; ++i) any |= static_cast<uint32_t>(bad(i));
-    if (any == 0) return;
-    uint32_t cur = first_chunk.load();
-    while (c < cur && !first_chunk.compare_exchange_weak(cur, c)) {
-    }
-  }, kOneChunkAtATime);
+  parallel_for(
+      fixed_chunks(n), threads_or_all(threads),
+      [&](uint32_t c) {
+        const uint64_t end = std::min<uint64_t>(n, uint64_t(c + 1) * kFixedChunk);
+        // Branch-free over the chunk (the compiler vectorizes it): the valid case reads every item.
+        uint32_t any = 0;
+        for (uint64_t i = uint64_t(c) * kFixedChunk; i < end; ++i) any |= static_cast<uint32_t>(bad(i));
+        if (any == 0) return;
+        uint32_t cur = first_chunk.load();
+        while (c < cur && !first_chunk.compare_exchange_weak(cur, c)) {
+        }
+      },
+      kOneChunkAtATime);
   if (first_chunk == UINT32_MAX) return n;
   for (uint64_t i = uint64_t(first_chunk) * kFixedChunk;; ++i) {
     if (bad(i)) return i;

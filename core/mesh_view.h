@@ -7,7 +7,7 @@
 namespace fq {
 
 struct MeshView {
-  const float* positions = nullptr;     ///< 3 floats per vertex
+  const float* positions = nullptr;  ///< 3 floats per vertex
   uint32_t num_vertices = 0;
   const uint32_t* triangles = nullptr;  ///< 3 indices per triangle
   uint32_t num_triangles = 0;

@@ -45,6 +45,8 @@ inline int threads_or_all(int threads) { return threads > 0 ? threads : hardware
 /// work item of parallel_for (grain kOneChunkAtATime).
 inline constexpr uint32_t kFixedChunk = 1u << 15;
 inline constexpr int kOneChunkAtATime = 1;
-inline uint32_t fixed_chunks(uint64_t n) { return static_cast<uint32_t>((n + kFixedChunk - 1) / kFixedChunk); }
+inline uint32_t fixed_chunks(uint64_t n) {
+  return static_cast<uint32_t>((n + kFixedChunk - 1) / kFixedChunk);
+}
 
 }  // namespace fq

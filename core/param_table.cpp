@@ -242,7 +242,8 @@ Status parse_param(const ParamRow& row, std::string_view text, double& out) {
         return invalid_argument(std::string(row.name) + " must be a whole number" + quoted);
       return {};
     case ParamKind::kFloat:
-      if (!parse_number(given, out)) return invalid_argument(std::string(row.name) + " must be a number" + quoted);
+      if (!parse_number(given, out))
+        return invalid_argument(std::string(row.name) + " must be a number" + quoted);
       return {};
   }
   return {};
@@ -258,7 +259,8 @@ Status check_param(const ParamRow& row, double v) {
   if (!below && !above) return {};
   const std::string zero = row.zero ? std::string("0 = ") + row.zero : "";
   if (row.lo_open && below)
-    return invalid_argument(name + " must be > " + show(row.lo) + (zero.empty() ? "" : " or 0 (" + zero + ")") + got);
+    return invalid_argument(name + " must be > " + show(row.lo) +
+                            (zero.empty() ? "" : " or 0 (" + zero + ")") + got);
   if (row.lo_open || row.kind == ParamKind::kUint)
     return invalid_argument(name + " must be at most " + show(row.hi) + row.unit + got);
   return invalid_argument(name + " must be in [" + show(row.lo) + ", " + show(row.hi) + "]" + row.unit +

@@ -58,12 +58,12 @@ struct ParamRow {
   ParamKind kind;
   double (*get)(const Params&);
   void (*set)(Params&, double);
-  double lo, hi;        ///< range, both ends inclusive (kFloat, kUint)
-  bool lo_open;         ///< the range is (lo, hi]
-  const char* zero;     ///< non-null: 0 is also allowed and means this ("sigma_s / 2", "estimated per frame")
-  const char* unit;     ///< " mean edge lengths" or ""
+  double lo, hi;     ///< range, both ends inclusive (kFloat, kUint)
+  bool lo_open;      ///< the range is (lo, hi]
+  const char* zero;  ///< non-null: 0 is also allowed and means this ("sigma_s / 2", "estimated per frame")
+  const char* unit;  ///< " mean edge lengths" or ""
   std::span<const ParamChoice> choices;  ///< kEnum: its names, in help order
-  unsigned surfaces;    ///< ParamSurface bits
+  unsigned surfaces;                     ///< ParamSurface bits
   const char* help;
   /// What the parameter resolves to (sigma_b's 0 -> sigma_s / 2): the report shows it; null: get.
   double (*effective)(const Params&) = nullptr;

@@ -40,10 +40,10 @@ struct FilterParams {
   /// The quadric diffusion's extents, for "qf" and for the clustering (which scores the same
   /// filtered quadrics); "qf+" moves vertices without them. Defaults 1.5 / 0.7 (the paper's
   /// Table 1 uses 2 / 1 and 2 / 0.7; pass them for the paper's rows).
-  float sigma_s = 1.5f;  ///< spatial extent of the quadric diffusion (BF: of the filter)
-  float sigma_r = 0.7f;  ///< range extent (RMS quadric distance; BF: prediction distance)
-  float sigma_b = 0.0f;  ///< finest detail captured by Q'; 0 means sigma_s / 2
-  float sigma_n = 0.0f;  ///< normal smoothing for constrained mode; 0 means sigma_s / 2
+  float sigma_s = 1.5f;      ///< spatial extent of the quadric diffusion (BF: of the filter)
+  float sigma_r = 0.7f;      ///< range extent (RMS quadric distance; BF: prediction distance)
+  float sigma_b = 0.0f;      ///< finest detail captured by Q'; 0 means sigma_s / 2
+  float sigma_n = 0.0f;      ///< normal smoothing for constrained mode; 0 means sigma_s / 2
   bool constrained = false;  ///< move along the smoothed normal instead of to the minimizer
   /// Tikhonov pull toward the current position, relative to tr(A)/3. 0.05 keeps a clean
   /// mesh intact and improves noisy ones (see docs/QUALITY.md); 0 is the paper's solver.
@@ -86,8 +86,8 @@ struct ClusterParams {
 };
 
 struct Params {
-  bool filter = true;    ///< move the vertices
-  bool cluster = false;  ///< compute labels (on the input positions, from the same Q^bl)
+  bool filter = true;        ///< move the vertices
+  bool cluster = false;      ///< compute labels (on the input positions, from the same Q^bl)
   FilterParams filtering;    ///< the filter's parameters
   ClusterParams clustering;  ///< the clustering's parameters
 };

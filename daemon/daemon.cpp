@@ -7,15 +7,15 @@
 #include <mutex>
 
 #include "common/non_copyable.h"
-#include "daemon/service/config_reload.h"
 #include "daemon/control/control_server.h"
+#include "daemon/control/service_metrics.h"
+#include "daemon/control/settings_audit.h"
 #include "daemon/pipeline/daemon_threads.h"
 #include "daemon/pipeline/ingest.h"
 #include "daemon/pipeline/publisher.h"
 #include "daemon/pipeline/result_socket.h"
-#include "daemon/control/service_metrics.h"
-#include "daemon/control/settings_audit.h"
 #include "daemon/pipeline/sub_ingest.h"
+#include "daemon/service/config_reload.h"
 
 namespace fq::daemon {
 namespace {
@@ -127,13 +127,15 @@ CpuUsage Daemon::cpu_usage() const {
 std::string Daemon::service_metrics() const {
   ServiceMetricsInput in;
   for (size_t r = 0; r < static_cast<size_t>(Refusal::kCount); ++r)
-    in.refusals.emplace_back(refusal_name(static_cast<Refusal>(r)), registry_.refusals().get(static_cast<Refusal>(r)));
+    in.refusals.emplace_back(refusal_name(static_cast<Refusal>(r)),
+                             registry_.refusals().get(static_cast<Refusal>(r)));
   for (const std::string& id : registry_.own_series_ids(wall_ns(), caps_.get()->metric_series_idle_s)) {
     StreamSettings s;
     if (registry_.find(id, s)) in.budgets_ms.emplace_back(id, s.budget_ms);
   }
   for (size_t i = 0; i < engines_.size() && i < pipeline_.engine_busy.size(); ++i)
-    in.engines.push_back({engines_[i]->name(), pipeline_.engine_busy.seconds(i), pipeline_.engine_busy.frames(i)});
+    in.engines.push_back(
+        {engines_[i]->name(), pipeline_.engine_busy.seconds(i), pipeline_.engine_busy.frames(i)});
   in.queues = {{"decode", pipeline_.decode_queue.frames()},
                {"slots", pipeline_.slots.waiting()},
                {"encode", pipeline_.encode_queue.size()},
@@ -151,7 +153,7 @@ std::string Daemon::service_metrics() const {
 struct Daemon::Sockets {
   zmq::socket_t ingest, publish, publish_monitor, control;
   std::unique_ptr<SubProducers> sub;  ///< stays empty without [ingest] connect
-  CurveServerKeys keys;  ///< with [security]
+  CurveServerKeys keys;               ///< with [security]
 };
 
 // Every door of fqd under the same rules: a size bound at the socket (a larger part drops the
@@ -190,10 +192,13 @@ Status Daemon::make_sockets(Sockets& s) {
                      ? fmt::format(", {} on the control socket (its own list)", s.keys.control.size())
                      : std::string());
   } else {
-    for (const std::string& e : {config_.endpoints.ingest, config_.endpoints.publish, config_.endpoints.control})
+    for (const std::string& e :
+         {config_.endpoints.ingest, config_.endpoints.publish, config_.endpoints.control})
       if (!is_local_endpoint(e))
-        spdlog::warn("fqd: {} is reachable from other hosts without CURVE: anyone who can connect may send "
-                     "frames, read results and change parameters (set [security] curve_key_file)", e);
+        spdlog::warn(
+            "fqd: {} is reachable from other hosts without CURVE: anyone who can connect may send "
+            "frames, read results and change parameters (set [security] curve_key_file)",
+            e);
   }
   if (config_.sub_ingest.connect.empty()) return {};
   return make_sub_producers(input_context_, config_.sub_ingest, config_.caps.max_frame_bytes,
@@ -216,20 +221,23 @@ Status Daemon::start() {
   for (const auto& e : engines_) engine_list.push_back(e.get());
   pipeline_.engine_busy.reset(engine_list);
   if (!config_.http.listen.empty()) {
-    http_ = std::make_unique<HttpServer>(config_, caps_, registry_, pipeline_.latest, engine_names(), healthy_);
+    http_ =
+        std::make_unique<HttpServer>(config_, caps_, registry_, pipeline_.latest, engine_names(), healthy_);
     http_->set_extra_metrics([this] { return service_metrics(); });
     FQ_RETURN_IF_ERROR(http_->start());
     endpoints_.http = http_->url();
   }
   // Sockets were made on this thread and are handed over whole to their owner threads.
-  const SubscriptionCaps subscription_caps{config_.caps.max_subscriptions, config_.caps.max_subscription_bytes};
-  publisher_thread_ = std::thread(
-      [this, s = std::move(sockets.publish), m = std::move(sockets.publish_monitor), subscription_caps]() mutable {
-        name_this_thread("publish");
-        Publisher(ResultSocket(std::move(s), std::move(m), subscription_caps, registry_.refusals(), client_keys_.get()),
-                  pipeline_)
-            .run();
-      });
+  const SubscriptionCaps subscription_caps{config_.caps.max_subscriptions,
+                                           config_.caps.max_subscription_bytes};
+  publisher_thread_ = std::thread([this, s = std::move(sockets.publish),
+                                   m = std::move(sockets.publish_monitor), subscription_caps]() mutable {
+    name_this_thread("publish");
+    Publisher(
+        ResultSocket(std::move(s), std::move(m), subscription_caps, registry_.refusals(), client_keys_.get()),
+        pipeline_)
+        .run();
+  });
   for (int i = 0; i < config_.encode_threads; ++i)
     encoders_.emplace_back([this] {
       name_this_thread("encode");
@@ -257,7 +265,8 @@ Status Daemon::start() {
   ingest_->start();
   running_ = true;
   healthy_ = true;
-  if (config_.stats.interval_s > 0) stats_log_ = std::make_unique<StatsLog>(registry_, config_.stats.interval_s);
+  if (config_.stats.interval_s > 0)
+    stats_log_ = std::make_unique<StatsLog>(registry_, config_.stats.interval_s);
   std::string names;
   for (const std::string& n : engine_names()) names += (names.empty() ? "" : ", ") + n;
   spdlog::info("fqd: engines [{}], {} decode / {} encode threads", names, config_.decode_threads,
@@ -267,15 +276,17 @@ Status Daemon::start() {
   if (http_) spdlog::info("fqd: http {} (/metrics /healthz /streams, viewer at /)", endpoints_.http);
   for (const std::string& ep : config_.sub_ingest.connect)
     spdlog::info("fqd: ingest also from {} (SUB), streams [{}]", ep,
-                 config_.sub_ingest.streams.empty() ? std::string("all") : fmt::format("{}", fmt::join(config_.sub_ingest.streams, ", ")));
+                 config_.sub_ingest.streams.empty()
+                     ? std::string("all")
+                     : fmt::format("{}", fmt::join(config_.sub_ingest.streams, ", ")));
   return {};
 }
 
 Status Daemon::reload(const DaemonConfig& fresh) {
   const std::vector<std::string> restart = restart_only_changes(config_, fresh);
   if (!restart.empty())
-    return invalid_argument(fmt::format("{} changed, which takes effect only at a restart (nothing was applied)",
-                                        fmt::join(restart, ", ")));
+    return invalid_argument(fmt::format(
+        "{} changed, which takes effect only at a restart (nothing was applied)", fmt::join(restart, ", ")));
   // Everything that can fail is read first, so that a bad file changes nothing.
   CurveServerKeys keys;
   if (fresh.security.enabled()) FQ_RETURN_IF_ERROR(load_curve_server_keys(fresh.security, keys));
@@ -293,7 +304,7 @@ Status Daemon::reload(const DaemonConfig& fresh) {
   caps_.set(fresh.caps);
   pipeline_.decode_queue.set_bounds(fresh.caps.max_queued_frames, fresh.caps.max_queued_bytes);
   registry_.memory().set_budget(fresh.caps.memory_budget_mb << 20);  // what is kept sheds at the next charge
-  if (client_keys_) client_keys_->set(std::move(keys.clients));  // revoked keys' connections are cut
+  if (client_keys_) client_keys_->set(std::move(keys.clients));      // revoked keys' connections are cut
   if (control_keys_) control_keys_->set(std::move(keys.control));
   if (http_) http_->set_access(std::move(access));
   spdlog::set_level(spdlog::level::from_str(fresh.log_level));

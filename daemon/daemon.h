@@ -67,7 +67,7 @@ class Daemon : NonCopyable {
   LiveCaps caps_;
   Pipeline pipeline_;
   std::vector<std::unique_ptr<Engine>> engines_;
-  std::unique_ptr<ClientKeys> client_keys_;  ///< with [security]; outlives the ZAP handlers
+  std::unique_ptr<ClientKeys> client_keys_;   ///< with [security]; outlives the ZAP handlers
   std::unique_ptr<ClientKeys> control_keys_;  ///< with security.control_keys_file; likewise
   // Declared before the contexts, so destroyed after them: closing a context ends its
   // handler's thread.
@@ -79,10 +79,10 @@ class Daemon : NonCopyable {
   std::thread control_thread_, publisher_thread_;
   std::vector<std::thread> decoders_, workers_, encoders_;
   bool running_ = false;
-  std::atomic<bool> healthy_{false};    ///< every thread started (GET /healthz)
+  std::atomic<bool> healthy_{false};         ///< every thread started (GET /healthz)
   std::atomic<uint64_t> sub_reconnects_{0};  ///< SUB producers connected again (fq_ingest_reconnects_total)
-  std::unique_ptr<HttpServer> http_;    ///< null when http.listen is empty
-  std::unique_ptr<StatsLog> stats_log_; ///< null when stats.interval_s is 0
+  std::unique_ptr<HttpServer> http_;         ///< null when http.listen is empty
+  std::unique_ptr<StatsLog> stats_log_;      ///< null when stats.interval_s is 0
 };
 
 }  // namespace fq::daemon

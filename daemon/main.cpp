@@ -16,18 +16,18 @@
 #include <nlohmann/json.hpp>
 
 #include "common/tool_main.h"
-#include "daemon/service/command_line.h"
 #include "daemon/config/config.h"
+#include "daemon/daemon.h"
+#include "daemon/http/web_root.h"
+#include "daemon/service/command_line.h"
 #include "daemon/service/config_check.h"
 #include "daemon/service/config_lookup.h"
 #include "daemon/service/credentials.h"
-#include "daemon/daemon.h"
 #include "daemon/service/log_format.h"
 #include "daemon/service/service_notify.h"
 #include "daemon/service/signals.h"
 #include "daemon/service/startup_report.h"
 #include "daemon/service/stream_shard.h"
-#include "daemon/http/web_root.h"
 
 namespace {
 
@@ -60,7 +60,8 @@ bool startable(const fq::daemon::DaemonConfig& config) {
 
 // SIGHUP: the file again (the flags over it, as at start), applied whole or not at all: an
 // invalid or empty file, or one that changes a setting only a restart can change, changes nothing.
-void reload(const fq::daemon::ConfigSource& source, const fq::daemon::CommandLine& cl, fq::daemon::Daemon& daemon) {
+void reload(const fq::daemon::ConfigSource& source, const fq::daemon::CommandLine& cl,
+            fq::daemon::Daemon& daemon) {
   if (source.path.empty()) {
     spdlog::info("fqd: SIGHUP ignored: running on built-in defaults, no configuration file to reload");
     return;
@@ -72,7 +73,8 @@ void reload(const fq::daemon::ConfigSource& source, const fq::daemon::CommandLin
   if (!s.ok())
     spdlog::error("fqd: SIGHUP: {} not reloaded, settings unchanged: {}", source.path, s.message());
   else
-    spdlog::info("fqd: SIGHUP: reloaded {} (streams, caps, client keys, HTTP access, log level)", source.path);
+    spdlog::info("fqd: SIGHUP: reloaded {} (streams, caps, client keys, HTTP access, log level)",
+                 source.path);
   fq::daemon::notify_service_manager("READY=1");
 }
 
@@ -111,7 +113,8 @@ int run(int argc, char** argv) {
   if (cl.shard_map > 0) return print_shard_map(config, cl.shard_map);  // reads no file the config names
   if (!startable(config)) return 2;
   if (cl.check_only) {
-    std::printf("%s: configuration is valid\n", source.path.empty() ? source.from.c_str() : source.path.c_str());
+    std::printf("%s: configuration is valid\n",
+                source.path.empty() ? source.from.c_str() : source.path.c_str());
     return 0;
   }
   spdlog::set_level(spdlog::level::from_str(config.log_level));

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/mesh_view.h"
 #include "common/status.h"
+#include "core/mesh_view.h"
 
 namespace fq {
 

@@ -9,7 +9,8 @@ namespace fq {
 
 /// `prev` and `cur`: 3 floats per vertex and one label per vertex. `cell`: grid cell of the
 /// nearest-vertex search (the mean edge length suits). NaN when `cur` has no vertex.
-double label_persistence(const float* prev_xyz, const uint32_t* prev_labels, uint32_t prev_n, const float* cur_xyz,
-                         const uint32_t* cur_labels, uint32_t cur_n, float cell, int threads = 1);
+double label_persistence(const float* prev_xyz, const uint32_t* prev_labels, uint32_t prev_n,
+                         const float* cur_xyz, const uint32_t* cur_labels, uint32_t cur_n, float cell,
+                         int threads = 1);
 
 }  // namespace fq

@@ -67,7 +67,8 @@ double coarse_normal_error(const MeshView& reference, const MeshView& scan, cons
   used = 0;
   for (uint32_t r = 0; r < reference.num_triangles; ++r) {
     if (counts[r] < kCoarseFaces) continue;
-    const std::array<double, 3> n = face_area_normal(reference.positions, reference.triangles + 3 * size_t(r));
+    const std::array<double, 3> n =
+        face_area_normal(reference.positions, reference.triangles + 3 * size_t(r));
     const std::array<double, 3>& s = sums[r];
     const std::array<double, 3> c = {s[1] * n[2] - s[2] * n[1], s[2] * n[0] - s[0] * n[2],
                                      s[0] * n[1] - s[1] * n[0]};

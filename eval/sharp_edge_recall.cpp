@@ -78,8 +78,8 @@ SharpEdgeRecall sharp_edge_recall(const MeshView& clean, const uint32_t* labels,
     }
     i = j;
   }
-  r.recall = r.sharp_length > 0.0 ? r.separated_length / r.sharp_length
-                                   : std::numeric_limits<double>::quiet_NaN();
+  r.recall =
+      r.sharp_length > 0.0 ? r.separated_length / r.sharp_length : std::numeric_limits<double>::quiet_NaN();
   return r;
 }
 

@@ -99,10 +99,9 @@ struct AttributeProperties {
   draco::GeometryAttribute::Type type;
   std::array<const char*, 4> names;  ///< per component; null past the last
 };
-constexpr AttributeProperties kKept[] = {
-    {draco::GeometryAttribute::NORMAL, {"nx", "ny", "nz", nullptr}},
-    {draco::GeometryAttribute::COLOR, {"red", "green", "blue", "alpha"}},
-    {draco::GeometryAttribute::TEX_COORD, {"u", "v", nullptr, nullptr}}};
+constexpr AttributeProperties kKept[] = {{draco::GeometryAttribute::NORMAL, {"nx", "ny", "nz", nullptr}},
+                                         {draco::GeometryAttribute::COLOR, {"red", "green", "blue", "alpha"}},
+                                         {draco::GeometryAttribute::TEX_COORD, {"u", "v", nullptr, nullptr}}};
 
 /// One vertex property per component of `att` (per point: read_drc's vertices are points);
 /// uint8 values stay uchar (colours), others become float.
@@ -128,7 +127,8 @@ void keep_attribute(const draco::Mesh& dm, const draco::PointAttribute& att, con
 /// other attributes are named in `dropped`.
 void keep_drc_attributes(const draco::Mesh& dm, MeshAttributes& out) {
   const int32_t label_id = [&] {
-    const draco::AttributeMetadata* md = dm.GetAttributeMetadataByStringEntry(kLabelMetadataKey, kLabelMetadataName);
+    const draco::AttributeMetadata* md =
+        dm.GetAttributeMetadataByStringEntry(kLabelMetadataKey, kLabelMetadataName);
     return md ? int32_t(md->att_unique_id()) : -1;
   }();
   for (int i = 0; i < dm.num_attributes(); ++i) {

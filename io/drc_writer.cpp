@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <initializer_list>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
 #include <memory>
 
 #include "draco/compression/encode.h"
@@ -60,13 +60,15 @@ std::vector<std::string> add_attributes(draco::Mesh& dm, const MeshAttributes& a
       if (!a.find_vertex(n)) return false;
     return true;
   };
-  if (all({"nx", "ny", "nz"})) add_properties(dm, a, draco::GeometryAttribute::NORMAL, {"nx", "ny", "nz"}, used);
+  if (all({"nx", "ny", "nz"}))
+    add_properties(dm, a, draco::GeometryAttribute::NORMAL, {"nx", "ny", "nz"}, used);
   if (all({"red", "green", "blue", "alpha"}))
     add_properties(dm, a, draco::GeometryAttribute::COLOR, {"red", "green", "blue", "alpha"}, used);
   else if (all({"red", "green", "blue"}))
     add_properties(dm, a, draco::GeometryAttribute::COLOR, {"red", "green", "blue"}, used);
   if (const auto uv = a.vertex_uv(); uv[0])
-    add_properties(dm, a, draco::GeometryAttribute::TEX_COORD, {uv[0]->name.c_str(), uv[1]->name.c_str()}, used);
+    add_properties(dm, a, draco::GeometryAttribute::TEX_COORD, {uv[0]->name.c_str(), uv[1]->name.c_str()},
+                   used);
   return used;
 }
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh_view.h"
 #include "common/status.h"
+#include "core/mesh_view.h"
 #include "io/mesh_attributes.h"
 
 namespace fq::io {

@@ -58,8 +58,8 @@ Status check_attributes(const std::string& path, const MeshView& mesh, const Mes
   const size_t corners = 3 * size_t(mesh.num_triangles);
   for (const CornerValues* c : {&a.corner_uv, &a.corner_normal}) {
     const size_t values = c->components > 0 ? c->values.size() / size_t(c->components) : 0;
-    if (!c->empty() && (c->corners.size() != corners ||
-                        std::any_of(c->corners.begin(), c->corners.end(), [&](uint32_t i) { return i >= values; })))
+    if (!c->empty() && (c->corners.size() != corners || std::any_of(c->corners.begin(), c->corners.end(),
+                                                                    [&](uint32_t i) { return i >= values; })))
       return invalid_argument("cannot write '" + path + "': per-corner values do not match the mesh");
   }
   const Materials& m = a.materials;
@@ -102,8 +102,8 @@ void name_corner_values(const MeshAttributes& a, const char* why, std::vector<st
 /// corner, MeshLab's convention) unless the faces already carry one.
 MeshAttributes ply_attributes(const MeshAttributes& a, std::vector<std::string>& dropped) {
   MeshAttributes out = a;
-  const bool has_texcoord =
-      std::any_of(a.face.begin(), a.face.end(), [](const ElementProperty& p) { return p.name == "texcoord"; });
+  const bool has_texcoord = std::any_of(a.face.begin(), a.face.end(),
+                                        [](const ElementProperty& p) { return p.name == "texcoord"; });
   if (!a.corner_uv.empty() && !has_texcoord) {
     ElementProperty t;
     t.name = "texcoord";

@@ -14,8 +14,8 @@ namespace fq::io {
 /// and point ids, which merges coincident vertices (dragon.ply: 435,545 -> 383,559) and
 /// reorders them; filtered output must keep the input's vertex count and order.
 /// Polygons are split into triangles (the fan of each face, whose face properties each
-/// triangle takes); a file without a face element reads as zero triangles. With `attributes`, also every other vertex and face
-/// property (colours, normals, texture coordinates, scalars, lists); other elements are
+/// triangle takes); a file without a face element reads as zero triangles. With `attributes`, also every
+/// other vertex and face property (colours, normals, texture coordinates, scalars, lists); other elements are
 /// named in attributes->dropped.
 Status read_ply(const std::string& path, Mesh& out, MeshAttributes* attributes = nullptr);
 

@@ -22,14 +22,22 @@ namespace {
 template <class F>
 void with_cpp_type(ScalarType type, F&& f) {
   switch (type) {
-    case ScalarType::kInt8: return f(int8_t{});
-    case ScalarType::kUInt8: return f(uint8_t{});
-    case ScalarType::kInt16: return f(int16_t{});
-    case ScalarType::kUInt16: return f(uint16_t{});
-    case ScalarType::kInt32: return f(int32_t{});
-    case ScalarType::kUInt32: return f(uint32_t{});
-    case ScalarType::kFloat32: return f(float{});
-    case ScalarType::kFloat64: return f(double{});
+    case ScalarType::kInt8:
+      return f(int8_t{});
+    case ScalarType::kUInt8:
+      return f(uint8_t{});
+    case ScalarType::kInt16:
+      return f(int16_t{});
+    case ScalarType::kUInt16:
+      return f(uint16_t{});
+    case ScalarType::kInt32:
+      return f(int32_t{});
+    case ScalarType::kUInt32:
+      return f(uint32_t{});
+    case ScalarType::kFloat32:
+      return f(float{});
+    case ScalarType::kFloat64:
+      return f(double{});
   }
 }
 

@@ -15,8 +15,8 @@ namespace fq {
 
 /// Mollified face normal: area- and G_sigma-weighted average of nearby face normals
 /// (the grid holds triangle centroids with w = area). The paper uses sigma = sigma_s / 2.
-FQ_HD Vec3 mollified_face_normal(const GridView& tg, const Vec3* face_normals, uint32_t t,
-                                 Gaussian g, float radius) {
+FQ_HD Vec3 mollified_face_normal(const GridView& tg, const Vec3* face_normals, uint32_t t, Gaussian g,
+                                 float radius) {
   const Vec3 c = xyz(tg.points[t]);
   Vec3 acc{0.f, 0.f, 0.f};
   for_each_neighbor(tg, c, radius, [&](uint32_t j, const Point4& pj, Vec3, float d2) {
@@ -26,8 +26,8 @@ FQ_HD Vec3 mollified_face_normal(const GridView& tg, const Vec3* face_normals, u
 }
 
 /// Jones et al.'s filtered position of the vertex at x.
-FQ_HD Vec3 jones_bilateral_position(const GridView& tg, const Vec3* mollified_normals, Vec3 x,
-                                    Gaussian gs, Gaussian gr, float radius) {
+FQ_HD Vec3 jones_bilateral_position(const GridView& tg, const Vec3* mollified_normals, Vec3 x, Gaussian gs,
+                                    Gaussian gr, float radius) {
   Vec3 acc{0.f, 0.f, 0.f};
   float wsum = 0.f;
   for_each_neighbor(tg, x, radius, [&](uint32_t j, const Point4& pj, Vec3 d, float d2) {

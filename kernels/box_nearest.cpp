@@ -12,10 +12,13 @@ uint32_t nearest_in_grid_boxes(const GridView& g, Vec3 p, float reach, float fir
   if (g.count == 0 || !is_finite(p) || !(reach >= 0.f)) return nearest_in_grid(g, p, reach, first_radius);
   const float inv = 1.f / g.cell;
   uint32_t walked = 0;
-  for (float r = first_radius > 0.f && first_radius < reach ? first_radius : reach;; r = 2.f * r < reach ? 2.f * r : reach) {
+  for (float r = first_radius > 0.f && first_radius < reach ? first_radius : reach;;
+       r = 2.f * r < reach ? 2.f * r : reach) {
     const float r2 = r * r, rx = std::sqrt(r2);  // no row of nearest_in_grid's is wider than rx
-    const int z0 = clamped_cell((p.z - r - g.origin.z) * inv, g.nz), z1 = clamped_cell((p.z + r - g.origin.z) * inv, g.nz);
-    const int y0 = clamped_cell((p.y - r - g.origin.y) * inv, g.ny), y1 = clamped_cell((p.y + r - g.origin.y) * inv, g.ny);
+    const int z0 = clamped_cell((p.z - r - g.origin.z) * inv, g.nz),
+              z1 = clamped_cell((p.z + r - g.origin.z) * inv, g.nz);
+    const int y0 = clamped_cell((p.y - r - g.origin.y) * inv, g.ny),
+              y1 = clamped_cell((p.y + r - g.origin.y) * inv, g.ny);
     const int x0 = clamped_cell((p.x - rx - g.origin.x) * inv, g.nx);
     const int x1 = clamped_cell((p.x + rx - g.origin.x) * inv, g.nx);
     uint32_t best = kNoNearest;
@@ -39,9 +42,10 @@ uint32_t nearest_in_grid_boxes(const GridView& g, Vec3 p, float reach, float fir
     if (best_d2 <= r2) {
       // The margin (see the header): float rounding of a cell bound at the coordinates' scale,
       // many times over.
-      const float slack = (std::fabs(g.origin.x) + std::fabs(g.origin.y) + std::fabs(g.origin.z) + std::fabs(p.x) +
-                           std::fabs(p.y) + std::fabs(p.z) + g.cell * float(g.nx + g.ny + g.nz)) *
-                          (1.f / 65536.f);
+      const float slack =
+          (std::fabs(g.origin.x) + std::fabs(g.origin.y) + std::fabs(g.origin.z) + std::fabs(p.x) +
+           std::fabs(p.y) + std::fabs(p.z) + g.cell * float(g.nx + g.ny + g.nz)) *
+          (1.f / 65536.f);
       const float inner = r * (1.f - 1.f / 4096.f) - slack;
       return inner > 0.f && best_d2 <= inner * inner ? best : nearest_in_grid(g, p, reach, first_radius);
     }

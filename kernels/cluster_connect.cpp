@@ -37,7 +37,8 @@ void for_each_edge(const MeshView& m, Fn&& fn) {
 
 /// One round of merging: every part under min_size goes into the neighbouring part it
 /// shares most edges with (ties: the larger, then the lower index). False when nothing merged.
-bool merge_small_parts(const MeshView& m, DisjointSets& parts, std::vector<uint32_t>& size, uint32_t min_size) {
+bool merge_small_parts(const MeshView& m, DisjointSets& parts, std::vector<uint32_t>& size,
+                       uint32_t min_size) {
   std::unordered_map<uint64_t, uint32_t> shared;  // (small part, neighbour part) -> edge count
   for_each_edge(m, [&](uint32_t a, uint32_t b) {
     const uint32_t pa = parts.find(a), pb = parts.find(b);
@@ -54,7 +55,7 @@ bool merge_small_parts(const MeshView& m, DisjointSets& parts, std::vector<uint3
       continue;
     }
     auto& [cur, cur_count] = it->second;
-    const bool better = count != cur_count ? count > cur_count
+    const bool better = count != cur_count      ? count > cur_count
                         : size[nb] != size[cur] ? size[nb] > size[cur]
                                                 : nb < cur;
     if (better) it->second = {nb, count};
@@ -62,9 +63,8 @@ bool merge_small_parts(const MeshView& m, DisjointSets& parts, std::vector<uint3
   // Smallest parts first, so that a part absorbs its tiny neighbours before it is judged.
   std::vector<uint32_t> order;
   for (const auto& [small, choice] : best) order.push_back(small);
-  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-    return size[a] != size[b] ? size[a] < size[b] : a < b;
-  });
+  std::sort(order.begin(), order.end(),
+            [&](uint32_t a, uint32_t b) { return size[a] != size[b] ? size[a] < size[b] : a < b; });
   bool merged = false;
   for (uint32_t small : order) {
     const uint32_t a = parts.find(small), b = parts.find(best[small].first);

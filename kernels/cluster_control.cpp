@@ -34,7 +34,10 @@ struct TargetSearch {
     if (c.min_cluster_size == 0) return ladder.cut(best_t);
     auto gap = [&](uint32_t k) { return k > target ? k - target : target - k; };
     uint32_t lo = 0, hi = ladder.links();
-    if (count < target) lo = best_t + 1; else hi = best_t;
+    if (count < target)
+      lo = best_t + 1;
+    else
+      hi = best_t;
     std::vector<uint32_t> trial;
     while (lo < hi && count != target) {
       const uint32_t mid = lo + (hi - lo) / 2;
@@ -44,7 +47,10 @@ struct TargetSearch {
         count = k;
         labels.swap(trial);
       }
-      if (k < target) lo = mid + 1; else hi = mid;
+      if (k < target)
+        lo = mid + 1;
+      else
+        hi = mid;
     }
     return ladder.cut(best_t);
   }
@@ -54,7 +60,8 @@ struct TargetSearch {
 
 bool needs_cluster_control(const Params& p) {
   const ClusterParams& c = p.cluster ? p.clustering : ClusterParams{};
-  return c.target_clusters > 0 || c.effective_geometry() == ClusterGeometry::kFiltered || c.min_cluster_size > 0;
+  return c.target_clusters > 0 || c.effective_geometry() == ClusterGeometry::kFiltered ||
+         c.min_cluster_size > 0;
 }
 
 void finish_cluster_control(const MeshView& mesh, const ClusterParams& asked, FrameResult& out) {
@@ -70,7 +77,8 @@ void finish_cluster_control(const MeshView& mesh, const ClusterParams& asked, Fr
     out.link_p.clear();
   }
   out.timings.push_back(
-      {"cluster_control", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
+      {"cluster_control",
+       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
 }
 
 }  // namespace fq

@@ -35,8 +35,8 @@ FQ_HD void add_score_term(ScoreSum& acc, const Quadric& qi, const Point4& pj, Ve
 FQ_HD float score_of(ScoreSum s) { return s.den > 0.f ? s.num / s.den : 0.f; }
 
 /// S_v: how well Q^bl_v explains v's neighbourhood (radius 2 sigma_d).
-FQ_HD float representativity(const GridView& g, const Quadric* qbl, uint32_t i, Gaussian gd,
-                             Gaussian gq, float radius, bool euclidean) {
+FQ_HD float representativity(const GridView& g, const Quadric* qbl, uint32_t i, Gaussian gd, Gaussian gq,
+                             float radius, bool euclidean) {
   const Quadric qi = qbl[i];
   ScoreSum acc{0.f, 0.f};
   for_each_neighbor(g, xyz(g.points[i]), radius, [&](uint32_t, const Point4& pj, Vec3 d, float d2) {
@@ -47,9 +47,7 @@ FQ_HD float representativity(const GridView& g, const Quadric* qbl, uint32_t i, 
 
 /// Strict total order used for linking: by score, ties broken by index, so links can
 /// never form a cycle even where symmetric meshes give equal scores.
-FQ_HD bool ranks_above(float sj, uint32_t j, float si, uint32_t i) {
-  return sj > si || (sj == si && j > i);
-}
+FQ_HD bool ranks_above(float sj, uint32_t j, float si, uint32_t i) { return sj > si || (sj == si && j > i); }
 
 /// p(v, v_j) = G_sigma_d(|v - v_j|) G_sigma_q(sqrt(Q^bl_{v_j}(v))), d = v_j - v, qj = Q^bl_{v_j}.
 template <class W>
@@ -75,9 +73,8 @@ struct LinkBest {
 
 /// Alg. 1: link i to the higher-ranked neighbour maximizing p(v, v_i); i itself (a root)
 /// when there is none or the best proximity is below `cut` (= 1 - theta).
-FQ_HD uint32_t quick_shift_link(const GridView& g, const Quadric* qbl, const float* score,
-                                uint32_t i, Gaussian gd, Gaussian gq, float radius,
-                                bool euclidean, float cut) {
+FQ_HD uint32_t quick_shift_link(const GridView& g, const Quadric* qbl, const float* score, uint32_t i,
+                                Gaussian gd, Gaussian gq, float radius, bool euclidean, float cut) {
   const float si = score[i];
   LinkBest best{0.f, i};
   for_each_neighbor(g, xyz(g.points[i]), radius, [&](uint32_t j, const Point4&, Vec3 d, float d2) {

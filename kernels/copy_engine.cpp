@@ -18,12 +18,13 @@ Status CopyEngine::run_plan(const MeshView& mesh, const RunPlan& run, FrameResul
     out.num_clusters = mesh.num_vertices > 0 ? 1 : 0;
     out.theta = params.clustering.theta;
     out.mean_edge = mean_edge_length(mesh, 1);  // the cell of fqd's id tracking
-    if (params.clustering.keep_links) {  // one tree: every vertex links to vertex 0, fully
+    if (params.clustering.keep_links) {         // one tree: every vertex links to vertex 0, fully
       out.link_parent.assign(mesh.num_vertices, 0u);
       out.link_p.assign(mesh.num_vertices, 1.f);
     }
   }
-  out.timings.assign(1, {"copy", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
+  out.timings.assign(
+      1, {"copy", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
   return {};
 }
 

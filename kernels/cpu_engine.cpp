@@ -3,8 +3,8 @@
 #include <chrono>
 #include <exception>
 
-#include "kernels/cpu_stages.h"
 #include "core/parallel_for.h"
+#include "kernels/cpu_stages.h"
 
 namespace fq {
 
@@ -73,7 +73,8 @@ Status CpuEngine::run_passes(const MeshView& mesh, const RunPlan& run, FrameResu
   const uint32_t n = mesh.num_vertices;
   out.positions.resize(3 * size_t(n));
   if (run.params.filter) {
-    parallel_for(n, threads_, [&](uint32_t i) { f_.norm.to_input(f_.moved[f_.rank[i]], &out.positions[3 * size_t(i)]); });
+    parallel_for(n, threads_,
+                 [&](uint32_t i) { f_.norm.to_input(f_.moved[f_.rank[i]], &out.positions[3 * size_t(i)]); });
   } else {
     std::copy(mesh.positions, mesh.positions + 3 * size_t(n), out.positions.begin());
   }
@@ -84,10 +85,17 @@ Status CpuEngine::run_passes(const MeshView& mesh, const RunPlan& run, FrameResu
 void CpuEngine::run_pass(PassKind pass, const RunPlan& run, FrameResult& out) {
   const ClusterParams& cp = run.params.clustering;
   switch (pass) {
-    case PassKind::kGrid: break;  // needs the mesh: run_passes
-    case PassKind::kBaseQuadrics: cpu::base_quadrics(f_, threads_); break;
-    case PassKind::kNeighbourhoodQuadrics: cpu::neighbourhood_quadrics(f_, run.sigma_b, threads_); break;
-    case PassKind::kDiffusion: cpu::diffuse_quadrics(f_, run, threads_); break;
+    case PassKind::kGrid:
+      break;  // needs the mesh: run_passes
+    case PassKind::kBaseQuadrics:
+      cpu::base_quadrics(f_, threads_);
+      break;
+    case PassKind::kNeighbourhoodQuadrics:
+      cpu::neighbourhood_quadrics(f_, run.sigma_b, threads_);
+      break;
+    case PassKind::kDiffusion:
+      cpu::diffuse_quadrics(f_, run, threads_);
+      break;
     case PassKind::kNoise: {
       const NoiseEstimate e = cpu::estimate_noise(f_, threads_);
       out.noise_estimate = e.noise;
@@ -100,15 +108,25 @@ void CpuEngine::run_pass(PassKind pass, const RunPlan& run, FrameResult& out) {
       out.filter_noise = plan.noise;
       break;
     }
-    case PassKind::kUpdate: cpu::update_positions(f_, run, threads_); break;
-    case PassKind::kBilateralFilter: cpu::bilateral_filter(f_, run, threads_); break;
-    case PassKind::kScore: cpu::cluster_scores(f_, run, threads_); break;
-    case PassKind::kLink: cpu::cluster_links(f_, run, threads_); break;
+    case PassKind::kUpdate:
+      cpu::update_positions(f_, run, threads_);
+      break;
+    case PassKind::kBilateralFilter:
+      cpu::bilateral_filter(f_, run, threads_);
+      break;
+    case PassKind::kScore:
+      cpu::cluster_scores(f_, run, threads_);
+      break;
+    case PassKind::kLink:
+      cpu::cluster_links(f_, run, threads_);
+      break;
     case PassKind::kModes:
       out.num_clusters = cpu::cluster_labels(f_, out.labels, threads_);
       out.theta = cp.theta;
       break;
-    case PassKind::kExportLinks: cpu::export_links(f_, cp, out.link_parent, out.link_p, threads_); break;
+    case PassKind::kExportLinks:
+      cpu::export_links(f_, cp, out.link_parent, out.link_p, threads_);
+      break;
   }
 }
 

@@ -18,11 +18,11 @@ namespace fq {
 
 struct CpuFrame {
   Normalization norm;
-  std::vector<Vec3> normalized;      ///< input order
-  CpuGrid grid;                      ///< grid.order: sorted -> input index
-  std::vector<uint32_t> rank;        ///< input -> sorted index
-  std::vector<Point4> points;        ///< sorted positions, w = barycentric area
-  std::vector<uint32_t> tris;        ///< triangles with sorted indices
+  std::vector<Vec3> normalized;  ///< input order
+  CpuGrid grid;                  ///< grid.order: sorted -> input index
+  std::vector<uint32_t> rank;    ///< input -> sorted index
+  std::vector<Point4> points;    ///< sorted positions, w = barycentric area
+  std::vector<uint32_t> tris;    ///< triangles with sorted indices
   std::vector<TriangleGeom> tri_geom;
   std::vector<uint32_t> vf_offsets;  ///< vertex -> incident triangles (CSR, sorted ids)
   std::vector<uint32_t> vf_faces;
@@ -35,12 +35,12 @@ struct CpuFrame {
   std::vector<TriangleGeom> refine_geom;
   std::vector<Vec3> refine_n[2];
   std::vector<FreeDirections> refine_free;  ///< per vertex, per round of the vertex update
-  std::vector<Vec3> refine_round;    ///< the positions before a fractional last round
-  std::vector<Vec3> refine_t;        ///< per vertex: its tangential move (limited_position)
+  std::vector<Vec3> refine_round;           ///< the positions before a fractional last round
+  std::vector<Vec3> refine_t;               ///< per vertex: its tangential move (limited_position)
   std::vector<SlideLevel> refine_e[2];  ///< per vertex: squared tangential move and turn, then local means
   // Bilateral baseline: triangles in centroid-grid order.
   CpuGrid tri_grid;
-  std::vector<Point4> tri_points;    ///< centroid, w = area
+  std::vector<Point4> tri_points;  ///< centroid, w = area
   std::vector<Vec3> tri_normals, tri_mollified;
   // Clustering.
   std::vector<float> score;

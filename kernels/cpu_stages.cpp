@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/parallel_for.h"
 #include "kernels/bilateral_math.h"
 #include "kernels/cluster_math.h"
 #include "kernels/filter_math.h"
 #include "kernels/gaussian.h"
 #include "kernels/link_export.h"
-#include "core/parallel_for.h"
 #include "kernels/refine_math.h"
 #include "kernels/refine_plan.h"
 #include "kernels/vertex_faces.h"
@@ -46,7 +46,8 @@ void base_quadrics(CpuFrame& f, int threads) {
   parallel_for(n, threads, [&](uint32_t v) {
     const Vec3 x = xyz(f.points[v]);
     VertexAccum acc = zero_vertex_accum();
-    for (uint32_t k = f.vf_offsets[v]; k < f.vf_offsets[v + 1]; ++k) add_triangle(acc, f.tri_geom[f.vf_faces[k]], x);
+    for (uint32_t k = f.vf_offsets[v]; k < f.vf_offsets[v + 1]; ++k)
+      add_triangle(acc, f.tri_geom[f.vf_faces[k]], x);
     f.base[v] = base_quadric(acc);
     f.points[v].w = acc.area;
     f.vnormal[v] = acc.normal;
@@ -77,7 +78,8 @@ void update_positions(CpuFrame& f, const RunPlan& run, int threads) {
   const Gaussian gn = Gaussian::with_sigma(run.sigma_n.sigma);
   f.moved.resize(g.count);
   parallel_for(g.count, threads, [&](uint32_t i) {
-    const Vec3 n = p.constrained ? smoothed_normal(g, f.vnormal.data(), i, gn, run.sigma_n.radius) : Vec3{0, 0, 0};
+    const Vec3 n =
+        p.constrained ? smoothed_normal(g, f.vnormal.data(), i, gn, run.sigma_n.radius) : Vec3{0, 0, 0};
     f.moved[i] = updated_position(xyz(f.points[i]), f.bl[i], p.constrained, n, p.tikhonov);
   });
 }
@@ -90,7 +92,8 @@ NoiseEstimate estimate_noise(CpuFrame& f, int threads) {
   parallel_for(n, threads, [&](uint32_t v) { f.moved[v] = xyz(f.points[v]); });
   const uint32_t stride = noise_sample_stride(n), count = noise_sample_count(n);
   f.noise_samples.resize(count);
-  parallel_for(count, threads, [&](uint32_t k) { f.noise_samples[k] = noise_sample(fan, f.moved.data(), k * stride); });
+  parallel_for(count, threads,
+               [&](uint32_t k) { f.noise_samples[k] = noise_sample(fan, f.moved.data(), k * stride); });
   return estimate_noise(f.noise_samples.data(), count);
 }
 
@@ -119,7 +122,8 @@ void refine_positions(CpuFrame& f, const RefinePlan& plan, int threads) {
       Vec3* out = f.refine_n[(it + 1) & 1].data();
       const float share = it == normals.count - 1 ? normals.last : 1.f;
       parallel_for(m, threads, [&](uint32_t t) {
-        out[t] = partial_normal(in[t], filtered_face_normal(fan, f.refine_geom.data(), in, t, plan.gs, plan.gr), share);
+        out[t] = partial_normal(
+            in[t], filtered_face_normal(fan, f.refine_geom.data(), in, t, plan.gs, plan.gr), share);
       });
     }
     const Vec3* filtered = f.refine_n[normals.count & 1].data();
@@ -129,13 +133,16 @@ void refine_positions(CpuFrame& f, const RefinePlan& plan, int threads) {
     for (int it = 0; it < updates.count; ++it) {
       const float share = it == updates.count - 1 ? updates.last : 1.f;
       parallel_for(n, threads, [&](uint32_t v) {
-        const Vec3 next = updated_vertex(fan, f.moved.data(), filtered, v, f.refine_free[v], plan.tangential_step);
+        const Vec3 next =
+            updated_vertex(fan, f.moved.data(), filtered, v, f.refine_free[v], plan.tangential_step);
         f.refine_x[v] = partial_position(f.moved[v], next, share);
       });
       f.moved.swap(f.refine_x);
     }
     if (round_share < 1.f)
-      parallel_for(n, threads, [&](uint32_t v) { f.moved[v] = partial_position(f.refine_round[v], f.moved[v], round_share); });
+      parallel_for(n, threads, [&](uint32_t v) {
+        f.moved[v] = partial_position(f.refine_round[v], f.moved[v], round_share);
+      });
   }
   // Step 3: tangential moves cut back to what the noise explains.
   f.refine_t.resize(n);
@@ -178,7 +185,8 @@ void bilateral_filter(CpuFrame& f, const RunPlan& run, int threads) {
   const Gaussian gs = Gaussian::with_sigma(run.sigma_s.sigma), gr = Gaussian::with_sigma(run.sigma_r);
   f.moved.resize(f.points.size());
   parallel_for(static_cast<uint32_t>(f.points.size()), threads, [&](uint32_t i) {
-    f.moved[i] = jones_bilateral_position(tg, f.tri_mollified.data(), xyz(f.points[i]), gs, gr, run.sigma_s.radius);
+    f.moved[i] =
+        jones_bilateral_position(tg, f.tri_mollified.data(), xyz(f.points[i]), gs, gr, run.sigma_s.radius);
   });
 }
 
@@ -209,7 +217,8 @@ uint32_t cluster_labels(CpuFrame& f, std::vector<uint32_t>& labels, int threads)
   for (uint32_t k = 0; k < n; ++k) {
     if (f.next[k] == k) roots.push_back(k);
   }
-  std::sort(roots.begin(), roots.end(), [&](uint32_t a, uint32_t b) { return f.grid.order[a] < f.grid.order[b]; });
+  std::sort(roots.begin(), roots.end(),
+            [&](uint32_t a, uint32_t b) { return f.grid.order[a] < f.grid.order[b]; });
   std::vector<uint32_t> label_of(n, 0);
   for (uint32_t r = 0; r < roots.size(); ++r) label_of[roots[r]] = r;
   labels.resize(n);
@@ -217,8 +226,8 @@ uint32_t cluster_labels(CpuFrame& f, std::vector<uint32_t>& labels, int threads)
   return static_cast<uint32_t>(roots.size());
 }
 
-void export_links(const CpuFrame& f, const ClusterParams& p, std::vector<uint32_t>& parent, std::vector<float>& prox,
-                  int threads) {
+void export_links(const CpuFrame& f, const ClusterParams& p, std::vector<uint32_t>& parent,
+                  std::vector<float>& prox, int threads) {
   const uint32_t n = static_cast<uint32_t>(f.next.size());
   const Gaussian gd = Gaussian::with_sigma(p.sigma_d), gq = Gaussian::with_sigma(p.sigma_q);
   parent.resize(n);

@@ -2,9 +2,9 @@
 // and their extents).
 #pragma once
 
-#include "kernels/cpu_frame.h"
 #include "core/mesh_view.h"
 #include "core/params.h"
+#include "kernels/cpu_frame.h"
 #include "kernels/frame_plan.h"
 #include "kernels/refine_plan.h"
 
@@ -30,7 +30,7 @@ void cluster_links(CpuFrame& f, const RunPlan& run, int threads);
 /// Roots, compacted to labels 0..K-1 in input order of the root vertices; returns K.
 uint32_t cluster_labels(CpuFrame& f, std::vector<uint32_t>& labels, int threads);
 /// The links before the theta cut, in input order (FrameResult::link_parent / link_p).
-void export_links(const CpuFrame& f, const ClusterParams& p, std::vector<uint32_t>& parent, std::vector<float>& prox,
-                  int threads);
+void export_links(const CpuFrame& f, const ClusterParams& p, std::vector<uint32_t>& parent,
+                  std::vector<float>& prox, int threads);
 
 }  // namespace fq::cpu

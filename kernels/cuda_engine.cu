@@ -12,8 +12,8 @@
 #include "kernels/cuda/device_frame.cuh"
 #include "kernels/cuda/frame_checks.cuh"
 #include "kernels/cuda/host_staging.h"
-#include "kernels/cuda/link_export_pass.cuh"
 #include "kernels/cuda/launch.cuh"
+#include "kernels/cuda/link_export_pass.cuh"
 #include "kernels/cuda/passes.cuh"
 #include "kernels/cuda/refine_passes.cuh"
 #include "kernels/cuda/stream.cuh"
@@ -76,7 +76,7 @@ class CudaEngine final : public Engine {
   cuda::SyncEvents downloads_{2 * kDownloadChunks};
   cuda::DeviceFrame f_;
   cuda::RefineBuffers refine_;
-  cuda::TemporalPass temporal_;  ///< the temporal step, and the device copies of histories it wrote
+  cuda::TemporalPass temporal_;    ///< the temporal step, and the device copies of histories it wrote
   bool temporal_pending_ = false;  ///< the frame's own run took the step: temporal_step() finishes it
   std::string name_;
   int sm_count_ = 1;
@@ -86,7 +86,8 @@ class CudaEngine final : public Engine {
 
 Status CudaEngine::run_plan(const MeshView& mesh, const RunPlan& run, FrameResult& out) {
   if (Status st = check_mesh_counts(mesh); !st.ok()) return st;
-  if (!usable_) return {StatusCode::kInternal, "the CUDA engine is unusable after an earlier device fault: " + fault_};
+  if (!usable_)
+    return {StatusCode::kInternal, "the CUDA engine is unusable after an earlier device fault: " + fault_};
   try {
     return run_frame(mesh, run, out);
   } catch (const cuda::CudaError& e) {
@@ -143,7 +144,8 @@ void CudaEngine::upload(const MeshView& mesh) {
   unsigned char* staging = f_.h_upload.reserve(coord_bytes + index_bytes);
   const cudaStream_t s = stream_.get();
   cuda::upload_staged(mesh.positions, f_.in_coords.reserve(3 * size_t(f_.n)), coord_bytes, staging, s);
-  cuda::upload_staged(mesh.triangles, f_.in_tris.reserve(3 * size_t(f_.m)), index_bytes, staging + coord_bytes, s);
+  cuda::upload_staged(mesh.triangles, f_.in_tris.reserve(3 * size_t(f_.m)), index_bytes,
+                      staging + coord_bytes, s);
 }
 
 // The device's checks read back (the one synchronization inside a frame: the grid layout
@@ -226,8 +228,11 @@ void CudaEngine::enqueue_pass(PassKind pass, const RunPlan& run, FrameResult& ou
   const int team = team_size();
   const bool fast_exp = tuning_.fast_exp;
   switch (pass) {
-    case PassKind::kGrid: break;  // needs the layout: enqueue_passes
-    case PassKind::kBaseQuadrics: cuda::base_quadrics(f_, s); break;  // also the vertex -> triangle table "qf+" reads
+    case PassKind::kGrid:
+      break;  // needs the layout: enqueue_passes
+    case PassKind::kBaseQuadrics:
+      cuda::base_quadrics(f_, s);
+      break;  // also the vertex -> triangle table "qf+" reads
     // The team kernels, or with team 0 the one-thread-per-vertex ones.
     case PassKind::kNeighbourhoodQuadrics:
       team ? cuda::team_neighbourhood_quadrics(f_, run.sigma_b, team, fast_exp, s)
@@ -248,16 +253,24 @@ void CudaEngine::enqueue_pass(PassKind pass, const RunPlan& run, FrameResult& ou
       out.filter_noise = plan.noise;
       break;
     }
-    case PassKind::kUpdate: cuda::update_positions(f_, run, s); break;
-    case PassKind::kBilateralFilter: cuda::bilateral_filter(f_, run, s); break;
+    case PassKind::kUpdate:
+      cuda::update_positions(f_, run, s);
+      break;
+    case PassKind::kBilateralFilter:
+      cuda::bilateral_filter(f_, run, s);
+      break;
     case PassKind::kScore:
       team ? cuda::team_cluster_scores(f_, run, team, fast_exp, s) : cuda::cluster_scores(f_, run, s);
       break;
     case PassKind::kLink:
       team ? cuda::team_cluster_links(f_, run, team, fast_exp, s) : cuda::cluster_links(f_, run, s);
       break;
-    case PassKind::kModes: cuda::cluster_labels(f_, s); break;
-    case PassKind::kExportLinks: cuda::export_links(f_, run.params.clustering, s); break;  // downloads too
+    case PassKind::kModes:
+      cuda::cluster_labels(f_, s);
+      break;
+    case PassKind::kExportLinks:
+      cuda::export_links(f_, run.params.clustering, s);
+      break;  // downloads too
   }
 }
 
@@ -304,9 +317,11 @@ Status CudaEngine::run_frame(const MeshView& mesh, const RunPlan& run, FrameResu
     const size_t bytes = size_t(n) * sizeof(uint32_t);
     uint32_t* staging = f_.h_labels.reserve(n + 1);
     out.labels.resize(n);
-    labels = cuda::enqueue_download(f_.labels.data(), out.labels.data(), bytes,
-                                    reinterpret_cast<unsigned char*>(staging), downloads_.data() + half, half, s);
-    FQ_CUDA_CHECK(cudaMemcpyAsync(staging + n, f_.labels.data() + n, sizeof(uint32_t), cudaMemcpyDeviceToHost, s));
+    labels =
+        cuda::enqueue_download(f_.labels.data(), out.labels.data(), bytes,
+                               reinterpret_cast<unsigned char*>(staging), downloads_.data() + half, half, s);
+    FQ_CUDA_CHECK(
+        cudaMemcpyAsync(staging + n, f_.labels.data() + n, sizeof(uint32_t), cudaMemcpyDeviceToHost, s));
   }
   if (temporal) temporal_.keep(f_, s);
   events_.mark("download", s);
@@ -379,7 +394,9 @@ std::unique_ptr<Engine> make_cuda_engine(int device, Status* why, const CudaTuni
     return nullptr;
   };
   if (!valid_cuda_team(tuning.team)) {
-    if (why) *why = invalid_argument("CUDA team size " + std::to_string(tuning.team) + " is not one of 0, 1, 2, 4, 8, 16, 32");
+    if (why)
+      *why = invalid_argument("CUDA team size " + std::to_string(tuning.team) +
+                              " is not one of 0, 1, 2, 4, 8, 16, 32");
     return nullptr;
   }
   int count = 0;

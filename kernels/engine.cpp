@@ -36,8 +36,10 @@ bool valid_cuda_team(int team) {
 }
 
 namespace {
-constexpr std::pair<EngineKind, const char*> kEngineKindNames[] = {
-    {EngineKind::kAuto, "auto"}, {EngineKind::kCpu, "cpu"}, {EngineKind::kCuda, "cuda"}, {EngineKind::kCopy, "copy"}};
+constexpr std::pair<EngineKind, const char*> kEngineKindNames[] = {{EngineKind::kAuto, "auto"},
+                                                                   {EngineKind::kCpu, "cpu"},
+                                                                   {EngineKind::kCuda, "cuda"},
+                                                                   {EngineKind::kCopy, "copy"}};
 }  // namespace
 
 bool parse_engine_kind(const std::string& s, EngineKind& out) {
@@ -48,7 +50,8 @@ bool parse_engine_kind(const std::string& s, EngineKind& out) {
 
 bool Engine::follows_history(const Params& params) const {
   const FilterParams& f = params.filtering;
-  return history_ != nullptr && params.filter && f.method == FilterMethod::kQuadricRefined && f.temporal > 0.f;
+  return history_ != nullptr && params.filter && f.method == FilterMethod::kQuadricRefined &&
+         f.temporal > 0.f;
 }
 
 void Engine::report_step(const TemporalStep& step, FrameResult& out) {
@@ -70,14 +73,16 @@ const char* temporal_track_name(TemporalTrack track) {
   return "none";
 }
 
-void Engine::follow_stream_history(const MeshView& mesh, const Params& params, FrameResult& out, int threads) {
+void Engine::follow_stream_history(const MeshView& mesh, const Params& params, FrameResult& out,
+                                   int threads) {
   if (!follows_history(params)) return;
   const auto start = std::chrono::steady_clock::now();
-  report_step(follow_history(mesh, out.positions, out.mean_edge, out.noise_estimate, params.filtering.temporal,
-                             *history_, temporal_scratch_, threads),
+  report_step(follow_history(mesh, out.positions, out.mean_edge, out.noise_estimate,
+                             params.filtering.temporal, *history_, temporal_scratch_, threads),
               out);
   out.timings.push_back(
-      {"temporal", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()});
+      {"temporal",
+       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()});
 }
 
 const char* engine_kind_name(EngineKind kind) { return second_of(kEngineKindNames, kind).value_or("auto"); }
@@ -90,7 +95,8 @@ StatusOr<std::unique_ptr<Engine>> make_engine(const EngineOptions& options, std:
   Status s;
   if (auto e = make_cuda_engine(options.device, &s, options.cuda)) return e;
 #else
-  const Status s{StatusCode::kUnavailable, "this build of fq has no CUDA support (configure with FQ_CUDA=ON)"};
+  const Status s{StatusCode::kUnavailable,
+                 "this build of fq has no CUDA support (configure with FQ_CUDA=ON)"};
 #endif
   if (options.kind == EngineKind::kCuda) return s;
   // auto: the CPU engine, and the reason kept for whoever asks (a user who expected the GPU).

@@ -32,16 +32,16 @@ enum class TemporalTrack : uint8_t { kNone, kIds, kSpace };
 const char* temporal_track_name(TemporalTrack track);
 
 struct FrameResult {
-  std::vector<float> positions;   ///< 3 per vertex, input order; the input when !filter
-  std::vector<uint32_t> labels;   ///< one per vertex in 0..num_clusters-1; empty when !cluster
+  std::vector<float> positions;  ///< 3 per vertex, input order; the input when !filter
+  std::vector<uint32_t> labels;  ///< one per vertex in 0..num_clusters-1; empty when !cluster
   uint32_t num_clusters = 0;
-  float theta = 0.f;              ///< theta that gave the labels (found per frame with a target)
+  float theta = 0.f;  ///< theta that gave the labels (found per frame with a target)
   /// With ClusterParams::keep_links, per vertex (input order): the vertex it links to
   /// before the theta cut (itself for a root at any theta) and that link's proximity p;
   /// the labels at theta are those of the links with p >= 1 - theta.
   std::vector<uint32_t> link_parent;
   std::vector<float> link_p;
-  double mean_edge = 0.0;         ///< the unit of every sigma, in input units
+  double mean_edge = 0.0;  ///< the unit of every sigma, in input units
   /// "qf+": the noise estimated from the frame (kernels/noise_estimate.h) and the noise the
   /// filter's strengths came from (the estimate × strength, or the noise given), both in mean
   /// edge lengths; 0 for the other methods.
@@ -224,6 +224,7 @@ const char* engine_kind_name(EngineKind kind);
 /// kUnavailable (with the reason) when an explicitly requested engine is not present.
 /// `cuda_refused` (may be null): where auto fell back to the CPU, why CUDA was not used ("this
 /// build has no CUDA support", "no CUDA device is present", a driver error...); cleared otherwise.
-StatusOr<std::unique_ptr<Engine>> make_engine(const EngineOptions& options, std::string* cuda_refused = nullptr);
+StatusOr<std::unique_ptr<Engine>> make_engine(const EngineOptions& options,
+                                              std::string* cuda_refused = nullptr);
 
 }  // namespace fq

@@ -39,7 +39,8 @@ void FrameMatcher::build(const float* xyz, uint32_t n, float cell) {
   cell_ = std::isfinite(cell) && cell > 0.f ? cell : 1.f;
   if (n == 0) return;
   points_.resize(n);
-  for (uint32_t i = 0; i < n; ++i) points_[i] = {xyz[3 * size_t(i)], xyz[3 * size_t(i) + 1], xyz[3 * size_t(i) + 2]};
+  for (uint32_t i = 0; i < n; ++i)
+    points_[i] = {xyz[3 * size_t(i)], xyz[3 * size_t(i) + 1], xyz[3 * size_t(i) + 2]};
   build_grid(points_.data(), n, cell_, grid_);
   sorted_.resize(n);
   for (uint32_t k = 0; k < n; ++k) {
@@ -49,7 +50,8 @@ void FrameMatcher::build(const float* xyz, uint32_t n, float cell) {
   // The sparse index's own rule for a cell that is too coarse (kCellLoad points per occupied
   // cell: a cell given as the mean edge of a frame with a far outlier), and a grid whose cells
   // had to grow past about twice the wanted one to stay within 8 cells a point.
-  sparse_ = !(grid_.layout.cell <= kMaxCellGrowth * cell_) || n > NearestVertexIndex::kCellLoad * uint64_t(grid_.occupied);
+  sparse_ = !(grid_.layout.cell <= kMaxCellGrowth * cell_) ||
+            n > NearestVertexIndex::kCellLoad * uint64_t(grid_.occupied);
   reach_cap_ = grid_.layout.cell <= kFullReachGrowth * cell_ ? std::numeric_limits<float>::infinity()
                                                              : NearestVertexIndex::kMaxReachCells * cell_;
   if (sparse_) {
@@ -66,7 +68,8 @@ uint32_t FrameMatcher::nearest_position(Vec3 p, float reach) const {
   }
   // Growing spheres from half a cell, as NearestVertexIndex: most queries (the same surface
   // captured again) find their vertex within it.
-  const uint32_t j = nearest_in_grid_boxes(grid_.view(sorted_.data()), p, std::min(reach, reach_cap_), 0.5f * cell_);
+  const uint32_t j =
+      nearest_in_grid_boxes(grid_.view(sorted_.data()), p, std::min(reach, reach_cap_), 0.5f * cell_);
   return j == kNoNearest ? kNone : j;
 }
 
@@ -80,11 +83,12 @@ void FrameMatcher::nearest_all(const FrameMatcher& queries, float reach, std::ve
   const uint32_t n = queries.size();
   out.assign(n, kNone);
   if (size() == 0) return;
-  parallel_for(n, threads, [&](uint32_t k) { out[queries.grid_.order[k]] = nearest(xyz(queries.sorted_[k]), reach); });
+  parallel_for(n, threads,
+               [&](uint32_t k) { out[queries.grid_.order[k]] = nearest(xyz(queries.sorted_[k]), reach); });
 }
 
-void FrameMatcher::nearest_all_in_cell_order(const FrameMatcher& queries, float reach, std::vector<uint32_t>& out,
-                                             int threads) const {
+void FrameMatcher::nearest_all_in_cell_order(const FrameMatcher& queries, float reach,
+                                             std::vector<uint32_t>& out, int threads) const {
   const uint32_t n = queries.size();
   out.assign(n, kNone);
   if (size() == 0) return;

@@ -10,11 +10,18 @@ namespace fq {
 namespace {
 
 constexpr std::pair<PassKind, const char*> kPassNames[] = {
-    {PassKind::kGrid, "grid"}, {PassKind::kBaseQuadrics, "base_quadrics"},
-    {PassKind::kNeighbourhoodQuadrics, "neighbourhood_quadrics"}, {PassKind::kDiffusion, "diffusion"},
-    {PassKind::kNoise, "noise"}, {PassKind::kRefine, "refine"}, {PassKind::kUpdate, "update"},
-    {PassKind::kBilateralFilter, "bilateral_filter"}, {PassKind::kScore, "score"}, {PassKind::kLink, "link"},
-    {PassKind::kModes, "modes"}, {PassKind::kExportLinks, "export_links"},
+    {PassKind::kGrid, "grid"},
+    {PassKind::kBaseQuadrics, "base_quadrics"},
+    {PassKind::kNeighbourhoodQuadrics, "neighbourhood_quadrics"},
+    {PassKind::kDiffusion, "diffusion"},
+    {PassKind::kNoise, "noise"},
+    {PassKind::kRefine, "refine"},
+    {PassKind::kUpdate, "update"},
+    {PassKind::kBilateralFilter, "bilateral_filter"},
+    {PassKind::kScore, "score"},
+    {PassKind::kLink, "link"},
+    {PassKind::kModes, "modes"},
+    {PassKind::kExportLinks, "export_links"},
 };
 
 // The passes of one run: quadrics when the filter or the clustering reads them, then the
@@ -94,29 +101,40 @@ bool frame_filter_is_geometry(const Params& plain) {
 const char* pass_name(PassKind kind) { return second_of(kPassNames, kind).value_or("?"); }
 
 bool visits_neighbourhood(PassKind kind) {
-  return kind == PassKind::kNeighbourhoodQuadrics || kind == PassKind::kDiffusion || kind == PassKind::kUpdate ||
-         kind == PassKind::kBilateralFilter || kind == PassKind::kScore || kind == PassKind::kLink;
+  return kind == PassKind::kNeighbourhoodQuadrics || kind == PassKind::kDiffusion ||
+         kind == PassKind::kUpdate || kind == PassKind::kBilateralFilter || kind == PassKind::kScore ||
+         kind == PassKind::kLink;
 }
 
-bool RunPlan::runs(PassKind kind) const { return std::find(passes.begin(), passes.end(), kind) != passes.end(); }
+bool RunPlan::runs(PassKind kind) const {
+  return std::find(passes.begin(), passes.end(), kind) != passes.end();
+}
 
 Extent RunPlan::extent(PassKind kind) const {
   switch (kind) {
-    case PassKind::kNeighbourhoodQuadrics: return sigma_b;
+    case PassKind::kNeighbourhoodQuadrics:
+      return sigma_b;
     case PassKind::kDiffusion:
-    case PassKind::kBilateralFilter: return sigma_s;
-    case PassKind::kUpdate: return params.filtering.constrained ? sigma_n : Extent{};
+    case PassKind::kBilateralFilter:
+      return sigma_s;
+    case PassKind::kUpdate:
+      return params.filtering.constrained ? sigma_n : Extent{};
     case PassKind::kScore:
-    case PassKind::kLink: return sigma_d;
-    default: return {};
+    case PassKind::kLink:
+      return sigma_d;
+    default:
+      return {};
   }
 }
 
 const char* RunPlan::timing_prefix() const {
   switch (role) {
-    case RunRole::kGeometry: return "geometry.";
-    case RunRole::kClustering: return "cluster.";
-    default: return "";
+    case RunRole::kGeometry:
+      return "geometry.";
+    case RunRole::kClustering:
+      return "cluster.";
+    default:
+      return "";
   }
 }
 

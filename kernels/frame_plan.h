@@ -62,11 +62,11 @@ struct RunPlan {
   std::vector<PassKind> passes;
   /// The vertex grid's cell, and the triangle grid's of "bf" (sigma_s in both).
   float grid_cell = 0.f;
-  Extent sigma_b;   ///< Q' (FilterParams::effective_sigma_b)
-  Extent sigma_s;   ///< diffusion; "bf"'s spatial kernel
-  Extent sigma_n;   ///< "qf" constrained: the normal smoothing (FilterParams::effective_sigma_n)
-  Extent mollify;   ///< "bf": face normals mollified with sigma_s / 2 (Jones et al.)
-  Extent sigma_d;   ///< score and link
+  Extent sigma_b;       ///< Q' (FilterParams::effective_sigma_b)
+  Extent sigma_s;       ///< diffusion; "bf"'s spatial kernel
+  Extent sigma_n;       ///< "qf" constrained: the normal smoothing (FilterParams::effective_sigma_n)
+  Extent mollify;       ///< "bf": face normals mollified with sigma_s / 2 (Jones et al.)
+  Extent sigma_d;       ///< score and link
   float sigma_r = 0.f;  ///< range of the diffusion and of "bf"
   float sigma_q = 0.f;  ///< range of the score and link
 

@@ -14,20 +14,23 @@ namespace fq {
 double mean_edge_length(const MeshView& mesh, int threads) {
   if (mesh.num_triangles == 0) return 0.0;
   std::vector<double> partial(fixed_chunks(mesh.num_triangles), 0.0);
-  parallel_for(static_cast<uint32_t>(partial.size()), threads_or_all(threads), [&](uint32_t c) {
-    const uint32_t end = std::min<uint64_t>(mesh.num_triangles, uint64_t(c + 1) * kFixedChunk);
-    double sum = 0.0;
-    for (uint32_t t = c * kFixedChunk; t < end; ++t) {
-      const uint32_t* tri = mesh.triangles + 3 * size_t(t);
-      for (int e = 0; e < 3; ++e) {
-        const float* a = mesh.positions + 3 * size_t(tri[e]);
-        const float* b = mesh.positions + 3 * size_t(tri[(e + 1) % 3]);
-        const double dx = double(a[0]) - b[0], dy = double(a[1]) - b[1], dz = double(a[2]) - b[2];
-        sum += std::sqrt(dx * dx + dy * dy + dz * dz);
-      }
-    }
-    partial[c] = sum;
-  }, kOneChunkAtATime);
+  parallel_for(
+      static_cast<uint32_t>(partial.size()), threads_or_all(threads),
+      [&](uint32_t c) {
+        const uint32_t end = std::min<uint64_t>(mesh.num_triangles, uint64_t(c + 1) * kFixedChunk);
+        double sum = 0.0;
+        for (uint32_t t = c * kFixedChunk; t < end; ++t) {
+          const uint32_t* tri = mesh.triangles + 3 * size_t(t);
+          for (int e = 0; e < 3; ++e) {
+            const float* a = mesh.positions + 3 * size_t(tri[e]);
+            const float* b = mesh.positions + 3 * size_t(tri[(e + 1) % 3]);
+            const double dx = double(a[0]) - b[0], dy = double(a[1]) - b[1], dz = double(a[2]) - b[2];
+            sum += std::sqrt(dx * dx + dy * dy + dz * dz);
+          }
+        }
+        partial[c] = sum;
+      },
+      kOneChunkAtATime);
   double sum = 0.0;
   for (double s : partial) sum += s;
   return sum / (3.0 * mesh.num_triangles);
@@ -40,16 +43,19 @@ Status compute_normalization(const MeshView& mesh, Normalization& out, int threa
   };
   constexpr double kInf = std::numeric_limits<double>::infinity();
   std::vector<Box> boxes(fixed_chunks(mesh.num_vertices), Box{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}});
-  parallel_for(static_cast<uint32_t>(boxes.size()), threads_or_all(threads), [&](uint32_t c) {
-    const uint32_t end = std::min<uint64_t>(mesh.num_vertices, uint64_t(c + 1) * kFixedChunk);
-    Box& b = boxes[c];
-    for (uint32_t i = c * kFixedChunk; i < end; ++i) {
-      for (int k = 0; k < 3; ++k) {
-        b.lo[k] = std::min(b.lo[k], double(mesh.positions[3 * size_t(i) + k]));
-        b.hi[k] = std::max(b.hi[k], double(mesh.positions[3 * size_t(i) + k]));
-      }
-    }
-  }, kOneChunkAtATime);
+  parallel_for(
+      static_cast<uint32_t>(boxes.size()), threads_or_all(threads),
+      [&](uint32_t c) {
+        const uint32_t end = std::min<uint64_t>(mesh.num_vertices, uint64_t(c + 1) * kFixedChunk);
+        Box& b = boxes[c];
+        for (uint32_t i = c * kFixedChunk; i < end; ++i) {
+          for (int k = 0; k < 3; ++k) {
+            b.lo[k] = std::min(b.lo[k], double(mesh.positions[3 * size_t(i) + k]));
+            b.hi[k] = std::max(b.hi[k], double(mesh.positions[3 * size_t(i) + k]));
+          }
+        }
+      },
+      kOneChunkAtATime);
   Box all{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}};
   for (const Box& b : boxes) {
     for (int k = 0; k < 3; ++k) {

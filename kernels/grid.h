@@ -14,9 +14,9 @@
 namespace fq {
 
 struct GridView {
-  Vec3 origin;        ///< corner of cell (0,0,0)
-  float cell;         ///< cell edge length
-  int nx, ny, nz;     ///< cells per axis
+  Vec3 origin;                 ///< corner of cell (0,0,0)
+  float cell;                  ///< cell edge length
+  int nx, ny, nz;              ///< cells per axis
   const uint32_t* cell_start;  ///< nx*ny*nz + 1 offsets into points
   const Point4* points;        ///< positions sorted by cell, w = per-point scalar
   uint32_t count;              ///< number of points

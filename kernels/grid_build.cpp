@@ -38,7 +38,7 @@ void build_grid(const Vec3* points, uint32_t n, float wanted_cell, CpuGrid& grid
   bounds_of(points, n, lo, hi);
   grid.layout = choose_grid_layout(lo, hi, wanted_cell, n);
   const GridView shape{grid.layout.origin, grid.layout.cell, grid.layout.nx, grid.layout.ny,
-                       grid.layout.nz, nullptr, nullptr, n};
+                       grid.layout.nz,     nullptr,          nullptr,        n};
   const size_t cells = grid.layout.cells();
   grid.cell_start.assign(cells + 1, 0);
   grid.occupied = 0;

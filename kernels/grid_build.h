@@ -32,8 +32,8 @@ struct CpuGrid {
 
   /// View over `sorted_points` (the caller's points permuted by `order`).
   GridView view(const Point4* sorted_points) const {
-    return {layout.origin, layout.cell, layout.nx, layout.ny, layout.nz,
-            cell_start.data(), sorted_points, static_cast<uint32_t>(order.size())};
+    return {layout.origin, layout.cell,       layout.nx,     layout.ny,
+            layout.nz,     cell_start.data(), sorted_points, static_cast<uint32_t>(order.size())};
   }
 };
 

@@ -1,10 +1,10 @@
 // The nearest point of a uniform grid (kernels/grid.h) to a query: how the CUDA engine matches
 // a frame's vertices to its stream's last result (kernels/cuda/temporal_pass.cu) on a grid it
-// builds on the device, where the CPU engine asks a FrameMatcher (kernels/frame_matcher.h: the same query on a grid built
-// on the host, or its NearestVertexIndex, a sparse grid built
-// on the host, which on the device would need the host's decisions and a round trip). The same
-// answers: the nearest point within reach, found by growing spheres from `first_radius`, at
-// most kMaxCandidates points looked at, ties to the first in cell order.
+// builds on the device, where the CPU engine asks a FrameMatcher (kernels/frame_matcher.h: the same query on
+// a grid built on the host, or its NearestVertexIndex, a sparse grid built on the host, which on the device
+// would need the host's decisions and a round trip). The same answers: the nearest point within reach, found
+// by growing spheres from `first_radius`, at most kMaxCandidates points looked at, ties to the first in cell
+// order.
 //
 // The grid's layout need not hold the points: counting sort puts a point outside it into the
 // nearest edge cell, so here an edge cell reaches to infinity on its outer side and such a
@@ -43,12 +43,15 @@ FQ_HD uint32_t nearest_in_grid(const GridView& g, Vec3 p, float reach, float fir
   if (g.count == 0 || !is_finite(p) || !(reach >= 0.f)) return kNoNearest;
   uint32_t budget = NearestVertexIndex::kMaxCandidates;
   const float inv = 1.f / g.cell;
-  for (float r = first_radius > 0.f && first_radius < reach ? first_radius : reach;; r = 2.f * r < reach ? 2.f * r : reach) {
+  for (float r = first_radius > 0.f && first_radius < reach ? first_radius : reach;;
+       r = 2.f * r < reach ? 2.f * r : reach) {
     const float r2 = r * r;
     uint32_t best = kNoNearest;
     float best_d2 = 0.f;
-    const int z0 = clamped_cell((p.z - r - g.origin.z) * inv, g.nz), z1 = clamped_cell((p.z + r - g.origin.z) * inv, g.nz);
-    const int y0 = clamped_cell((p.y - r - g.origin.y) * inv, g.ny), y1 = clamped_cell((p.y + r - g.origin.y) * inv, g.ny);
+    const int z0 = clamped_cell((p.z - r - g.origin.z) * inv, g.nz),
+              z1 = clamped_cell((p.z + r - g.origin.z) * inv, g.nz);
+    const int y0 = clamped_cell((p.y - r - g.origin.y) * inv, g.ny),
+              y1 = clamped_cell((p.y + r - g.origin.y) * inv, g.ny);
     for (int iz = z0; iz <= z1 && budget > 0; ++iz) {
       const float gz = open_gap2(p.z, g.origin.z, g.cell, iz, g.nz);
       if (gz > r2) continue;

@@ -16,7 +16,8 @@ struct Overlap {
 /// Every (cluster, previous id) pair with its vertex count: counting sort by cluster, then
 /// each cluster's votes counted in an array over the previous ids (in no particular order:
 /// match_cluster_ids sorts the pairs by a total order).
-std::vector<Overlap> overlaps(const std::vector<uint32_t>& labels, uint32_t k, const std::vector<uint32_t>& votes) {
+std::vector<Overlap> overlaps(const std::vector<uint32_t>& labels, uint32_t k,
+                              const std::vector<uint32_t>& votes) {
   std::vector<uint32_t> start(k + 1, 0);
   for (uint32_t l : labels) ++start[l + 1];
   for (uint32_t c = 0; c < k; ++c) start[c + 1] += start[c];
@@ -70,8 +71,9 @@ void stick_to_previous_side(const TrackingOptions& o, const std::vector<uint32_t
 /// is in it; every id is below `id_limit`.
 uint32_t vote_over_frames(const FrameMatcher& frame, const std::vector<uint32_t>& nearest,
                           const std::vector<uint32_t>& prev_history, int prev_window, int window,
-                          const std::vector<uint32_t>& votes, uint32_t id_limit, std::vector<uint32_t>& history,
-                          std::vector<uint32_t>& sorted_ids, std::vector<uint32_t>& labels, std::vector<bool>& used) {
+                          const std::vector<uint32_t>& votes, uint32_t id_limit,
+                          std::vector<uint32_t>& history, std::vector<uint32_t>& sorted_ids,
+                          std::vector<uint32_t>& labels, std::vector<bool>& used) {
   const uint32_t n = frame.size();
   history.resize(size_t(n) * window);
   sorted_ids.resize(n);
@@ -106,7 +108,8 @@ uint32_t vote_over_frames(const FrameMatcher& frame, const std::vector<uint32_t>
 }  // namespace
 
 std::vector<uint32_t> match_cluster_ids(const std::vector<uint32_t>& labels, uint32_t k,
-                                        const std::vector<uint32_t>& votes, const std::vector<bool>& prev_used) {
+                                        const std::vector<uint32_t>& votes,
+                                        const std::vector<bool>& prev_used) {
   std::vector<Overlap> pairs = overlaps(labels, k, votes);
   // Largest overlaps first; ties by cluster then id, so the result is reproducible.
   std::sort(pairs.begin(), pairs.end(), [](const Overlap& a, const Overlap& b) {
@@ -138,8 +141,8 @@ uint32_t LabelTracker::track(const float* positions, uint32_t n, std::vector<uin
 }
 
 Status LabelTracker::track_until(const CancelToken& token, const float* positions, uint32_t n,
-                                 std::vector<uint32_t>& labels, uint32_t num_clusters, const TrackingOptions& o,
-                                 uint32_t& bound) {
+                                 std::vector<uint32_t>& labels, uint32_t num_clusters,
+                                 const TrackingOptions& o, uint32_t& bound) {
   const CancelScope scope(&token);
   // Everything is computed aside (in buffers kept from frame to frame) and kept only once the
   // whole frame is tracked. This frame's matcher first: the next frame is matched against it,
@@ -155,7 +158,8 @@ Status LabelTracker::track_until(const CancelToken& token, const float* position
     prev_.nearest_all_in_cell_order(next_, o.max_distance, nearest_, o.threads);
     FQ_RETURN_IF_ERROR(token.check());
     votes_.resize(n);
-    for (uint32_t k = 0; k < n; ++k) votes_[next_.original(k)] = nearest_[k] == kNone ? kNone : prev_ids_[nearest_[k]];
+    for (uint32_t k = 0; k < n; ++k)
+      votes_[next_.original(k)] = nearest_[k] == kNone ? kNone : prev_ids_[nearest_[k]];
     // prev_used_: the ids still in a vertex's vote window; a new cluster must not take one.
     const std::vector<uint32_t> id = match_cluster_ids(ids_, num_clusters, votes_, prev_used_);
     for (uint32_t& l : ids_) l = id[l];
@@ -168,8 +172,8 @@ Status LabelTracker::track_until(const CancelToken& token, const float* position
     window = std::max(o.vote_frames, 1);
     // Ids in the previous histories are below prev_bound_, new ones below prev_bound_ + num_clusters.
     const uint32_t id_limit = prev_bound_ + num_clusters;
-    new_bound = vote_over_frames(next_, nearest_, prev_history_, prev_window_, window, votes_, id_limit, history_,
-                                 sorted_ids_, ids_, used_);
+    new_bound = vote_over_frames(next_, nearest_, prev_history_, prev_window_, window, votes_, id_limit,
+                                 history_, sorted_ids_, ids_, used_);
   } else {
     sorted_ids_.resize(n);
     for (uint32_t k = 0; k < n; ++k) sorted_ids_[k] = ids_[next_.original(k)];

@@ -37,7 +37,8 @@ struct TrackingOptions {
 /// (0..k-1); `votes`: per vertex the previous id it overlaps (kNone: none); `prev_used`:
 /// the previous frame's ids (true where used). Returns the new id of each cluster.
 std::vector<uint32_t> match_cluster_ids(const std::vector<uint32_t>& labels, uint32_t k,
-                                        const std::vector<uint32_t>& votes, const std::vector<bool>& prev_used);
+                                        const std::vector<uint32_t>& votes,
+                                        const std::vector<bool>& prev_used);
 
 class LabelTracker {
  public:
@@ -51,8 +52,9 @@ class LabelTracker {
   /// kCancelled when it expired before the frame was tracked, and then `labels`, `bound` and
   /// the remembered frame are as they were, so the next frame is matched with the last one
   /// tracked. Every step is O(n log n) or less in the frame's vertices and triangles.
-  Status track_until(const CancelToken& token, const float* positions, uint32_t n, std::vector<uint32_t>& labels,
-                     uint32_t num_clusters, const TrackingOptions& options, uint32_t& bound);
+  Status track_until(const CancelToken& token, const float* positions, uint32_t n,
+                     std::vector<uint32_t>& labels, uint32_t num_clusters, const TrackingOptions& options,
+                     uint32_t& bound);
   /// Forgets the previous frame (the next one starts afresh) and frees the buffers.
   void reset();
   bool has_previous() const { return prev_.size() > 0; }

@@ -41,7 +41,8 @@ void robust_frame(const std::vector<Vec3>& points, Vec3& origin, float& spread) 
   spread = 0.f;
   for (float Vec3::*a : {&Vec3::x, &Vec3::y, &Vec3::z}) {
     origin.*a = axis_quantile(points, a, 0.5, scratch);
-    spread = std::max(spread, axis_quantile(points, a, 0.95, scratch) - axis_quantile(points, a, 0.05, scratch));
+    spread =
+        std::max(spread, axis_quantile(points, a, 0.95, scratch) - axis_quantile(points, a, 0.05, scratch));
   }
 }
 
@@ -76,7 +77,8 @@ float gap2(double v, double origin, double cell, int64_t i) {
 }  // namespace
 
 NearestVertexIndex::CellCoords NearestVertexIndex::coords_of(Vec3 p) const {
-  return {axis_cell(p.x, origin_.x, cell_), axis_cell(p.y, origin_.y, cell_), axis_cell(p.z, origin_.z, cell_)};
+  return {axis_cell(p.x, origin_.x, cell_), axis_cell(p.y, origin_.y, cell_),
+          axis_cell(p.z, origin_.z, cell_)};
 }
 
 void NearestVertexIndex::build(const float* xyz, uint32_t n, float cell) {
@@ -89,7 +91,8 @@ void NearestVertexIndex::build(const float* xyz, uint32_t n, float cell) {
   cell_ = std::isfinite(cell) && cell > 0.f ? cell : 1.f;
   if (n == 0) return;
   std::vector<Vec3> points(n);
-  for (uint32_t i = 0; i < n; ++i) points[i] = {xyz[3 * size_t(i)], xyz[3 * size_t(i) + 1], xyz[3 * size_t(i) + 2]};
+  for (uint32_t i = 0; i < n; ++i)
+    points[i] = {xyz[3 * size_t(i)], xyz[3 * size_t(i) + 1], xyz[3 * size_t(i) + 2]};
   float spread = 0.f;
   robust_frame(points, origin_, spread);
   std::vector<std::pair<uint64_t, uint32_t>> best, trial;
@@ -130,8 +133,8 @@ void NearestVertexIndex::build(const float* xyz, uint32_t n, float cell) {
   blocks_.reset(keys_.size());
   for (uint32_t k = 0; k < keys_.size(); ++k) {
     const uint64_t key = keys_[k];
-    const int64_t x = int64_t(key & kAxisMask) - kHalfRange, y = int64_t((key >> 21) & kAxisMask) - kHalfRange,
-                  z = int64_t(key >> 42) - kHalfRange;
+    const int64_t x = int64_t(key & kAxisMask) - kHalfRange,
+                  y = int64_t((key >> 21) & kAxisMask) - kHalfRange, z = int64_t(key >> 42) - kHalfRange;
     blocks_.insert(block_key(x, y, z), 0, 0);
     const uint64_t r = key & kRowMask;
     if (k > 0 && (keys_[k - 1] & kRowMask) == r) continue;  // not the row's first cell
@@ -205,14 +208,16 @@ uint32_t NearestVertexIndex::nearest(Vec3 p, float max_radius) const {
         if (gyz > r2) continue;
         const float rx = std::sqrt(r2 - gyz);  // half-width of the sphere in this row
         const int64_t x0 = axis_cell(p.x - rx, origin_.x, cell_), x1 = axis_cell(p.x + rx, origin_.x, cell_);
-        // x is the fastest axis of a key: the row's cells are one run of keys_, its points one run of sorted_.
+        // x is the fastest axis of a key: the row's cells are one run of keys_, its points one run of
+        // sorted_.
         const auto [row_first, row_last] = rows_.find(key_of(-kHalfRange, iy, iz));
         if (row_first == row_last) continue;
         // A row crossing a surface holds a few cells: a linear scan, a binary search in a long one.
         const uint64_t k0 = key_of(x0, iy, iz), k1 = key_of(x1, iy, iz);
         uint32_t first = row_first;
         if (row_last - row_first > 8)
-          first = uint32_t(std::lower_bound(keys_.begin() + row_first, keys_.begin() + row_last, k0) - keys_.begin());
+          first = uint32_t(std::lower_bound(keys_.begin() + row_first, keys_.begin() + row_last, k0) -
+                           keys_.begin());
         else
           while (first < row_last && keys_[first] < k0) ++first;
         uint32_t last = first;
@@ -238,8 +243,8 @@ uint32_t NearestVertexIndex::nearest(Vec3 p, float max_radius) const {
   }
 }
 
-void NearestVertexIndex::nearest_all(const float* xyz, uint32_t n, float max_radius, std::vector<uint32_t>& out,
-                                     int threads) const {
+void NearestVertexIndex::nearest_all(const float* xyz, uint32_t n, float max_radius,
+                                     std::vector<uint32_t>& out, int threads) const {
   out.resize(n);
   parallel_for(n, threads, [&](uint32_t i) {
     const float* q = xyz + 3 * size_t(i);

@@ -25,8 +25,8 @@ namespace fq {
 class NearestVertexIndex {
  public:
   static constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
-  static constexpr uint32_t kCellLoad = 8;       ///< vertices per occupied cell before the cell is halved
-  static constexpr float kMaxReachCells = 8.f;   ///< farthest a query looks, in cells
+  static constexpr uint32_t kCellLoad = 8;         ///< vertices per occupied cell before the cell is halved
+  static constexpr float kMaxReachCells = 8.f;     ///< farthest a query looks, in cells
   static constexpr uint32_t kMaxCandidates = 256;  ///< vertices a query may look at
   static constexpr int kBlockCells = 8;            ///< cells a side of a block (the reach)
 
@@ -44,7 +44,8 @@ class NearestVertexIndex {
 
   /// nearest() for every query point, in parallel (under the caller's CancelScope: when its
   /// token expires, the answers are unspecified).
-  void nearest_all(const float* xyz, uint32_t n, float max_radius, std::vector<uint32_t>& out, int threads) const;
+  void nearest_all(const float* xyz, uint32_t n, float max_radius, std::vector<uint32_t>& out,
+                   int threads) const;
 
  private:
   struct CellCoords {

@@ -36,7 +36,8 @@ NoiseEstimate estimate_noise(const NoiseSample* samples, uint32_t count) {
   }
   e.correlation = float(zu / zz);
   e.white = float(w / pairs);
-  const float share = std::clamp((kDetailCorrelation - e.correlation) / (kDetailCorrelation - e.white), 0.f, 1.f);
+  const float share =
+      std::clamp((kDetailCorrelation - e.correlation) / (kDetailCorrelation - e.white), 0.f, 1.f);
   e.noise = e.residual * std::sqrt(share);
   return e;
 }

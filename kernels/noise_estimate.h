@@ -46,7 +46,9 @@ constexpr int kMaxRing = 48;
 /// Fewer neighbours than this leave too few degrees of freedom for six coefficients.
 constexpr int kMinRing = 9;
 
-FQ_HD uint32_t noise_sample_stride(uint32_t n) { return n > kNoiseSamples ? (n + kNoiseSamples - 1) / kNoiseSamples : 1; }
+FQ_HD uint32_t noise_sample_stride(uint32_t n) {
+  return n > kNoiseSamples ? (n + kNoiseSamples - 1) / kNoiseSamples : 1;
+}
 FQ_HD uint32_t noise_sample_count(uint32_t n) { return n == 0 ? 0 : (n - 1) / noise_sample_stride(n) + 1; }
 
 namespace detail {
@@ -256,10 +258,10 @@ FQ_HD NoiseSample noise_sample(const FanView& m, const Vec3* x, uint32_t v) {
 /// The estimate from the samples (host only; both engines bring their samples to the host).
 /// NaN fields of a sample are skipped; without a usable sample the estimate is 0.
 struct NoiseEstimate {
-  float residual = 0.f;    ///< 1.4826 × median |z_v|: noise and unfollowed detail together
-  float correlation = 0.f; ///< measured correlation of neighbours' residuals
-  float white = 0.f;       ///< the correlation white noise would give
-  float noise = 0.f;       ///< σ̂: the residual's white share
+  float residual = 0.f;     ///< 1.4826 × median |z_v|: noise and unfollowed detail together
+  float correlation = 0.f;  ///< measured correlation of neighbours' residuals
+  float white = 0.f;        ///< the correlation white noise would give
+  float noise = 0.f;        ///< σ̂: the residual's white share
 };
 NoiseEstimate estimate_noise(const NoiseSample* samples, uint32_t count);
 

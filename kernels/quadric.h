@@ -22,8 +22,7 @@ FQ_HD Quadric zero_quadric() { return {0, 0, 0, 0, 0, 0, 0, 0, 0, 0}; }
 /// expressed in the frame whose origin is `origin`.
 FQ_HD Quadric plane_quadric(Vec3 n, Vec3 point, Vec3 origin) {
   const float d = dot(n, origin - point);  // signed distance of the origin to the plane
-  return {n.x * n.x, n.x * n.y, n.x * n.z, n.y * n.y, n.y * n.z, n.z * n.z,
-          d * n.x,   d * n.y,   d * n.z,   d * d};
+  return {n.x * n.x, n.x * n.y, n.x * n.z, n.y * n.y, n.y * n.z, n.z * n.z, d * n.x, d * n.y, d * n.z, d * d};
 }
 
 FQ_HD Vec3 mul_a(const Quadric& q, Vec3 y) {
@@ -44,9 +43,15 @@ FQ_HD float evaluate(const Quadric& q, Vec3 y) {
 
 /// acc += w * q
 FQ_HD void add_scaled(Quadric& acc, const Quadric& q, float w) {
-  acc.a00 += w * q.a00; acc.a01 += w * q.a01; acc.a02 += w * q.a02;
-  acc.a11 += w * q.a11; acc.a12 += w * q.a12; acc.a22 += w * q.a22;
-  acc.b0 += w * q.b0; acc.b1 += w * q.b1; acc.b2 += w * q.b2;
+  acc.a00 += w * q.a00;
+  acc.a01 += w * q.a01;
+  acc.a02 += w * q.a02;
+  acc.a11 += w * q.a11;
+  acc.a12 += w * q.a12;
+  acc.a22 += w * q.a22;
+  acc.b0 += w * q.b0;
+  acc.b1 += w * q.b1;
+  acc.b2 += w * q.b2;
   acc.c += w * q.c;
 }
 
@@ -55,9 +60,15 @@ FQ_HD void add_scaled(Quadric& acc, const Quadric& q, float w) {
 /// already has: `value_at_t` = evaluate(q, t)).
 FQ_HD void add_translated(Quadric& acc, const Quadric& q, Vec3 t, float value_at_t, float w) {
   const Vec3 at = mul_a(q, t);
-  acc.a00 += w * q.a00; acc.a01 += w * q.a01; acc.a02 += w * q.a02;
-  acc.a11 += w * q.a11; acc.a12 += w * q.a12; acc.a22 += w * q.a22;
-  acc.b0 += w * (q.b0 + at.x); acc.b1 += w * (q.b1 + at.y); acc.b2 += w * (q.b2 + at.z);
+  acc.a00 += w * q.a00;
+  acc.a01 += w * q.a01;
+  acc.a02 += w * q.a02;
+  acc.a11 += w * q.a11;
+  acc.a12 += w * q.a12;
+  acc.a22 += w * q.a22;
+  acc.b0 += w * (q.b0 + at.x);
+  acc.b1 += w * (q.b1 + at.y);
+  acc.b2 += w * (q.b2 + at.z);
   acc.c += w * value_at_t;
 }
 
@@ -65,8 +76,15 @@ FQ_HD void add_translated(Quadric& acc, const Quadric& q, Vec3 t, float value_at
 /// stays finite when the sum is denormal (1/s would overflow to inf; each component is
 /// at most s times a finite value, so the quotient is finite).
 FQ_HD void divide(Quadric& q, float s) {
-  q.a00 /= s; q.a01 /= s; q.a02 /= s; q.a11 /= s; q.a12 /= s; q.a22 /= s;
-  q.b0 /= s; q.b1 /= s; q.b2 /= s;
+  q.a00 /= s;
+  q.a01 /= s;
+  q.a02 /= s;
+  q.a11 /= s;
+  q.a12 /= s;
+  q.a22 /= s;
+  q.b0 /= s;
+  q.b1 /= s;
+  q.b2 /= s;
   q.c /= s;
 }
 

@@ -30,7 +30,7 @@ FQ_HD Vec3 minimizer_step(const Quadric& q, float tikhonov_eps) {
   const Sym3Eigen e = sym3_eigen(q.a00, q.a01, q.a02, q.a11, q.a12, q.a22);
   const float lmax = fmaxf(e.values[0], fmaxf(e.values[1], e.values[2]));
   Vec3 step{0.f, 0.f, 0.f};
-FQ_UNROLL
+  FQ_UNROLL
   for (int k = 0; k < 3; ++k) {
     const float denom = e.values[k] + reg;
     if (!(denom > kRankEps * (lmax + reg))) continue;

@@ -37,8 +37,12 @@ struct FanView {
 struct OuterSum {
   float t00 = 0.f, t01 = 0.f, t02 = 0.f, t11 = 0.f, t12 = 0.f, t22 = 0.f;
   FQ_HD void add(Vec3 n, float s) {
-    t00 += s * n.x * n.x; t01 += s * n.x * n.y; t02 += s * n.x * n.z;
-    t11 += s * n.y * n.y; t12 += s * n.y * n.z; t22 += s * n.z * n.z;
+    t00 += s * n.x * n.x;
+    t01 += s * n.x * n.y;
+    t02 += s * n.x * n.z;
+    t11 += s * n.y * n.y;
+    t12 += s * n.y * n.z;
+    t22 += s * n.z * n.z;
   }
   FQ_HD Sym3Eigen eigen() const { return sym3_eigen(t00, t01, t02, t11, t12, t22); }
   FQ_HD Vec3 apply(Vec3 d) const {
@@ -62,7 +66,9 @@ FQ_HD float free_weight(float l, float lmax, float lo, float hi) {
   return l < lo * lmax ? 1.f : l >= hi * lmax ? 0.f : (hi * lmax - l) / ((hi - lo) * lmax);
 }
 
-FQ_HD Vec3 eigenvector(const Sym3Eigen& e, int k) { return Vec3{e.vectors[0][k], e.vectors[1][k], e.vectors[2][k]}; }
+FQ_HD Vec3 eigenvector(const Sym3Eigen& e, int k) {
+  return Vec3{e.vectors[0][k], e.vectors[1][k], e.vectors[2][k]};
+}
 
 }  // namespace detail
 
@@ -77,7 +83,8 @@ FQ_HD bool closed_fan(const FanView& m, uint32_t v) {
       const uint32_t o = tri[c];
       if (o == v) continue;
       int count = 0;
-      for (uint32_t k2 = b; k2 < e; ++k2) count += detail::has_vertex(m.tris + 3 * size_t(m.vf_faces[k2]), o) ? 1 : 0;
+      for (uint32_t k2 = b; k2 < e; ++k2)
+        count += detail::has_vertex(m.tris + 3 * size_t(m.vf_faces[k2]), o) ? 1 : 0;
       if (count != 2) return false;
     }
   }
@@ -115,9 +122,9 @@ FQ_HD Vec3 filtered_face_normal(const FanView& m, const TriangleGeom* geom, cons
 /// Eigenvalue ratios λ_k / λ_max of the filtered normals' tensor Σ_f n_f n_fᵀ (v's faces) over
 /// which the vertex update's tangential share fades out along e_k. A crease whose two sides'
 /// normals differ by θ, its faces split evenly, gives λ_2 / λ_max = tan²(θ/2): the share across
-/// it starts to fade at θ = 42° and is gone from 76° on. Measured on the peer table (docs/QUALITY.md): a lower
-/// end rounds fewer CAD edges (fandisk) but takes the share from curved scan regions
-/// (max_planck), whose filtered normals spread too.
+/// it starts to fade at θ = 42° and is gone from 76° on. Measured on the peer table (docs/QUALITY.md): a
+/// lower end rounds fewer CAD edges (fandisk) but takes the share from curved scan regions (max_planck),
+/// whose filtered normals spread too.
 constexpr float kCrossingFadeFrom = 0.15f;
 constexpr float kCrossingGoneAt = 0.6f;
 
@@ -139,7 +146,7 @@ FQ_HD FreeDirections free_directions(const FanView& m, const Vec3* normals, uint
   const Sym3Eigen e = t.eigen();
   const float lmax = detail::largest(e);
   if (!(lmax > 0.f)) return p;
-FQ_UNROLL
+  FQ_UNROLL
   for (int k = 0; k < 3; ++k) {
     const float w = detail::free_weight(e.values[k], lmax, kCrossingFadeFrom, kCrossingGoneAt);
     p.add(detail::eigenvector(e, k), w);
@@ -187,7 +194,9 @@ FQ_HD Vec3 partial_normal(Vec3 prev, Vec3 next, float w) {
 }
 
 /// A fractional pass or round: `prev` moved `w` of the way to `next`.
-FQ_HD Vec3 partial_position(Vec3 prev, Vec3 next, float w) { return w < 1.f ? prev + w * (next - prev) : next; }
+FQ_HD Vec3 partial_position(Vec3 prev, Vec3 next, float w) {
+  return w < 1.f ? prev + w * (next - prev) : next;
+}
 
 /// Unit area-weighted normal of vertex v on positions x (zero where it has no area).
 FQ_HD Vec3 vertex_normal(const FanView& m, const Vec3* x, uint32_t v) {

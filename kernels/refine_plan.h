@@ -24,8 +24,8 @@
 
 #include <cmath>
 
-#include "kernels/gaussian.h"
 #include "core/params.h"
+#include "kernels/gaussian.h"
 
 namespace fq {
 
@@ -52,14 +52,14 @@ struct RefinePlan {
   float tangential_allowance;  ///< squared tangential move kept per unit of turn (kSlidePerTurn σ²)
 };
 
-constexpr float kRoundsPerNoise2 = 16.f;       ///< rounds = 1 + 16σ²
-constexpr float kNormalPassesAtZero = 1.f;    ///< normal passes = 1 + 10σ
+constexpr float kRoundsPerNoise2 = 16.f;    ///< rounds = 1 + 16σ²
+constexpr float kNormalPassesAtZero = 1.f;  ///< normal passes = 1 + 10σ
 constexpr float kNormalPassesPerNoise = 10.f;
-constexpr float kVertexPassesAtZero = 2.f;    ///< vertex passes = 2 + 15σ
+constexpr float kVertexPassesAtZero = 2.f;  ///< vertex passes = 2 + 15σ
 constexpr float kVertexPassesPerNoise = 15.f;
-constexpr float kRangeScale = 1.f;            ///< range σ_r = σ^0.3 (chord length |n_i − n_j|)
+constexpr float kRangeScale = 1.f;  ///< range σ_r = σ^0.3 (chord length |n_i − n_j|)
 constexpr float kRangeExponent = 0.3f;
-constexpr float kNormalSigmaS = 0.7f;          ///< spatial extent of the normal filter, mean edges
+constexpr float kNormalSigmaS = 0.7f;  ///< spatial extent of the normal filter, mean edges
 constexpr float kTangentialStep = 0.1f;
 /// The share fades in linearly up to this noise: a clean frame has no triangles for it to
 /// repair, and at a corner whose fan is uneven it would move the vertex off the surface.
@@ -74,7 +74,7 @@ constexpr float kShareFullFrom = 0.05f;
 /// depth 0.2). 100 was chosen from sweeps of 10–100 (docs/ALGORITHM.md); before, the allowance
 /// was a fixed 3σ² whatever the triangles.
 constexpr float kSlidePerTurn = 100.f;
-constexpr float kMinRange = 1e-4f;           ///< the range at σ = 0 (a Gaussian needs σ > 0)
+constexpr float kMinRange = 1e-4f;  ///< the range at σ = 0 (a Gaussian needs σ > 0)
 
 /// The plan for a frame whose estimated noise is `estimate` (mean edges; ignored when the
 /// parameters give the noise).

@@ -30,7 +30,7 @@ FQ_HD void jacobi_rotate(float (&m)[3][3], float (&v)[3][3]) {
   const float arp = m[R][P], arq = m[R][Q];
   m[R][P] = m[P][R] = c * arp - s * arq;
   m[R][Q] = m[Q][R] = s * arp + c * arq;
-FQ_UNROLL
+  FQ_UNROLL
   for (int r = 0; r < 3; ++r) {
     const float vp = v[r][P], vq = v[r][Q];
     v[r][P] = c * vp - s * vq;
@@ -44,7 +44,7 @@ FQ_UNROLL
 FQ_HD Sym3Eigen sym3_eigen(float a00, float a01, float a02, float a11, float a12, float a22) {
   float m[3][3] = {{a00, a01, a02}, {a01, a11, a12}, {a02, a12, a22}};
   Sym3Eigen e{{0, 0, 0}, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
-FQ_UNROLL
+  FQ_UNROLL
   for (int sweep = 0; sweep < 6; ++sweep) {
     detail::jacobi_rotate<0, 1, 2>(m, e.vectors);
     detail::jacobi_rotate<0, 2, 1>(m, e.vectors);

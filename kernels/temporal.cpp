@@ -15,7 +15,9 @@ namespace fq {
 
 namespace {
 
-Vec3 at(const float* xyz, uint32_t v) { return {xyz[3 * size_t(v)], xyz[3 * size_t(v) + 1], xyz[3 * size_t(v) + 2]}; }
+Vec3 at(const float* xyz, uint32_t v) {
+  return {xyz[3 * size_t(v)], xyz[3 * size_t(v) + 1], xyz[3 * size_t(v) + 2]};
+}
 
 }  // namespace
 
@@ -66,8 +68,9 @@ void keep_as_history(const FanView& fan, uint32_t n, const std::vector<float>& p
   ++history.frames;
 }
 
-TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions, double mean_edge, float noise,
-                            float strength, TemporalHistory& history, TemporalScratch& s, int threads) {
+TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions, double mean_edge,
+                            float noise, float strength, TemporalHistory& history, TemporalScratch& s,
+                            int threads) {
   // No loop of the step may be skipped (parallel_for skips chunks under an expired token): the
   // serial code after each loop reads what it wrote, and the step is short. It runs whole.
   const CancelScope whole(nullptr);
@@ -84,7 +87,8 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
         if (task == 0)
           build_vertex_faces(mesh.triangles, mesh.num_triangles, n, s.vf_offsets, s.vf_faces);
         else
-          history.index.build(history.positions.data(), uint32_t(history.positions.size() / 3), float(history.mean_edge));
+          history.index.build(history.positions.data(), uint32_t(history.positions.size() / 3),
+                              float(history.mean_edge));
       },
       kOneChunkAtATime);
   if (index_needed) history.index_stamp = history.stamp;
@@ -118,8 +122,8 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
       ring_means(ring, s.motion, s.spare, kMotionPasses, threads);
     }
     look_up();
-    const uint64_t covered = uint64_t(std::count_if(s.match.begin(), s.match.end(),
-                                                    [](uint32_t q) { return q != FrameMatcher::kNone; }));
+    const uint64_t covered = uint64_t(
+        std::count_if(s.match.begin(), s.match.end(), [](uint32_t q) { return q != FrameMatcher::kNone; }));
     step.coverage = prior_coverage(covered, n);
     if (scene_cut(step.coverage)) {
       history.clear();
@@ -130,7 +134,8 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
       s.level.resize(n);
       parallel_for(n, threads, [&](uint32_t v) {
         const uint32_t q = s.match[v];
-        s.detail[v] = q == FrameMatcher::kNone ? 0.f : prior_detail(s.x[v], s.motion[v], prior_at(q), normal_at(q));
+        s.detail[v] =
+            q == FrameMatcher::kNone ? 0.f : prior_detail(s.x[v], s.motion[v], prior_at(q), normal_at(q));
         s.level[v] = s.detail[v] * s.detail[v];
       });
       ring_means(ring, s.level, s.spare_level, kAgreementPasses, threads);

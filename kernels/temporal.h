@@ -73,8 +73,9 @@ struct TemporalScratch {
 /// floats a vertex) pulled along the normal towards `history` by `strength` ∈ [0, 1] at most,
 /// where they agree once the motion is out; `mean_edge` (input units) and `noise` (the frame's
 /// estimate, mean edges) set the scales. Then the result becomes the history of the next frame.
-TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions, double mean_edge, float noise,
-                            float strength, TemporalHistory& history, TemporalScratch& scratch, int threads);
+TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions, double mean_edge,
+                            float noise, float strength, TemporalHistory& history, TemporalScratch& scratch,
+                            int threads);
 
 /// The end of every frame's temporal step, and all of it for a frame that track A averaged:
 /// `positions` (the frame's result, input order, n vertices of `fan`) with its vertex normals

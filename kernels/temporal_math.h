@@ -52,7 +52,9 @@ FQ_HD float prior_share(float level, float strength, float noise) {
 }
 
 /// The share of a frame's n vertices that found a prior vertex (`covered` of them).
-FQ_HD float prior_coverage(uint64_t covered, uint32_t n) { return n > 0 ? float(double(covered) / double(n)) : 0.f; }
+FQ_HD float prior_coverage(uint64_t covered, uint32_t n) {
+  return n > 0 ? float(double(covered) / double(n)) : 0.f;
+}
 
 /// Whether a frame whose prior coverage is `coverage` is a scene cut (the history restarts).
 FQ_HD bool scene_cut(float coverage) { return coverage < kMinPriorCoverage; }

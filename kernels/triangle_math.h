@@ -10,9 +10,9 @@
 namespace fq {
 
 struct TriangleGeom {
-  Vec3 normal;    ///< unit normal, zero for a degenerate triangle
+  Vec3 normal;  ///< unit normal, zero for a degenerate triangle
   Vec3 centroid;
-  float area;     ///< zero for a degenerate triangle
+  float area;  ///< zero for a degenerate triangle
 };
 
 FQ_HD TriangleGeom triangle_geom(Vec3 a, Vec3 b, Vec3 c) {

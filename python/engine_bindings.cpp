@@ -51,8 +51,8 @@ pyb::object filter(const pyb::handle& v, const pyb::handle& f, const pyb::dict& 
   return pyb::make_tuple(positions, filter_info(mesh, p, r));
 }
 
-pyb::array cluster(const pyb::handle& v, const pyb::handle& f, const pyb::dict& keywords, const std::string& engine,
-                   int threads) {
+pyb::array cluster(const pyb::handle& v, const pyb::handle& f, const pyb::dict& keywords,
+                   const std::string& engine, int threads) {
   Params p;  // as `fqfilter --no-filter`
   p.filter = false;
   p.cluster = true;

@@ -77,7 +77,8 @@ std::string sentence(const char* help) {
 }
 
 bool is_bool(const pyb::handle& v) {
-  return pyb::isinstance<pyb::bool_>(v) || std::string(pyb::str(pyb::type::handle_of(v).attr("__name__"))) == "bool_";
+  return pyb::isinstance<pyb::bool_>(v) ||
+         std::string(pyb::str(pyb::type::handle_of(v).attr("__name__"))) == "bool_";
 }
 
 /// `v` as the row's Params value: TypeError for a value of the wrong type, ValueError for a
@@ -85,7 +86,8 @@ bool is_bool(const pyb::handle& v) {
 double value_of(const ParamRow& row, const char* name, const pyb::handle& v) {
   switch (row.kind) {
     case ParamKind::kFloat:
-      if (is_bool(v) || pyb::isinstance<pyb::str>(v) || !PyNumber_Check(v.ptr())) type_error(name, "a number", v);
+      if (is_bool(v) || pyb::isinstance<pyb::str>(v) || !PyNumber_Check(v.ptr()))
+        type_error(name, "a number", v);
       return static_cast<float>(pyb::cast<double>(v));
     case ParamKind::kBool:
       if (!is_bool(v)) type_error(name, "True or False", v);
@@ -94,7 +96,8 @@ double value_of(const ParamRow& row, const char* name, const pyb::handle& v) {
       if (is_bool(v) || !PyIndex_Check(v.ptr())) type_error(name, "an integer", v);
       const auto n = pyb::cast<long long>(pyb::reinterpret_steal<pyb::object>(PyNumber_Index(v.ptr())));
       if (n < 0 || n > std::numeric_limits<uint32_t>::max())
-        throw pyb::value_error(std::string(name) + " must be in [0, 2^32 - 1] (got " + std::to_string(n) + ")");
+        throw pyb::value_error(std::string(name) + " must be in [0, 2^32 - 1] (got " + std::to_string(n) +
+                               ")");
       return static_cast<double>(n);
     }
     case ParamKind::kEnum: {
@@ -118,8 +121,8 @@ pyb::list keyword_rows(const std::string& function) {
   pyb::list out;
   for (const ParamRow& row : param_table())
     if (row.on(surface))
-      out.append(pyb::make_tuple(row.python_keyword(), type_name(row.kind), python_value(row, row.get(defaults)),
-                                 choices_of(row), sentence(row.help)));
+      out.append(pyb::make_tuple(row.python_keyword(), type_name(row.kind),
+                                 python_value(row, row.get(defaults)), choices_of(row), sentence(row.help)));
   return out;
 }
 
@@ -131,14 +134,15 @@ void apply_keywords(const std::string& function, const pyb::dict& keywords, Para
     for (const ParamRow& row : param_table())
       if (row.on(surface) && name == row.python_keyword()) found = &row;
     if (!found)
-      throw pyb::type_error(std::string(function).append("() got an unexpected keyword argument '").append(name).append("'"));
+      throw pyb::type_error(
+          std::string(function).append("() got an unexpected keyword argument '").append(name).append("'"));
     found->set(params, value_of(*found, name.c_str(), value));
   }
 }
 
 pyb::list param_rows() {
   constexpr std::pair<ParamSurface, const char*> kSurfaces[] = {
-      {kFqfilter, "fqfilter"}, {kToml, "toml"},       {kWire, "wire"},          {kPythonFilter, "filter"},
+      {kFqfilter, "fqfilter"},     {kToml, "toml"},           {kWire, "wire"},    {kPythonFilter, "filter"},
       {kPythonCluster, "cluster"}, {kPythonStream, "Stream"}, {kReport, "report"}};
   pyb::list out;
   for (const ParamRow& row : param_table()) {

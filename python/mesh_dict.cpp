@@ -54,7 +54,8 @@ std::optional<FloatArray> optional_array(const pyb::dict& d, const char* key, st
   FloatArray a = FloatArray::ensure(d[key]);
   bool ok = a && a.ndim() == ssize_t(shape.size());
   for (size_t i = 0; ok && i < shape.size(); ++i)
-    ok = shape[i] < 0 ? (a.shape(ssize_t(i)) == 3 || a.shape(ssize_t(i)) == 4) : a.shape(ssize_t(i)) == shape[i];
+    ok = shape[i] < 0 ? (a.shape(ssize_t(i)) == 3 || a.shape(ssize_t(i)) == 4)
+                      : a.shape(ssize_t(i)) == shape[i];
   if (!ok) {
     std::string want = "(";
     for (size_t i = 0; i < shape.size(); ++i)
@@ -64,7 +65,8 @@ std::optional<FloatArray> optional_array(const pyb::dict& d, const char* key, st
   return a;
 }
 
-void add_columns(io::MeshAttributes& out, const FloatArray& a, const char* const* names, io::ScalarType type) {
+void add_columns(io::MeshAttributes& out, const FloatArray& a, const char* const* names,
+                 io::ScalarType type) {
   const size_t n = size_t(a.shape(0)), k = size_t(a.shape(1));
   for (size_t c = 0; c < k; ++c) {
     io::ElementProperty p;
@@ -130,7 +132,8 @@ std::vector<std::string> not_carried(const io::MeshAttributes& a) {
   for (const std::string& phrase : io::group_property_names(names)) out.push_back("vertex " + phrase);
   for (const io::ElementProperty& p : a.face) out.push_back("face property '" + p.name + "'");
   if (!a.materials.empty())
-    out.push_back("the materials" + (a.materials.library.empty() ? std::string() : " of '" + a.materials.library + "'") +
+    out.push_back("the materials" +
+                  (a.materials.library.empty() ? std::string() : " of '" + a.materials.library + "'") +
                   " (fqfilter keeps them; an fq.Mesh has no place for them)");
   return out;
 }
@@ -142,9 +145,11 @@ io::MeshAttributes attributes_of(const pyb::dict& d, size_t n, size_t m) {
   if (const auto a = optional_array(d, "normals", {ssize_t(n), 3}))
     add_columns(out, *a, kNormalNames, io::ScalarType::kFloat32);
   static constexpr const char* kUv[] = {"u", "v"};
-  if (const auto a = optional_array(d, "uvs", {ssize_t(n), 2})) add_columns(out, *a, kUv, io::ScalarType::kFloat32);
+  if (const auto a = optional_array(d, "uvs", {ssize_t(n), 2}))
+    add_columns(out, *a, kUv, io::ScalarType::kFloat32);
   if (const auto a = optional_array(d, "corner_uvs", {ssize_t(m), 3, 2})) out.corner_uv = corners_of(*a);
-  if (const auto a = optional_array(d, "corner_normals", {ssize_t(m), 3, 3})) out.corner_normal = corners_of(*a);
+  if (const auto a = optional_array(d, "corner_normals", {ssize_t(m), 3, 3}))
+    out.corner_normal = corners_of(*a);
   return out;
 }
 

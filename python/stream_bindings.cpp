@@ -60,8 +60,8 @@ class Stream {
 
 void bind_stream(pyb::module_& m) {
   pyb::class_<Stream>(m, "Stream")
-      .def(pyb::init<const pyb::dict&, float, const std::string&, int>(), "keywords"_a, "temporal"_a, "engine"_a,
-           "threads"_a)
+      .def(pyb::init<const pyb::dict&, float, const std::string&, int>(), "keywords"_a, "temporal"_a,
+           "engine"_a, "threads"_a)
       .def("filter", &Stream::filter, "V"_a, "F"_a)
       .def("reset", &Stream::reset)
       .def_property_readonly("frames", &Stream::frames)

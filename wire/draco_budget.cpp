@@ -60,7 +60,8 @@ bool skip_metadata_element(Reader& r, int depth) {
     // specification's UI8 for values under 128 bytes, and binary entries can be longer).
     uint8_t key;
     uint64_t value;
-    if (!r.u8(key) || !r.skip(key) || !r.varint(value) || value > r.remaining() || !r.skip(value)) return false;
+    if (!r.u8(key) || !r.skip(key) || !r.varint(value) || value > r.remaining() || !r.skip(value))
+      return false;
   }
   uint64_t subs;
   if (!r.varint(subs) || subs > r.remaining()) return false;
@@ -90,11 +91,13 @@ Status cut_short(const char* what) {
 StatusOr<ChunkCounts> read_chunk_counts(std::string_view chunk) {
   Reader r(chunk);
   ChunkCounts out;
-  if (chunk.size() < 5 || chunk.substr(0, 5) != "DRACO") return invalid_input("not Draco data (no DRACO magic)");
+  if (chunk.size() < 5 || chunk.substr(0, 5) != "DRACO")
+    return invalid_input("not Draco data (no DRACO magic)");
   r.skip(5);
   uint8_t major, minor, type, method;
   uint16_t flags;
-  if (!r.u8(major) || !r.u8(minor) || !r.u8(type) || !r.u8(method) || !r.u16(flags)) return cut_short("header");
+  if (!r.u8(major) || !r.u8(minor) || !r.u8(type) || !r.u8(method) || !r.u16(flags))
+    return cut_short("header");
   if (type != kTriangularMesh) return invalid_input("a Draco point cloud, not a triangle mesh");
   if (major != 2 || minor != 2)
     return invalid_input("Draco mesh bitstream " + std::to_string(major) + "." + std::to_string(minor) +
@@ -125,10 +128,13 @@ Status check_chunk_budget(std::string_view chunk, const ChunkBudget& budget) {
     return invalid_input("Draco chunk of " + std::to_string(chunk.size()) + " bytes declares " +
                          std::to_string(n) + " " + what + ", over " + limit);
   };
-  if (c.points > budget.max_points) return refuse("points", c.points, "the cap of " + std::to_string(budget.max_points));
+  if (c.points > budget.max_points)
+    return refuse("points", c.points, "the cap of " + std::to_string(budget.max_points));
   if (c.faces > max_faces) return refuse("faces", c.faces, "the cap of " + std::to_string(max_faces));
-  if (c.points > carry) return refuse("points", c.points, "what its bytes can carry (" + std::to_string(carry) + ")");
-  if (c.faces > carry) return refuse("faces", c.faces, "what its bytes can carry (" + std::to_string(carry) + ")");
+  if (c.points > carry)
+    return refuse("points", c.points, "what its bytes can carry (" + std::to_string(carry) + ")");
+  if (c.faces > carry)
+    return refuse("faces", c.faces, "what its bytes can carry (" + std::to_string(carry) + ")");
   return {};
 }
 

@@ -53,7 +53,7 @@ void write_header(draco::EncoderBuffer& out, bool mesh, bool has_metadata) {
   out.Encode(mesh ? draco::kDracoMeshBitstreamVersionMinor : draco::kDracoPointCloudBitstreamVersionMinor);
   out.Encode(static_cast<uint8_t>(mesh ? draco::TRIANGULAR_MESH : draco::POINT_CLOUD));
   const auto method = static_cast<uint8_t>(mesh ? static_cast<int>(draco::MESH_SEQUENTIAL_ENCODING)
-                                               : static_cast<int>(draco::POINT_CLOUD_SEQUENTIAL_ENCODING));
+                                                : static_cast<int>(draco::POINT_CLOUD_SEQUENTIAL_ENCODING));
   out.Encode(method);
   const uint16_t flags = has_metadata ? METADATA_FLAG_MASK : 0;
   out.Encode(flags);
@@ -126,7 +126,8 @@ fq::Status write_point_cloud(const float* positions, uint32_t n, const CodecOpti
   buf.Encode(static_cast<int32_t>(n));
   write_attribute_specs(buf, {{draco::GeometryAttribute::POSITION, draco::DT_FLOAT32, 3,
                                draco::SEQUENTIAL_ATTRIBUTE_ENCODER_QUANTIZATION}});
-  if (n > 0 && !write_delta_values(q.data(), n, 3, bounds, symbol_compression_level(o), scratch.symbols, buf)) {
+  if (n > 0 &&
+      !write_delta_values(q.data(), n, 3, bounds, symbol_compression_level(o), scratch.symbols, buf)) {
     return {fq::StatusCode::kInternal, "Draco's symbol coder failed"};
   }
   quantize.write_parameters(buf);

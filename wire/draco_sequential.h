@@ -81,8 +81,8 @@ void write_header(draco::EncoderBuffer& out, bool mesh, bool has_metadata);
 
 /// One attribute of a sequential chunk, in the order it is coded.
 struct AttributeSpec {
-  int type;           ///< draco::GeometryAttribute::Type
-  int data_type;      ///< draco::DataType
+  int type;       ///< draco::GeometryAttribute::Type
+  int data_type;  ///< draco::DataType
   int components;
   uint8_t sequential_encoder;  ///< draco::SequentialAttributeEncoderType
 };
@@ -102,7 +102,8 @@ bool write_delta_values(const int32_t* values, uint32_t points, int components, 
 /// smallest width for `points` (uint8, uint16, varint or uint32), written in place.
 /// `for_each_corner(put)` calls put(point index) once per corner, in face order.
 template <class ForEachCorner>
-void write_connectivity(draco::EncoderBuffer& out, uint32_t faces, uint32_t points, ForEachCorner&& for_each_corner) {
+void write_connectivity(draco::EncoderBuffer& out, uint32_t faces, uint32_t points,
+                        ForEachCorner&& for_each_corner) {
   uint8_t head[11];
   uint8_t* end = put_varint(points, put_varint(faces, head));
   *end++ = 1;  // indices stored directly (Draco's "compress_connectivity" is off)

@@ -42,7 +42,8 @@ bool read_header(draco::DecoderBuffer& in, bool mesh) {
                                expect<uint8_t>(in, draco::POINT_CLOUD_SEQUENTIAL_ENCODING);
   if (!version || !kind || !in.Decode(&flags) || ((flags & METADATA_FLAG_MASK) != 0) != mesh) return false;
   // As Draco's decoder does, for its symbol coder.
-  in.set_bitstream_version(mesh ? draco::kDracoMeshBitstreamVersion : draco::kDracoPointCloudBitstreamVersion);
+  in.set_bitstream_version(mesh ? draco::kDracoMeshBitstreamVersion
+                                : draco::kDracoPointCloudBitstreamVersion);
   return true;
 }
 
@@ -56,7 +57,8 @@ bool read_metadata(draco::DecoderBuffer& in, std::vector<uint8_t>& runs, bool& l
   labelled = atts.size() == 1;
   if (atts.size() > 1) return false;
   std::string name;
-  return !labelled || (atts[0]->att_unique_id() == 1 && atts[0]->GetEntryString("name", &name) && name == kLabelAttribute);
+  return !labelled ||
+         (atts[0]->att_unique_id() == 1 && atts[0]->GetEntryString("name", &name) && name == kLabelAttribute);
 }
 
 /// Draco's raw sequential connectivity: counts, then 3 * faces indices in the width `points` implies.
@@ -64,7 +66,8 @@ bool read_connectivity(draco::DecoderBuffer& in, SequentialChunk& c) {
   if (!draco::DecodeVarint(&c.faces, &in) || !draco::DecodeVarint(&c.points, &in)) return false;
   // Draco's own bounds (MeshSequentialDecoder::DecodeConnectivity).
   const uint64_t faces = c.faces, points = c.points;
-  if (faces > 0xffffffffull / 3 || faces > uint64_t(in.remaining_size()) / 3 || points > 3 * faces) return false;
+  if (faces > 0xffffffffull / 3 || faces > uint64_t(in.remaining_size()) / 3 || points > 3 * faces)
+    return false;
   if (faces == 0 || !expect<uint8_t>(in, 1)) return false;  // 1: indices stored directly
   const size_t corners = 3 * size_t(faces);
   c.corners.resize(corners);
@@ -108,10 +111,12 @@ bool read_connectivity(draco::DecoderBuffer& in, SequentialChunk& c) {
 /// The attribute encoder's description, as write_attribute_specs writes it.
 bool read_attribute_specs(draco::DecoderBuffer& in, bool labelled) {
   uint32_t count = 0;
-  if (!expect<uint8_t>(in, 1) || !draco::DecodeVarint(&count, &in) || count != (labelled ? 2u : 1u)) return false;
+  if (!expect<uint8_t>(in, 1) || !draco::DecodeVarint(&count, &in) || count != (labelled ? 2u : 1u))
+    return false;
   const auto spec = [&](int type, int data_type, int components, uint32_t unique_id) {
     uint32_t id = 0;
-    return expect<uint8_t>(in, static_cast<uint8_t>(type)) && expect<uint8_t>(in, static_cast<uint8_t>(data_type)) &&
+    return expect<uint8_t>(in, static_cast<uint8_t>(type)) &&
+           expect<uint8_t>(in, static_cast<uint8_t>(data_type)) &&
            expect<uint8_t>(in, static_cast<uint8_t>(components)) && expect<uint8_t>(in, 0) &&
            draco::DecodeVarint(&id, &in) && id == unique_id;
   };
@@ -124,8 +129,8 @@ bool read_attribute_specs(draco::DecoderBuffer& in, bool labelled) {
 /// One attribute's points * components values into `v`, as Draco's sequential integer decoder
 /// computes them: entropy-coded delta corrections with the wrap transform.
 bool read_delta_values(draco::DecoderBuffer& in, uint32_t points, int components, int32_t* v) {
-  if (!expect<int8_t>(in, draco::PREDICTION_DIFFERENCE) || !expect<int8_t>(in, draco::PREDICTION_TRANSFORM_WRAP) ||
-      !expect<uint8_t>(in, 1))  // entropy-coded
+  if (!expect<int8_t>(in, draco::PREDICTION_DIFFERENCE) ||
+      !expect<int8_t>(in, draco::PREDICTION_TRANSFORM_WRAP) || !expect<uint8_t>(in, 1))  // entropy-coded
     return false;
   const size_t count = size_t(points) * size_t(components);
   auto* sym = reinterpret_cast<uint32_t*>(v);  // decoded in place, as Draco does
@@ -162,7 +167,8 @@ bool dequantize(draco::DecoderBuffer& in, uint32_t points, const int32_t* q, flo
   const float delta = range / static_cast<float>(max_quantized);  // Draco's Dequantizer
   for (size_t i = 0; i < 3 * size_t(points); i += 3) {
     for (size_t a = 0; a < 3; ++a) {
-      float v = static_cast<float>(q[i + a]) * delta;  // two roundings, as Draco (wire.cmake: no FMA contraction)
+      float v =
+          static_cast<float>(q[i + a]) * delta;  // two roundings, as Draco (wire.cmake: no FMA contraction)
       out[i + a] = v + origin[a];
     }
   }
@@ -195,7 +201,8 @@ bool read_sequential_chunk(std::string_view bytes, uint32_t id_limit, Sequential
   if (!read_delta_values(in, c.points, 3, c.values.data())) return false;
   // Draco stores the label values (int32) into the uint32 attribute as they are.
   c.labels.resize(labelled ? c.points : 0);
-  if (labelled && !read_delta_values(in, c.points, 1, reinterpret_cast<int32_t*>(c.labels.data()))) return false;
+  if (labelled && !read_delta_values(in, c.points, 1, reinterpret_cast<int32_t*>(c.labels.data())))
+    return false;
   c.positions.resize(3 * size_t(c.points));
   return dequantize(in, c.points, c.values.data(), c.positions.data());
 }
@@ -206,7 +213,8 @@ bool sequential_point_count(std::string_view bytes, uint32_t& n) {
   return read_point_cloud_head(in, n);
 }
 
-bool read_sequential_point_cloud(std::string_view bytes, uint32_t n, float* out, std::vector<int32_t>& values) {
+bool read_sequential_point_cloud(std::string_view bytes, uint32_t n, float* out,
+                                 std::vector<int32_t>& values) {
   draco::DecoderBuffer in;
   in.Init(bytes.data(), bytes.size());
   uint32_t declared = 0;

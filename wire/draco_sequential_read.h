@@ -23,11 +23,11 @@ namespace fq::wire::detail {
 struct SequentialChunk {
   uint32_t points = 0;
   uint32_t faces = 0;
-  std::vector<uint32_t> corners;    ///< 3 point indices a face, each below `points`
-  std::vector<float> positions;     ///< 3 a point, as Draco's decoder dequantizes them
-  std::vector<uint32_t> ids;        ///< global vertex id a point (the chunk's id runs)
-  std::vector<uint32_t> labels;     ///< "fq_label" a point; empty when the chunk has none
-  std::vector<int32_t> values;      ///< scratch: the quantized positions
+  std::vector<uint32_t> corners;  ///< 3 point indices a face, each below `points`
+  std::vector<float> positions;   ///< 3 a point, as Draco's decoder dequantizes them
+  std::vector<uint32_t> ids;      ///< global vertex id a point (the chunk's id runs)
+  std::vector<uint32_t> labels;   ///< "fq_label" a point; empty when the chunk has none
+  std::vector<int32_t> values;    ///< scratch: the quantized positions
 };
 
 /// Reads `bytes` into `out` when they are a triangle mesh in the layout write_sequential_chunk
@@ -43,6 +43,7 @@ bool sequential_point_count(std::string_view bytes, uint32_t& n);
 /// Reads such a point cloud of `n` points (sequential_point_count) into out[0, 3 n), as
 /// Draco's decoder dequantizes them; false when the bytes are not exactly that layout or fail
 /// a check (hand them to Draco's decoder then). `values` is scratch.
-bool read_sequential_point_cloud(std::string_view bytes, uint32_t n, float* out, std::vector<int32_t>& values);
+bool read_sequential_point_cloud(std::string_view bytes, uint32_t n, float* out,
+                                 std::vector<int32_t>& values);
 
 }  // namespace fq::wire::detail

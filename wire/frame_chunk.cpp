@@ -51,7 +51,8 @@ uint32_t mark_part(const fq::MeshView& mesh, const Part& part, ChunkScratch& scr
   const size_t words = (size_t(mesh.num_vertices) + 63) / 64;
   scratch.seen.resize(words, 0);
   uint64_t* seen = scratch.seen.data();
-  for (const TriangleRun& r : part.runs) mark_corners(seen, mesh.triangles + 3 * size_t(r.first), 3 * size_t(r.count));
+  for (const TriangleRun& r : part.runs)
+    mark_corners(seen, mesh.triangles + 3 * size_t(r.first), 3 * size_t(r.count));
   size_t n = 0;
   for (size_t w = 0; w < words; ++w) n += size_t(std::popcount(seen[w]));
   return static_cast<uint32_t>(n);
@@ -118,10 +119,11 @@ draco::GeometryMetadata chunk_metadata(const std::vector<uint8_t>& runs, bool la
 
 /// A sequential chunk's attributes, in build_chunk's order: positions, then the labels.
 std::vector<AttributeSpec> chunk_attributes(bool labelled) {
-  std::vector<AttributeSpec> specs = {
-      {draco::GeometryAttribute::POSITION, draco::DT_FLOAT32, 3, draco::SEQUENTIAL_ATTRIBUTE_ENCODER_QUANTIZATION}};
+  std::vector<AttributeSpec> specs = {{draco::GeometryAttribute::POSITION, draco::DT_FLOAT32, 3,
+                                       draco::SEQUENTIAL_ATTRIBUTE_ENCODER_QUANTIZATION}};
   if (labelled)
-    specs.push_back({draco::GeometryAttribute::GENERIC, draco::DT_UINT32, 1, draco::SEQUENTIAL_ATTRIBUTE_ENCODER_INTEGER});
+    specs.push_back({draco::GeometryAttribute::GENERIC, draco::DT_UINT32, 1,
+                     draco::SEQUENTIAL_ATTRIBUTE_ENCODER_INTEGER});
   return specs;
 }
 
@@ -170,7 +172,8 @@ bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids
 }
 
 fq::Status write_sequential_chunk(const fq::MeshView& mesh, const uint32_t* labels, const Part& part,
-                                  const CodecOptions& o, const Box& box, ChunkScratch& scratch, std::string& out) {
+                                  const CodecOptions& o, const Box& box, ChunkScratch& scratch,
+                                  std::string& out) {
   const uint32_t n = mark_part(mesh, part, scratch);
   const PositionQuantizer quantize(box, o.position_bits);
   SequentialScratch& coder = scratch.coder;

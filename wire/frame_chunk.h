@@ -5,8 +5,8 @@
 #pragma once
 
 #include <atomic>
-#include <memory>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,7 +20,7 @@
 namespace draco {
 class Mesh;
 class PointCloud;
-}
+}  // namespace draco
 
 namespace fq::wire::detail {
 
@@ -55,12 +55,13 @@ bool sequential_chunk(const fq::MeshView& mesh, const CodecOptions& o, const Par
 /// writes for build_chunk's mesh of the same part at the same options (with ids, and with
 /// `labels` when not null). kInternal when Draco's symbol or metadata coder fails.
 fq::Status write_sequential_chunk(const fq::MeshView& mesh, const uint32_t* labels, const Part& part,
-                                  const CodecOptions& o, const Box& box, ChunkScratch& scratch, std::string& out);
+                                  const CodecOptions& o, const Box& box, ChunkScratch& scratch,
+                                  std::string& out);
 
 /// The triangles of `part` (see split_parts) as a draco::Mesh:
-/// points = the chunk's vertices in ascending global id, POSITION, then (when `with_ids`) the global ids, and "fq_label" (when `labels`).
-/// Built directly (not with a mesh builder) so that no deduplication can merge two vertices.
-/// `scratch` is the calling worker's. Returns sequential_chunk(): a sequential chunk carries
+/// points = the chunk's vertices in ascending global id, POSITION, then (when `with_ids`) the global ids, and
+/// "fq_label" (when `labels`). Built directly (not with a mesh builder) so that no deduplication can merge
+/// two vertices. `scratch` is the calling worker's. Returns sequential_chunk(): a sequential chunk carries
 /// its ids as kVertexIdRunsEntry (the coder keeps point order), any other as "fq_vid".
 bool build_chunk(const fq::MeshView& mesh, const uint32_t* labels, bool with_ids, const CodecOptions& o,
                  const Part& part, ChunkScratch& scratch, draco::Mesh& m);

@@ -8,8 +8,8 @@
 #include <string_view>
 #include <vector>
 
-#include "core/mesh_view.h"
 #include "common/status.h"
+#include "core/mesh_view.h"
 
 namespace fq::wire {
 

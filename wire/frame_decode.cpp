@@ -30,10 +30,10 @@ struct Chunk {
   detail::SequentialChunk direct;     ///< when read without Draco's decoder (mesh is null)
   const float* xyz = nullptr;         ///< 3 per point, in mesh, direct or positions
   uint32_t points = 0;
-  std::vector<float> positions;     ///< only when Draco's positions needed converting
-  std::vector<uint32_t> ids;        ///< fq_vid per point; empty when the chunk has none
-  std::vector<uint32_t> labels;     ///< fq_label per point; empty when the chunk has none
-  uint32_t faces = 0;               ///< read from mesh's faces where they are used (no copy)
+  std::vector<float> positions;  ///< only when Draco's positions needed converting
+  std::vector<uint32_t> ids;     ///< fq_vid per point; empty when the chunk has none
+  std::vector<uint32_t> labels;  ///< fq_label per point; empty when the chunk has none
+  uint32_t faces = 0;            ///< read from mesh's faces where they are used (no copy)
 
   /// Empty for the next frame; the vectors keep their capacity.
   void reset() {
@@ -73,7 +73,9 @@ void for_each_corner(const Chunk& c, Fn&& fn) {
   }
 }
 
-fq::Status face_out_of_range(uint32_t f) { return invalid_input("face " + std::to_string(f) + " out of range"); }
+fq::Status face_out_of_range(uint32_t f) {
+  return invalid_input("face " + std::to_string(f) + " out of range");
+}
 
 /// Values of the single-component integer attribute named `name` (false when it is malformed).
 bool read_uint_attribute(const draco::Mesh& m, const char* name, bool& present, std::vector<uint32_t>& out) {
@@ -97,8 +99,8 @@ fq::Status read_positions(const draco::Mesh& m, Chunk& c) {
   if (pos == nullptr || pos->num_components() != 3) return invalid_input("no 3D position attribute");
   c.points = m.num_points();
   constexpr int64_t kPackedXyz = int64_t{3} * int64_t{sizeof(float)};
-  if (pos->is_mapping_identity() && pos->data_type() == draco::DT_FLOAT32 && pos->byte_stride() == kPackedXyz &&
-      pos->size() >= m.num_points() && m.num_points() > 0) {
+  if (pos->is_mapping_identity() && pos->data_type() == draco::DT_FLOAT32 &&
+      pos->byte_stride() == kPackedXyz && pos->size() >= m.num_points() && m.num_points() > 0) {
     c.xyz = reinterpret_cast<const float*>(pos->GetAddress(draco::AttributeValueIndex(0)));
     return {};
   }
@@ -119,9 +121,11 @@ fq::Status read_ids(const draco::Mesh& m, bool sequential, std::vector<uint32_t>
     return invalid_input(std::string(kVertexIdAttribute) + " is not a single uint32 per point");
   }
   std::vector<uint8_t> runs;
-  if (has || m.GetMetadata() == nullptr || !m.GetMetadata()->GetEntryBinary(kVertexIdRunsEntry, &runs)) return {};
+  if (has || m.GetMetadata() == nullptr || !m.GetMetadata()->GetEntryBinary(kVertexIdRunsEntry, &runs))
+    return {};
   // Runs name points in Draco's point order, which only the sequential coder keeps.
-  if (!sequential) return invalid_input(std::string(kVertexIdRunsEntry) + " in a chunk not sequentially coded");
+  if (!sequential)
+    return invalid_input(std::string(kVertexIdRunsEntry) + " in a chunk not sequentially coded");
   if (!detail::decode_id_runs(runs.data(), runs.size(), m.num_points(), kMaxAttributeValue, ids)) {
     return invalid_input(std::string(kVertexIdRunsEntry) + " is malformed or does not match the " +
                          std::to_string(m.num_points()) + " points");
@@ -223,8 +227,8 @@ fq::Status scatter_chunk(const Chunk& c, uint32_t n, bool with_labels, float* po
   for (size_t p = 0; p < c.ids.size(); ++p) {
     const uint32_t g = c.ids[p];
     if (g >= n) {
-      return invalid_input("vertex id " + std::to_string(g) + " out of range (frame has " + std::to_string(n) +
-                           " vertices)");
+      return invalid_input("vertex id " + std::to_string(g) + " out of range (frame has " +
+                           std::to_string(n) + " vertices)");
     }
     for (int k = 0; k < 3; ++k)
       std::atomic_ref<float>(positions[3 * size_t(g) + k]).store(c.xyz[3 * p + k], std::memory_order_relaxed);
@@ -257,8 +261,9 @@ fq::Status merge(std::span<Chunk> cs, uint32_t n, int threads, fq::Mesh& out, st
   out.triangles.resize(first.back());
   std::vector<fq::Status> fault(cs.size());
   detail::for_each_chunk(cs.size(), threads, [&](size_t i, size_t) {
-    fault[i] = scatter_chunk(cs[i], n, with_labels, out.positions.data(), with_labels ? labels->data() : nullptr,
-                             covered.data(), out.triangles.data() + first[i]);
+    fault[i] =
+        scatter_chunk(cs[i], n, with_labels, out.positions.data(), with_labels ? labels->data() : nullptr,
+                      covered.data(), out.triangles.data() + first[i]);
   });
   for (size_t i = 0; i < cs.size(); ++i) {  // the first fault in chunk order, whatever the threads did
     if (!fault[i].ok()) return invalid_input("chunk " + std::to_string(i) + ": " + fault[i].message());
@@ -343,7 +348,8 @@ fq::Status decode_frame(const std::vector<std::string_view>& chunks, uint32_t ve
 }
 
 size_t release_memory() {
-  return decoded_chunks().release() + detail::chunk_scratch().release() + detail::sequential_scratch().release();
+  return decoded_chunks().release() + detail::chunk_scratch().release() +
+         detail::sequential_scratch().release();
 }
 
 }  // namespace fq::wire

@@ -12,9 +12,9 @@
 #include <memory>
 #include <string>
 
-#include "wire/frame_codec.h"
 #include "core/mesh_checks.h"
 #include "wire/frame_chunk.h"
+#include "wire/frame_codec.h"
 #include "wire/frame_split.h"
 
 namespace fq::wire {
@@ -81,7 +81,8 @@ fq::Status check_frame(const fq::MeshView& mesh, const uint32_t* labels, const C
   box = detail::bounding_box(mesh, options.threads, &valid);
   if (!valid) {
     fq::Status fault = fq::check_mesh(mesh, options.threads);
-    return fault.ok() ? fq::Status{fq::StatusCode::kInternal, "mesh check disagrees with the box pass"} : fault;
+    return fault.ok() ? fq::Status{fq::StatusCode::kInternal, "mesh check disagrees with the box pass"}
+                      : fault;
   }
   if (auto s = check_ranges(mesh, labels); !s.ok()) {
     if (auto u = check_all_used(mesh); !u.ok()) return u;  // the error reported first, as ever
@@ -91,8 +92,9 @@ fq::Status check_frame(const fq::MeshView& mesh, const uint32_t* labels, const C
 }
 
 /// Builds and encodes the chunks `parts` of a checked frame, concurrently.
-fq::Status encode_parts(const fq::MeshView& mesh, const uint32_t* labels, const std::vector<detail::Part>& parts,
-                        const CodecOptions& options, const detail::Box& box, std::vector<std::string>& out) {
+fq::Status encode_parts(const fq::MeshView& mesh, const uint32_t* labels,
+                        const std::vector<detail::Part>& parts, const CodecOptions& options,
+                        const detail::Box& box, std::vector<std::string>& out) {
   std::vector<std::string> encoded(parts.size());
   std::vector<fq::Status> status(parts.size());
   // Every vertex must be used: the chunks mark theirs while they are built (no extra pass).
@@ -118,7 +120,8 @@ fq::Status encode_parts(const fq::MeshView& mesh, const uint32_t* labels, const 
   for (size_t i = 0; i < parts.size(); ++i) {  // first: a failed chunk may not have marked its vertices
     if (!status[i].ok()) return {status[i].code(), "chunk " + std::to_string(i) + ": " + status[i].message()};
   }
-  if (const uint32_t v = first_unused(used, mesh.num_vertices); v < mesh.num_vertices) return unused_vertex(v);
+  if (const uint32_t v = first_unused(used, mesh.num_vertices); v < mesh.num_vertices)
+    return unused_vertex(v);
   out = std::move(encoded);
   return {};
 }

@@ -42,16 +42,20 @@ Codes vertex_codes(const fq::MeshView& mesh, const Box& box, int threads) {
   Codes codes(new uint32_t[mesh.num_vertices]);
   uint32_t* out = codes.get();
   const float* positions = mesh.positions;
-  fq::ThreadPool::shared().run(mesh.num_vertices, threads, [=](size_t begin, size_t end, size_t) {
-    for (size_t v = begin; v < end; ++v) {
-      uint32_t code = 0;
-      for (int a = 0; a < 3; ++a) {
-        const float u = (positions[3 * v + size_t(a)] - lo[a]) * scale;  // finite: checked by the box pass
-        code |= kSpread[static_cast<uint32_t>(std::min(std::max(u, 0.f), 1023.f))] << a;
-      }
-      out[v] = code;
-    }
-  }, size_t(1) << 14);
+  fq::ThreadPool::shared().run(
+      mesh.num_vertices, threads,
+      [=](size_t begin, size_t end, size_t) {
+        for (size_t v = begin; v < end; ++v) {
+          uint32_t code = 0;
+          for (int a = 0; a < 3; ++a) {
+            const float u =
+                (positions[3 * v + size_t(a)] - lo[a]) * scale;  // finite: checked by the box pass
+            code |= kSpread[static_cast<uint32_t>(std::min(std::max(u, 0.f), 1023.f))] << a;
+          }
+          out[v] = code;
+        }
+      },
+      size_t(1) << 14);
   return codes;
 }
 
@@ -93,7 +97,8 @@ Box block_box(const float* positions, uint32_t first, uint32_t end, bool& bad) {
   float lo_lanes[12], hi_lanes[12];
   std::memcpy(lo_lanes, lo, sizeof(lo_lanes));
   std::memcpy(hi_lanes, hi, sizeof(hi_lanes));
-  bool non_finite = exponent_ones[0] != 0 || exponent_ones[1] != 0 || exponent_ones[2] != 0 || exponent_ones[3] != 0;
+  bool non_finite =
+      exponent_ones[0] != 0 || exponent_ones[1] != 0 || exponent_ones[2] != 0 || exponent_ones[3] != 0;
   for (size_t i = whole; i < floats; ++i) {
     lo_lanes[i % 3] = std::min(lo_lanes[i % 3], p[i]);
     hi_lanes[i % 3] = std::max(hi_lanes[i % 3], p[i]);
@@ -139,7 +144,8 @@ Box bounding_box(const fq::MeshView& mesh, int threads, bool* valid) {
         bad[k] = b_bad;
       } else {
         const size_t first = (k - vertex_blocks) * kCornerBlock;
-        bad[k] = bad_corner(mesh.triangles, first, std::min(corners, first + kCornerBlock), mesh.num_vertices);
+        bad[k] =
+            bad_corner(mesh.triangles, first, std::min(corners, first + kCornerBlock), mesh.num_vertices);
       }
     }
   });
@@ -175,31 +181,35 @@ constexpr size_t kSplitGrain = size_t(1) << 14;
 /// Per-worker histograms on the codec threads, added after. A coherent input puts runs of
 /// triangles in one bucket: counting runs, not triangles, keeps the increments from waiting
 /// on each other.
-Codes triangle_codes(const fq::MeshView& mesh, const Box& box, int threads, std::vector<uint32_t>& histogram) {
+Codes triangle_codes(const fq::MeshView& mesh, const Box& box, int threads,
+                     std::vector<uint32_t>& histogram) {
   const Codes vertex_code = vertex_codes(mesh, box, threads);
   const uint32_t* vcode = vertex_code.get();
   const uint32_t n = mesh.num_triangles;
   Codes codes(new uint32_t[n]);
   const size_t workers = size_t(std::max(threads, 1));
   std::vector<std::vector<uint32_t>> hist(workers, std::vector<uint32_t>(kBuckets, 0));
-  fq::ThreadPool::shared().run(n, static_cast<int>(workers), [&](size_t begin, size_t end, size_t w) {
-    uint32_t* h = hist[w].data();
-    uint32_t run_bucket = 0, run = 0;
-    for (size_t t = begin; t < end; ++t) {
-      const uint32_t* tri = mesh.triangles + 3 * t;
-      const uint32_t code = std::min({vcode[tri[0]], vcode[tri[1]], vcode[tri[2]]});
-      codes[t] = code;
-      const uint32_t b = bucket_of(code);
-      if (b == run_bucket) {
-        ++run;
-        continue;
-      }
-      h[run_bucket] += run;
-      run_bucket = b;
-      run = 1;
-    }
-    h[run_bucket] += run;
-  }, kSplitGrain);
+  fq::ThreadPool::shared().run(
+      n, static_cast<int>(workers),
+      [&](size_t begin, size_t end, size_t w) {
+        uint32_t* h = hist[w].data();
+        uint32_t run_bucket = 0, run = 0;
+        for (size_t t = begin; t < end; ++t) {
+          const uint32_t* tri = mesh.triangles + 3 * t;
+          const uint32_t code = std::min({vcode[tri[0]], vcode[tri[1]], vcode[tri[2]]});
+          codes[t] = code;
+          const uint32_t b = bucket_of(code);
+          if (b == run_bucket) {
+            ++run;
+            continue;
+          }
+          h[run_bucket] += run;
+          run_bucket = b;
+          run = 1;
+        }
+        h[run_bucket] += run;
+      },
+      kSplitGrain);
   histogram.assign(kBuckets, 0);
   for (const auto& hw : hist)
     for (uint32_t b = 0; b < kBuckets; ++b) histogram[b] += hw[b];
@@ -220,17 +230,21 @@ std::vector<uint64_t> chunk_starts(const uint32_t* codes, uint32_t n, const std:
   size_t slots = 0;
   for (uint32_t c = 1; c < chunks; ++c) {
     const uint64_t rank = uint64_t(n) * c / chunks;
-    const uint32_t b = static_cast<uint32_t>(std::upper_bound(start.begin(), start.end(), rank) - start.begin()) - 1;
+    const uint32_t b =
+        static_cast<uint32_t>(std::upper_bound(start.begin(), start.end(), rank) - start.begin()) - 1;
     cut_bucket[c] = b;
     if (slot[b] < 0) slot[b] = static_cast<int32_t>(slots++);
   }
   std::vector<std::vector<std::vector<uint64_t>>> found(workers, std::vector<std::vector<uint64_t>>(slots));
-  fq::ThreadPool::shared().run(n, static_cast<int>(workers), [&](size_t begin, size_t end, size_t w) {
-    for (size_t t = begin; t < end; ++t) {
-      if (const int32_t s = slot[bucket_of(codes[t])]; s >= 0)
-        found[w][size_t(s)].push_back(key_of(codes, static_cast<uint32_t>(t)));
-    }
-  }, kSplitGrain);
+  fq::ThreadPool::shared().run(
+      n, static_cast<int>(workers),
+      [&](size_t begin, size_t end, size_t w) {
+        for (size_t t = begin; t < end; ++t) {
+          if (const int32_t s = slot[bucket_of(codes[t])]; s >= 0)
+            found[w][size_t(s)].push_back(key_of(codes, static_cast<uint32_t>(t)));
+        }
+      },
+      kSplitGrain);
   // Each cut's key by selection (nth_element) among its bucket's keys, the buckets on the codec
   // threads: a bucket holds thousands of keys, and sorting them one after the other was the
   // longest serial step of the split on 16 threads.
@@ -307,7 +321,9 @@ std::vector<Part> split_parts(const fq::MeshView& mesh, const Box& box, uint32_t
   const auto chunk_of = [&](uint32_t t) -> uint32_t {
     const uint32_t c = bucket_chunk[bucket_of(codes[t])];
     if (c != kMixed) return c;
-    return static_cast<uint32_t>(std::upper_bound(first.begin() + 1, first.end(), key_of(codes, t)) - first.begin()) - 1;
+    return static_cast<uint32_t>(std::upper_bound(first.begin() + 1, first.end(), key_of(codes, t)) -
+                                 first.begin()) -
+           1;
   };
   // Each block's triangles as runs of one chunk (a coherent input has long runs), then the
   // blocks' runs handed to their chunks in block order: triangles keep the input order within
@@ -315,19 +331,22 @@ std::vector<Part> split_parts(const fq::MeshView& mesh, const Box& box, uint32_t
   // order), and a chunk is built straight from the frame's triangle array, with no copy.
   const uint32_t blocks = (n + kRunBlock - 1) / kRunBlock;
   std::vector<std::vector<ChunkRun>> block_runs(blocks);
-  fq::parallel_for(blocks, threads, [&](uint32_t b) {
-    std::vector<ChunkRun>& out = block_runs[b];
-    const uint32_t begin = b * kRunBlock, end = std::min(n, begin + kRunBlock);
-    uint32_t current = chunk_of(begin), run_first = begin;
-    for (uint32_t t = begin + 1; t < end; ++t) {
-      const uint32_t c = chunk_of(t);
-      if (c == current) continue;
-      out.push_back({current, run_first, t - run_first});
-      current = c;
-      run_first = t;
-    }
-    out.push_back({current, run_first, end - run_first});
-  }, 1);
+  fq::parallel_for(
+      blocks, threads,
+      [&](uint32_t b) {
+        std::vector<ChunkRun>& out = block_runs[b];
+        const uint32_t begin = b * kRunBlock, end = std::min(n, begin + kRunBlock);
+        uint32_t current = chunk_of(begin), run_first = begin;
+        for (uint32_t t = begin + 1; t < end; ++t) {
+          const uint32_t c = chunk_of(t);
+          if (c == current) continue;
+          out.push_back({current, run_first, t - run_first});
+          current = c;
+          run_first = t;
+        }
+        out.push_back({current, run_first, end - run_first});
+      },
+      1);
   for (const auto& runs : block_runs)
     for (const ChunkRun& r : runs) append_run(parts[r.chunk], r.first, r.count);
   return parts;

@@ -5,11 +5,11 @@
 #include <optional>
 #include <string_view>
 
-#include "wire/fq.pb.h"
-#include "wire/frame_codec.h"
+#include "common/status.h"
 #include "core/param_table.h"
 #include "core/params.h"
-#include "common/status.h"
+#include "wire/fq.pb.h"
+#include "wire/frame_codec.h"
 
 namespace fq::wire {
 

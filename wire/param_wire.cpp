@@ -72,7 +72,9 @@ fq::Status wire_value(const fq::ParamRow& row, const ParamOverrides& o, std::opt
       const int w = r->GetEnumValue(o, f);
       if (w == 0) return {};  // the enum's *_DEFAULT: keep the stream's value
       const std::optional<int> v = fq::choice_value(row, w);
-      if (!v) return invalid_argument(std::string(row.name) + " " + std::to_string(w) + " is not a " + f->enum_type()->name());
+      if (!v)
+        return invalid_argument(std::string(row.name) + " " + std::to_string(w) + " is not a " +
+                                f->enum_type()->name());
       out = *v;
       return {};
     }

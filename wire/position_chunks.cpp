@@ -9,11 +9,11 @@
 #include <exception>
 #include <string>
 
+#include "core/mesh_checks.h"
 #include "wire/draco_sequential.h"
 #include "wire/draco_sequential_read.h"
 #include "wire/frame_codec.h"
 #include "wire/frame_split.h"
-#include "core/mesh_checks.h"
 
 namespace fq::wire {
 namespace {
@@ -34,8 +34,8 @@ fq::Status decode_range(std::string_view bytes, std::vector<float>& out) {
   out.resize(3 * size_t(n));
   constexpr int64_t kPackedTriple = 3 * int64_t(sizeof(float));
   // What encode_positions gives: one copy, not a conversion per point.
-  if (pos->is_mapping_identity() && pos->data_type() == draco::DT_FLOAT32 && pos->byte_stride() == kPackedTriple &&
-      pos->size() >= n && n > 0) {
+  if (pos->is_mapping_identity() && pos->data_type() == draco::DT_FLOAT32 &&
+      pos->byte_stride() == kPackedTriple && pos->size() >= n && n > 0) {
     std::memcpy(out.data(), pos->GetAddress(draco::AttributeValueIndex(0)), 3 * sizeof(float) * size_t(n));
     return {};
   }
@@ -64,7 +64,8 @@ bool read_own(const std::vector<std::string_view>& chunks, uint32_t vertex_count
     const auto n = static_cast<uint32_t>(first[i + 1] - first[i]);
     try {
       const auto scratch = detail::sequential_scratch().borrow();
-      ok[i] = detail::read_sequential_point_cloud(chunks[i], n, out.data() + 3 * first[i], scratch->quantized);
+      ok[i] =
+          detail::read_sequential_point_cloud(chunks[i], n, out.data() + 3 * first[i], scratch->quantized);
     } catch (const std::exception&) {  // bad_alloc: Draco's decoder gets the chunks instead
       ok[i] = 0;
     }
@@ -80,7 +81,8 @@ fq::Status encode_positions(const float* positions, uint32_t num_vertices, uint3
                             const CodecOptions& options, std::vector<std::string>& out) {
   out.clear();
   if (options.position_bits < 1 || options.position_bits > 30 || options.encode_speed < 0 ||
-      options.encode_speed > 10 || options.decode_speed < 0 || options.decode_speed > 10 || options.threads < 1)
+      options.encode_speed > 10 || options.decode_speed < 0 || options.decode_speed > 10 ||
+      options.threads < 1)
     return invalid_argument("bad codec options (position_bits 1..30, speeds 0..10, threads >= 1)");
   if (chunks == 0 || chunks > kMaxChunks)
     return invalid_argument("chunk count " + std::to_string(chunks) + " outside [1, " +
@@ -108,8 +110,8 @@ fq::Status encode_positions(const float* positions, uint32_t num_vertices, uint3
       // coder keeps them in vertex order (its k-d tree coder, which Draco picks for quantized
       // clouds below speed 10, would reorder them), written directly (draco_sequential.h).
       const auto scratch = detail::sequential_scratch().borrow();
-      status[i] = detail::write_point_cloud(positions + 3 * size_t(first), last - first, options, box, *scratch,
-                                            encoded[i]);
+      status[i] = detail::write_point_cloud(positions + 3 * size_t(first), last - first, options, box,
+                                            *scratch, encoded[i]);
     } catch (const std::exception& e) {  // bad_alloc: a fault of this frame, not of the process
       status[i] = {fq::StatusCode::kInternal, std::string("encoding failed: ") + e.what()};
     }

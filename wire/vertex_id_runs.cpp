@@ -19,7 +19,8 @@ std::vector<uint8_t> IdRunWriter::finish() {
   return out;
 }
 
-bool decode_id_runs(const uint8_t* data, size_t size, size_t count, uint32_t limit, std::vector<uint32_t>& ids) {
+bool decode_id_runs(const uint8_t* data, size_t size, size_t count, uint32_t limit,
+                    std::vector<uint32_t>& ids) {
   ids.resize(count);
   size_t filled = 0;
   uint64_t end = 0;

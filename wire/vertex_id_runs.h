@@ -39,9 +39,9 @@ class IdRunWriter {
   uint32_t first_ = 0, length_ = 0;
 };
 
-
 /// The ids of `size` bytes of runs into `ids`: false when the bytes are malformed, when the
 /// ids are not exactly `count`, or when an id reaches `limit`. Never allocates beyond `count`.
-bool decode_id_runs(const uint8_t* data, size_t size, size_t count, uint32_t limit, std::vector<uint32_t>& ids);
+bool decode_id_runs(const uint8_t* data, size_t size, size_t count, uint32_t limit,
+                    std::vector<uint32_t>& ids);
 
 }  // namespace fq::wire::detail

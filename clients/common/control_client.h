@@ -4,8 +4,8 @@
 #include <string>
 #include <zmq.hpp>
 
-#include "wire/fq.pb.h"
 #include "common/status.h"
+#include "wire/fq.pb.h"
 
 namespace fq::client {
 

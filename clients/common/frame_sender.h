@@ -8,10 +8,10 @@
 #include <vector>
 #include <zmq.hpp>
 
+#include "common/status.h"
+#include "core/mesh_view.h"
 #include "wire/fq.pb.h"
 #include "wire/frame_codec.h"
-#include "core/mesh_view.h"
-#include "common/status.h"
 
 namespace fq::client {
 

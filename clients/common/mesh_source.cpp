@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "io/mesh_io.h"
 #include "eval/noise.h"
+#include "io/mesh_io.h"
 
 namespace fq::client {
 

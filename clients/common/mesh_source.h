@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh_view.h"
 #include "common/status.h"
+#include "core/mesh_view.h"
 
 namespace fq::client {
 

@@ -13,8 +13,8 @@ void add_override_options(CLI::App& app, OverrideArgs& a) {
     const ParamRow* r = &row;
     std::string help = row.help;
     if (row.kind == ParamKind::kBool) help += " (true/false)";
-    app.add_option_function<std::string>(row.flag(), [&a, r](const std::string& v) { a.given.emplace_back(r, v); },
-                                         help)
+    app.add_option_function<std::string>(
+           row.flag(), [&a, r](const std::string& v) { a.given.emplace_back(r, v); }, help)
         ->group(g);
   }
   app.add_option("--compute", a.compute, "filter | cluster | filter_and_cluster")->group(g);
@@ -24,7 +24,8 @@ Status to_wire(const OverrideArgs& a, wire::ParamOverrides& o, wire::Compute& co
   o.Clear();
   for (const auto& [row, text] : a.given) {
     double v = 0;
-    if (Status s = parse_param(*row, text, v); !s.ok()) return invalid_argument(row->flag() + ": " + s.message());
+    if (Status s = parse_param(*row, text, v); !s.ok())
+      return invalid_argument(row->flag() + ": " + s.message());
     wire::set_wire_value(*row, v, o);
   }
   compute = wire::COMPUTE_DEFAULT;

@@ -15,8 +15,9 @@
 namespace fq::client {
 
 struct OverrideArgs {
-  std::vector<std::pair<const ParamRow*, std::string>> given;  ///< parameter options as typed, checked by to_wire
-  std::string compute;                                          ///< a name, checked by to_wire
+  std::vector<std::pair<const ParamRow*, std::string>>
+      given;            ///< parameter options as typed, checked by to_wire
+  std::string compute;  ///< a name, checked by to_wire
 };
 
 /// Registers the options on `app` (in an "Parameter overrides" group).

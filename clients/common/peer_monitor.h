@@ -4,9 +4,8 @@
 // destructor stops the monitor on the socket.
 #pragma once
 
-#include <zmq.hpp>
-
 #include <string>
+#include <zmq.hpp>
 
 namespace fq::client {
 

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <zmq_addon.hpp>
 
-#include "wire/frame_codec.h"
 #include "clients/common/frame_sender.h"
+#include "wire/frame_codec.h"
 #include "wire/header_codec.h"
 
 namespace fq::client {
@@ -34,9 +34,11 @@ Status decode_result(ReceivedResult& r, int threads, const std::vector<uint32_t>
   wire::CodecOptions opt;
   opt.threads = std::max(1, threads);
   r.labels.assign(r.header.labels().begin(), r.header.labels().end());
-  if (r.header.form() == wire::MESH) return wire::decode_frame(views, r.header.vertex_count(), opt, r.mesh, nullptr);
+  if (r.header.form() == wire::MESH)
+    return wire::decode_frame(views, r.header.vertex_count(), opt, r.mesh, nullptr);
   r.mesh = {};
-  if (Status s = wire::decode_positions(views, r.header.vertex_count(), opt, r.mesh.positions); !s.ok()) return s;
+  if (Status s = wire::decode_positions(views, r.header.vertex_count(), opt, r.mesh.positions); !s.ok())
+    return s;
   if (faces == nullptr) return {};
   const uint32_t n = r.mesh.num_vertices();
   for (uint32_t v : *faces)

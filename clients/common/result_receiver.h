@@ -18,8 +18,8 @@ struct ReceivedResult {
   std::string topic;
   wire::ResultHeader header;
   std::vector<zmq::message_t> chunks;
-  int64_t receive_ns = 0;  ///< when this process got it
-  Mesh mesh;               ///< after decode_result (faces: see decode_result)
+  int64_t receive_ns = 0;        ///< when this process got it
+  Mesh mesh;                     ///< after decode_result (faces: see decode_result)
   std::vector<uint32_t> labels;  ///< after decode_result: the header's labels
 };
 

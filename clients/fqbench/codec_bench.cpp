@@ -17,10 +17,10 @@
 
 #include "clients/common/draco_floor.h"
 #include "clients/fqbench/bench_stats.h"
+#include "io/mesh_io.h"
 #include "wire/frame_chunk.h"
 #include "wire/frame_codec.h"
 #include "wire/frame_split.h"
-#include "io/mesh_io.h"
 
 namespace fq::bench {
 namespace {
@@ -34,7 +34,8 @@ double cpu_ms() {
 }
 
 /// Wall and CPU ms of one step, appended to `wall` and `cpu`.
-void time_step(const std::function<bool()>& step, bool& ok, std::vector<double>& wall, std::vector<double>& cpu) {
+void time_step(const std::function<bool()>& step, bool& ok, std::vector<double>& wall,
+               std::vector<double>& cpu) {
   const double c0 = cpu_ms();
   const auto t0 = std::chrono::steady_clock::now();
   ok = step() && ok;
@@ -61,16 +62,16 @@ struct Samples {
 /// One round: ours (encode, decode of what we encoded, and fqd's MESH result of the decoded
 /// frame: encode_frame_as on the input's chunks), then the floor on the same chunks.
 /// `back` lives across rounds, as fqd's pooled meshes do: decode_frame reuses its buffers.
-bool one_round(const Mesh& mesh, const FloorChunks& f, uint32_t chunks, const wire::CodecOptions& opt, Mesh& back,
-               Samples& s) {
+bool one_round(const Mesh& mesh, const FloorChunks& f, uint32_t chunks, const wire::CodecOptions& opt,
+               Mesh& back, Samples& s) {
   bool ok = true;
   std::vector<std::string> ours, result, floor;
   std::vector<uint32_t> counts;
   time_step([&] { return wire::encode_frame(mesh.view(), nullptr, chunks, opt, ours).ok(); }, ok, s.encode,
             s.encode_cpu);
   const std::vector<std::string_view> views(ours.begin(), ours.end());
-  time_step([&] { return wire::decode_frame(views, mesh.num_vertices(), opt, back, nullptr, &counts).ok(); }, ok,
-            s.decode, s.decode_cpu);
+  time_step([&] { return wire::decode_frame(views, mesh.num_vertices(), opt, back, nullptr, &counts).ok(); },
+            ok, s.decode, s.decode_cpu);
   ok = ok && back.num_vertices() == mesh.num_vertices() && back.num_triangles() == mesh.num_triangles();
   time_step([&] { return ok && wire::encode_frame_as(back.view(), nullptr, counts, opt, result).ok(); }, ok,
             s.result_encode, s.result_encode_cpu);
@@ -101,7 +102,8 @@ void print(const CodecBenchOptions& o, const Mesh& m, const Samples& s) {
   const Compared rows[] = {
       {"encode", "encode wall ms", median(s.encode), median(s.floor_encode)},
       {"decode", "decode wall ms", median(s.decode), median(s.floor_decode)},
-      {"result_encode", "result encode wall ms (input's chunks)", median(s.result_encode), median(s.floor_encode)},
+      {"result_encode", "result encode wall ms (input's chunks)", median(s.result_encode),
+       median(s.floor_encode)},
       {"encode_p90", "encode wall ms, p90", p90(s.encode), p90(s.floor_encode)},
       {"decode_p90", "decode wall ms, p90", p90(s.decode), p90(s.floor_decode)},
       {"encode_cpu", "encode CPU ms", median(s.encode_cpu), median(s.floor_encode_cpu)},
@@ -128,12 +130,13 @@ void print(const CodecBenchOptions& o, const Mesh& m, const Samples& s) {
     return;
   }
   std::printf("\n%s (%u V, %u F): %zu chunks, %d threads, Draco speed %d, %d-bit positions; median of %d\n\n",
-              o.mesh.c_str(), m.num_vertices(), m.num_triangles(), s.chunks, o.threads, o.speed, o.position_bits,
-              o.repeat);
+              o.mesh.c_str(), m.num_vertices(), m.num_triangles(), s.chunks, o.threads, o.speed,
+              o.position_bits, o.repeat);
   std::printf("| | fq | floor (plain Draco, positions only) | fq / floor |\n|---|---:|---:|---:|\n");
   for (const Compared& r : rows)
     std::printf("| %s | %.2f | %.2f | %.2f |\n", r.label, r.fq, r.floor, r.fq / r.floor);
-  std::printf("| bytes | %zu | %zu | %.2f |\n", s.bytes, s.floor_bytes, double(s.bytes) / double(s.floor_bytes));
+  std::printf("| bytes | %zu | %zu | %.2f |\n", s.bytes, s.floor_bytes,
+              double(s.bytes) / double(s.floor_bytes));
 }
 
 }  // namespace

@@ -8,13 +8,13 @@
 namespace fq::bench {
 
 struct CodecBenchOptions {
-  std::string mesh;         ///< a mesh file, or a name in mesh_dir
+  std::string mesh;  ///< a mesh file, or a name in mesh_dir
   std::string mesh_dir;
   uint32_t chunks = 8;
-  int threads = 2;          ///< codec threads (CodecOptions::threads) for ours and the floor
-  int speed = 10;           ///< Draco encoding = decoding speed
+  int threads = 2;  ///< codec threads (CodecOptions::threads) for ours and the floor
+  int speed = 10;   ///< Draco encoding = decoding speed
   int position_bits = 16;
-  int repeat = 20;          ///< timed rounds; medians are reported
+  int repeat = 20;  ///< timed rounds; medians are reported
   bool json = false;
 };
 

@@ -68,8 +68,8 @@ std::string fmt(const Spread& s) {
 std::string params_text(const Params& p) {
   char b[128];
   if (p.cluster)
-    std::snprintf(b, sizeof b, "σs %.3g σr %.3g σd %.3g σq %.3g θ %.3g", p.filtering.sigma_s, p.filtering.sigma_r,
-                  p.clustering.sigma_d, p.clustering.sigma_q, p.clustering.theta);
+    std::snprintf(b, sizeof b, "σs %.3g σr %.3g σd %.3g σq %.3g θ %.3g", p.filtering.sigma_s,
+                  p.filtering.sigma_r, p.clustering.sigma_d, p.clustering.sigma_q, p.clustering.theta);
   else
     std::snprintf(b, sizeof b, "σs %.3g σr %.3g", p.filtering.sigma_s, p.filtering.sigma_r);
   return b;
@@ -113,7 +113,8 @@ void print_summary(const std::vector<RowResult>& results, const std::string& eng
                    int cpu_threads) {
   std::string tuning;
   if (engine.rfind("cuda:", 0) == 0)
-    tuning = " (team " + (cuda.team == CudaTuning::kTeamBySize ? std::string("by size") : std::to_string(cuda.team)) +
+    tuning = " (team " +
+             (cuda.team == CudaTuning::kTeamBySize ? std::string("by size") : std::to_string(cuda.team)) +
              (cuda.fast_exp ? ", __expf weights)" : ")");
   std::printf(
       "\nEngine: %s%s; device time = sum of the passes' CUDA-event times (transfers and host work "
@@ -149,7 +150,8 @@ void print_passes(const std::vector<RowResult>& results) {
       std::printf(" %s %s;", name.c_str(), fmt(r.gpu.spread(name)).c_str());
     }
     const double device = r.gpu.spread("device").median;
-    std::printf(" frame wall %s = %.2f× device\n", fmt(r.wall).c_str(), device > 0 ? r.wall.median / device : 0.0);
+    std::printf(" frame wall %s = %.2f× device\n", fmt(r.wall).c_str(),
+                device > 0 ? r.wall.median / device : 0.0);
   }
 }
 
@@ -181,9 +183,10 @@ int run(int argc, char** argv) {
   bool list = false;
   app.add_flag("--list", list, "list the rows and exit");
   CodecBenchOptions codec;
-  auto* codec_opt = app.add_option("--codec", codec.mesh,
-                                   "codec mode: time the frame codec on MESH (a file, or a name in the mesh "
-                                   "folder) against plain Draco on the same chunks, instead of the engine rows");
+  auto* codec_opt =
+      app.add_option("--codec", codec.mesh,
+                     "codec mode: time the frame codec on MESH (a file, or a name in the mesh "
+                     "folder) against plain Draco on the same chunks, instead of the engine rows");
   add_ranged(app, "--chunks", codec.chunks, "codec mode: chunks per frame", 1u, 256u);
   add_ranged(app, "--threads", codec.threads, "codec mode: codec threads", 1, 256);
   add_ranged(app, "--speed", codec.speed, "codec mode: Draco encoding = decoding speed", 0, 10);

@@ -2,10 +2,10 @@
 
 #include <vector>
 
+#include "core/parallel_for.h"
 #include "kernels/frame_plan.h"
 #include "kernels/frame_prep.h"
 #include "kernels/grid_build.h"
-#include "core/parallel_for.h"
 
 namespace fq::bench {
 

@@ -6,8 +6,11 @@ namespace fq::client {
 namespace {
 
 // Stages shown, in pipeline order; "e2e" is fqd's receive -> publish.
-constexpr std::pair<const char*, const char*> kStages[] = {
-    {"e2e", "receive_to_publish"}, {"decode", "decode"}, {"wait", "wait"}, {"engine", "engine"}, {"encode", "encode"}};
+constexpr std::pair<const char*, const char*> kStages[] = {{"e2e", "receive_to_publish"},
+                                                           {"decode", "decode"},
+                                                           {"wait", "wait"},
+                                                           {"engine", "engine"},
+                                                           {"encode", "encode"}};
 
 // Stream ids longer than the first column are cut, ending in '~', so that every line fits
 // 80 columns (the full ids: fqctl streams, or --json).
@@ -33,8 +36,8 @@ unsigned long long u(uint64_t v) { return static_cast<unsigned long long>(v); }
 
 std::string counters_table(const wire::ControlReply& reply, double seconds, OutCounts& previous) {
   char line[256];
-  std::snprintf(line, sizeof line, "%-12s %6s %8s %8s %10s %7s %7s %7s\n", "stream", "fps", "in", "out", "superseded",
-                "stale", "late", "errors");
+  std::snprintf(line, sizeof line, "%-12s %6s %8s %8s %10s %7s %7s %7s\n", "stream", "fps", "in", "out",
+                "superseded", "stale", "late", "errors");
   std::string frames = line;
   std::snprintf(line, sizeof line, "%-12s", "p50/p99 ms");
   std::string stages = line;
@@ -51,9 +54,9 @@ std::string counters_table(const wire::ControlReply& reply, double seconds, OutC
     }
     previous[c.stream_id()] = c.frames_out();
     const std::string id = short_id(c.stream_id());
-    std::snprintf(line, sizeof line, "%-12s %6s %8llu %8llu %10llu %7llu %7llu %7llu\n", id.c_str(), fps.c_str(),
-                  u(c.frames_in()), u(c.frames_out()), u(c.superseded()), u(c.dropped_stale()), u(c.late()),
-                  u(c.errors()));
+    std::snprintf(line, sizeof line, "%-12s %6s %8llu %8llu %10llu %7llu %7llu %7llu\n", id.c_str(),
+                  fps.c_str(), u(c.frames_in()), u(c.frames_out()), u(c.superseded()), u(c.dropped_stale()),
+                  u(c.late()), u(c.errors()));
     frames += line;
     std::snprintf(line, sizeof line, "%-12s", id.c_str());
     stages += line;

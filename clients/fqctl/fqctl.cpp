@@ -160,7 +160,8 @@ int cmd_watch(const Args& a) {
       continue;
     }
     // On a terminal the table is redrawn in place; piped, refreshes follow each other.
-    std::printf("%s%s\n", tty ? "\033[H\033[2J" : "", fq::client::counters_table(r, seconds, previous).c_str());
+    std::printf("%s%s\n", tty ? "\033[H\033[2J" : "",
+                fq::client::counters_table(r, seconds, previous).c_str());
     std::fflush(stdout);
   }
   return 0;
@@ -185,7 +186,8 @@ int run(int argc, char** argv) {
   set->add_flag("--create", a.create,
                 "make the stream when fqd does not know it (without it, an unknown id is refused, naming the "
                 "nearest known one)");
-  set->add_option("assignments", a.assignments, "key=value, e.g. sigma_s=3 mode=bf compute=filter result_form=mesh")
+  set->add_option("assignments", a.assignments,
+                  "key=value, e.g. sigma_s=3 mode=bf compute=filter result_form=mesh")
       ->required();
   CLI::App* counters = app.add_subcommand("counters", "frame counters and stage latencies");
   counters->add_option("stream", a.stream, "one stream (default: all)");

@@ -145,7 +145,8 @@ std::vector<std::pair<std::string, std::string>> describe_params(const wire::Con
   std::vector<std::pair<std::string, std::string>> out;
   for (const ParamRow& row : param_table()) {
     std::optional<double> v;
-    if (row.on(kWire) && wire::wire_value(row, r.params(), v).ok() && v) out.emplace_back(row.name, format_param(row, *v));
+    if (row.on(kWire) && wire::wire_value(row, r.params(), v).ok() && v)
+      out.emplace_back(row.name, format_param(row, *v));
   }
   const pb::Descriptor* set = wire::SetParams::descriptor();
   for (int i = 0; i < set->field_count(); ++i)

@@ -29,7 +29,8 @@ void add_parameter_groups(CLI::App& app, Options& o, bool& no_filter) {
                "result as evidence (as fqd does with temporal > 0), noise seeded by --seed + frame index, "
                "flicker reported");
   add_param_options(app, o.params, ParamGroup::kTemporal);
-  app.get_option("--temporal")->default_str(format_param(*find_param("temporal"), kDefaultTemporal) + " with --sequence");
+  app.get_option("--temporal")
+      ->default_str(format_param(*find_param("temporal"), kDefaultTemporal) + " with --sequence");
   app.option_defaults()->group("Clustering");
   add_param_options(app, o.params, ParamGroup::kCompute);
   app.add_flag(
@@ -94,7 +95,8 @@ std::string check_sequence(const Options& o, bool temporal_given) {
   if (!std::filesystem::is_directory(o.input, ec)) return "--sequence needs a folder of frames as IN";
   if (o.params.filter && o.params.filtering.method != FilterMethod::kQuadricRefined)
     return "--sequence filters across frames with --mode qf+ only";
-  if (o.repeat > 1) return "--sequence runs each frame once (--repeat would filter a frame with its own result)";
+  if (o.repeat > 1)
+    return "--sequence runs each frame once (--repeat would filter a frame with its own result)";
   return "";
 }
 

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "clients/fqfilter/cli_options.h"
-#include "kernels/engine.h"
 #include "clients/fqfilter/file_report.h"
 #include "common/status.h"
+#include "kernels/engine.h"
 
 namespace fq::cli {
 

@@ -168,25 +168,26 @@ nlohmann::json to_json(const FileReport& r) {
   }
   nlohmann::json passes = nlohmann::json::array();
   for (const PassTiming& p : r.passes) passes.push_back({{"name", p.name}, {"ms", p.ms}});
-  j.update({{"output", r.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.output)},
-            {"engine", r.engine},
-            {"cuda_refused", r.cuda_refused.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.cuda_refused)},
-            {"threads", r.threads},
-            {"vertices", r.vertices},
-            {"triangles", r.triangles},
-            {"mean_edge", r.mean_edge},
-            {"noise_estimate", noise_json(r)},
-            {"moved",
-             r.moved ? nlohmann::json{{"mean", r.moved->mean}, {"p99", r.moved->p99}, {"max", r.moved->max}}
+  j.update(
+      {{"output", r.output.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.output)},
+       {"engine", r.engine},
+       {"cuda_refused", r.cuda_refused.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.cuda_refused)},
+       {"threads", r.threads},
+       {"vertices", r.vertices},
+       {"triangles", r.triangles},
+       {"mean_edge", r.mean_edge},
+       {"noise_estimate", noise_json(r)},
+       {"moved", r.moved
+                     ? nlohmann::json{{"mean", r.moved->mean}, {"p99", r.moved->p99}, {"max", r.moved->max}}
                      : nlohmann::json(nullptr)},
-            {"welded_vertices", r.welded_vertices},
-            {"params", params_json(r.params)},
-            {"noise", r.noise_sigma > 0 ? noise_added_json(r) : nlohmann::json(nullptr)},
-            {"repeat", r.repeat},
-            {"timings_ms", {{"passes", passes}, {"total", r.total_ms}}},
-            {"clusters", r.clusters ? nlohmann::json(*r.clusters) : nlohmann::json(nullptr)},
-            {"theta_used", r.theta_used ? nlohmann::json(as_typed(*r.theta_used)) : nlohmann::json(nullptr)},
-            {"warnings", r.warnings}});
+       {"welded_vertices", r.welded_vertices},
+       {"params", params_json(r.params)},
+       {"noise", r.noise_sigma > 0 ? noise_added_json(r) : nlohmann::json(nullptr)},
+       {"repeat", r.repeat},
+       {"timings_ms", {{"passes", passes}, {"total", r.total_ms}}},
+       {"clusters", r.clusters ? nlohmann::json(*r.clusters) : nlohmann::json(nullptr)},
+       {"theta_used", r.theta_used ? nlohmann::json(as_typed(*r.theta_used)) : nlohmann::json(nullptr)},
+       {"warnings", r.warnings}});
   if (r.prior_coverage) j["temporal"] = temporal_json(r);
   if (r.reference.empty()) {
     j["metrics"] = nullptr;
@@ -224,7 +225,8 @@ void print_human(const FileReport& r, std::ostream& os) {
     os << "\n";
     const bool estimated = r.params.filtering.refine.known_noise == 0.f;
     if (estimated && *r.noise_estimate < kLooksCleanBelow)
-      os << "  input looks clean: filtered lightly (--known-noise 0.1 filters it as 0.1 mean edges of noise)\n";
+      os << "  input looks clean: filtered lightly (--known-noise 0.1 filters it as 0.1 mean edges of "
+            "noise)\n";
     else if (estimated && *r.noise_estimate < kReadsLightBelow && r.params.filtering.refine.strength <= 1.f)
       os << "  read as light noise: filtered lightly; for noise this estimate does not see (a raw scan's "
             "correlated noise) --strength 3 filters as for three times the noise\n";
@@ -258,12 +260,14 @@ void print_human(const FileReport& r, std::ostream& os) {
   }
   if (r.clusters) {
     os << "  clusters: " << *r.clusters;
-    if (r.theta_used && r.params.clustering.target_clusters > 0) os << " (theta " << std::setprecision(4) << *r.theta_used << ")";
+    if (r.theta_used && r.params.clustering.target_clusters > 0)
+      os << " (theta " << std::setprecision(4) << *r.theta_used << ")";
     os << "\n";
   }
   if (r.sharp_edges)
     os << "  sharp-edge recall: " << std::setprecision(3) << r.sharp_edges->recall << " of "
-       << r.sharp_edges->sharp_edges << " edges over " << std::setprecision(0) << kSharpEdgeDegrees << " deg\n";
+       << r.sharp_edges->sharp_edges << " edges over " << std::setprecision(0) << kSharpEdgeDegrees
+       << " deg\n";
   if (!r.reference.empty()) {
     os << "  error vs " << r.reference << "\n  " << std::left << std::setw(14) << "" << std::right
        << std::setw(12) << "RMSE/diag" << std::setw(12) << "surf RMS" << std::setw(12) << "surf max"

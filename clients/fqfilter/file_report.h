@@ -29,10 +29,10 @@ struct MeshError {
 
 struct FileReport {
   std::string file;
-  std::string output;  ///< written file; empty when none
-  std::string engine;  ///< Engine::name()
+  std::string output;        ///< written file; empty when none
+  std::string engine;        ///< Engine::name()
   std::string cuda_refused;  ///< --engine auto ran on the CPU: why CUDA was not used (empty otherwise)
-  int threads = 0;     ///< CPU engine threads; 0 for other engines
+  int threads = 0;           ///< CPU engine threads; 0 for other engines
   uint32_t vertices = 0;
   uint32_t triangles = 0;
   double mean_edge = 0.0;  ///< of the engine's input, in input units
@@ -69,13 +69,13 @@ struct FileReport {
   /// last frame.
   std::optional<SurfaceFrameMetrics> surface;
   std::optional<uint32_t> clusters;
-  std::optional<float> theta_used;        ///< the theta that gave the labels (found with a target)
+  std::optional<float> theta_used;             ///< the theta that gave the labels (found with a target)
   std::optional<SharpEdgeRecall> sharp_edges;  ///< labels vs the reference's creases
-  std::string reference;                  ///< what the metrics compare to; empty: no metrics
-  std::optional<MeshError> input_error;   ///< engine input (noisy) vs reference
-  std::optional<MeshError> output_error;  ///< result vs reference (when filtering)
-  std::vector<std::string> warnings;      ///< what the output could not keep of the input
-  std::string error;                      ///< non-empty when the file failed
+  std::string reference;                       ///< what the metrics compare to; empty: no metrics
+  std::optional<MeshError> input_error;        ///< engine input (noisy) vs reference
+  std::optional<MeshError> output_error;       ///< result vs reference (when filtering)
+  std::vector<std::string> warnings;           ///< what the output could not keep of the input
+  std::string error;                           ///< non-empty when the file failed
 };
 
 /// Per pass (by name, in the first run's order) the median over runs, and the median total.

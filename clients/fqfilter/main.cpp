@@ -7,8 +7,8 @@
 #include "clients/fqfilter/file_job.h"
 #include "clients/fqfilter/folder_mode.h"
 #include "common/tool_main.h"
-#include "kernels/engine.h"
 #include "io/mesh_io.h"
+#include "kernels/engine.h"
 
 namespace {
 

@@ -13,15 +13,18 @@ void add_param_options(CLI::App& app, Params& p, ParamGroup group) {
     const std::string flag = row.flag(), shown = format_param(row, row.get(p));
     switch (row.kind) {
       case ParamKind::kBool:
-        app.add_flag_function(flag, [&p, r](std::int64_t count) { r->set(p, count > 0 ? 1.0 : 0.0); }, row.help);
+        app.add_flag_function(
+            flag, [&p, r](std::int64_t count) { r->set(p, count > 0 ? 1.0 : 0.0); }, row.help);
         break;
       case ParamKind::kFloat:
-        app.add_option_function<float>(flag, [&p, r](float v) { r->set(p, v); }, row.help)
+        app.add_option_function<float>(
+               flag, [&p, r](float v) { r->set(p, v); }, row.help)
             ->default_str(shown)
             ->check(CLI::Range(row.lo, row.hi));
         break;
       case ParamKind::kUint:
-        app.add_option_function<uint32_t>(flag, [&p, r](uint32_t v) { r->set(p, v); }, row.help)
+        app.add_option_function<uint32_t>(
+               flag, [&p, r](uint32_t v) { r->set(p, v); }, row.help)
             ->default_str(shown)
             ->check(CLI::Range(row.lo, row.hi));
         break;

@@ -12,7 +12,8 @@
 namespace {
 
 int run(int argc, char** argv) {
-  fq::client::ToolApp app{"fqkeys: make a CURVE key pair (NAME.key with the secret, NAME.pub without)", "fqkeys"};
+  fq::client::ToolApp app{"fqkeys: make a CURVE key pair (NAME.key with the secret, NAME.pub without)",
+                          "fqkeys"};
   std::string name;
   bool force = false;
   app.add_option("name", name, "path prefix of the two files")->required();

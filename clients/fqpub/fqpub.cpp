@@ -58,9 +58,10 @@ const char* after_progress(const Args& a) { return redraws(a) ? "\n" : ""; }
 void report_peer(const Args& a, const fq::client::PeerMonitor& monitor, bool& warned) {
   const bool pub = !a.bind_pub.empty();
   if (monitor.peers() == 0 && !warned) {
-    std::fprintf(stderr, "%sfqpub: no fqd connected %s %s: %s\n", after_progress(a),
-                 pub ? "to our PUB socket at" : "at", (pub ? a.bind_pub : a.endpoint).c_str(),
-                 pub ? "frames are dropped until one subscribes" : "frames wait in the queue until one connects");
+    std::fprintf(
+        stderr, "%sfqpub: no fqd connected %s %s: %s\n", after_progress(a),
+        pub ? "to our PUB socket at" : "at", (pub ? a.bind_pub : a.endpoint).c_str(),
+        pub ? "frames are dropped until one subscribes" : "frames wait in the queue until one connects");
     warned = true;
   } else if (monitor.peers() > 0 && warned) {
     std::fprintf(stderr, "%sfqpub: fqd connected\n", after_progress(a));
@@ -142,10 +143,11 @@ void add_options(CLI::App& app, Args& a) {
                  "while no fqd is subscribed are dropped");
   fq::client::add_defaulted(app, "-s,--stream", a.spec.stream_id, "stream id (the topic of the results)");
   fq::client::add_ranged(app, "--fps", a.fps, "frames per second", 0.001, 10000.0);
-  fq::client::add_ranged(app, "--chunks", a.spec.chunks,
-                         "Draco chunks per frame; 0: one per 16,384 vertices, at most 16 (fqd decodes a frame's "
-                         "chunks at once)",
-                         0, 256);
+  fq::client::add_ranged(
+      app, "--chunks", a.spec.chunks,
+      "Draco chunks per frame; 0: one per 16,384 vertices, at most 16 (fqd decodes a frame's "
+      "chunks at once)",
+      0, 256);
   fq::client::add_ranged(app, "--position-bits", a.spec.position_bits, "Draco position bits", 8, 30);
   fq::client::add_ranged(app, "--encode-speed", a.spec.encode_speed,
                          "Draco encoder speed 0..10 (10: fastest, largest)", 0, 10);

@@ -9,9 +9,9 @@
 #include <string>
 #include <zmq.hpp>
 
-#include "core/mesh_view.h"
-#include "common/status.h"
 #include "clients/common/stream_stats.h"
+#include "common/status.h"
+#include "core/mesh_view.h"
 
 namespace fq::bench {
 

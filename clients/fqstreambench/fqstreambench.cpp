@@ -21,10 +21,10 @@
 #include "clients/fqstreambench/collector.h"
 #include "clients/fqstreambench/producer.h"
 #include "clients/fqstreambench/report.h"
-#include "daemon/daemon.h"
 #include "core/parallel_for.h"
-#include "wire/header_codec.h"
+#include "daemon/daemon.h"
 #include "io/mesh_io.h"
+#include "wire/header_codec.h"
 
 namespace {
 
@@ -34,7 +34,7 @@ struct Args {
   int streams = 1, cpu_threads = 0, decode_threads = 0, encode_threads = 0;
   double warmup = 1.0, drain = 30.0, budget_ms = 0.0;
   int encode_speed = 10;
-  std::string result_form;  ///< in-process fqd: "positions" | "mesh" ("" = config/default)
+  std::string result_form;         ///< in-process fqd: "positions" | "mesh" ("" = config/default)
   std::string phases = "aligned";  ///< when in the frame period the streams send
   bool connect = false, json = false, markdown = false, decode = false;
   fq::bench::ProducerOptions producer;
@@ -139,7 +139,8 @@ void measure_floor(const Args& a, const fq::Mesh& frame, fq::bench::CpuInfo& cpu
 }
 
 // fqd's CPU between two readings, by stage name.
-void cpu_delta(const fq::daemon::CpuUsage& before, const fq::daemon::CpuUsage& after, fq::bench::CpuInfo& cpu) {
+void cpu_delta(const fq::daemon::CpuUsage& before, const fq::daemon::CpuUsage& after,
+               fq::bench::CpuInfo& cpu) {
   cpu.measured = true;
   for (size_t s = 0; s < before.stage_seconds.size(); ++s)
     cpu.stage_seconds[fq::daemon::cpu_stage_name(static_cast<fq::daemon::CpuStage>(s))] =
@@ -147,8 +148,8 @@ void cpu_delta(const fq::daemon::CpuUsage& before, const fq::daemon::CpuUsage& a
   cpu.threads_seconds = after.threads_seconds - before.threads_seconds;
 }
 
-fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep, const fq::daemon::Daemon* daemon,
-                       fq::bench::RunInfo& run) {
+fq::Status run_streams(const Args& a, const fq::Mesh& mesh, const Endpoints& ep,
+                       const fq::daemon::Daemon* daemon, fq::bench::RunInfo& run) {
   zmq::context_t ctx(1);
   fq::bench::Collector col;
   FQ_RETURN_IF_ERROR(col.connect(ctx, ep.publish, ep.ingest));
@@ -217,15 +218,20 @@ void add_options(CLI::App& app, Args& a) {
   fq::client::add_defaulted(app, "--variants", a.producer.variants, "distinct noisy frames per stream");
   app.add_option("--budget-ms", a.budget_ms,
                  "latency budget of the streams (in-process fqd; 0 = default/config)");
-  fq::client::add_defaulted(app, "--engine", a.engine,
-                            "in-process engine: auto | cuda | cpu | copy (returns its input: fqd's host path alone)");
+  fq::client::add_defaulted(
+      app, "--engine", a.engine,
+      "in-process engine: auto | cuda | cpu | copy (returns its input: fqd's host path alone)");
   app.add_option("--gpus", a.gpus, "GPUs of the in-process fqd, one engine each (e.g. 0,1)")->delimiter(',');
   app.add_option("--cpu-threads", a.cpu_threads, "CPU engine threads (0 = all)");
-  fq::client::add_defaulted(app, "--decode-threads", a.decode_threads,
-                            "fqd decode workers, frames decoded at once (0 = half the hardware threads, at least 2)");
-  fq::client::add_defaulted(app, "--encode-threads", a.encode_threads,
-                            "fqd encode workers, results encoded at once (0 = half the hardware threads, at least 2)");
-  app.add_option("--config", a.config, "in-process fqd from this config file (its endpoints are replaced; no HTTP, no stats lines)");
+  fq::client::add_defaulted(
+      app, "--decode-threads", a.decode_threads,
+      "fqd decode workers, frames decoded at once (0 = half the hardware threads, at least 2)");
+  fq::client::add_defaulted(
+      app, "--encode-threads", a.encode_threads,
+      "fqd encode workers, results encoded at once (0 = half the hardware threads, at least 2)");
+  app.add_option(
+      "--config", a.config,
+      "in-process fqd from this config file (its endpoints are replaced; no HTTP, no stats lines)");
   app.add_flag("--connect", a.connect, "benchmark a running fqd at --ingest, --publish, --control");
   app.add_option("--ingest", a.ingest, "running fqd's ingest endpoint");
   app.add_option("--publish", a.publish, "running fqd's publish endpoint");

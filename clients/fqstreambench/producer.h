@@ -9,8 +9,8 @@
 #include <zmq.hpp>
 
 #include "clients/common/frame_sender.h"
-#include "core/mesh_view.h"
 #include "common/status.h"
+#include "core/mesh_view.h"
 
 namespace fq::bench {
 

@@ -70,9 +70,10 @@ void add_cpu(const RunInfo& r, const Deltas& d, nlohmann::json& fqd) {
 }
 
 nlohmann::json host_json(const HostQuiet& h) {
-  nlohmann::json j = {{"wakeups", h.wakeups},
-                      {"wakeup_late_ms", {{"p50", h.late_p50_ms}, {"p99", h.late_p99_ms}, {"max", h.late_max_ms}}},
-                      {"wakeups_late_over_5ms", h.late_over_5ms}};
+  nlohmann::json j = {
+      {"wakeups", h.wakeups},
+      {"wakeup_late_ms", {{"p50", h.late_p50_ms}, {"p99", h.late_p99_ms}, {"max", h.late_max_ms}}},
+      {"wakeups_late_over_5ms", h.late_over_5ms}};
   if (h.steal_share >= 0) j["steal_share"] = h.steal_share;
   return j;
 }
@@ -84,8 +85,8 @@ nlohmann::json report_json(const RunInfo& r) {
   nlohmann::json streams = nlohmann::json::object();
   for (const auto& [id, s] : r.per_stream) streams[id] = s.to_json();
   const uint64_t measured = total(r.sent_measured);
-  nlohmann::json fqd = {{"frames_in", d.in},           {"frames_out", d.out}, {"superseded", d.superseded},
-                        {"dropped_stale", d.stale},    {"late", d.late},      {"errors", d.errors}};
+  nlohmann::json fqd = {{"frames_in", d.in},        {"frames_out", d.out}, {"superseded", d.superseded},
+                        {"dropped_stale", d.stale}, {"late", d.late},      {"errors", d.errors}};
   add_cpu(r, d, fqd);
   nlohmann::json bench = nlohmann::json::object();
   if (r.cpu.measured && total(r.sent) > 0) {

@@ -8,19 +8,19 @@
 #include <string>
 #include <vector>
 
-#include "wire/fq.pb.h"
 #include "clients/common/stream_stats.h"
 #include "clients/fqstreambench/host_probe.h"
+#include "wire/fq.pb.h"
 
 namespace fq::bench {
 
 /// fqd's host CPU over the measured run (in-process fqd only) and the floor it is set beside.
 struct CpuInfo {
-  bool measured = false;                        ///< false with --connect
-  std::map<std::string, double> stage_seconds;  ///< fq_stage_cpu_seconds_total's deltas
-  double threads_seconds = 0;                   ///< fq_cpu_seconds_total's delta
+  bool measured = false;                              ///< false with --connect
+  std::map<std::string, double> stage_seconds;        ///< fq_stage_cpu_seconds_total's deltas
+  double threads_seconds = 0;                         ///< fq_cpu_seconds_total's delta
   double floor_decode_ms = -1, floor_encode_ms = -1;  ///< plain Draco on one frame's chunks
-  double producers_ms = 0, collector_ms = 0;    ///< the benchmark's own threads, in total
+  double producers_ms = 0, collector_ms = 0;          ///< the benchmark's own threads, in total
 };
 
 struct RunInfo {
@@ -32,9 +32,9 @@ struct RunInfo {
   uint32_t chunks = 1;
   std::string phases;  ///< "aligned" or "spread" (fqstreambench --phases)
   std::string compute;
-  std::string result_form;  ///< "positions" or "mesh" (fqd's setting for the streams)
-  std::map<std::string, uint64_t> sent;                       ///< all frames sent, per stream
-  std::map<std::string, uint64_t> sent_measured;              ///< frames sent after the warm-up
+  std::string result_form;                        ///< "positions" or "mesh" (fqd's setting for the streams)
+  std::map<std::string, uint64_t> sent;           ///< all frames sent, per stream
+  std::map<std::string, uint64_t> sent_measured;  ///< frames sent after the warm-up
   std::map<std::string, wire::StreamCounters> before, after;  ///< fqd's counters
   std::map<std::string, client::StreamStats> per_stream;
   client::StreamStats overall;

@@ -50,8 +50,9 @@ std::string write_ply(const Args& a, const fq::client::ReceivedResult& r) {
   std::string path =
       (std::filesystem::path(a.out_dir) / (r.header.stream_id() + "_" + sequence + ".ply")).string();
   if (r.mesh.num_triangles() == 0) {
-    std::fprintf(stderr, "\nfqsub: result carries positions only: pass --faces with the mesh the producer sent, "
-                         "or set the stream's output.result_form = \"mesh\"\n");
+    std::fprintf(stderr,
+                 "\nfqsub: result carries positions only: pass --faces with the mesh the producer sent, "
+                 "or set the stream's output.result_form = \"mesh\"\n");
     return "";
   }
   const uint32_t* labels = r.labels.empty() ? nullptr : r.labels.data();
@@ -194,7 +195,8 @@ int run(int argc, char** argv) {
   if (a.json)
     std::printf("%s\n", j.dump(2).c_str());
   else {
-    std::fprintf(stderr, "%sfqsub: %s\n", !a.quiet && isatty(STDERR_FILENO) ? "\r" : "", stats.status_line().c_str());
+    std::fprintf(stderr, "%sfqsub: %s\n", !a.quiet && isatty(STDERR_FILENO) ? "\r" : "",
+                 stats.status_line().c_str());
     if (!last_ply.empty()) std::fprintf(stderr, "fqsub: last PLY written: %s\n", last_ply.c_str());
   }
   const bool enough = stats.results() > 0 || g_stop;  // stopped by the user: no result is no failure

@@ -11,19 +11,20 @@
 
 #include "clients/common/tool_app.h"
 #include "common/tool_main.h"
+#include "core/parallel_for.h"
 #include "eval/capture_sequence.h"
 #include "eval/label_persistence.h"
 #include "eval/sharp_edge_recall.h"
+#include "io/mesh_io.h"
 #include "kernels/engine.h"
 #include "kernels/frame_prep.h"
 #include "kernels/label_tracking.h"
-#include "core/parallel_for.h"
-#include "io/mesh_io.h"
 
 namespace {
 
 struct Totals {
-  double raw = 0, tracked = 0, min_tracked = 1, clusters = 0, track_ms = 0, recall_raw = 0, recall_tracked = 0;
+  double raw = 0, tracked = 0, min_tracked = 1, clusters = 0, track_ms = 0, recall_raw = 0,
+         recall_tracked = 0;
   int pairs = 0, frames = 0;
 };
 
@@ -38,7 +39,8 @@ std::string tracking_label(bool ids_only, int rings, int vote_frames) {
 int run(int argc, char** argv) {
   fq::TrackingOptions defaults;
   int to_rings = defaults.sticky_rings, vote_frames = defaults.vote_frames;
-  fq::client::ToolApp app{"fqtrackbench: cluster id persistence over synthetic capture frames", "fqtrackbench"};
+  fq::client::ToolApp app{"fqtrackbench: cluster id persistence over synthetic capture frames",
+                          "fqtrackbench"};
   std::string mesh_path;
   int frames = 10, threads = 0;
   double noise = 0.2, degrees = 0.0;
@@ -102,14 +104,17 @@ int run(int argc, char** argv) {
     tracker.track(m.positions.data(), m.num_vertices(), ids, r.num_clusters, to);
     t.track_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     t.clusters += r.num_clusters;
-    const fq::Mesh truth = fq::capture_frame(clean, f * degrees, 0.0, 1000 + f);  // same vertex order, no noise
+    const fq::Mesh truth =
+        fq::capture_frame(clean, f * degrees, 0.0, 1000 + f);  // same vertex order, no noise
     t.recall_raw += fq::sharp_edge_recall(truth.view(), r.labels.data()).recall;
     t.recall_tracked += fq::sharp_edge_recall(truth.view(), ids.data()).recall;
     ++t.frames;
     if (f > 0) {
       const uint32_t n = m.num_vertices(), pn = prev.num_vertices();
-      t.raw += fq::label_persistence(prev.positions.data(), prev_raw.data(), pn, m.positions.data(), r.labels.data(), n, cell);
-      const double k = fq::label_persistence(prev.positions.data(), prev_ids.data(), pn, m.positions.data(), ids.data(), n, cell);
+      t.raw += fq::label_persistence(prev.positions.data(), prev_raw.data(), pn, m.positions.data(),
+                                     r.labels.data(), n, cell);
+      const double k = fq::label_persistence(prev.positions.data(), prev_ids.data(), pn, m.positions.data(),
+                                             ids.data(), n, cell);
       t.tracked += k;
       t.min_tracked = std::min(t.min_tracked, k);
       ++t.pairs;
@@ -118,11 +123,13 @@ int run(int argc, char** argv) {
     prev_raw = r.labels;
     prev_ids = ids;
   }
-  std::printf("| %s | %d | %g | %g | %s | %s | %.1f | %.3f | %.3f | %.3f | %.3f | %.3f | %.1f |\n", mesh_path.c_str(), frames,
-              noise, degrees, tracking_label(ids_only, to_rings, to.vote_frames).c_str(), p.clustering.target_clusters ? ("K " + std::to_string(p.clustering.target_clusters)).c_str()
+  std::printf("| %s | %d | %g | %g | %s | %s | %.1f | %.3f | %.3f | %.3f | %.3f | %.3f | %.1f |\n",
+              mesh_path.c_str(), frames, noise, degrees,
+              tracking_label(ids_only, to_rings, to.vote_frames).c_str(),
+              p.clustering.target_clusters ? ("K " + std::to_string(p.clustering.target_clusters)).c_str()
                                            : ("θ " + std::to_string(p.clustering.theta)).c_str(),
-              t.clusters / t.frames, t.raw / t.pairs, t.tracked / t.pairs, t.min_tracked, t.recall_raw / t.frames,
-              t.recall_tracked / t.frames, t.track_ms / t.frames);
+              t.clusters / t.frames, t.raw / t.pairs, t.tracked / t.pairs, t.min_tracked,
+              t.recall_raw / t.frames, t.recall_tracked / t.frames, t.track_ms / t.frames);
   return 0;
 }
 

@@ -250,8 +250,9 @@ Status parse_config(std::string_view text, const std::string& source, DaemonConf
                             std::string(e.description()));
   }
   if (root_table.empty() && !allow_empty)
-    return invalid_argument(source + " has no settings: an empty file is refused (it would reset every stream to "
-                                     "the built-in defaults)");
+    return invalid_argument(source +
+                            " has no settings: an empty file is refused (it would reset every stream to "
+                            "the built-in defaults)");
   DaemonConfig c;
   TomlReader root(root_table, source, "");
   root.read("log_level", c.log_level);

@@ -91,8 +91,8 @@ struct DaemonConfig {
   StreamSettings defaults;
   std::map<std::string, StreamSettings> streams;  ///< per-stream overrides, resolved
   std::string log_level = "info";
-  HttpConfig http;        ///< [http]: metrics, health, streams and the live viewer
-  StatsLogConfig stats;   ///< [stats]: the periodic one-line log per stream
+  HttpConfig http;             ///< [http]: metrics, health, streams and the live viewer
+  StatsLogConfig stats;        ///< [stats]: the periodic one-line log per stream
   SubIngestConfig sub_ingest;  ///< [ingest]: SUB-connect to producers too (scale-out)
   /// The file read ("" for the built-in defaults) and the line of each key in it, by dotted
   /// name ("http.token_file"; an array's items as "ingest.connect[1]"), for messages about a
@@ -116,7 +116,8 @@ struct DaemonConfig {
 /// Parses TOML text (`source` names it in messages). Unknown keys, wrong types and
 /// out-of-range values are errors naming the key and line; so is text without a single key
 /// unless `allow_empty` (a reload of an emptied file would reset every stream to the defaults).
-Status parse_config(std::string_view text, const std::string& source, DaemonConfig& out, bool allow_empty = true);
+Status parse_config(std::string_view text, const std::string& source, DaemonConfig& out,
+                    bool allow_empty = true);
 
 /// Reads and parses a file.
 Status load_config(const std::string& path, DaemonConfig& out, bool allow_empty = true);

@@ -105,7 +105,8 @@ wire::ControlReply get_counters(const wire::GetCounters& q, StreamRegistry& regi
 
 }  // namespace
 
-wire::ControlReply handle_control(const wire::ControlRequest& request, StreamRegistry& registry, const Caps& caps) {
+wire::ControlReply handle_control(const wire::ControlRequest& request, StreamRegistry& registry,
+                                  const Caps& caps) {
   switch (request.request_case()) {
     case wire::ControlRequest::kGetParams:
       return get_params(request.get_params(), registry);
@@ -131,7 +132,8 @@ std::string handle_control_bytes(std::string_view bytes, StreamRegistry& registr
   return handle_control(request, registry, caps).SerializeAsString();
 }
 
-void run_control(zmq::socket_t socket, StreamRegistry& registry, const LiveCaps& caps, const ClientKeys* keys) {
+void run_control(zmq::socket_t socket, StreamRegistry& registry, const LiveCaps& caps,
+                 const ClientKeys* keys) {
   LogLimiter refused_log, error_log;
   std::vector<zmq::message_t> request;
   for (;;) {

@@ -6,10 +6,10 @@
 #include <string_view>
 #include <zmq.hpp>
 
-#include "daemon/pipeline/curve_auth.h"
 #include "daemon/config/live_caps.h"
-#include "wire/fq.pb.h"
+#include "daemon/pipeline/curve_auth.h"
 #include "daemon/stream/stream_registry.h"
+#include "wire/fq.pb.h"
 
 namespace fq::daemon {
 
@@ -22,7 +22,8 @@ inline constexpr size_t kMaxControlBytes = 64 << 10;
 /// admit (check_stream_id) and, without its `create`, one the registry knows (else refused,
 /// naming the nearest known ids); it is validated with fq::validate and takes effect on the
 /// stream's next frame to be decoded.
-wire::ControlReply handle_control(const wire::ControlRequest& request, StreamRegistry& registry, const Caps& caps);
+wire::ControlReply handle_control(const wire::ControlRequest& request, StreamRegistry& registry,
+                                  const Caps& caps);
 
 /// Parses, answers and serializes one request (an unparsable one gets an error reply).
 std::string handle_control_bytes(std::string_view request, StreamRegistry& registry, const Caps& caps);

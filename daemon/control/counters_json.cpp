@@ -7,7 +7,8 @@ namespace fq::daemon {
 nlohmann::json counters_json(const wire::StreamCounters& c) {
   nlohmann::json stages = nlohmann::json::object();
   for (const wire::StagePercentiles& s : c.stages())
-    stages[s.name()] = {{"p50_ms", s.p50_ms()}, {"p95_ms", s.p95_ms()}, {"p99_ms", s.p99_ms()}, {"count", s.count()}};
+    stages[s.name()] = {
+        {"p50_ms", s.p50_ms()}, {"p95_ms", s.p95_ms()}, {"p99_ms", s.p99_ms()}, {"count", s.count()}};
   nlohmann::json j = {{"stream", c.stream_id()}, {"stages", std::move(stages)}};
 #define FQ_COUNTER_TO_JSON(name, metric, help) j[#name] = c.name();
   FQ_STREAM_COUNTERS(FQ_COUNTER_TO_JSON)

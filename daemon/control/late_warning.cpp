@@ -53,8 +53,8 @@ std::string late_hint(const std::map<std::string, Percentiles>& stages, double b
   return "decode, encode or publishing take the rest of the budget";
 }
 
-std::optional<std::string> late_warning(const StreamSnapshot& now, const StreamCounters& before, double seconds,
-                                        double budget_ms) {
+std::optional<std::string> late_warning(const StreamSnapshot& now, const StreamCounters& before,
+                                        double seconds, double budget_ms) {
   const uint64_t out = now.counters.frames_out - before.frames_out;
   const uint64_t late = now.counters.late - before.late;
   if (out < kLateWarningMinResults || 2 * late <= out) return std::nullopt;

@@ -31,7 +31,7 @@ std::string late_hint(const std::map<std::string, Percentiles>& stages, double b
 
 /// The warning when more than half of the stream's results since `before` were late;
 /// nullopt otherwise.
-std::optional<std::string> late_warning(const StreamSnapshot& now, const StreamCounters& before, double seconds,
-                                        double budget_ms);
+std::optional<std::string> late_warning(const StreamSnapshot& now, const StreamCounters& before,
+                                        double seconds, double budget_ms);
 
 }  // namespace fq::daemon

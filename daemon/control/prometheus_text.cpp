@@ -30,7 +30,8 @@ void histograms(std::string& out, const MetricsInput& in) {
       for (size_t i = 0; i < LatencyHistogram::kBoundsMs.size(); ++i)
         out += "fq_stage_latency_seconds_bucket{" + labels + ",le=\"" +
                bound(LatencyHistogram::kBoundsMs[i] / 1000.0) + "\"} " + std::to_string(h.bucket(i)) + "\n";
-      out += "fq_stage_latency_seconds_bucket{" + labels + ",le=\"+Inf\"} " + std::to_string(h.count()) + "\n";
+      out +=
+          "fq_stage_latency_seconds_bucket{" + labels + ",le=\"+Inf\"} " + std::to_string(h.count()) + "\n";
       out += "fq_stage_latency_seconds_sum{" + labels + "} " + metric_number(h.sum_ms() / 1000.0) + "\n";
       out += "fq_stage_latency_seconds_count{" + labels + "} " + std::to_string(h.count()) + "\n";
     }
@@ -43,17 +44,18 @@ void engines_and_gpus(std::string& out, const MetricsInput& in) {
   for (size_t i = 0; i < in.engines.size(); ++i) {
     const std::string& e = in.engines[i];
     const std::string kind = e.rfind("cuda", 0) == 0 ? "cuda" : "cpu";
-    out += "fq_engine_info{engine=\"" + escape_label_value(e) + "\",index=\"" + std::to_string(i) + "\",kind=\"" +
-           kind + "\"} 1\n";
+    out += "fq_engine_info{engine=\"" + escape_label_value(e) + "\",index=\"" + std::to_string(i) +
+           "\",kind=\"" + kind + "\"} 1\n";
   }
   append_family(out, "fq_gpu_memory_used_bytes", "gauge",
                 "Device memory in use on each GPU with an engine (device-wide).");
   for (const GpuMemory& g : in.gpus)
-    out += "fq_gpu_memory_used_bytes{gpu=\"" + std::to_string(g.device) + "\"} " + std::to_string(g.used_bytes) + "\n";
+    out += "fq_gpu_memory_used_bytes{gpu=\"" + std::to_string(g.device) + "\"} " +
+           std::to_string(g.used_bytes) + "\n";
   append_family(out, "fq_gpu_memory_total_bytes", "gauge", "Device memory of each GPU with an engine.");
   for (const GpuMemory& g : in.gpus)
-    out += "fq_gpu_memory_total_bytes{gpu=\"" + std::to_string(g.device) + "\"} " + std::to_string(g.total_bytes) +
-           "\n";
+    out += "fq_gpu_memory_total_bytes{gpu=\"" + std::to_string(g.device) + "\"} " +
+           std::to_string(g.total_bytes) + "\n";
 }
 
 }  // namespace

@@ -15,11 +15,14 @@ void engines(std::string& out, const std::vector<EngineLoad>& list) {
   const auto labels = [](const EngineLoad& e, size_t i) {
     return "{" + label("engine", e.name) + "," + label("index", std::to_string(i)) + "}";
   };
-  append_family(out, "fq_engine_busy_seconds_total", "counter",
-                "Time each engine spent running frames; its rate is the engine's utilisation (1 = always busy).");
+  append_family(
+      out, "fq_engine_busy_seconds_total", "counter",
+      "Time each engine spent running frames; its rate is the engine's utilisation (1 = always busy).");
   for (size_t i = 0; i < list.size(); ++i)
-    out += "fq_engine_busy_seconds_total" + labels(list[i], i) + " " + metric_number(list[i].busy_seconds) + "\n";
-  append_family(out, "fq_engine_frames_total", "counter", "Frames each engine ran (finished, failed or stopped).");
+    out += "fq_engine_busy_seconds_total" + labels(list[i], i) + " " + metric_number(list[i].busy_seconds) +
+           "\n";
+  append_family(out, "fq_engine_frames_total", "counter",
+                "Frames each engine ran (finished, failed or stopped).");
   for (size_t i = 0; i < list.size(); ++i)
     out += "fq_engine_frames_total" + labels(list[i], i) + " " + std::to_string(list[i].frames) + "\n";
 }
@@ -28,17 +31,20 @@ void engines(std::string& out, const std::vector<EngineLoad>& list) {
 
 std::string service_metrics_text(const ServiceMetricsInput& in) {
   std::string out;
-  append_family(out, "fq_build_info", "gauge", "fq's version and whether the CUDA engine is compiled in; always 1.");
+  append_family(out, "fq_build_info", "gauge",
+                "fq's version and whether the CUDA engine is compiled in; always 1.");
   out += "fq_build_info{" + label("version", version_string()) + "," +
          label("cuda", built_with_cuda() ? "compiled_in" : "absent") + "} 1\n";
-  append_reason_counts(out, "fq_refused_total",
-                       "Ingest and control messages, subscribers and ZeroMQ connections refused before any stream "
-                       "state was made for them, by reason (bad_stream_id, malformed, not_allowed, "
-                       "too_many_streams, unauthenticated, oversized, subscriptions).",
-                       in.refusals);
-  append_family(out, "fq_ingest_reconnects_total", "counter",
-                "Times fqd connected again to an [ingest] connect producer that ZeroMQ had dropped for a protocol "
-                "error (a part over caps.max_frame_bytes, a failed CURVE handshake) and would not reconnect.");
+  append_reason_counts(
+      out, "fq_refused_total",
+      "Ingest and control messages, subscribers and ZeroMQ connections refused before any stream "
+      "state was made for them, by reason (bad_stream_id, malformed, not_allowed, "
+      "too_many_streams, unauthenticated, oversized, subscriptions).",
+      in.refusals);
+  append_family(
+      out, "fq_ingest_reconnects_total", "counter",
+      "Times fqd connected again to an [ingest] connect producer that ZeroMQ had dropped for a protocol "
+      "error (a part over caps.max_frame_bytes, a failed CURVE handshake) and would not reconnect.");
   out += "fq_ingest_reconnects_total " + std::to_string(in.ingest_reconnects) + "\n";
   append_family(out, "fq_stream_budget_seconds", "gauge",
                 "Each stream's receive-to-publish budget (budget_ms): results later than this are LATE.");
@@ -46,7 +52,8 @@ std::string service_metrics_text(const ServiceMetricsInput& in) {
     out += "fq_stream_budget_seconds{" + label("stream", stream) + "} " + metric_number(ms / 1000.0) + "\n";
   engines(out, in.engines);
   append_family(out, "fq_queue_depth", "gauge",
-                "Frames waiting in each pipeline queue: decode, slots (decoded, waiting for an engine), encode, publish.");
+                "Frames waiting in each pipeline queue: decode, slots (decoded, waiting for an engine), "
+                "encode, publish.");
   for (const auto& [queue, n] : in.queues)
     out += "fq_queue_depth{" + label("queue", queue) + "} " + std::to_string(n) + "\n";
   append_family(

@@ -36,15 +36,16 @@ std::vector<std::string> settings_changes(const StreamSettings& before, const St
   return out;
 }
 
-void log_settings_changes(const std::string& stream_id, const StreamSettings& before, const StreamSettings& after,
-                          const char* cause, LogLimiter* limiter) {
+void log_settings_changes(const std::string& stream_id, const StreamSettings& before,
+                          const StreamSettings& after, const char* cause, LogLimiter* limiter) {
   const std::vector<std::string> changes = settings_changes(before, after);
   uint64_t held_back = 0;
   if (changes.empty() || !spdlog::should_log(spdlog::level::info)) return;
   if (limiter && !limiter->allow_now(held_back)) return;
   const std::string id = printable_id(stream_id);
   for (const std::string& change : changes) spdlog::info("{} {} ({})", id, change, cause);
-  if (held_back > 0) spdlog::info("({} earlier {} changes not logged: over the log rate limit)", held_back, cause);
+  if (held_back > 0)
+    spdlog::info("({} earlier {} changes not logged: over the log rate limit)", held_back, cause);
 }
 
 }  // namespace fq::daemon

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "daemon/pipeline/log_limiter.h"
 #include "daemon/config/stream_settings.h"
+#include "daemon/pipeline/log_limiter.h"
 
 namespace fq::daemon {
 
@@ -23,7 +23,7 @@ std::vector<std::string> settings_changes(const StreamSettings& before, const St
 /// Logs one info line per change: "<stream> <key> <old> -> <new> (<cause>)". With a `limiter`
 /// (changes any peer can cause: the control socket) one request's lines pass or are held back
 /// together, so that an audited change is never logged in part.
-void log_settings_changes(const std::string& stream_id, const StreamSettings& before, const StreamSettings& after,
-                          const char* cause, LogLimiter* limiter = nullptr);
+void log_settings_changes(const std::string& stream_id, const StreamSettings& before,
+                          const StreamSettings& after, const char* cause, LogLimiter* limiter = nullptr);
 
 }  // namespace fq::daemon

@@ -39,7 +39,8 @@ std::vector<std::string> StatsLog::lines(const std::vector<StreamSnapshot>& now,
     auto it = s.stages.find("receive_to_publish");
     const double p99 = it == s.stages.end() ? 0.0 : it->second.p99_ms;
     char line[512];
-    std::snprintf(line, sizeof line, "[stats] stream=%s fps=%.1f p99=%.1fms late=%llu superseded=%llu stale=%llu errors=%llu",
+    std::snprintf(line, sizeof line,
+                  "[stats] stream=%s fps=%.1f p99=%.1fms late=%llu superseded=%llu stale=%llu errors=%llu",
                   s.stream_id.c_str(), static_cast<double>(c.frames_out - before.frames_out) / seconds, p99,
                   static_cast<unsigned long long>(c.late - before.late),
                   static_cast<unsigned long long>(c.superseded - before.superseded),
@@ -66,7 +67,8 @@ void StatsLog::run() {
     for (const StreamSnapshot& s : snaps) {
       StreamSettings settings;
       if (!registry_.find(s.stream_id, settings)) continue;
-      if (auto w = late_warning(s, previous[s.stream_id], seconds, settings.budget_ms)) warnings.push_back(*w);
+      if (auto w = late_warning(s, previous[s.stream_id], seconds, settings.budget_ms))
+        warnings.push_back(*w);
     }
     for (const std::string& l : lines(snaps, seconds, previous)) spdlog::info("{}", l);
     for (const std::string& w : warnings) spdlog::warn("{}", w);

@@ -26,7 +26,8 @@ bool token_chars_ok(const std::string& t) {
 }
 
 std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
 }
 
@@ -37,8 +38,9 @@ std::string host_name(const std::string& host) {
     return close == std::string::npos ? std::string() : lower(host.substr(1, close - 1));
   }
   const size_t colon = host.find(':');
-  return lower(colon == std::string::npos || host.find(':', colon + 1) != std::string::npos ? host
-                                                                                             : host.substr(0, colon));
+  return lower(colon == std::string::npos || host.find(':', colon + 1) != std::string::npos
+                   ? host
+                   : host.substr(0, colon));
 }
 
 bool ip_literal(const std::string& name) {
@@ -54,8 +56,9 @@ bool same_token(const std::string& given, const std::string& token) {
 std::string bearer_token(const httplib::Request& req) {
   const std::string auth = req.get_header_value("Authorization");
   const std::string bearer = "Bearer ";
-  if (auth.size() > bearer.size() && std::equal(bearer.begin(), bearer.end(), auth.begin(),
-                                                [](char a, char b) { return std::tolower(a) == std::tolower(b); }))
+  if (auth.size() > bearer.size() &&
+      std::equal(bearer.begin(), bearer.end(), auth.begin(),
+                 [](char a, char b) { return std::tolower(a) == std::tolower(b); }))
     return auth.substr(bearer.size());
   return {};
 }
@@ -67,7 +70,8 @@ std::string session_cookie(const httplib::Request& req) {
   for (size_t at = 0; at < cookies.size();) {
     while (at < cookies.size() && (cookies[at] == ' ' || cookies[at] == ';')) ++at;
     const size_t end = std::min(cookies.find(';', at), cookies.size());
-    if (cookies.compare(at, key.size(), key) == 0) return cookies.substr(at + key.size(), end - at - key.size());
+    if (cookies.compare(at, key.size(), key) == 0)
+      return cookies.substr(at + key.size(), end - at - key.size());
     at = end;
   }
   return {};
@@ -195,9 +199,10 @@ httplib::Server::HandlerResponse HttpAccess::check(const httplib::Request& req, 
   }
   if (rules->curve_on && req.path != "/metrics") {
     refusals.add(HttpRefusal::kUnauthenticated);
-    return refuse(res, 403,
-                  "fqd runs with [security] (CURVE) on: streams, results and the viewer need HTTP authentication; "
-                  "set [http] token_file\n");
+    return refuse(
+        res, 403,
+        "fqd runs with [security] (CURVE) on: streams, results and the viewer need HTTP authentication; "
+        "set [http] token_file\n");
   }
   return R::Unhandled;
 }

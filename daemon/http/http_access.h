@@ -53,7 +53,8 @@ inline constexpr double kLoginPerSecond = 1;
 
 class HttpAccess {
  public:
-  explicit HttpAccess(HttpAccessRules rules) : rules_(std::make_shared<const HttpAccessRules>(std::move(rules))) {}
+  explicit HttpAccess(HttpAccessRules rules)
+      : rules_(std::make_shared<const HttpAccessRules>(std::move(rules))) {}
   /// New rules; a new token ends every login session.
   void set(HttpAccessRules rules);
 

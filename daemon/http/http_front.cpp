@@ -18,7 +18,9 @@ bool has_body(const httplib::Request& req) {
   return !length.empty() && length.find_first_not_of('0') != std::string::npos;
 }
 
-std::chrono::milliseconds ms(double seconds) { return std::chrono::milliseconds(static_cast<int64_t>(seconds * 1e3)); }
+std::chrono::milliseconds ms(double seconds) {
+  return std::chrono::milliseconds(static_cast<int64_t>(seconds * 1e3));
+}
 
 // Runs each task where it is queued. The library queues one task per accepted socket, and
 // fqd's task (process_and_close_socket) only hands the socket to its connection thread, so
@@ -45,7 +47,8 @@ HttpFront::HttpFront(const HttpConfig& config, HttpRefusalCounters& refusals)
     setsockopt(s, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
   });
   set_payload_max_length(0);  // no route reads a body (pre_routing refuses them first)
-  set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) { return pre_routing(req, res); });
+  set_pre_routing_handler(
+      [this](const httplib::Request& req, httplib::Response& res) { return pre_routing(req, res); });
 }
 
 HttpFront::~HttpFront() { close_connections(); }

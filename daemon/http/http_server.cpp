@@ -13,9 +13,9 @@
 
 #include "daemon/control/control_server.h"
 #include "daemon/control/counters_json.h"
-#include "daemon/pipeline/curve_auth.h"
-#include "daemon/http/http_front.h"
 #include "daemon/control/prometheus_text.h"
+#include "daemon/http/http_front.h"
+#include "daemon/pipeline/curve_auth.h"
 
 namespace fq::daemon {
 namespace {
@@ -27,7 +27,8 @@ constexpr int kMaxWaitMs = 5000;
 bool viewer_installed(const std::filesystem::path& root) {
   return std::filesystem::is_regular_file(root / "index.html") &&
          std::filesystem::is_regular_file(root / "node_modules/three/build/three.module.js") &&
-         std::filesystem::is_regular_file(root / "node_modules/three/examples/jsm/libs/draco/draco_decoder.js");
+         std::filesystem::is_regular_file(root /
+                                          "node_modules/three/examples/jsm/libs/draco/draco_decoder.js");
 }
 
 std::string chunk_sizes(const LatestResult& r) {
@@ -37,7 +38,8 @@ std::string chunk_sizes(const LatestResult& r) {
 }
 
 // Browsers read the arrays in their own byte order, little-endian on every platform they run on.
-static_assert(std::endian::native == std::endian::little, "the viewer's arrays are sent as little-endian words");
+static_assert(std::endian::native == std::endian::little,
+              "the viewer's arrays are sent as little-endian words");
 
 // One waiting long poll, counted while it lives; not admitted past `max`.
 class LongPollTicket {
@@ -80,7 +82,8 @@ void send_latest(std::shared_ptr<const LatestResult> r, uint64_t viewer_faces_id
   res.set_header("X-Fq-Late", h.status() == wire::LATE ? "1" : "0");
   res.set_header("X-Fq-Engine", h.engine());
   std::vector<std::string_view> pieces;
-  if (send_faces) pieces.emplace_back(reinterpret_cast<const char*>(r->faces->data()), face_words * sizeof(uint32_t));
+  if (send_faces)
+    pieces.emplace_back(reinterpret_cast<const char*>(r->faces->data()), face_words * sizeof(uint32_t));
   pieces.emplace_back(reinterpret_cast<const char*>(h.labels().data()), h.labels_size() * sizeof(uint32_t));
   for (const std::string& c : r->chunks) pieces.emplace_back(c);
   size_t total = 0;
@@ -105,7 +108,8 @@ void send_latest(std::shared_ptr<const LatestResult> r, uint64_t viewer_faces_id
 }  // namespace
 
 HttpServer::HttpServer(const DaemonConfig& config, const LiveCaps& caps, StreamRegistry& registry,
-                       LatestResults& latest, std::vector<std::string> engines, const std::atomic<bool>& healthy)
+                       LatestResults& latest, std::vector<std::string> engines,
+                       const std::atomic<bool>& healthy)
     : config_(config),
       caps_(caps),
       registry_(registry),
@@ -170,7 +174,8 @@ void HttpServer::add_api_routes() {
     try {
       if (req.has_param("after")) after = std::stoull(req.get_param_value("after"));
       if (req.has_param("faces")) faces_id = std::stoull(req.get_param_value("faces"));
-      if (req.has_param("wait_ms")) wait_ms = std::clamp(std::stoi(req.get_param_value("wait_ms")), 0, kMaxWaitMs);
+      if (req.has_param("wait_ms"))
+        wait_ms = std::clamp(std::stoi(req.get_param_value("wait_ms")), 0, kMaxWaitMs);
     } catch (const std::exception&) {
       res.status = 400;
       res.set_content("after, faces and wait_ms must be whole numbers\n", "text/plain");
@@ -207,12 +212,15 @@ void HttpServer::add_viewer_routes() {
     server_->set_file_extension_and_mimetype_mapping("wasm", "application/wasm");
     return;
   }
-  spdlog::info("http: no viewer in {} (run scripts/web-deps.sh); / explains how to install it", root.string());
+  spdlog::info("http: no viewer in {} (run scripts/web-deps.sh); / explains how to install it",
+               root.string());
   const std::string message =
       "fqd is running, but its live viewer is not installed in " + root.string() +
       ".\nIn fq's source tree, install it with `bash scripts/web-deps.sh` (npm ci in web/), then run fqd "
-      "from there or `cmake --install` again (it ships the viewer to <prefix>/share/fq/web, where fqd looks); "
-      "or point [http] web_root at a folder that has it.\nThe API works without it: /metrics /healthz /streams "
+      "from there or `cmake --install` again (it ships the viewer to <prefix>/share/fq/web, where fqd "
+      "looks); "
+      "or point [http] web_root at a folder that has it.\nThe API works without it: /metrics /healthz "
+      "/streams "
       "/streams/ID/latest\n";
   server_->Get("/", [message](const httplib::Request&, httplib::Response& res) {
     res.status = 404;
@@ -223,17 +231,20 @@ void HttpServer::add_viewer_routes() {
 void HttpServer::warn_if_exposed(const std::string& host) const {
   const HttpConfig& h = config_.http;
   if (config_.security.enabled() && h.token_file.empty())
-    spdlog::warn("http: [security] is on but http.token_file is not set: /streams, the results and the viewer "
-                 "answer 403 (only /metrics and /healthz are served)");
+    spdlog::warn(
+        "http: [security] is on but http.token_file is not set: /streams, the results and the viewer "
+        "answer 403 (only /metrics and /healthz are served)");
   if (is_loopback_host(host)) return;
   if (h.tls_cert_file.empty())
-    spdlog::warn("http: {} is reachable from other hosts without TLS: requests, tokens and results travel in "
-                 "clear (set http.tls_cert_file and http.tls_key_file)",
-                 h.listen);
+    spdlog::warn(
+        "http: {} is reachable from other hosts without TLS: requests, tokens and results travel in "
+        "clear (set http.tls_cert_file and http.tls_key_file)",
+        h.listen);
   if (h.token_file.empty() && !config_.security.enabled())
-    spdlog::warn("http: {} is reachable from other hosts without a token: anyone who can connect reads the "
-                 "metrics, the streams and their geometry (set http.token_file)",
-                 h.listen);
+    spdlog::warn(
+        "http: {} is reachable from other hosts without a token: anyone who can connect reads the "
+        "metrics, the streams and their geometry (set http.token_file)",
+        h.listen);
 }
 
 Status HttpServer::start() {
@@ -248,8 +259,9 @@ Status HttpServer::start() {
     FQ_RETURN_IF_ERROR(make_tls_context(config_.http.tls_cert_file, config_.http.tls_key_file, tls_));
     server_->set_tls(tls_.get());
   }
-  server_->set_request_check(
-      [this](const httplib::Request& req, httplib::Response& res) { return access_.check(req, res, refusals_); });
+  server_->set_request_check([this](const httplib::Request& req, httplib::Response& res) {
+    return access_.check(req, res, refusals_);
+  });
   warn_if_exposed(host);
   add_api_routes();
   add_viewer_routes();
@@ -257,7 +269,8 @@ Status HttpServer::start() {
   if (port < 0)
     return invalid_argument("cannot listen on http " + config_.http.listen + ": " + std::strerror(errno) +
                             " (another process on that port?)");
-  url_ = std::string(tls_ ? "https" : "http") + "://" + (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" + std::to_string(port);
+  url_ = std::string(tls_ ? "https" : "http") + "://" +
+         (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" + std::to_string(port);
   thread_ = std::thread([this] {
     server_->listen_after_bind();
     listen_returned_ = true;

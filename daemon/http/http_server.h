@@ -14,11 +14,11 @@
 #include "common/non_copyable.h"
 #include "common/status.h"
 #include "daemon/config/config.h"
+#include "daemon/config/live_caps.h"
 #include "daemon/http/http_access.h"
 #include "daemon/http/http_refusals.h"
 #include "daemon/http/tls_context.h"
 #include "daemon/stream/latest_results.h"
-#include "daemon/config/live_caps.h"
 #include "daemon/stream/stream_registry.h"
 
 namespace fq::daemon {
@@ -28,8 +28,8 @@ class HttpFront;
 class HttpServer : NonCopyable {
  public:
   /// `healthy` is the daemon's own view (engines made, sockets bound, threads running).
-  HttpServer(const DaemonConfig& config, const LiveCaps& caps, StreamRegistry& registry, LatestResults& latest,
-             std::vector<std::string> engines, const std::atomic<bool>& healthy);
+  HttpServer(const DaemonConfig& config, const LiveCaps& caps, StreamRegistry& registry,
+             LatestResults& latest, std::vector<std::string> engines, const std::atomic<bool>& healthy);
   ~HttpServer();
 
   /// Loads the token and TLS files, binds http.listen (port 0: any free port) and serves on a

@@ -26,8 +26,8 @@ namespace fq::daemon {
 class HttpStream final : public httplib::Stream {
  public:
   struct HeadLimits {
-    uint32_t max_bytes = 16384;  ///< request line + header lines + the blank line
-    uint32_t max_headers = 64;   ///< header lines
+    uint32_t max_bytes = 16384;               ///< request line + header lines + the blank line
+    uint32_t max_headers = 64;                ///< header lines
     std::chrono::milliseconds timeout{5000};  ///< the whole head, from its first byte
   };
 

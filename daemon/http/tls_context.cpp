@@ -28,7 +28,8 @@ Status make_tls_context(const std::string& cert_file, const std::string& key_fil
   if (SSL_CTX_use_PrivateKey_file(ctx.get(), key_file.c_str(), SSL_FILETYPE_PEM) != 1)
     return invalid_argument("http.tls_key_file " + key_file + ": " + openssl_reason());
   if (SSL_CTX_check_private_key(ctx.get()) != 1)
-    return invalid_argument("http.tls_key_file " + key_file + " does not match http.tls_cert_file " + cert_file);
+    return invalid_argument("http.tls_key_file " + key_file + " does not match http.tls_cert_file " +
+                            cert_file);
   out = std::move(ctx);
   return {};
 }

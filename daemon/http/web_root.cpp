@@ -5,7 +5,9 @@
 namespace fq::daemon {
 
 std::string installed_web_root(const std::string& exe) {
-  return (std::filesystem::path(exe).parent_path() / ".." / "share" / "fq" / "web").lexically_normal().string();
+  return (std::filesystem::path(exe).parent_path() / ".." / "share" / "fq" / "web")
+      .lexically_normal()
+      .string();
 }
 
 void resolve_default_web_root(HttpConfig& http, const std::string& exe) {
@@ -17,7 +19,8 @@ void resolve_default_web_root(HttpConfig& http, const std::string& exe) {
       exe.empty() ? std::filesystem::read_symlink("/proc/self/exe", link_ec) : std::filesystem::path(exe);
   if (link_ec || self.empty()) return;
   const std::string installed = installed_web_root(self.string());
-  if (std::filesystem::is_regular_file(std::filesystem::path(installed) / "index.html", ec)) http.web_root = installed;
+  if (std::filesystem::is_regular_file(std::filesystem::path(installed) / "index.html", ec))
+    http.web_root = installed;
 }
 
 }  // namespace fq::daemon

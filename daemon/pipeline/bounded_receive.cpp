@@ -2,8 +2,8 @@
 
 namespace fq::daemon {
 
-Received receive_bounded(zmq::socket_t& socket, std::vector<zmq::message_t>& parts, const MessageBounds& bounds,
-                         zmq::recv_flags flags) {
+Received receive_bounded(zmq::socket_t& socket, std::vector<zmq::message_t>& parts,
+                         const MessageBounds& bounds, zmq::recv_flags flags) {
   parts.clear();
   zmq::message_t part;
   if (!socket.recv(part, flags)) return Received::kNothing;

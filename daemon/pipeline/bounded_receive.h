@@ -27,7 +27,7 @@ enum class Received {
 };
 
 /// Receives one message into `parts` (cleared first). Throws zmq::error_t as recv does.
-Received receive_bounded(zmq::socket_t& socket, std::vector<zmq::message_t>& parts, const MessageBounds& bounds,
-                         zmq::recv_flags flags = zmq::recv_flags::none);
+Received receive_bounded(zmq::socket_t& socket, std::vector<zmq::message_t>& parts,
+                         const MessageBounds& bounds, zmq::recv_flags flags = zmq::recv_flags::none);
 
 }  // namespace fq::daemon

@@ -11,8 +11,9 @@ namespace fq::daemon {
 
 Status load_curve_server_keys(const SecurityConfig& c, CurveServerKeys& out) {
   if (c.client_keys_file.empty())
-    return invalid_argument("security.curve_key_file is set but security.client_keys_file is not: "
-                            "with CURVE on, only listed client keys may connect");
+    return invalid_argument(
+        "security.curve_key_file is set but security.client_keys_file is not: "
+        "with CURVE on, only listed client keys may connect");
   if (Status s = read_curve_key_file(c.curve_key_file, true, out.server); !s.ok()) return s;
   std::vector<std::string> keys;
   if (Status s = read_public_keys(c.client_keys_file, keys); !s.ok()) return s;
@@ -41,7 +42,8 @@ bool is_local_endpoint(const std::string& e) {
 }
 
 bool is_loopback_host(const std::string& host) {
-  return host == "localhost" || host == "[::1]" || host == "::1" || host.rfind("127.", 0) == 0 || host == "lo";
+  return host == "localhost" || host == "[::1]" || host == "::1" || host.rfind("127.", 0) == 0 ||
+         host == "lo";
 }
 
 bool ClientKeys::allowed(const std::string& key) const {
@@ -120,7 +122,7 @@ void ZapHandler::run(zmq::socket_t socket) {
     }
     const std::string request_id = req.size() > 1 ? req[1].to_string() : std::string();
     std::vector<zmq::const_buffer> rep{zmq::str_buffer("1.0"), zmq::buffer(request_id), zmq::buffer(status),
-                                       zmq::buffer(text),        zmq::buffer(user),       zmq::str_buffer("")};
+                                       zmq::buffer(text),      zmq::buffer(user),       zmq::str_buffer("")};
     try {
       zmq::send_multipart(socket, rep);
     } catch (const zmq::error_t& e) {

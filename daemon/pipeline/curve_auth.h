@@ -16,8 +16,8 @@
 #include "common/curve_keys.h"
 #include "common/non_copyable.h"
 #include "common/status.h"
-#include "daemon/pipeline/log_limiter.h"
 #include "daemon/config/security_config.h"
+#include "daemon/pipeline/log_limiter.h"
 #include "daemon/stream/stream_admission.h"
 
 namespace fq::daemon {
@@ -46,7 +46,8 @@ bool is_loopback_host(const std::string& host);
 /// it. Thread-safe.
 class ClientKeys : NonCopyable {
  public:
-  explicit ClientKeys(std::set<std::string> keys) : keys_(std::make_shared<const std::set<std::string>>(std::move(keys))) {}
+  explicit ClientKeys(std::set<std::string> keys)
+      : keys_(std::make_shared<const std::set<std::string>>(std::move(keys))) {}
   bool allowed(const std::string& key) const;
   void set(std::set<std::string> keys);
   /// Changes with every set(): a holder of connections checks them again when it moves.

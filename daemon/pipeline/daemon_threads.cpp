@@ -26,7 +26,8 @@ double thread_cpu_seconds(const std::filesystem::path& task) {
   double ns = 0;
   if (sched >> ns) return ns * 1e-9;
   // A thread's stat has its process's layout.
-  return parse_proc_stat(first_line(task / "stat"), sysconf(_SC_CLK_TCK), sysconf(_SC_PAGESIZE), 0).cpu_seconds;
+  return parse_proc_stat(first_line(task / "stat"), sysconf(_SC_CLK_TCK), sysconf(_SC_PAGESIZE), 0)
+      .cpu_seconds;
 }
 
 }  // namespace

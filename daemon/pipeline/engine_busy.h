@@ -31,7 +31,9 @@ class EngineBusy {
       }
   }
   size_t size() const { return engines_.size(); }
-  double seconds(size_t i) const { return static_cast<double>(busy_ns_[i].load(std::memory_order_relaxed)) * 1e-9; }
+  double seconds(size_t i) const {
+    return static_cast<double>(busy_ns_[i].load(std::memory_order_relaxed)) * 1e-9;
+  }
   uint64_t frames(size_t i) const { return frames_[i].load(std::memory_order_relaxed); }
 
  private:

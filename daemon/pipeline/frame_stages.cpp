@@ -10,9 +10,9 @@
 #include "core/parallel_for.h"
 #include "daemon/pipeline/label_tracks.h"
 #include "daemon/pipeline/pipeline.h"
+#include "daemon/pipeline/work_budget.h"
 #include "daemon/stream/stream.h"
 #include "daemon/stream/stream_history.h"
-#include "daemon/pipeline/work_budget.h"
 #include "wire/draco_budget.h"
 #include "wire/frame_codec.h"
 #include "wire/header_codec.h"
@@ -83,7 +83,8 @@ Status decode(FrameJob& f, const Caps& caps) {
       return invalid_input("chunk " + std::to_string(i) + ": " + s.message());
   wire::CodecOptions opt;
   opt.threads = frame_threads(views.size());
-  FQ_RETURN_IF_ERROR(wire::decode_frame(views, f.header.vertex_count(), opt, f.mesh, nullptr, &f.chunk_triangles));
+  FQ_RETURN_IF_ERROR(
+      wire::decode_frame(views, f.header.vertex_count(), opt, f.mesh, nullptr, &f.chunk_triangles));
   f.chunks.clear();
   if (f.mesh.num_vertices() > caps.max_vertices)
     return invalid_input("frame has " + std::to_string(f.mesh.num_vertices()) +
@@ -100,9 +101,10 @@ Status decode(FrameJob& f, const Caps& caps) {
 // stopped frame's error says which of the three stopped it.
 Status run_engine(Pipeline& p, Engine& engine, FrameJob& f, const YieldRequest& yield) {
   const double limit_s = p.caps.get()->engine_time_limit_s;
-  const auto deadline = limit_s > 0 ? CancelToken::Clock::now() + std::chrono::duration_cast<CancelToken::Clock::duration>(
-                                                                       std::chrono::duration<double>(limit_s))
-                                    : CancelToken::Clock::time_point::max();
+  const auto deadline =
+      limit_s > 0 ? CancelToken::Clock::now() + std::chrono::duration_cast<CancelToken::Clock::duration>(
+                                                    std::chrono::duration<double>(limit_s))
+                  : CancelToken::Clock::time_point::max();
   f.deadline = deadline;
   const CancelToken token(&p.cancel_engines, deadline, &yield);
   engine.set_cancel_token(&token);
@@ -114,7 +116,8 @@ Status run_engine(Pipeline& p, Engine& engine, FrameJob& f, const YieldRequest& 
   if (s.ok() && f.result.ids_refused) f.stream->count(&StreamCounters::ids_refused);
   if (s.code() != StatusCode::kCancelled) return s;
   if (token.stopped())
-    return {StatusCode::kCancelled, "cancelled: fqd is stopping (caps.stop_grace_s passed before the frame finished)"};
+    return {StatusCode::kCancelled,
+            "cancelled: fqd is stopping (caps.stop_grace_s passed before the frame finished)"};
   if (token.yield_due()) {
     f.stream->count(&StreamCounters::preempted);
     f.preempted = true;
@@ -123,9 +126,10 @@ Status run_engine(Pipeline& p, Engine& engine, FrameJob& f, const YieldRequest& 
             "stream's frame could meet its own (see fqd's preemption rule in docs/DAEMON.md)"};
   }
   f.stream->count(&StreamCounters::time_limited);
-  return {StatusCode::kCancelled, fmt::format("time_limit: the engine stopped the frame after caps.engine_time_limit_s "
-                                              "= {} s (its parameters fit max_neighbour_work but it ran too long)",
-                                              limit_s)};
+  return {StatusCode::kCancelled,
+          fmt::format("time_limit: the engine stopped the frame after caps.engine_time_limit_s "
+                      "= {} s (its parameters fit max_neighbour_work but it ran too long)",
+                      limit_s)};
 }
 
 }  // namespace
@@ -221,7 +225,8 @@ void run_engine_worker(Pipeline& p, Engine& engine) {
     for (FramePtr& s : stale) {
       s->stream->count(&StreamCounters::dropped_stale);
       p.recycle(*s);
-      p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: dropped stale", s->stream_id, s->header.sequence());
+      p.drop_log.log(spdlog::level::debug, "stream '{}' frame {}: dropped stale", s->stream_id,
+                     s->header.sequence());
     }
     stale.clear();
     if (!f) continue;
@@ -276,8 +281,9 @@ void run_encode_worker(Pipeline& p) {
           tracked = guarded("track_ids", [&] {
             if (Status cut = track_labels(*f, hardware_threads(), token); !cut.ok()) {
               f->stream->count(&StreamCounters::untracked);
-              p.fail_log.log(spdlog::level::warn, "stream '{}' frame {}: published with untracked cluster ids: {}",
-                             f->stream_id, f->header.sequence(),
+              p.fail_log.log(spdlog::level::warn,
+                             "stream '{}' frame {}: published with untracked cluster ids: {}", f->stream_id,
+                             f->header.sequence(),
                              token.stopped() ? std::string("fqd is stopping")
                                              : "tracking passed caps.engine_time_limit_s");
             }

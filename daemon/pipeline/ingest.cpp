@@ -87,8 +87,8 @@ namespace {
 // producer's operator can see why.
 FramePtr refuse(FramePtr f, Refusal why, Status message, Pipeline& p) {
   p.registry.refusals().add(why);
-  p.refusal_log.log(spdlog::level::warn, "refused a frame for stream '{}' ({}): {}", f->stream_id, refusal_name(why),
-                    message.message());
+  p.refusal_log.log(spdlog::level::warn, "refused a frame for stream '{}' ({}): {}", f->stream_id,
+                    refusal_name(why), message.message());
   f->error = std::move(message);
   f->refused = true;
   return f;
@@ -163,7 +163,8 @@ FramePtr Ingest::admit_message(std::vector<zmq::message_t>& parts) {
   f->stream_id = topic;
   // Only a well-formed frame can make a stream: junk never takes a slot.
   Status s = check_framing(parts);
-  if (s.ok()) s = wire::parse_frame_header(std::string_view(parts[1].data<char>(), parts[1].size()), f->header);
+  if (s.ok())
+    s = wire::parse_frame_header(std::string_view(parts[1].data<char>(), parts[1].size()), f->header);
   if (s.ok()) s = check_header(f->header, f->stream_id, parts.size() - 2, caps);
   if (!s.ok()) return reject(std::move(f), topic, Refusal::kMalformed, std::move(s));
   f->stream = p_.registry.admit(topic, f->receive_ns);

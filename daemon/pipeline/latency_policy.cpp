@@ -75,8 +75,8 @@ bool FrameSlots::take(FramePtr& out, std::vector<FramePtr>& stale, std::chrono::
       const SlotState& b = (*best)->slot;
       const double u = usage_at(s, now);
       if (u < best_usage ||
-          (u == best_usage &&
-           (s.served < b.served || (s.served == b.served && s.waiting->receive_ns < b.waiting->receive_ns)))) {
+          (u == best_usage && (s.served < b.served ||
+                               (s.served == b.served && s.waiting->receive_ns < b.waiting->receive_ns)))) {
         best = it;
         best_usage = u;
       }

@@ -5,9 +5,9 @@
 // frame after a huge one), and trim() frees everything kept once the pool has been idle.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
-#include <atomic>
 #include <functional>
 #include <mutex>
 #include <vector>

@@ -59,8 +59,8 @@ ProcessStats read_process_stats() {
   ProcessStats s = parse_proc_stat(read_all("/proc/self/stat"), sysconf(_SC_CLK_TCK), sysconf(_SC_PAGESIZE),
                                    boot_time_seconds());
   std::error_code ec;
-  for (auto it = std::filesystem::directory_iterator("/proc/self/fd", ec); !ec && it != std::filesystem::directory_iterator();
-       it.increment(ec))
+  for (auto it = std::filesystem::directory_iterator("/proc/self/fd", ec);
+       !ec && it != std::filesystem::directory_iterator(); it.increment(ec))
     ++s.open_fds;
   rlimit lim{};
   if (getrlimit(RLIMIT_NOFILE, &lim) == 0) s.max_fds = lim.rlim_cur;
@@ -74,9 +74,12 @@ std::string process_metrics_text(const ProcessStats& s) {
     append_family(out, name, type, help);
     out += std::string(name) + " " + metric_number(v) + "\n";
   };
-  one("process_cpu_seconds_total", "counter", "Total user and system CPU time spent in seconds.", s.cpu_seconds);
-  one("process_resident_memory_bytes", "gauge", "Resident memory size in bytes.", static_cast<double>(s.resident_bytes));
-  one("process_virtual_memory_bytes", "gauge", "Virtual memory size in bytes.", static_cast<double>(s.virtual_bytes));
+  one("process_cpu_seconds_total", "counter", "Total user and system CPU time spent in seconds.",
+      s.cpu_seconds);
+  one("process_resident_memory_bytes", "gauge", "Resident memory size in bytes.",
+      static_cast<double>(s.resident_bytes));
+  one("process_virtual_memory_bytes", "gauge", "Virtual memory size in bytes.",
+      static_cast<double>(s.virtual_bytes));
   one("process_start_time_seconds", "gauge", "Start time of the process since unix epoch in seconds.",
       s.start_time_seconds);
   one("process_open_fds", "gauge", "Number of open file descriptors.", static_cast<double>(s.open_fds));

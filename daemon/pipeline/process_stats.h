@@ -15,9 +15,9 @@ struct ProcessStats {
   uint64_t virtual_bytes = 0;     ///< virtual memory size
   double start_time_seconds = 0;  ///< since the Unix epoch
   uint64_t open_fds = 0;
-  uint64_t max_fds = 0;           ///< RLIMIT_NOFILE's soft limit
+  uint64_t max_fds = 0;  ///< RLIMIT_NOFILE's soft limit
   uint64_t threads = 0;
-  bool ok = false;                ///< false when /proc/self/stat could not be read
+  bool ok = false;  ///< false when /proc/self/stat could not be read
 };
 
 /// The calling process's statistics (not ok outside Linux or without /proc).

@@ -123,8 +123,8 @@ void Publisher::publish(FrameJob& f) {
   try {
     if (!socket_.send(parts) && f.stream) f.stream->count(&StreamCounters::subscriber_overflows);
   } catch (const zmq::error_t& e) {
-    send_errors().log(spdlog::level::err, "publish of stream '{}' frame {} failed: {}", f.stream_id, h.sequence(),
-                      e.what());
+    send_errors().log(spdlog::level::err, "publish of stream '{}' frame {} failed: {}", f.stream_id,
+                      h.sequence(), e.what());
   }
   p_.recycle(f);
 }

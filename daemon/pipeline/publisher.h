@@ -1,7 +1,7 @@
-// The publisher thread: owns the publish socket (an XPUB, result_socket.h), stamps each result's publish time and
-// latency, publishes [stream id][ResultHeader][chunks...] and keeps each stream's results
-// in arrival order (ticketed frames can finish out of order on several engines; a stream's
-// order is its Stream's, stream.h).
+// The publisher thread: owns the publish socket (an XPUB, result_socket.h), stamps each result's publish time
+// and latency, publishes [stream id][ResultHeader][chunks...] and keeps each stream's results in arrival
+// order (ticketed frames can finish out of order on several engines; a stream's order is its Stream's,
+// stream.h).
 #pragma once
 
 #include <cstdint>

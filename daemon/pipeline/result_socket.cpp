@@ -38,5 +38,4 @@ bool ResultSocket::send(const std::vector<zmq::const_buffer>& parts) {
   return false;
 }
 
-
 }  // namespace fq::daemon

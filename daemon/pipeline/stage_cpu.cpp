@@ -24,8 +24,8 @@ std::string stage_cpu_metrics_text(const StageCpu& cpu, double threads_seconds) 
                 "publish), the shared pool's threads that helped it included; over fq_frames_out_total, "
                 "the CPU a frame costs in that stage.");
   for (const auto& [stage, name] : kStageNames)
-    out += std::string("fq_stage_cpu_seconds_total{stage=\"") + name + "\"} " + metric_number(cpu.seconds(stage)) +
-           "\n";
+    out += std::string("fq_stage_cpu_seconds_total{stage=\"") + name + "\"} " +
+           metric_number(cpu.seconds(stage)) + "\n";
   append_family(out, "fq_cpu_seconds_total", "counter",
                 "Host CPU time of all of fqd's threads (stage threads, the shared pool, ZeroMQ I/O): the "
                 "stages' sum plus queue hand-offs, socket I/O and housekeeping.");

@@ -70,10 +70,11 @@ void SubProducers::check() {
         p.dropped.reset();  // libzmq is on it
     }
     if (!p.dropped || now - *p.dropped < kRetryAnnounced) continue;
-    log_.log(spdlog::level::warn,
-             "ingest: the connection to {} was dropped for a protocol error (a part over caps.max_frame_bytes, "
-             "or a failed CURVE handshake); connecting again",
-             p.endpoint);
+    log_.log(
+        spdlog::level::warn,
+        "ingest: the connection to {} was dropped for a protocol error (a part over caps.max_frame_bytes, "
+        "or a failed CURVE handshake); connecting again",
+        p.endpoint);
     open(p);
     replaced_.fetch_add(1, std::memory_order_relaxed);
   }

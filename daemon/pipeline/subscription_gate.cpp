@@ -74,9 +74,9 @@ void SubscriptionGate::subscription(const zmq::message_t& m) {
   refusals_->add(Refusal::kSubscriptions);
   const char* address = zmq_msg_gets(msg, "Peer-Address");
   log_->log(spdlog::level::warn,
-           "publish: cut a subscriber from {}: over caps.max_subscriptions = {} subscriptions or "
-           "caps.max_subscription_bytes = {} bytes of topics",
-           address ? address : "?", caps_.max_count, caps_.max_bytes);
+            "publish: cut a subscriber from {}: over caps.max_subscriptions = {} subscriptions or "
+            "caps.max_subscription_bytes = {} bytes of topics",
+            address ? address : "?", caps_.max_count, caps_.max_bytes);
   cut(fd, peer);
 }
 

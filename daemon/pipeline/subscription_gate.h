@@ -73,7 +73,7 @@ class SubscriptionGate {
   SubscriptionCaps caps_;
   RefusalCounters* refusals_;
   const ClientKeys* keys_;
-  uint64_t keys_seen_ = 0;  ///< keys_->generation() at the last revoke()
+  uint64_t keys_seen_ = 0;     ///< keys_->generation() at the last revoke()
   std::map<int, Peer> peers_;  ///< by socket
   std::unique_ptr<LogLimiter> log_ = std::make_unique<LogLimiter>();  // movable with the gate
 };

@@ -36,11 +36,15 @@ struct Work {
 
 const char* sigma_name(PassKind kind) {
   switch (kind) {
-    case PassKind::kNeighbourhoodQuadrics: return "sigma_b";
-    case PassKind::kUpdate: return "sigma_n";
+    case PassKind::kNeighbourhoodQuadrics:
+      return "sigma_b";
+    case PassKind::kUpdate:
+      return "sigma_n";
     case PassKind::kScore:
-    case PassKind::kLink: return "sigma_d";
-    default: return "sigma_s";
+    case PassKind::kLink:
+      return "sigma_d";
+    default:
+      return "sigma_s";
   }
 }
 
@@ -49,12 +53,14 @@ void for_each_work(const Params& p, F&& f) {
   for (const RunPlan& run : plan_frame(p).runs) {
     for (PassKind kind : run.passes) {
       const Extent e = run.extent(kind);
-      if (visits_neighbourhood(kind) && e.radius > 0.f) f(Work{sigma_name(kind), e.sigma, expected_neighbours(e.sigma)});
+      if (visits_neighbourhood(kind) && e.radius > 0.f)
+        f(Work{sigma_name(kind), e.sigma, expected_neighbours(e.sigma)});
       if (kind == PassKind::kRefine) {
         const RefineParams& r = run.params.filtering.refine;
         const float noise = r.strength * (run.refinement_known() ? r.known_noise : kBudgetNoise);
         const bool known = run.refinement_known();
-        f(Work{known ? "known_noise" : "strength", known ? r.known_noise : r.strength, expected_refine_visits(noise)});
+        f(Work{known ? "known_noise" : "strength", known ? r.known_noise : r.strength,
+               expected_refine_visits(noise)});
       }
     }
   }
@@ -76,10 +82,11 @@ Status check_work_budget(const Params& p, uint32_t vertices, double limit) {
     if (w.per_vertex > top.per_vertex) top = w;
   });
   char msg[320];
-  std::snprintf(msg, sizeof msg,
-                "parameters ask for about %.3g neighbour visits on this frame (%s = %g: ~%.3g visits per vertex in "
-                "its pass x %u vertices), over caps.max_neighbour_work = %.3g; lower %s or raise the cap",
-                work, top.name, top.value, top.per_vertex, vertices, limit, top.name);
+  std::snprintf(
+      msg, sizeof msg,
+      "parameters ask for about %.3g neighbour visits on this frame (%s = %g: ~%.3g visits per vertex in "
+      "its pass x %u vertices), over caps.max_neighbour_work = %.3g; lower %s or raise the cap",
+      work, top.name, top.value, top.per_vertex, vertices, limit, top.name);
   return invalid_argument(msg);
 }
 

@@ -13,7 +13,7 @@
 namespace fq::daemon {
 
 struct CommandLine {
-  std::string config_path;  ///< --config; "" = $FQ_CONFIG, /etc/fq/fqd.toml, built-in defaults
+  std::string config_path;                 ///< --config; "" = $FQ_CONFIG, /etc/fq/fqd.toml, built-in defaults
   std::optional<std::string> log_level;    ///< --log-level
   std::optional<std::string> engine;       ///< --engine auto|cuda|cpu
   std::optional<std::string> http_listen;  ///< --http-listen HOST:PORT ("" = no HTTP)
@@ -31,6 +31,7 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out);
 
 /// Applies the flags over the loaded configuration; kInvalidArgument naming the flag.
 /// `shard_streams` receives the [ingest] streams kept by --shard.
-Status apply_command_line(const CommandLine& cl, DaemonConfig& config, std::vector<std::string>* shard_streams = nullptr);
+Status apply_command_line(const CommandLine& cl, DaemonConfig& config,
+                          std::vector<std::string>* shard_streams = nullptr);
 
 }  // namespace fq::daemon

@@ -10,9 +10,9 @@
 #include <utility>
 
 #include "common/curve_keys.h"
-#include "daemon/service/credentials.h"
 #include "daemon/http/http_access.h"
 #include "daemon/http/tls_context.h"
+#include "daemon/service/credentials.h"
 #include "daemon/service/zmq_endpoint.h"
 
 namespace fq::daemon {

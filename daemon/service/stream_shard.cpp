@@ -34,8 +34,9 @@ Status parse_shard(const std::string& text, uint32_t& index, uint32_t& count) {
   if (dash != std::string_view::npos) k = dash == 0 ? std::string_view() : k.substr(dash + 1);
   if (slash == std::string::npos || !parse_count(k, index) || !parse_count(whole.substr(slash + 1), count) ||
       count == 0 || index >= count)
-    return invalid_argument("--shard must be K/N with 0 <= K < N, K an ordinal or a pod name ending in -K (got \"" +
-                            text + "\")");
+    return invalid_argument(
+        "--shard must be K/N with 0 <= K < N, K an ordinal or a pod name ending in -K (got \"" + text +
+        "\")");
   return {};
 }
 

@@ -48,8 +48,8 @@ struct FrameJob {
   int64_t connection = -1;
   bool large_in_decoder = false;  ///< counted by the decode queue until decoded() (decode_queue.h)
 
-  StreamSettings settings;              ///< the stream's settings with the frame's overrides applied
-  Mesh mesh;                            ///< decoded input
+  StreamSettings settings;  ///< the stream's settings with the frame's overrides applied
+  Mesh mesh;                ///< decoded input
   /// Triangles of each input chunk, as decode laid them out in `mesh`: a MESH result with the
   /// input's chunk count is cut the same way (wire::encode_frame_as), without a split.
   std::vector<uint32_t> chunk_triangles;
@@ -62,9 +62,9 @@ struct FrameJob {
   /// When its time limit (caps.engine_time_limit_s from the engine's start) ends: the engine
   /// and the cluster-id tracking after it both stop there (max(): no limit).
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
-  Status error;  ///< non-ok: published as an ERROR result
+  Status error;            ///< non-ok: published as an ERROR result
   bool preempted = false;  ///< stopped for another stream (counted `preempted`, not `errors`)
-  bool refused = false;  ///< refused at admission: no stream state, counted in the refusals
+  bool refused = false;    ///< refused at admission: no stream state, counted in the refusals
   /// Came over CURVE from an allowed client key. Junk from such a producer (a malformed message,
   /// an undecodable frame) is its stream's error, published; from any other it is refused and
   /// dropped, since anyone who can connect could otherwise forge errors on every stream.

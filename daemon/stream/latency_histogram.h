@@ -12,8 +12,8 @@ class LatencyHistogram {
  public:
   /// Upper bounds in milliseconds (the "le" labels, in seconds, divide by 1000); a frame
   /// budget of 33 or 100 ms falls between buckets so that "within budget" reads off one.
-  static constexpr std::array<double, 14> kBoundsMs = {1,   2.5, 5,    10,   20,   33,   50,
-                                                        100, 250, 500, 1000, 2500, 5000, 10000};
+  static constexpr std::array<double, 14> kBoundsMs = {1,   2.5, 5,   10,   20,   33,   50,
+                                                       100, 250, 500, 1000, 2500, 5000, 10000};
 
   void add(double ms) {
     for (size_t i = 0; i < kBoundsMs.size(); ++i)

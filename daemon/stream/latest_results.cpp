@@ -7,8 +7,8 @@
 
 namespace fq::daemon {
 
-void LatestResults::offer(Stream& stream, const wire::ResultHeader& header, const std::vector<std::string>& chunks,
-                          const std::vector<uint32_t>& triangles) {
+void LatestResults::offer(Stream& stream, const wire::ResultHeader& header,
+                          const std::vector<std::string>& chunks, const std::vector<uint32_t>& triangles) {
   if (header.status() == wire::ERROR) return;
   LatestSlot& e = stream.latest;
   std::shared_ptr<const std::vector<uint32_t>> faces;

@@ -24,8 +24,8 @@
 namespace fq::daemon {
 
 struct LatestResult {
-  uint64_t index = 0;  ///< 1 for the first result kept for the stream, then counting up
-  wire::ResultHeader header;         ///< as published: form, labels, counts
+  uint64_t index = 0;               ///< 1 for the first result kept for the stream, then counting up
+  wire::ResultHeader header;        ///< as published: form, labels, counts
   std::vector<std::string> chunks;  ///< as published: Draco point clouds (POSITIONS) or meshes (MESH)
   /// POSITIONS: the input frame's triangles (3 vertex ids each); null for MESH.
   std::shared_ptr<const std::vector<uint32_t>> faces;

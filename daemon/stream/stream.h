@@ -129,7 +129,7 @@ class Stream : NonCopyable {
   PublishOrder order;      ///< the publisher thread
   LabelTrack track;        ///< its own lock
   TemporalTrack temporal;  ///< its own lock
-  LatestSlot latest;   ///< LatestResults' lock
+  LatestSlot latest;       ///< LatestResults' lock
 
  private:
   const std::string id_;

@@ -16,7 +16,8 @@ namespace fq::daemon {
 
 /// Whether `params` filter across frames (qf+ with temporal > 0).
 inline bool uses_history(const Params& params) {
-  return params.filter && params.filtering.method == FilterMethod::kQuadricRefined && params.filtering.temporal > 0.f;
+  return params.filter && params.filtering.method == FilterMethod::kQuadricRefined &&
+         params.filtering.temporal > 0.f;
 }
 
 /// Bytes of the search index over a history's vertices (kernels/frame_matcher.h: the copy of the

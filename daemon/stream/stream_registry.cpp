@@ -87,7 +87,8 @@ bool StreamRegistry::find(const std::string& stream_id, StreamSettings& out) con
   return true;
 }
 
-void StreamRegistry::reload(const StreamSettings& defaults, const std::map<std::string, StreamSettings>& streams) {
+void StreamRegistry::reload(const StreamSettings& defaults,
+                            const std::map<std::string, StreamSettings>& streams) {
   std::lock_guard<std::mutex> lock(mutex_);
   defaults_ = defaults;
   configured_ = streams;
@@ -107,7 +108,8 @@ std::vector<std::string> StreamRegistry::expire_idle(int64_t now_ns, double idle
     std::lock_guard<std::mutex> lock(mutex_);
     for (auto it = streams_.begin(); it != streams_.end();) {
       const bool pinned = configured_.contains(it->first);
-      if (!pinned && double(now_ns - it->second->last_seen_ns.load(std::memory_order_relaxed)) > idle_s * 1e9) {
+      if (!pinned &&
+          double(now_ns - it->second->last_seen_ns.load(std::memory_order_relaxed)) > idle_s * 1e9) {
         gone.push_back(it->first);
         dropped.push_back(std::move(it->second));
         it = streams_.erase(it);

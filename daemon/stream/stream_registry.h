@@ -88,9 +88,9 @@ class StreamRegistry {
   bool has_own_series(const std::string& id, const Stream& s, int64_t now_ns, double idle_s) const;
 
   const DaemonConfig& config_;
-  MemoryAccount memory_;  ///< before streams_: destroyed after them, which credit it
-  mutable std::mutex mutex_;                          ///< the three members below
-  StreamSettings defaults_;                           ///< [defaults], replaced by reload()
+  MemoryAccount memory_;      ///< before streams_: destroyed after them, which credit it
+  mutable std::mutex mutex_;  ///< the three members below
+  StreamSettings defaults_;   ///< [defaults], replaced by reload()
   std::map<std::string, StreamSettings> configured_;  ///< [streams.*]: pinned; replaced by reload()
   std::map<std::string, StreamPtr> streams_;
   RefusalCounters refusals_;

@@ -6,9 +6,9 @@
 // any valence: a fan of 1e5 triangles on one vertex is sorted by a whole block, where a
 // per-thread insertion sort took O(valence^2).
 #include <algorithm>
-#include <utility>
 #include <cub/device/device_scan.cuh>
 #include <cub/device/device_segmented_sort.cuh>
+#include <utility>
 
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/launch.cuh"
@@ -38,8 +38,9 @@ __global__ void scatter_corners(uint64_t corners, const uint32_t* tris, const ui
 }
 
 // Per vertex: its triangles, in increasing order, summed exactly as the CPU does.
-__global__ void gather_base(uint32_t n, const uint32_t* start, const uint32_t* faces, const TriangleGeom* geom,
-                            Point4* points, Quadric* base, PackedQuadric* base_p, Vec3* vnormal) {
+__global__ void gather_base(uint32_t n, const uint32_t* start, const uint32_t* faces,
+                            const TriangleGeom* geom, Point4* points, Quadric* base, PackedQuadric* base_p,
+                            Vec3* vnormal) {
   const uint64_t v = item_index();
   if (v >= n) return;
   const uint32_t b = start[v], e = start[v + 1];
@@ -69,20 +70,17 @@ void base_quadrics(DeviceFrame& f, cudaStream_t s) {
   const size_t temp_bytes = std::max(scan_bytes, sort_bytes);
   unsigned char* temp = f.temp.reserve(temp_bytes);
 
-  FQ_LAUNCH(triangle_geometry, m, s, m, f.tris.data(), f.points.data(),
-                                                           f.tri_geom.reserve(m));
+  FQ_LAUNCH(triangle_geometry, m, s, m, f.tris.data(), f.points.data(), f.tri_geom.reserve(m));
   FQ_CUDA_CHECK(cudaMemsetAsync(count, 0, (n + 1) * sizeof(uint32_t), s));
-  FQ_LAUNCH(count_corners, corners, s, corners, f.tris.data(), count,
-                                                             f.vf_slot.reserve(corners));
+  FQ_LAUNCH(count_corners, corners, s, corners, f.tris.data(), count, f.vf_slot.reserve(corners));
   size_t bytes = temp_bytes;
   FQ_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(temp, bytes, count, start, int(n + 1), s));
-  FQ_LAUNCH(scatter_corners, corners, s, corners, f.tris.data(), start,
-                                                               f.vf_slot.data(), f.vf_faces.data());
+  FQ_LAUNCH(scatter_corners, corners, s, corners, f.tris.data(), start, f.vf_slot.data(), f.vf_faces.data());
   bytes = temp_bytes;
-  FQ_CUDA_CHECK(cub::DeviceSegmentedSort::SortKeys(temp, bytes, faces, int(corners), int(n), start, start + 1, s));
-  FQ_LAUNCH(gather_base, n, s, n, start, faces.Current(), f.tri_geom.data(),
-                                                     f.points.data(), f.base.reserve(n), f.base_p.reserve(n),
-                                                     f.vnormal.reserve(n));
+  FQ_CUDA_CHECK(
+      cub::DeviceSegmentedSort::SortKeys(temp, bytes, faces, int(corners), int(n), start, start + 1, s));
+  FQ_LAUNCH(gather_base, n, s, n, start, faces.Current(), f.tri_geom.data(), f.points.data(),
+            f.base.reserve(n), f.base_p.reserve(n), f.vnormal.reserve(n));
   // Later passes (the "qf+" refinement) read the sorted table as vf_faces.
   if (faces.Current() != f.vf_faces.data()) std::swap(f.vf_faces, f.vf_slot);
 }

@@ -5,10 +5,10 @@
 
 #include "kernels/bilateral_math.h"
 #include "kernels/cuda/cuda_check.cuh"
-#include "kernels/gaussian.h"
 #include "kernels/cuda/launch.cuh"
 #include "kernels/cuda/ordered_float.cuh"
 #include "kernels/cuda/passes.cuh"
+#include "kernels/gaussian.h"
 
 namespace fq::cuda {
 
@@ -54,8 +54,7 @@ __global__ void jones_kernel(uint32_t n, const Point4* points, GridView tg, cons
 GridLayout centroid_layout(DeviceFrame& f, float cell, cudaStream_t s) {
   int* bounds = f.bounds.reserve(6);
   FQ_LAUNCH(reset_bounds, launch_shape(1, tuning::kResetBoundsBlock), s, bounds);
-  FQ_LAUNCH(centroid_points, f.m, s, f.m, f.tri_geom.data(), f.tri_in.reserve(f.m),
-                                                           bounds);
+  FQ_LAUNCH(centroid_points, f.m, s, f.m, f.tri_geom.data(), f.tri_in.reserve(f.m), bounds);
   int* h = f.h_bounds.reserve(6);
   FQ_CUDA_CHECK(cudaMemcpyAsync(h, bounds, 6 * sizeof(int), cudaMemcpyDeviceToHost, s));
   FQ_CUDA_CHECK(cudaStreamSynchronize(s));
@@ -70,14 +69,13 @@ void bilateral_filter(DeviceFrame& f, const RunPlan& run, cudaStream_t s) {
   const GridLayout layout = centroid_layout(f, run.grid_cell, s);
   build_device_grid(layout, f.tri_in.data(), f.m, f.tri_grid, f.tri_points.reserve(f.m), s);
   FQ_LAUNCH(sorted_normals, f.m, s, f.m, f.tri_grid.order.data(), f.tri_geom.data(),
-                                                          f.tri_normals.reserve(f.m));
+            f.tri_normals.reserve(f.m));
   const GridView tg = f.tri_grid.view(f.tri_points.data());
-  FQ_LAUNCH(mollify_kernel, f.m, s, tg, f.tri_normals.data(),
-                                                          Gaussian::with_sigma(run.mollify.sigma),
-                                                          run.mollify.radius, f.tri_mollified.reserve(f.m));
-  FQ_LAUNCH(jones_kernel, f.n, s,
-      f.n, f.points.data(), tg, f.tri_mollified.data(), Gaussian::with_sigma(run.sigma_s.sigma),
-      Gaussian::with_sigma(run.sigma_r), run.sigma_s.radius, f.moved.reserve(f.n));
+  FQ_LAUNCH(mollify_kernel, f.m, s, tg, f.tri_normals.data(), Gaussian::with_sigma(run.mollify.sigma),
+            run.mollify.radius, f.tri_mollified.reserve(f.m));
+  FQ_LAUNCH(jones_kernel, f.n, s, f.n, f.points.data(), tg, f.tri_mollified.data(),
+            Gaussian::with_sigma(run.sigma_s.sigma), Gaussian::with_sigma(run.sigma_r), run.sigma_s.radius,
+            f.moved.reserve(f.n));
 }
 
 }  // namespace fq::cuda

@@ -5,9 +5,9 @@
 
 #include "kernels/cluster_math.h"
 #include "kernels/cuda/cuda_check.cuh"
-#include "kernels/gaussian.h"
 #include "kernels/cuda/launch.cuh"
 #include "kernels/cuda/passes.cuh"
+#include "kernels/gaussian.h"
 
 namespace fq::cuda {
 
@@ -57,17 +57,17 @@ __global__ void label_kernel(uint32_t n, const uint32_t* rank, const uint32_t* o
 void cluster_scores(DeviceFrame& f, const RunPlan& run, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
   const ClusterParams& p = run.params.clustering;
-  FQ_LAUNCH(score_kernel, f.n, s,
-      g, f.bl.data(), Gaussian::with_sigma(run.sigma_d.sigma), Gaussian::with_sigma(run.sigma_q), run.sigma_d.radius,
-      p.method == ClusterMethod::kEuclidean, f.score.reserve(f.n));
+  FQ_LAUNCH(score_kernel, f.n, s, g, f.bl.data(), Gaussian::with_sigma(run.sigma_d.sigma),
+            Gaussian::with_sigma(run.sigma_q), run.sigma_d.radius, p.method == ClusterMethod::kEuclidean,
+            f.score.reserve(f.n));
 }
 
 void cluster_links(DeviceFrame& f, const RunPlan& run, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
   const ClusterParams& p = run.params.clustering;
-  FQ_LAUNCH(link_kernel, f.n, s,
-      g, f.bl.data(), f.score.data(), Gaussian::with_sigma(run.sigma_d.sigma), Gaussian::with_sigma(run.sigma_q),
-      run.sigma_d.radius, p.method == ClusterMethod::kEuclidean, 1.0f - p.theta, f.next.reserve(f.n));
+  FQ_LAUNCH(link_kernel, f.n, s, g, f.bl.data(), f.score.data(), Gaussian::with_sigma(run.sigma_d.sigma),
+            Gaussian::with_sigma(run.sigma_q), run.sigma_d.radius, p.method == ClusterMethod::kEuclidean,
+            1.0f - p.theta, f.next.reserve(f.n));
 }
 
 void cluster_labels(DeviceFrame& f, cudaStream_t s) {
@@ -85,8 +85,7 @@ void cluster_labels(DeviceFrame& f, cudaStream_t s) {
   FQ_CUDA_CHECK(cudaMemsetAsync(flag + n, 0, sizeof(uint32_t), s));
   FQ_LAUNCH(flag_roots, n, s, n, f.grid.rank.data(), f.next.data(), flag);
   FQ_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(temp, bytes, flag, scan, int(n + 1), s));
-  FQ_LAUNCH(label_kernel, n, s, n, f.grid.rank.data(), f.grid.order.data(), root, scan,
-                                                      labels);
+  FQ_LAUNCH(label_kernel, n, s, n, f.grid.rank.data(), f.grid.order.data(), root, scan, labels);
   FQ_CUDA_CHECK(cudaMemcpyAsync(labels + n, scan + n, sizeof(uint32_t), cudaMemcpyDeviceToDevice, s));
 }
 

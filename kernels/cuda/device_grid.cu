@@ -63,8 +63,7 @@ void build_device_grid(const GridLayout& layout, const Point4* in, uint32_t n, D
   FQ_LAUNCH(count_cells, n, s, shape, in, n, g.cell_of.data(), g.slot.data(), count);
   size_t bytes = temp_bytes;
   FQ_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(g.temp.data(), bytes, count, start, int(cells + 1), s));
-  FQ_LAUNCH(scatter_to_cells, n, s, n, g.cell_of.data(), g.slot.data(), start,
-                                                          g.scattered.data());
+  FQ_LAUNCH(scatter_to_cells, n, s, n, g.cell_of.data(), g.slot.data(), start, g.scattered.data());
   // Atomics gave an arbitrary order inside each cell; input order makes it the CPU's.
   bytes = temp_bytes;
   FQ_CUDA_CHECK(cub::DeviceSegmentedSort::SortKeys(g.temp.data(), bytes, g.scattered.data(), g.order.data(),

@@ -2,11 +2,10 @@
 // length and both maps of frame_prep.h give the host's floats bit for bit. Only the order
 // of the edge-length sum differs from the host's, which can move the mean edge in its last
 // bits (see docs/BENCHMARKS.md, Correctness).
-#include <cub/block/block_reduce.cuh>
-
 #include <cfloat>
 #include <climits>
 #include <cmath>
+#include <cub/block/block_reduce.cuh>
 
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/frame_checks.cuh"
@@ -44,7 +43,8 @@ __global__ void __launch_bounds__(kThreads) vertex_checks(uint32_t n, const floa
   using Reduce = cub::BlockReduce<float, kThreads>;
   __shared__ typename Reduce::TempStorage temp;
   float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
-  for (uint64_t i = uint64_t(blockIdx.x) * blockDim.x + threadIdx.x; i < n; i += uint64_t(gridDim.x) * blockDim.x) {
+  for (uint64_t i = uint64_t(blockIdx.x) * blockDim.x + threadIdx.x; i < n;
+       i += uint64_t(gridDim.x) * blockDim.x) {
 #pragma unroll
     for (int k = 0; k < 3; ++k) {
       const float c = coords[3 * i + k];
@@ -68,13 +68,14 @@ __global__ void __launch_bounds__(kThreads) vertex_checks(uint32_t n, const floa
 
 // Per block: the edge lengths of its triangles (frame_prep.cpp mean_edge_length's terms)
 // summed in double; triangles with an index out of range are reported and skipped.
-__global__ void __launch_bounds__(kThreads) triangle_checks(uint32_t m, uint32_t n, const uint32_t* tris,
-                                                            const float* coords, FrameStats* st,
-                                                            double* partial) {
+__global__ void __launch_bounds__(kThreads)
+    triangle_checks(uint32_t m, uint32_t n, const uint32_t* tris, const float* coords, FrameStats* st,
+                    double* partial) {
   using Reduce = cub::BlockReduce<double, kThreads>;
   __shared__ typename Reduce::TempStorage temp;
   double sum = 0.0;
-  for (uint64_t t = uint64_t(blockIdx.x) * blockDim.x + threadIdx.x; t < m; t += uint64_t(gridDim.x) * blockDim.x) {
+  for (uint64_t t = uint64_t(blockIdx.x) * blockDim.x + threadIdx.x; t < m;
+       t += uint64_t(gridDim.x) * blockDim.x) {
     const uint32_t v[3] = {tris[3 * t], tris[3 * t + 1], tris[3 * t + 2]};
     int bad = -1;
 #pragma unroll
@@ -144,13 +145,12 @@ FrameSummary read_summary(const DeviceFrame& f) {
 }
 
 void normalize_points(DeviceFrame& f, const Normalization& norm, cudaStream_t s) {
-  FQ_LAUNCH(normalize_kernel, f.n, s, f.n, f.in_coords.data(), norm,
-                                                            f.in_points.reserve(f.n));
+  FQ_LAUNCH(normalize_kernel, f.n, s, f.n, f.in_coords.data(), norm, f.in_points.reserve(f.n));
 }
 
 void positions_to_input(DeviceFrame& f, const Normalization& norm, cudaStream_t s) {
   FQ_LAUNCH(to_input_kernel, f.n, s, f.n, f.grid.rank.data(), f.moved.data(), norm,
-                                                           f.out_coords.reserve(3 * size_t(f.n)));
+            f.out_coords.reserve(3 * size_t(f.n)));
 }
 
 }  // namespace fq::cuda

@@ -1,16 +1,16 @@
-#include "kernels/cuda/host_staging.h"
-
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+
+#include "kernels/cuda/host_staging.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 
-#include "kernels/cuda/cuda_check.cuh"
 #include "common/thread_pool.h"
 #include "core/parallel_for.h"
+#include "kernels/cuda/cuda_check.cuh"
 
 namespace fq::cuda {
 

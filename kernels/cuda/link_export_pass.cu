@@ -1,7 +1,6 @@
-#include "kernels/cuda/link_export_pass.cuh"
-
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/launch.cuh"
+#include "kernels/cuda/link_export_pass.cuh"
 #include "kernels/link_export.h"
 
 namespace fq::cuda {
@@ -21,11 +20,11 @@ void export_links(DeviceFrame& f, const ClusterParams& p, cudaStream_t s) {
   const uint32_t n = f.n;
   uint32_t* parent = f.link_parent.reserve(n);
   float* prox = f.link_p.reserve(n);
-  FQ_LAUNCH(export_links_kernel, n, s,
-      n, f.points.data(), f.bl.data(), f.next.data(), f.grid.order.data(), f.grid.rank.data(),
-      Gaussian::with_sigma(p.sigma_d), Gaussian::with_sigma(p.sigma_q), p.method == ClusterMethod::kEuclidean,
-      parent, prox);
-  FQ_CUDA_CHECK(cudaMemcpyAsync(f.h_link_parent.reserve(n), parent, n * sizeof(uint32_t), cudaMemcpyDeviceToHost, s));
+  FQ_LAUNCH(export_links_kernel, n, s, n, f.points.data(), f.bl.data(), f.next.data(), f.grid.order.data(),
+            f.grid.rank.data(), Gaussian::with_sigma(p.sigma_d), Gaussian::with_sigma(p.sigma_q),
+            p.method == ClusterMethod::kEuclidean, parent, prox);
+  FQ_CUDA_CHECK(
+      cudaMemcpyAsync(f.h_link_parent.reserve(n), parent, n * sizeof(uint32_t), cudaMemcpyDeviceToHost, s));
   FQ_CUDA_CHECK(cudaMemcpyAsync(f.h_link_p.reserve(n), prox, n * sizeof(float), cudaMemcpyDeviceToHost, s));
 }
 

@@ -45,9 +45,11 @@ __global__ void free_directions_kernel(uint32_t n, FanView fan, const Vec3* norm
 }
 
 __global__ void vertex_update_kernel(uint32_t n, FanView fan, const Vec3* x, const Vec3* normals,
-                                     const FreeDirections* dirs, float tangential_step, float share, Vec3* out) {
+                                     const FreeDirections* dirs, float tangential_step, float share,
+                                     Vec3* out) {
   const uint64_t v = item_index();
-  if (v < n) out[v] = partial_position(x[v], updated_vertex(fan, x, normals, v, dirs[v], tangential_step), share);
+  if (v < n)
+    out[v] = partial_position(x[v], updated_vertex(fan, x, normals, v, dirs[v], tangential_step), share);
 }
 
 __global__ void partial_round_kernel(uint32_t n, const Vec3* before, float share, Vec3* x) {
@@ -102,19 +104,20 @@ void refine_positions(DeviceFrame& f, RefineBuffers& b, const RefinePlan& plan, 
   for (int round = 0; round < rounds.count; ++round) {
     const float round_share = round == rounds.count - 1 ? rounds.last : 1.f;
     if (round_share < 1.f)
-      FQ_CUDA_CHECK(cudaMemcpyAsync(b.round.reserve(n), f.moved.data(), n * sizeof(Vec3), cudaMemcpyDeviceToDevice, s));
+      FQ_CUDA_CHECK(
+          cudaMemcpyAsync(b.round.reserve(n), f.moved.data(), n * sizeof(Vec3), cudaMemcpyDeviceToDevice, s));
     FQ_LAUNCH(face_geometry_kernel, m, s, m, f.tris.data(), f.moved.data(), geom, normals[0]);
     for (int it = 0; it < filters.count; ++it) {
       const float share = it == filters.count - 1 ? filters.last : 1.f;
-      FQ_LAUNCH(normal_filter_kernel, m, s, m, fan, geom, normals[it & 1], plan.gs, plan.gr,
-                                                                  share, normals[(it + 1) & 1]);
+      FQ_LAUNCH(normal_filter_kernel, m, s, m, fan, geom, normals[it & 1], plan.gs, plan.gr, share,
+                normals[(it + 1) & 1]);
     }
     const Vec3* filtered = normals[filters.count & 1];
     FQ_LAUNCH(free_directions_kernel, n, s, n, fan, filtered, closed, dirs);
     for (int it = 0; it < updates.count; ++it) {
       const float share = it == updates.count - 1 ? updates.last : 1.f;
-      FQ_LAUNCH(vertex_update_kernel, n, s, n, fan, f.moved.data(), filtered, dirs,
-                                                                  plan.tangential_step, share, b.x.data());
+      FQ_LAUNCH(vertex_update_kernel, n, s, n, fan, f.moved.data(), filtered, dirs, plan.tangential_step,
+                share, b.x.data());
       std::swap(f.moved, b.x);
     }
     if (round_share < 1.f) {
@@ -123,13 +126,12 @@ void refine_positions(DeviceFrame& f, RefineBuffers& b, const RefinePlan& plan, 
   }
   Vec3* tangent = b.tangent.reserve(n);
   SlideLevel* energy[2] = {b.energy[0].reserve(n), b.energy[1].reserve(n)};
-  FQ_LAUNCH(tangential_move_kernel, n, s, n, fan, f.points.data(), f.moved.data(), tangent,
-                                                                energy[0]);
+  FQ_LAUNCH(tangential_move_kernel, n, s, n, fan, f.points.data(), f.moved.data(), tangent, energy[0]);
   for (int pass = 0; pass < kEnergyPasses; ++pass) {
     FQ_LAUNCH(ring_mean_kernel, n, s, n, fan, energy[pass & 1], energy[(pass + 1) & 1]);
   }
-  FQ_LAUNCH(limit_kernel, n, s, n, tangent, energy[kEnergyPasses & 1],
-                                                      plan.tangential_allowance, f.moved.data());
+  FQ_LAUNCH(limit_kernel, n, s, n, tangent, energy[kEnergyPasses & 1], plan.tangential_allowance,
+            f.moved.data());
 }
 
 }  // namespace fq::cuda

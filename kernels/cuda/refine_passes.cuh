@@ -5,8 +5,8 @@
 
 #include <cuda_runtime.h>
 
-#include "kernels/cuda/device_frame.cuh"
 #include "core/params.h"
+#include "kernels/cuda/device_frame.cuh"
 #include "kernels/noise_estimate.h"
 #include "kernels/refine_math.h"
 #include "kernels/refine_plan.h"
@@ -17,13 +17,13 @@ namespace fq::cuda {
 struct RefineBuffers {
   DeviceBuffer<NoiseSample> samples;
   PinnedBuffer<NoiseSample> h_samples;
-  DeviceBuffer<Vec3> x;  ///< the other position buffer of the ping-pong with f.moved
+  DeviceBuffer<Vec3> x;          ///< the other position buffer of the ping-pong with f.moved
   DeviceBuffer<uint8_t> closed;  ///< closed_fan per vertex
   DeviceBuffer<TriangleGeom> geom;
   DeviceBuffer<Vec3> normals[2];
-  DeviceBuffer<FreeDirections> dirs;  ///< free_directions per vertex, per round
-  DeviceBuffer<Vec3> round;     ///< the positions before a fractional last round
-  DeviceBuffer<Vec3> tangent;   ///< per vertex: its tangential move
+  DeviceBuffer<FreeDirections> dirs;   ///< free_directions per vertex, per round
+  DeviceBuffer<Vec3> round;            ///< the positions before a fractional last round
+  DeviceBuffer<Vec3> tangent;          ///< per vertex: its tangential move
   DeviceBuffer<SlideLevel> energy[2];  ///< squared tangential move and turn, then local means
 };
 

@@ -35,7 +35,8 @@ class SyncEvents : NonCopyable {
   }
   ~SyncEvents() {
     for (cudaEvent_t e : events_) {
-      if (const cudaError_t r = cudaEventDestroy(e); r != cudaSuccess) log_free_failure("cudaEventDestroy", r);
+      if (const cudaError_t r = cudaEventDestroy(e); r != cudaSuccess)
+        log_free_failure("cudaEventDestroy", r);
     }
   }
   const cudaEvent_t* data() const { return events_.data(); }

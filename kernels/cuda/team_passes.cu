@@ -129,12 +129,18 @@ __global__ void FQ_TEAM_BOUNDS team_link(GridView g, const PackedQuadric* qbl, c
 template <class Launch>
 void with_team_size(int team, Launch&& launch) {
   switch (team) {
-    case 1: return launch(std::integral_constant<int, 1>{});
-    case 2: return launch(std::integral_constant<int, 2>{});
-    case 4: return launch(std::integral_constant<int, 4>{});
-    case 8: return launch(std::integral_constant<int, 8>{});
-    case 16: return launch(std::integral_constant<int, 16>{});
-    default: return launch(std::integral_constant<int, 32>{});
+    case 1:
+      return launch(std::integral_constant<int, 1>{});
+    case 2:
+      return launch(std::integral_constant<int, 2>{});
+    case 4:
+      return launch(std::integral_constant<int, 4>{});
+    case 8:
+      return launch(std::integral_constant<int, 8>{});
+    case 16:
+      return launch(std::integral_constant<int, 16>{});
+    default:
+      return launch(std::integral_constant<int, 32>{});
   }
 }
 
@@ -151,7 +157,8 @@ void with_team_size(int team, Launch&& launch) {
 void team_neighbourhood_quadrics(DeviceFrame& f, Extent sigma_b, int team, bool fast_exp, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
   FQ_TEAM_LAUNCH(team_neighbourhood, team, f.n, s, g, f.base_p.data(),
-                 Weight{Gaussian::with_sigma(sigma_b.sigma), fast_exp}, sigma_b.radius, f.nbhd_p.reserve(f.n));
+                 Weight{Gaussian::with_sigma(sigma_b.sigma), fast_exp}, sigma_b.radius,
+                 f.nbhd_p.reserve(f.n));
 }
 
 void team_diffuse_quadrics(DeviceFrame& f, const RunPlan& run, int team, bool fast_exp, cudaStream_t s) {
@@ -164,7 +171,8 @@ void team_diffuse_quadrics(DeviceFrame& f, const RunPlan& run, int team, bool fa
 
 void team_cluster_scores(DeviceFrame& f, const RunPlan& run, int team, bool fast_exp, cudaStream_t s) {
   const GridView g = f.grid.view(f.points.data());
-  FQ_TEAM_LAUNCH(team_score, team, f.n, s, g, f.bl.data(), Weight{Gaussian::with_sigma(run.sigma_d.sigma), fast_exp},
+  FQ_TEAM_LAUNCH(team_score, team, f.n, s, g, f.bl.data(),
+                 Weight{Gaussian::with_sigma(run.sigma_d.sigma), fast_exp},
                  Weight{Gaussian::with_sigma(run.sigma_q), fast_exp}, run.sigma_d.radius,
                  run.params.clustering.method == ClusterMethod::kEuclidean, f.score.reserve(f.n));
 }

@@ -4,8 +4,8 @@
 
 #include <cuda_runtime.h>
 
-#include "kernels/cuda/device_frame.cuh"
 #include "core/params.h"
+#include "kernels/cuda/device_frame.cuh"
 #include "kernels/frame_plan.h"
 
 namespace fq::cuda {

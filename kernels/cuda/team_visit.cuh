@@ -7,9 +7,9 @@
 
 #include <cstdint>
 
+#include "kernels/cuda/packed_quadric.cuh"
 #include "kernels/filter_math.h"
 #include "kernels/grid.h"
-#include "kernels/cuda/packed_quadric.cuh"
 #include "kernels/quadric.h"
 #include "kernels/vec3.h"
 

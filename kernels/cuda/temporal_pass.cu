@@ -48,15 +48,16 @@ __global__ void ring_mean_kernel(uint32_t n, FanView fan, const T* in, T* out) {
 
 // The final match from x + motion, its detail o along the prior normal and o²; the vertices
 // with a match are counted (one atomic a warp: the count does not depend on their order).
-__global__ void detail_kernel(uint32_t n, GridView prior, const uint32_t* prior_order, const Vec3* prior_normals,
-                              const Vec3* x, const Vec3* motion, uint32_t* match, float* detail, float* level,
-                              uint32_t* covered) {
+__global__ void detail_kernel(uint32_t n, GridView prior, const uint32_t* prior_order,
+                              const Vec3* prior_normals, const Vec3* x, const Vec3* motion, uint32_t* match,
+                              float* detail, float* level, uint32_t* covered) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
   bool found = false;
   if (v < n) {
     const uint32_t j = nearest_in_grid(prior, x[v] + motion[v], kPriorReach, kFirstRadius);
     found = j != kNoNearest;
-    const float o = found ? prior_detail(x[v], motion[v], xyz(prior.points[j]), prior_normals[prior_order[j]]) : 0.f;
+    const float o =
+        found ? prior_detail(x[v], motion[v], xyz(prior.points[j]), prior_normals[prior_order[j]]) : 0.f;
     match[v] = j;
     detail[v] = o;
     level[v] = o * o;
@@ -67,9 +68,9 @@ __global__ void detail_kernel(uint32_t n, GridView prior, const uint32_t* prior_
 
 // x pulled along the prior normal by share × o, unless the frame is a scene cut; the shares'
 // sum per block (a fixed tree: reproducible).
-__global__ void pull_kernel(uint32_t n, const uint32_t* prior_order, const Vec3* prior_normals, const uint32_t* match,
-                            const float* detail, const float* level, float strength, float noise,
-                            const uint32_t* covered, Vec3* x, float* partials) {
+__global__ void pull_kernel(uint32_t n, const uint32_t* prior_order, const Vec3* prior_normals,
+                            const uint32_t* match, const float* detail, const float* level, float strength,
+                            float noise, const uint32_t* covered, Vec3* x, float* partials) {
   using Reduce = cub::BlockReduce<float, kPullBlock>;
   __shared__ typename Reduce::TempStorage temp;
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
@@ -118,8 +119,8 @@ DeviceHistory& TemporalPass::copy_of(const TemporalHistory& history, cudaStream_
   return c;
 }
 
-void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const TemporalHistory& history, float strength,
-                          float noise, cudaStream_t s) {
+void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const TemporalHistory& history,
+                          float strength, float noise, cudaStream_t s) {
   const uint32_t n = f.n;
   n_ = n;
   prior_ = !history.empty();
@@ -169,11 +170,13 @@ void TemporalPass::keep(const DeviceFrame& f, cudaStream_t s) {
   const uint32_t n = n_;
   FQ_CUDA_CHECK(cudaMemcpyAsync(next_.positions.reserve(3 * size_t(n)), f.out_coords.data(),
                                 3 * size_t(n) * sizeof(float), cudaMemcpyDeviceToDevice, s));
-  FQ_CUDA_CHECK(cudaMemcpyAsync(h_normals_.reserve(n), next_.normals.data(), n * sizeof(Vec3), cudaMemcpyDeviceToHost, s));
-  FQ_CUDA_CHECK(cudaMemcpyAsync(h_covered_.reserve(1), covered_.data(), sizeof(uint32_t), cudaMemcpyDeviceToHost, s));
+  FQ_CUDA_CHECK(cudaMemcpyAsync(h_normals_.reserve(n), next_.normals.data(), n * sizeof(Vec3),
+                                cudaMemcpyDeviceToHost, s));
+  FQ_CUDA_CHECK(
+      cudaMemcpyAsync(h_covered_.reserve(1), covered_.data(), sizeof(uint32_t), cudaMemcpyDeviceToHost, s));
   if (prior_) {
-    FQ_CUDA_CHECK(cudaMemcpyAsync(h_partials_.reserve(partials_), share_partials_.data(), partials_ * sizeof(float),
-                                  cudaMemcpyDeviceToHost, s));
+    FQ_CUDA_CHECK(cudaMemcpyAsync(h_partials_.reserve(partials_), share_partials_.data(),
+                                  partials_ * sizeof(float), cudaMemcpyDeviceToHost, s));
   }
   // The result's buffers become the copy (the ones it replaces are the next frame's to write).
   std::swap(target_->positions, next_.positions);
@@ -181,7 +184,8 @@ void TemporalPass::keep(const DeviceFrame& f, cudaStream_t s) {
   target_->n = n;
 }
 
-TemporalStep TemporalPass::finish(const std::vector<float>& positions, double mean_edge, TemporalHistory& history) {
+TemporalStep TemporalPass::finish(const std::vector<float>& positions, double mean_edge,
+                                  TemporalHistory& history) {
   const uint32_t n = n_;
   TemporalStep step;
   if (prior_) {

@@ -52,13 +52,13 @@ class TemporalPass {
   DeviceHistory& copy_of(const TemporalHistory& history, cudaStream_t s);
 
   DeviceHistory copies_[kCopies];
-  DeviceHistory next_;         ///< buffers the frame's result goes to, then swapped into target_
+  DeviceHistory next_;  ///< buffers the frame's result goes to, then swapped into target_
   DeviceHistory* target_ = nullptr;
   uint64_t frames_ = 0;
-  uint32_t n_ = 0;             ///< the frame's vertices
-  bool prior_ = false;         ///< the frame had a history to follow
+  uint32_t n_ = 0;      ///< the frame's vertices
+  bool prior_ = false;  ///< the frame had a history to follow
   PinnedBuffer<unsigned char> h_upload_;
-  DeviceGrid grid_;            ///< over the history's points, in the frame's normalized units
+  DeviceGrid grid_;  ///< over the history's points, in the frame's normalized units
   DeviceBuffer<Point4> prior_in_, prior_sorted_;
   DeviceBuffer<Vec3> motion_[2];
   DeviceBuffer<uint32_t> match_;

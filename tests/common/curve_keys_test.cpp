@@ -1,13 +1,12 @@
 // CURVE key files: keys whose Z85 text holds '=' (about 38 % of them) read back from both file
 // forms, as bare lines and as `public = "..."` entries.
-#include <gtest/gtest.h>
+#include "common/curve_keys.h"
 
+#include <gtest/gtest.h>
 #include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
-
-#include "common/curve_keys.h"
 
 namespace fq {
 namespace {
@@ -23,7 +22,9 @@ TEST(CurveKeys, KeysHoldingAnEqualsSignReadBack) {
   const std::string path = testing::TempDir() + "/fq_equals_keys.pub";
   {
     std::ofstream out(path);
-    out << "# clients\n" << with_equals[0] << "\n" << with_equals[1] << "\npublic = \"" << with_equals[2] << "\"\n";
+    out << "# clients\n"
+        << with_equals[0] << "\n"
+        << with_equals[1] << "\npublic = \"" << with_equals[2] << "\"\n";
   }
   std::vector<std::string> keys;
   const Status s = read_public_keys(path, keys);

@@ -48,7 +48,9 @@ TEST(ThreadPool, WithoutHelpersEverythingRunsOnTheCaller) {
   ThreadPool pool(0);
   const auto caller = std::this_thread::get_id();
   std::atomic<bool> elsewhere{false};
-  pool.run(500, 8, [&](size_t, size_t, size_t w) { elsewhere = elsewhere || w != 0 || std::this_thread::get_id() != caller; });
+  pool.run(500, 8, [&](size_t, size_t, size_t w) {
+    elsewhere = elsewhere || w != 0 || std::this_thread::get_id() != caller;
+  });
   EXPECT_FALSE(elsewhere);
   check_run(pool, 300, 4, 1);
 }
@@ -63,7 +65,9 @@ TEST(ThreadPool, NestedAndConcurrentCallsComplete) {
     callers.emplace_back([&] {
       for (int rep = 0; rep < 20; ++rep) {
         pool.run(8, 3, [&](size_t b, size_t e, size_t) {
-          for (size_t i = b; i < e; ++i) pool.run(100, 2, [&](size_t b2, size_t e2, size_t) { total += e2 - b2; }, 7);
+          for (size_t i = b; i < e; ++i)
+            pool.run(
+                100, 2, [&](size_t b2, size_t e2, size_t) { total += e2 - b2; }, 7);
         });
       }
     });
@@ -77,13 +81,15 @@ TEST(ThreadPool, AnExceptionOnTheCallerReachesItAndThePoolGoesOn) {
   // Only worker 0 (the caller) throws: on a pool thread an exception would end the process.
   // Helpers hold their first range until the caller has one, so that the caller surely does.
   std::atomic<bool> caller_in{false};
-  EXPECT_THROW(pool.run(10000, 3, [&](size_t, size_t, size_t w) {
-    if (w == 0) {
-      caller_in = true;
-      throw std::runtime_error("item failed");
-    }
-    while (!caller_in) std::this_thread::yield();
-  }), std::runtime_error);
+  EXPECT_THROW(pool.run(10000, 3,
+                        [&](size_t, size_t, size_t w) {
+                          if (w == 0) {
+                            caller_in = true;
+                            throw std::runtime_error("item failed");
+                          }
+                          while (!caller_in) std::this_thread::yield();
+                        }),
+               std::runtime_error);
   check_run(pool, 1000, 3, 8);
 }
 

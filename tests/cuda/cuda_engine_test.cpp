@@ -302,7 +302,8 @@ TEST_F(CudaEngineTest, SeamTwinsGetOneResultAsOnTheCpu) {
   for (const FrameResult* out : {&p.gpu, &r}) {
     for (uint32_t v = 0; v < m.num_vertices(); ++v) {
       for (int c = 0; c < 3; ++c)
-        ASSERT_EQ(out->positions[3 * size_t(v) + c], out->positions[3 * size_t(original[v]) + c]) << "vertex " << v;
+        ASSERT_EQ(out->positions[3 * size_t(v) + c], out->positions[3 * size_t(original[v]) + c])
+            << "vertex " << v;
     }
   }
   for (uint32_t v = 0; v < m.num_vertices(); ++v) ASSERT_EQ(p.gpu.labels[v], p.gpu.labels[original[v]]) << v;
@@ -399,18 +400,18 @@ TEST_F(CudaEngineTest, ReportsDeviceTimePerPassAndTransfers) {
     names.push_back(t.name);
     EXPECT_GE(t.ms, 0.0) << t.name;
   }
-  for (const char* want : {"upload", "checks", "to_normalized", "grid", "base_quadrics", "neighbourhood_quadrics", "diffusion", "noise",
-                           "refine", "score", "link", "modes", "output", "download", "finish"}) {
+  for (const char* want :
+       {"upload", "checks", "to_normalized", "grid", "base_quadrics", "neighbourhood_quadrics", "diffusion",
+        "noise", "refine", "score", "link", "modes", "output", "download", "finish"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
   }
 }
-
 
 // The CPU engine's rule for its scratch (cpu_engine.cpp), on the device: a frame under a
 // quarter of the largest one's vertices makes the engine give that one's buffers back, and
 // release_memory (an idle engine) gives everything back.
 TEST_F(CudaEngineTest, DeviceMemoryReturnsWhenASmallFrameFollowsAHugeOne) {
-  const Mesh small = noisy_sphere();  // 10,242 vertices
+  const Mesh small = noisy_sphere();     // 10,242 vertices
   Mesh huge = make_icosphere(8, 10.0f);  // 655,362 vertices
   add_gaussian_noise(huge, 0.2, 9);
   const Params params = clustering(5.f, 1.f, 0.9f);

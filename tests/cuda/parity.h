@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "kernels/engine.h"
 #include "core/mesh_view.h"
+#include "kernels/engine.h"
 
 namespace fq::test {
 

@@ -70,9 +70,9 @@ TEST(DaemonAdmission, FiveThousandStreamIdsComeAndGoWithFlatMemory) {
   constexpr int kWave = 50;  // ids at a time; each sends one frame and goes idle
   daemon::DaemonConfig c = test_config();
   c.caps.stream_idle_s = 0.5;
-  c.caps.max_streams = 8192;                 // never the limit, however fast ids come on this machine
+  c.caps.max_streams = 8192;                  // never the limit, however fast ids come on this machine
   c.caps.max_subscriber_results = 2 * kWave;  // a wave's results all wait for the test's reads
-  c.defaults.params.cluster = true;  // with track_ids: a stream keeps its previous frame's ids
+  c.defaults.params.cluster = true;           // with track_ids: a stream keeps its previous frame's ids
   DaemonHarness h(c);
   daemon::StreamRegistry& r = h.daemon()->registry();
   const Mesh mesh = noisy_sphere(7, 2);  // 162 vertices
@@ -81,7 +81,8 @@ TEST(DaemonAdmission, FiveThousandStreamIdsComeAndGoWithFlatMemory) {
     for (int i = from; i < to; i += kWave) {
       const int end = std::min(to, i + kWave);
       for (int k = i; k < end; ++k) h.send(mesh, frame_spec("churn-" + std::to_string(k)), 0);
-      for (int k = i; k < end; ++k) ASSERT_EQ(h.receive("churn-" + std::to_string(k)).header.status(), wire::OK);
+      for (int k = i; k < end; ++k)
+        ASSERT_EQ(h.receive("churn-" + std::to_string(k)).header.status(), wire::OK);
       most_streams = std::max(most_streams, r.list().size());
     }
   };
@@ -98,8 +99,8 @@ TEST(DaemonAdmission, FiveThousandStreamIdsComeAndGoWithFlatMemory) {
   const size_t after = settled_rss();
   EXPECT_EQ(r.refusals().get(daemon::Refusal::kTooManyStreams), 0u);
   EXPECT_LT(after, before + (16u << 20)) << "RSS grew from " << before << " to " << after;
-  std::printf("RSS %zu -> %zu MiB over 4,000 stream ids, at most %zu streams at once\n", before >> 20, after >> 20,
-              most_streams);
+  std::printf("RSS %zu -> %zu MiB over 4,000 stream ids, at most %zu streams at once\n", before >> 20,
+              after >> 20, most_streams);
 }
 
 TEST(DaemonAdmission, SquattedSlotsComeBackWhenTheSquattersGoIdle) {
@@ -133,7 +134,9 @@ TEST(DaemonAdmission, ANonUtf8StreamIdGetsAReadableRefusal) {
   const Mesh mesh = noisy_sphere();
   std::vector<std::string> parts;
   ASSERT_TRUE(client::build_frame(mesh.view(), frame_spec("cam"), 5, parts).ok());
-  parts[0] = "\xff\xfe" "cam";
+  parts[0] =
+      "\xff\xfe"
+      "cam";
   h.send_parts(parts);
   // Published under the escaped id, in a result header any protobuf reader accepts.
   const client::ReceivedResult e = h.receive("\\xff\\xfecam");
@@ -317,10 +320,10 @@ TEST(DaemonAdmission, MemoryReturnsWhenSmallFramesFollowAHugeOne) {
   // the 2-core development machine: 16 -> 122 -> 59 MB; 74 MB without the trim, 122 MB with
   // grow-only scratch and pools).
   size_t after = 0;
-  EXPECT_TRUE(eventually([&] { return (after = rss_bytes()) < base + (peak - base) / 2; }, std::chrono::seconds(15)))
+  EXPECT_TRUE(
+      eventually([&] { return (after = rss_bytes()) < base + (peak - base) / 2; }, std::chrono::seconds(15)))
       << "RSS " << base << " -> " << peak << " -> " << after;
 }
-
 
 // Without frames for caps.pool_idle_s, the engine's buffers go back as the pools' do: here
 // no small frame follows the huge one.
@@ -339,7 +342,8 @@ TEST(DaemonAdmission, EngineBuffersReturnWhenIdle) {
   const size_t peak = rss_bytes();
   ASSERT_GT(peak, base + (40u << 20)) << "the huge frame should have cost memory: " << base << " -> " << peak;
   size_t after = 0;
-  EXPECT_TRUE(eventually([&] { return (after = rss_bytes()) < base + (peak - base) / 3; }, std::chrono::seconds(20)))
+  EXPECT_TRUE(
+      eventually([&] { return (after = rss_bytes()) < base + (peak - base) / 3; }, std::chrono::seconds(20)))
       << "RSS " << base << " -> " << peak << " -> " << after;
   std::printf("RSS %zu -> %zu -> %zu MiB\n", base >> 20, peak >> 20, after >> 20);
 }

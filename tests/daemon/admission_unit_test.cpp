@@ -25,7 +25,9 @@ TEST(StreamId, BadIdsAreRefusedWithAReadableMessage) {
   const Case cases[] = {
       {"", "empty"},
       {std::string(129, 'a'), "over the cap"},
-      {"\xff\xfe" "cam", "not valid UTF-8"},
+      {"\xff\xfe"
+       "cam",
+       "not valid UTF-8"},
       {"\xc0\x80", "not valid UTF-8"},          // overlong NUL
       {"\xed\xa0\x80", "not valid UTF-8"},      // surrogate
       {"\xf4\x90\x80\x80", "not valid UTF-8"},  // above U+10FFFF
@@ -70,7 +72,9 @@ TEST(StreamId, CodePointsThatActOnTheDisplayAreRefused) {
 
 TEST(StreamId, PrintableIdEscapesAndCutsWithTheSize) {
   EXPECT_EQ(printable_id("cam"), "cam");
-  EXPECT_EQ(printable_id("\xff" "a\\"), "\\xffa\\x5c");
+  EXPECT_EQ(printable_id("\xff"
+                         "a\\"),
+            "\\xffa\\x5c");
   EXPECT_EQ(printable_id(std::string(100, 'x'), 8), "xxxxxxxx...(100 bytes)");
 }
 
@@ -146,13 +150,14 @@ TEST(WorkBudget, CountsTheRefinementFromThePlan) {
 TEST(WorkBudget, CountsTheClusteringGeometryRuns) {
   Params p;
   p.filtering.method = FilterMethod::kQuadric;  // sigma_s 1.5, sigma_b = sigma_n = 0.75
-  p.cluster = true;                              // sigma_d 5
+  p.cluster = true;                             // sigma_d 5
   const double one_run = expected_neighbours(0.75) + expected_neighbours(1.5) + 2 * expected_neighbours(5.0);
   EXPECT_NEAR(expected_neighbour_work(p, 1), one_run, 1e-9 * one_run);
   p.clustering.geometry = ClusterGeometry::kFiltered;
   const double frame = expected_neighbours(0.75) + expected_neighbours(1.5);
   const double geometry = frame + expected_neighbours(0.75);  // constrained: the normals within sigma_n
-  const double clusters = expected_neighbours(0.375) + expected_neighbours(0.75) + 2 * expected_neighbours(5.0);
+  const double clusters =
+      expected_neighbours(0.375) + expected_neighbours(0.75) + 2 * expected_neighbours(5.0);
   EXPECT_NEAR(expected_neighbour_work(p, 1), frame + geometry + clusters, 1e-9 * one_run);
 }
 

@@ -11,10 +11,10 @@
 #include <zmq.hpp>
 
 #include "clients/common/frame_sender.h"
-#include "wire/header_codec.h"
 #include "tests/daemon/daemon_harness.h"
 #include "tests/daemon/fqd_process.h"
 #include "tests/support/test_meshes.h"
+#include "wire/header_codec.h"
 
 namespace fq::test {
 namespace {
@@ -22,9 +22,10 @@ namespace {
 constexpr size_t kMiB = 1 << 20;
 
 TEST(Backpressure, ABurstWhileTheDecoderIsBusyStaysWithinTheQueueBound) {
-  FqdProcess fqd({"--config", write_temp_file("backpressure.toml",
-                                              ops_config("[threads]\ndecode = 1\n[caps]\nmax_queued_frames = 8\n"
-                                                         "max_queued_bytes = 8388608\n"))});
+  FqdProcess fqd(
+      {"--config", write_temp_file("backpressure.toml",
+                                   ops_config("[threads]\ndecode = 1\n[caps]\nmax_queued_frames = 8\n"
+                                              "max_queued_bytes = 8388608\n"))});
   ASSERT_FALSE(fqd.endpoint("ingest").empty());
   // 163,842-vertex spheres keep the decoder busy; their parameters are refused after the
   // decode, so no frame waits for the engine.
@@ -63,7 +64,8 @@ TEST(Backpressure, ABurstWhileTheDecoderIsBusyStaysWithinTheQueueBound) {
   for (int wait = 0; wait < 600 && done < 140; ++wait) {
     done = 0;
     const ToolRun r = run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "counters", "--json"});
-    for (const nlohmann::json& s : nlohmann::json::parse(r.output, nullptr, false).value("streams", nlohmann::json::array()))
+    for (const nlohmann::json& s :
+         nlohmann::json::parse(r.output, nullptr, false).value("streams", nlohmann::json::array()))
       done += s.at("errors").get<uint64_t>() + s.at("refused").get<uint64_t>() +
               s.at("superseded").get<uint64_t>();
     if (done < 140) std::this_thread::sleep_for(std::chrono::milliseconds(100));  // polling fqd
@@ -73,7 +75,8 @@ TEST(Backpressure, ABurstWhileTheDecoderIsBusyStaysWithinTheQueueBound) {
   EXPECT_EQ(done, 140u);
   // The queue's 8 MiB, the frame in the decoder with its mesh and Draco's own buffers, what
   // libzmq holds for the connection (at most 4 messages): well under the 240 MiB of the burst.
-  EXPECT_LT(peak.load(), rss0 + 96 * kMiB) << "fqd RSS " << rss0 / kMiB << " -> peak " << peak / kMiB << " MiB";
+  EXPECT_LT(peak.load(), rss0 + 96 * kMiB)
+      << "fqd RSS " << rss0 / kMiB << " -> peak " << peak / kMiB << " MiB";
   std::printf("fqd RSS %zu -> peak %zu MiB\n", rss0 / kMiB, peak.load() / kMiB);
   EXPECT_EQ(fqd.stop(), 0);
 }

@@ -60,7 +60,9 @@ const std::vector<BadCase>& bad_cases() {
          return p;
        }},
       {"wrong version", "version",
-       [](const Mesh& m) { return with_header(good_parts(m), [](auto& h) { h.set_version(wire::kWireVersion + 1); }); }},
+       [](const Mesh& m) {
+         return with_header(good_parts(m), [](auto& h) { h.set_version(wire::kWireVersion + 1); });
+       }},
       {"unknown field", "unknown field",
        [](const Mesh& m) {
          auto p = good_parts(m);

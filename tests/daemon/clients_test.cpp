@@ -4,15 +4,15 @@
 
 #include <chrono>
 #include <csignal>
-#include <regex>
-#include <thread>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
+#include <thread>
 
+#include "io/mesh_io.h"
 #include "tests/daemon/child_process.h"
 #include "tests/daemon/daemon_harness.h"
-#include "io/mesh_io.h"
 
 namespace fq::test {
 namespace {
@@ -82,11 +82,11 @@ TEST(Clients, FqsubCtrlCExitsZeroWithItsSummaryAndSortableNames) {
   ASSERT_NE(std::fgets(line, sizeof line, fqd.out), nullptr) << "fqd printed no endpoints";
   const nlohmann::json ep = nlohmann::json::parse(line);
   // No --count: it runs until Ctrl-C.
-  Child sub = spawn(FQSUB_PATH, {"--endpoint", ep.at("publish"), "--stream", "cam", "--write-every", "1", "--out",
-                                 (dir / "out").string(), "--faces", (dir / "sphere.ply").string(), "--json",
-                                 "--quiet"});
-  Child pub = spawn(FQPUB_PATH, {(dir / "sphere.ply").string(), "--endpoint", ep.at("ingest"), "--stream", "cam",
-                                 "--fps", "10", "--count", "12", "--quiet", "--json"});
+  Child sub = spawn(FQSUB_PATH,
+                    {"--endpoint", ep.at("publish"), "--stream", "cam", "--write-every", "1", "--out",
+                     (dir / "out").string(), "--faces", (dir / "sphere.ply").string(), "--json", "--quiet"});
+  Child pub = spawn(FQPUB_PATH, {(dir / "sphere.ply").string(), "--endpoint", ep.at("ingest"), "--stream",
+                                 "cam", "--fps", "10", "--count", "12", "--quiet", "--json"});
   EXPECT_EQ(wait_exit(pub.pid), 0);
   // Wait (polling the folder) for results to be written, then Ctrl-C.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
@@ -151,8 +151,9 @@ TEST(Clients, FqpubSaysWhenNoFqdIsConnected) {
   fs::create_directories(dir);
   ASSERT_TRUE(io::write_mesh((dir / "sphere.ply").string(), noisy_sphere().view(), nullptr, 0).ok());
   // An endpoint nobody listens on: ZeroMQ connects lazily, so only the missing handshake tells.
-  Child pub = spawn(FQPUB_PATH, {(dir / "sphere.ply").string(), "--endpoint", "ipc://" + (dir / "nobody").string(),
-                                 "--fps", "20", "--count", "3", "--json"});
+  Child pub =
+      spawn(FQPUB_PATH, {(dir / "sphere.ply").string(), "--endpoint", "ipc://" + (dir / "nobody").string(),
+                         "--fps", "20", "--count", "3", "--json"});
   const nlohmann::json summary = nlohmann::json::parse(read_all(pub.out), nullptr, false);
   EXPECT_EQ(wait_exit(pub.pid), 1);
   ASSERT_TRUE(summary.is_object());

@@ -104,7 +104,8 @@ TEST(DaemonConfig, AStreamSetsEveryTableParameter) {
     if (!row.on(kToml)) continue;
     const std::string text = format_param(row, test::other_value(row));
     (row.group == ParamGroup::kCluster ? cluster : filter) +=
-        std::string(row.toml_key()) + " = " + (row.kind == ParamKind::kEnum ? "\"" + text + "\"" : text) + "\n";
+        std::string(row.toml_key()) + " = " + (row.kind == ParamKind::kEnum ? "\"" + text + "\"" : text) +
+        "\n";
   }
   DaemonConfig c;
   const Status s = parse("[streams.cam9]\nbudget_ms = 250\n" + filter + cluster, c);
@@ -140,8 +141,10 @@ TEST(DaemonConfig, WrongTypesAndRangesAreRejected) {
   EXPECT_NE(error_of("engine = 3\n").find("engine must be a table"), std::string::npos);
   EXPECT_NE(error_of("[engine]\ngpus = [0, \"one\"]\n").find("engine.gpus"), std::string::npos);
   EXPECT_NE(error_of("log_level = \"loud\"\n").find("log_level"), std::string::npos);
-  EXPECT_NE(error_of("[caps]\nmax_subscriber_results = 1\n").find("caps.max_subscriber_results"), std::string::npos);
-  EXPECT_NE(error_of("[caps]\nengine_time_limit_s = -1\n").find("caps.engine_time_limit_s"), std::string::npos);
+  EXPECT_NE(error_of("[caps]\nmax_subscriber_results = 1\n").find("caps.max_subscriber_results"),
+            std::string::npos);
+  EXPECT_NE(error_of("[caps]\nengine_time_limit_s = -1\n").find("caps.engine_time_limit_s"),
+            std::string::npos);
 }
 
 TEST(DaemonConfig, TimeLimitGraceAndSubscriberQueueAreRead) {
@@ -150,7 +153,8 @@ TEST(DaemonConfig, TimeLimitGraceAndSubscriberQueueAreRead) {
   EXPECT_DOUBLE_EQ(c.caps.engine_time_limit_s, 10.0);
   EXPECT_DOUBLE_EQ(c.caps.stop_grace_s, 1.0);
   EXPECT_EQ(c.caps.max_subscriber_results, 16u);
-  ASSERT_TRUE(parse("[caps]\nengine_time_limit_s = 0.5\nstop_grace_s = 3\nmax_subscriber_results = 4\n", c).ok());
+  ASSERT_TRUE(
+      parse("[caps]\nengine_time_limit_s = 0.5\nstop_grace_s = 3\nmax_subscriber_results = 4\n", c).ok());
   EXPECT_DOUBLE_EQ(c.caps.engine_time_limit_s, 0.5);
   EXPECT_DOUBLE_EQ(c.caps.stop_grace_s, 3.0);
   EXPECT_EQ(c.caps.max_subscriber_results, 4u);
@@ -162,9 +166,11 @@ TEST(DaemonConfig, BadNamesAndParametersAreRejected) {
   EXPECT_NE(error_of("[defaults.filter]\nmethod = \"median\"\n").find("method"), std::string::npos);
   EXPECT_NE(error_of("[defaults.cluster]\ngeometry = \"mesh\"\n").find("geometry"), std::string::npos);
   EXPECT_NE(error_of("[defaults.cluster]\nsticky_rings = 100\n").find("sticky_rings"), std::string::npos);
-  EXPECT_NE(error_of("[defaults.cluster]\ntarget_clusters = -1\n").find("target_clusters"), std::string::npos);
-  EXPECT_NE(error_of("[defaults.output]\nresult_form = \"faces\"\n").find("result_form must be \"positions\" or"),
+  EXPECT_NE(error_of("[defaults.cluster]\ntarget_clusters = -1\n").find("target_clusters"),
             std::string::npos);
+  EXPECT_NE(
+      error_of("[defaults.output]\nresult_form = \"faces\"\n").find("result_form must be \"positions\" or"),
+      std::string::npos);
   EXPECT_NE(error_of("[defaults.filter]\nsigma_s = 0\n").find("sigma_s must be > 0"), std::string::npos);
   const std::string m = error_of("[streams.cam.cluster]\ntheta = 1.5\n");
   EXPECT_NE(m.find("streams.cam"), std::string::npos) << m;

@@ -31,8 +31,9 @@ std::vector<uint32_t> read_labels(const std::string& path, uint32_t vertices) {
       "element vertex " + std::to_string(vertices) +
       "\nproperty float x\nproperty float y\nproperty float z\nproperty uint label\nelement face";
   const size_t body = text.find("end_header\n");
-  if (text.find("format binary_little_endian 1.0") == std::string::npos || text.find(layout) == std::string::npos ||
-      body == std::string::npos || text.size() < body + 11 + size_t(vertices) * 16) {
+  if (text.find("format binary_little_endian 1.0") == std::string::npos ||
+      text.find(layout) == std::string::npos || body == std::string::npos ||
+      text.size() < body + 11 + size_t(vertices) * 16) {
     ADD_FAILURE() << path << ": not the expected vertex layout";
     return {};
   }
@@ -58,10 +59,10 @@ TEST(ConsumeExample, PythonConsumerRebuildsTheFilteredMeshWithLabels) {
   const nlohmann::json ep = nlohmann::json::parse(line);
   DaemonHarness h(daemon::BoundEndpoints{ep.at("ingest"), ep.at("publish"), ep.at("control")});
 
-  Child consume = spawn(FQ_PYTHON3, {CONSUME_PY, "--endpoint", ep.at("publish"), "--stream", "fandisk",
-                                     "--faces", input, "--out", (dir / "out").string(), "--count", "1",
-                                     "--timeout", "120", "--proto-dir", FQ_PB2_DIR, "--draco-decoder",
-                                     DRACO_DECODER});
+  Child consume =
+      spawn(FQ_PYTHON3, {CONSUME_PY, "--endpoint", ep.at("publish"), "--stream", "fandisk", "--faces", input,
+                         "--out", (dir / "out").string(), "--count", "1", "--timeout", "120", "--proto-dir",
+                         FQ_PB2_DIR, "--draco-decoder", DRACO_DECODER});
   // 30 frames over 3 s: consume.py's subscription is active long before the last ones. The
   // paper's filter: the default qf+ keeps a clean input such as this one as it is.
   Child pub = spawn(FQPUB_PATH, {input, "--endpoint", ep.at("ingest"), "--stream", "fandisk", "--fps", "10",

@@ -58,7 +58,8 @@ TEST(ControlHandler, AnotherVersionIsRefusedNamingBothVersions) {
   wire::ControlReply reply;
   ASSERT_TRUE(wire::parse_control_reply(handle_control_bytes(q.SerializeAsString(), r, c.caps), reply).ok());
   EXPECT_FALSE(reply.ok());
-  EXPECT_NE(reply.error().find("wire version 1 not supported (this build speaks version 2)"), std::string::npos)
+  EXPECT_NE(reply.error().find("wire version 1 not supported (this build speaks version 2)"),
+            std::string::npos)
       << reply.error();
   q.set_version(wire::kWireVersion);
   ASSERT_TRUE(wire::parse_control_reply(handle_control_bytes(q.SerializeAsString(), r, c.caps), reply).ok());

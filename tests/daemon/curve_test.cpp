@@ -5,7 +5,6 @@
 
 #include <chrono>
 #include <thread>
-
 #include <zmq_addon.hpp>
 
 #include "tests/daemon/daemon_harness.h"

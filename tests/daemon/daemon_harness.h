@@ -10,12 +10,12 @@
 #include <vector>
 #include <zmq.hpp>
 
-#include "daemon/config/config.h"
 #include "clients/common/control_client.h"
 #include "clients/common/curve_client.h"
-#include "daemon/daemon.h"
 #include "clients/common/frame_sender.h"
 #include "clients/common/result_receiver.h"
+#include "daemon/config/config.h"
+#include "daemon/daemon.h"
 
 namespace fq::test {
 

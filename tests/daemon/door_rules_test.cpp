@@ -4,14 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <fstream>
 #include <cmath>
+#include <fstream>
 #include <thread>
 
-#include "wire/header_codec.h"
 #include "tests/daemon/daemon_harness.h"
 #include "tests/daemon/log_capture.h"
 #include "tests/daemon/test_keys.h"
+#include "wire/header_codec.h"
 
 namespace fq::test {
 namespace {
@@ -33,7 +33,8 @@ TEST(DoorRules, RefusedCurveConnectionsAreCountedEachAndLoggedAtABoundedRate) {
   }
   const auto& refusals = h.daemon()->registry().refusals();
   const auto end = t0 + std::chrono::seconds(60);
-  while (refusals.get(daemon::Refusal::kUnauthenticated) < kStrangers && std::chrono::steady_clock::now() < end)
+  while (refusals.get(daemon::Refusal::kUnauthenticated) < kStrangers &&
+         std::chrono::steady_clock::now() < end)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));  // polling fqd's counter
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_EQ(refusals.get(daemon::Refusal::kUnauthenticated), static_cast<uint64_t>(kStrangers));
@@ -43,7 +44,8 @@ TEST(DoorRules, RefusedCurveConnectionsAreCountedEachAndLoggedAtABoundedRate) {
 }
 
 // One frame of `stream` whose producer says it was sent `offset` from now.
-std::vector<std::string> sent_at(const std::string& stream, uint64_t sequence, std::chrono::nanoseconds offset) {
+std::vector<std::string> sent_at(const std::string& stream, uint64_t sequence,
+                                 std::chrono::nanoseconds offset) {
   client::FrameSpec spec;
   spec.stream_id = stream;
   std::vector<std::string> parts;
@@ -59,8 +61,8 @@ TEST(DoorRules, SendTimesOutsideTheWindowAreCountedNotFoldedIntoTheHistograms) {
   DaemonHarness h;
   using std::chrono::hours;
   for (const auto& [sequence, offset] : {std::pair<uint64_t, std::chrono::nanoseconds>{1, hours(24)},
-                                        {2, -hours(2)},
-                                        {3, std::chrono::nanoseconds(0)}}) {
+                                         {2, -hours(2)},
+                                         {3, std::chrono::nanoseconds(0)}}) {
     h.send_parts(sent_at("clock", sequence, offset));
     EXPECT_EQ(h.receive("clock").header.status(), wire::OK);
   }
@@ -123,7 +125,8 @@ TEST(DoorRules, AKeyRevokedByAReloadLosesItsOpenConnections) {
   ASSERT_TRUE(client::build_frame(noisy_sphere().view(), spec, 2, parts).ok());
   client::send_parts(push, parts);
   const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  while (refusals.get(daemon::Refusal::kUnauthenticated) < before + 2 && std::chrono::steady_clock::now() < end)
+  while (refusals.get(daemon::Refusal::kUnauthenticated) < before + 2 &&
+         std::chrono::steady_clock::now() < end)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));  // polling fqd's counter
   EXPECT_GE(refusals.get(daemon::Refusal::kUnauthenticated), before + 2) << "the frame and the subscriber";
   h.send(noisy_sphere(), spec, 3);  // the harness's key is still allowed
@@ -131,8 +134,10 @@ TEST(DoorRules, AKeyRevokedByAReloadLosesItsOpenConnections) {
   EXPECT_EQ(h.counters("stranger").frames_in(), 2u) << "a frame from the revoked key got in";
   // What was queued for the stranger before the cut may still come; nothing published after.
   sub.set(zmq::sockopt::rcvtimeo, 1000);
-  for (StatusOr<bool> got = client::receive_result(sub, r); got.ok() && *got; got = client::receive_result(sub, r))
-    EXPECT_FALSE(r.topic == "stranger" && r.header.sequence() == 3) << "the revoked subscriber still gets results";
+  for (StatusOr<bool> got = client::receive_result(sub, r); got.ok() && *got;
+       got = client::receive_result(sub, r))
+    EXPECT_FALSE(r.topic == "stranger" && r.header.sequence() == 3)
+        << "the revoked subscriber still gets results";
 }
 
 }  // namespace

@@ -55,7 +55,8 @@ TEST(Fqctl, InspectsAndSteersARunningFqd) {
   EXPECT_EQ(streams.status, 0) << streams.output;
   EXPECT_EQ(streams.output, "cam0\n");
 
-  const ToolRun set = fqctl(control, {"set", "cam0", "sigma_s=3.5", "mode=BF", "compute=filter", "result_form=mesh"});
+  const ToolRun set =
+      fqctl(control, {"set", "cam0", "sigma_s=3.5", "mode=BF", "compute=filter", "result_form=mesh"});
   EXPECT_EQ(set.status, 0) << set.output;
   const ToolRun params = fqctl(control, {"params", "cam0"});
   EXPECT_EQ(params.status, 0) << params.output;
@@ -69,7 +70,8 @@ TEST(Fqctl, InspectsAndSteersARunningFqd) {
   EXPECT_NE(back.output.find("result_form = positions\n"), std::string::npos) << back.output;
   const ToolRun no_default = fqctl(control, {"set", "cam0", "compute=compute_default"});
   EXPECT_EQ(no_default.status, 2);
-  EXPECT_NE(no_default.output.find("compute must be one of filter, cluster, filter_and_cluster"), std::string::npos)
+  EXPECT_NE(no_default.output.find("compute must be one of filter, cluster, filter_and_cluster"),
+            std::string::npos)
       << no_default.output;
 
   // fqd refuses an invalid value (nothing changes); fqctl refuses an unknown key itself.
@@ -186,7 +188,7 @@ TEST(Fqctl, JsonFromEverySubcommandAndTablesWithin80Columns) {
   const nlohmann::json set = json_of({"set", long_id, "sigma_s=2.5", "mode=qf", "--json"});
   EXPECT_EQ(set.at("stream"), long_id);
   EXPECT_EQ(set.at("params").at("sigma_s"), 2.5);  // numbers as numbers
-  EXPECT_EQ(set.at("params").at("mode"), "qf");     // names as strings
+  EXPECT_EQ(set.at("params").at("mode"), "qf");    // names as strings
   EXPECT_EQ(json_of({"params", long_id, "--json"}).at("params"), set.at("params"));
   EXPECT_EQ(json_of({"counters", long_id, "--json"}).at("streams").at(0).at("frames_in"), 4);
   const ToolRun watch = fqctl(control, {"watch", "--count", "2", "--interval", "0.1", "--json"});
@@ -196,7 +198,7 @@ TEST(Fqctl, JsonFromEverySubcommandAndTablesWithin80Columns) {
   std::getline(lines, first);
   std::getline(lines, second);
   EXPECT_TRUE(nlohmann::json::parse(first).at("streams").at(0).at("fps").is_null());  // no rate yet
-  EXPECT_EQ(nlohmann::json::parse(second).at("streams").at(0).at("fps"), 0.0);       // idle since
+  EXPECT_EQ(nlohmann::json::parse(second).at("streams").at(0).at("fps"), 0.0);        // idle since
   // A long stream id is cut in the tables, which stay within 80 columns.
   const ToolRun table = fqctl(control, {"counters"});
   expect_fits_80_columns(table.output);

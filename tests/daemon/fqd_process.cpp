@@ -49,7 +49,8 @@ std::string shell_words(const std::string& path, const std::vector<std::string>&
   return command;
 }
 
-FqdProcess::FqdProcess(const std::vector<std::string>& args, const std::string& prefix, const std::string& suffix) {
+FqdProcess::FqdProcess(const std::vector<std::string>& args, const std::string& prefix,
+                       const std::string& suffix) {
   std::vector<std::string> all = args;
   all.push_back("--print-endpoints");
   child_ = prefix.empty() && suffix.empty()
@@ -64,7 +65,9 @@ FqdProcess::FqdProcess(const std::vector<std::string>& args, const std::string& 
 
 FqdProcess::~FqdProcess() { stop(); }
 
-bool FqdProcess::alive() const { return status_ == -2 && child_.pid > 0 && kill(child_.pid, 0) == 0 && !exited(child_.pid); }
+bool FqdProcess::alive() const {
+  return status_ == -2 && child_.pid > 0 && kill(child_.pid, 0) == 0 && !exited(child_.pid);
+}
 
 int FqdProcess::stop() {
   if (status_ != -2 || child_.pid <= 0) return status_;
@@ -78,7 +81,8 @@ int FqdProcess::stop() {
 ToolRun run_tool(const std::string& path, const std::vector<std::string>& args, int seconds) {
   // stderr joins stdout through the shell, so that one-line error messages can be checked.
   // coreutils timeout ends a tool that hangs, so the test reports instead of waiting forever.
-  const std::string command = "exec timeout -k 5 " + std::to_string(seconds) + " " + shell_words(path, args) + " 2>&1";
+  const std::string command =
+      "exec timeout -k 5 " + std::to_string(seconds) + " " + shell_words(path, args) + " 2>&1";
   Child c = spawn("/bin/sh", {"-c", command});
   ToolRun run;
   if (c.pid <= 0) return run;
@@ -89,9 +93,9 @@ ToolRun run_tool(const std::string& path, const std::vector<std::string>& args, 
 }
 
 ToolRun publish_fandisk(const std::string& ingest, const std::string& stream, int count, int fps) {
-  return run_tool(FQPUB_PATH, {std::string(FQ_SOURCE_DIR) + "/data/fandisk.ply", "--endpoint", ingest, "--stream",
-                               stream, "--fps", std::to_string(fps), "--count", std::to_string(count), "--noise",
-                               "0.1", "--quiet"});
+  return run_tool(FQPUB_PATH, {std::string(FQ_SOURCE_DIR) + "/data/fandisk.ply", "--endpoint", ingest,
+                               "--stream", stream, "--fps", std::to_string(fps), "--count",
+                               std::to_string(count), "--noise", "0.1", "--quiet"});
 }
 
 }  // namespace fq::test

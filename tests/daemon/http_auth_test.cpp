@@ -26,10 +26,10 @@ std::string http_section(const std::string& extra) {
 void make_certificate(std::string& cert, std::string& key) {
   cert = testing::TempDir() + "/fq_http_cert.pem";
   key = testing::TempDir() + "/fq_http_key.pem";
-  const ToolRun r = run_tool("/usr/bin/openssl", {"req", "-x509", "-newkey", "rsa:2048", "-nodes", "-days", "1",
-                                                  "-subj", "/CN=127.0.0.1", "-addext",
-                                                  "subjectAltName=IP:127.0.0.1,DNS:localhost", "-keyout", key,
-                                                  "-out", cert});
+  const ToolRun r =
+      run_tool("/usr/bin/openssl",
+               {"req", "-x509", "-newkey", "rsa:2048", "-nodes", "-days", "1", "-subj", "/CN=127.0.0.1",
+                "-addext", "subjectAltName=IP:127.0.0.1,DNS:localhost", "-keyout", key, "-out", cert});
   ASSERT_EQ(r.status, 0) << r.output;
 }
 
@@ -43,7 +43,8 @@ std::string curl_status(const std::vector<std::string>& args, const std::string&
 
 int status_with_host(int port, const std::string& path, const std::string& host) {
   RawConnection c(port);
-  if (!c.ok() || !c.send("GET " + path + " HTTP/1.1\r\nHost: " + host + "\r\nConnection: close\r\n\r\n")) return 0;
+  if (!c.ok() || !c.send("GET " + path + " HTTP/1.1\r\nHost: " + host + "\r\nConnection: close\r\n\r\n"))
+    return 0;
   return status_of(c.receive());
 }
 
@@ -51,9 +52,10 @@ TEST(HttpAuth, TlsAndTokenRoundTripWithCurl) {
   std::string cert, key;
   make_certificate(cert, key);
   const std::string token_file = write_temp_file("fq_token", kToken + "\n");
-  FqdProcess fqd({"--config", write_temp_file("http_tls.toml", ops_config(http_section(
-                                                 "tls_cert_file = \"" + cert + "\"\ntls_key_file = \"" + key +
-                                                 "\"\ntoken_file = \"" + token_file + "\"\n")))});
+  FqdProcess fqd({"--config",
+                  write_temp_file("http_tls.toml", ops_config(http_section(
+                                                       "tls_cert_file = \"" + cert + "\"\ntls_key_file = \"" +
+                                                       key + "\"\ntoken_file = \"" + token_file + "\"\n")))});
   const std::string base = fqd.endpoint("http");
   ASSERT_EQ(base.rfind("https://127.0.0.1:", 0), 0u) << base;
   const std::vector<std::string> tls = {"--cacert", cert};
@@ -76,8 +78,8 @@ TEST(HttpAuth, TlsAndTokenRoundTripWithCurl) {
   // Plain HTTP on the TLS port gets nothing.
   const int port = http_port(base);
   EXPECT_EQ(get_status(port, "/healthz", std::chrono::seconds(10)), 0);
-  const std::string m = run_tool("/usr/bin/curl", {"-s", "--cacert", cert, "-H", "Authorization: Bearer " + kToken,
-                                                   base + "/metrics"})
+  const std::string m = run_tool("/usr/bin/curl", {"-s", "--cacert", cert, "-H",
+                                                   "Authorization: Bearer " + kToken, base + "/metrics"})
                             .output;
   EXPECT_GE(metric_value(m, "fq_http_refused_total{reason=\"unauthenticated\"}"), 5) << m;
   EXPECT_GE(metric_value(m, "fq_http_refused_total{reason=\"tls\"}"), 1) << m;
@@ -96,8 +98,8 @@ TEST(HttpAuth, CurveOnRequiresAuthenticationForStreamsResultsAndTheViewer) {
       "[security]\ncurve_key_file = \"" + server_key + "\"\nclient_keys_file = \"" + client_pub + "\"\n";
   {
     const std::string log = testing::TempDir() + "/fq_http_curve.log";
-    FqdProcess fqd({"--config", write_temp_file("http_curve.toml", ops_config(security + http_section("")))}, "",
-                   "2>" + log);
+    FqdProcess fqd({"--config", write_temp_file("http_curve.toml", ops_config(security + http_section("")))},
+                   "", "2>" + log);
     const int port = http_port(fqd.endpoint("http"));
     ASSERT_GT(port, 0);
     for (const char* path : {"/streams", "/streams/cam0/latest", "/", "/index.html", "/login?token=x"})
@@ -111,11 +113,13 @@ TEST(HttpAuth, CurveOnRequiresAuthenticationForStreamsResultsAndTheViewer) {
   }
   const std::string token_file = write_temp_file("fq_token_curve", kToken + "\n");
   FqdProcess fqd({"--config", write_temp_file("http_curve_token.toml",
-                                              ops_config(security + http_section("token_file = \"" + token_file +
-                                                                                 "\"\n")))});
+                                              ops_config(security + http_section("token_file = \"" +
+                                                                                 token_file + "\"\n")))});
   const int port = http_port(fqd.endpoint("http"));
   EXPECT_EQ(get_status(port, "/streams"), 401);
-  EXPECT_EQ(get_status(port, "/streams", std::chrono::seconds(10), "Authorization: Bearer " + kToken + "\r\n"), 200);
+  EXPECT_EQ(
+      get_status(port, "/streams", std::chrono::seconds(10), "Authorization: Bearer " + kToken + "\r\n"),
+      200);
   EXPECT_EQ(fqd.stop(), 0);
 }
 
@@ -171,11 +175,15 @@ TEST(HttpAuth, HostHeadersOutsideTheAllowListAreRefused) {
     EXPECT_EQ(status_with_host(port, "/streams", "attacker.example:" + std::to_string(port)), 421);
     EXPECT_EQ(status_with_host(port, "/metrics", "attacker.example"), 421);
     EXPECT_EQ(status_with_host(port, "/healthz", "attacker.example"), 200);
-    EXPECT_GE(metric_value(http_get(fqd.endpoint("http"), "/metrics"), "fq_http_refused_total{reason=\"bad_host\"}"), 2);
+    EXPECT_GE(metric_value(http_get(fqd.endpoint("http"), "/metrics"),
+                           "fq_http_refused_total{reason=\"bad_host\"}"),
+              2);
     EXPECT_EQ(fqd.stop(), 0);
   }
-  FqdProcess fqd({"--config", write_temp_file("http_hosts_list.toml", ops_config(http_section(
-                                                  "allowed_hosts = [\"fq.example.com\", \"*.fq.example.org\"]\n")))});
+  FqdProcess fqd(
+      {"--config", write_temp_file("http_hosts_list.toml",
+                                   ops_config(http_section(
+                                       "allowed_hosts = [\"fq.example.com\", \"*.fq.example.org\"]\n")))});
   const int port = http_port(fqd.endpoint("http"));
   EXPECT_EQ(status_with_host(port, "/streams", "fq.example.com:8080"), 200);
   EXPECT_EQ(status_with_host(port, "/streams", "cam.fq.example.org"), 200);

@@ -49,7 +49,8 @@ TEST(HttpLimits, HeadsOverTheBoundsAreRefusedBeforeTheyAreKept) {
   EXPECT_EQ(status_of(too_many), 431) << too_many;
   EXPECT_NE(too_many.find("http.max_headers"), std::string::npos) << too_many;
   RawConnection b(port);
-  ASSERT_TRUE(b.send("GET /healthz HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Big: " + std::string(20000, 'x') + "\r\n\r\n"));
+  ASSERT_TRUE(
+      b.send("GET /healthz HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Big: " + std::string(20000, 'x') + "\r\n\r\n"));
   EXPECT_EQ(status_of(b.receive()), 431);
   // Exactly at the bounds is served: 63 headers besides Host, a head of 16 KiB less a little.
   std::string at_bound = "GET /healthz HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n";
@@ -73,12 +74,14 @@ TEST(HttpLimits, BodiesAreRefusedUnread) {
 
   // Announced: the answer comes before a byte of the body is sent.
   RawConnection announced(port);
-  ASSERT_TRUE(announced.send("POST /streams HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 1073741824\r\n\r\n"));
+  ASSERT_TRUE(
+      announced.send("POST /streams HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 1073741824\r\n\r\n"));
   const std::string answer = announced.receive(std::chrono::seconds(10));
   EXPECT_EQ(status_of(answer), 413) << answer;
   EXPECT_TRUE(announced.closed_by_peer(std::chrono::seconds(5)));
   // Sent anyway, in length-delimited and in chunked form: fqd does not read it.
-  flood(port, "POST /metrics HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 268435456\r\n\r\n", "x", 256 * kMiB);
+  flood(port, "POST /metrics HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 268435456\r\n\r\n", "x",
+        256 * kMiB);
   flood(port, "POST /metrics HTTP/1.1\r\nHost: 127.0.0.1\r\nTransfer-Encoding: chunked\r\n\r\n",
         "100000\r\n" + std::string(0x100000, 'y') + "\r\n", 256 * kMiB);
   EXPECT_EQ(get_status(port, "/healthz", std::chrono::seconds(10), "Content-Length: 3\r\n"), 413);
@@ -86,7 +89,8 @@ TEST(HttpLimits, BodiesAreRefusedUnread) {
   EXPECT_LT(rss1, rss0 + 8 * kMiB) << "fqd RSS " << rss0 / kMiB << " -> " << rss1 / kMiB << " MiB";
 
   EXPECT_EQ(get_status(port, "/healthz"), 200);
-  EXPECT_GE(metric_value(http_get(fqd.endpoint("http"), "/metrics"), "fq_http_refused_total{reason=\"body\"}"), 4);
+  EXPECT_GE(
+      metric_value(http_get(fqd.endpoint("http"), "/metrics"), "fq_http_refused_total{reason=\"body\"}"), 4);
   EXPECT_EQ(fqd.stop(), 0);
 }
 

@@ -39,7 +39,8 @@ Connections connect(int port, int count, const std::string& first_bytes = "") {
 // Slowloris: a head that never ends, one more byte on every connection every 300 ms.
 class Slowloris {
  public:
-  explicit Slowloris(int port) : conns_(connect(port, 8, "GET /healthz HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ")) {
+  explicit Slowloris(int port)
+      : conns_(connect(port, 8, "GET /healthz HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ")) {
     thread_ = std::thread([this] {
       for (bool any = true; any && !stop_;) {
         any = false;
@@ -60,7 +61,8 @@ class Slowloris {
   std::thread thread_;
 };
 
-const std::string kLongPoll = "GET /streams/cam0/latest?after=0&wait_ms=5000 HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n";
+const std::string kLongPoll =
+    "GET /streams/cam0/latest?after=0&wait_ms=5000 HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n";
 
 // The holders as first measured: 8 slowloris heads, 200 silent connections, 16 long polls.
 struct Holders {
@@ -74,7 +76,8 @@ TEST(HttpPool, HealthAnswersUnderSlowlorisIdleConnectionsAndLongPolls) {
   const int port = http_port(fqd.endpoint("http"));
   ASSERT_GT(port, 0);
   Holders h(port);
-  for (int probe = 0; probe < 5; ++probe) EXPECT_EQ(get_status(port, "/healthz", seconds(1)), 200) << "probe " << probe;
+  for (int probe = 0; probe < 5; ++probe)
+    EXPECT_EQ(get_status(port, "/healthz", seconds(1)), 200) << "probe " << probe;
 
   for (auto& c : h.slow.connections()) EXPECT_EQ(status_of(c->receive(seconds(5))), 408);
   for (auto& c : h.polls) EXPECT_EQ(status_of(c->receive(seconds(8))), 204);  // waited, then nothing newer
@@ -85,7 +88,8 @@ TEST(HttpPool, HealthAnswersUnderSlowlorisIdleConnectionsAndLongPolls) {
 }
 
 TEST(HttpPool, ConnectionsAndLongPollsPastTheirBoundsGet503) {
-  FqdProcess fqd({"--config", write_temp_file("http_caps.toml", config("max_connections = 24\nmax_long_polls = 4\n"))});
+  FqdProcess fqd(
+      {"--config", write_temp_file("http_caps.toml", config("max_connections = 24\nmax_long_polls = 4\n"))});
   const int port = http_port(fqd.endpoint("http"));
   ASSERT_GT(port, 0);
   Connections polls = connect(port, 4, kLongPoll);
@@ -125,7 +129,8 @@ TEST(HttpPool, HealthAnswersWithEveryConnectionSlotTaken) {
   ASSERT_GT(port, 0);
   Connections held = connect(port, 300);
   std::this_thread::sleep_for(seconds(1));  // fqd has accepted them all
-  for (int probe = 0; probe < 8; ++probe) EXPECT_EQ(get_status(port, "/healthz", seconds(1)), 200) << "probe " << probe;
+  for (int probe = 0; probe < 8; ++probe)
+    EXPECT_EQ(get_status(port, "/healthz", seconds(1)), 200) << "probe " << probe;
   EXPECT_EQ(get_status(port, "/streams", seconds(2)), 503);
   held.clear();
   EXPECT_EQ(fqd.stop(), 0);

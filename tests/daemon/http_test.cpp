@@ -1,24 +1,25 @@
 // fqd's HTTP listener against fqd as a child process fed by fqpub: /metrics parsed by
 // prometheus_client's text parser agrees with `fqctl counters --json`, /healthz, /streams,
-// /streams/ID/latest (real Draco chunks, faces and labels), and the viewer's install hint when web_root is empty.
+// /streams/ID/latest (real Draco chunks, faces and labels), and the viewer's install hint when web_root is
+// empty.
 #include <gtest/gtest.h>
 #include <httplib.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstring>
-#include <optional>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <thread>
 #include <vector>
 
-#include "wire/frame_codec.h"
+#include "io/mesh_io.h"
 #include "io/ply_reader.h"
 #include "tests/daemon/fqd_process.h"
 #include "tests/daemon/raw_http.h"
 #include "tests/support/test_meshes.h"
-#include "io/mesh_io.h"
+#include "wire/frame_codec.h"
 
 namespace fq::test {
 namespace {
@@ -90,12 +91,14 @@ TEST(Http, MetricsParseAndAgreeWithFqctl) {
   EXPECT_EQ(m.at("families").at("fq_frames_in"), "counter");
   EXPECT_EQ(m.at("families").at("fq_engine_info"), "gauge");
   const nlohmann::json& prom = m.at("streams").at("cam0");
-  for (const char* k : {"frames_in", "frames_out", "superseded", "dropped_stale", "late", "errors", "bad_send_time"}) {
+  for (const char* k :
+       {"frames_in", "frames_out", "superseded", "dropped_stale", "late", "errors", "bad_send_time"}) {
     EXPECT_EQ(prom.at(k), ctl.at(k)) << k;
     EXPECT_EQ(m.at("streams").at(odd).at(k), ctl_odd.at(k)) << k;
   }
   ASSERT_FALSE(ctl.at("stages").empty());
-  for (const auto& [stage, p] : ctl.at("stages").items()) EXPECT_EQ(prom.at("stages").at(stage), p.at("count")) << stage;
+  for (const auto& [stage, p] : ctl.at("stages").items())
+    EXPECT_EQ(prom.at("stages").at(stage), p.at("count")) << stage;
 
   // /streams is the same JSON as fqctl's, plus the engines.
   httplib::Client c = client(fqd);
@@ -160,9 +163,11 @@ TEST(Http, HealthLatestResultAndViewerHint) {
   const std::string faces_id = latest->get_header_value("X-Fq-Faces-Id");
   EXPECT_NE(faces_id, "0");
   std::thread more([&] { publish_fandisk(fqd.endpoint("ingest"), "cam0", 20, 10); });
-  auto newer = c.Get("/streams/cam0/latest?after=" + std::to_string(index_seen) + "&faces=" + faces_id + "&wait_ms=5000");
+  auto newer = c.Get("/streams/cam0/latest?after=" + std::to_string(index_seen) + "&faces=" + faces_id +
+                     "&wait_ms=5000");
   for (int i = 0; i < 10 && newer && newer->status == 204; ++i)
-    newer = c.Get("/streams/cam0/latest?after=" + std::to_string(index_seen) + "&faces=" + faces_id + "&wait_ms=5000");
+    newer = c.Get("/streams/cam0/latest?after=" + std::to_string(index_seen) + "&faces=" + faces_id +
+                  "&wait_ms=5000");
   more.join();
   ASSERT_TRUE(newer);
   ASSERT_EQ(newer->status, 200);
@@ -172,7 +177,9 @@ TEST(Http, HealthLatestResultAndViewerHint) {
   EXPECT_EQ(newer->get_header_value("X-Fq-Labels-Bytes"), std::to_string(label_bytes));
 
   // The MESH form: chunked Draco meshes as published, no faces beside them, labels still first.
-  ASSERT_EQ(run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "set", "cam0", "result_form=mesh"}).status, 0);
+  ASSERT_EQ(
+      run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "set", "cam0", "result_form=mesh"}).status,
+      0);
   std::thread meshes([&] { publish_fandisk(fqd.endpoint("ingest"), "cam0", 20, 10); });
   uint64_t after = std::stoull(newer->get_header_value("X-Fq-Index"));
   std::optional<httplib::Response> mesh;
@@ -191,11 +198,11 @@ TEST(Http, HealthLatestResultAndViewerHint) {
   EXPECT_EQ(mesh->get_header_value("X-Fq-Faces-Bytes"), "0");
   EXPECT_EQ(mesh->get_header_value("X-Fq-Labels-Bytes"), std::to_string(label_bytes));
   Mesh decoded;
-  EXPECT_TRUE(wire::decode_frame(chunks_of(*mesh, label_bytes), input.num_vertices(), {}, decoded, nullptr).ok());
+  EXPECT_TRUE(
+      wire::decode_frame(chunks_of(*mesh, label_bytes), input.num_vertices(), {}, decoded, nullptr).ok());
   EXPECT_EQ(decoded.triangles.size(), input.triangles.size());
   EXPECT_EQ(fqd.stop(), 0);
 }
-
 
 // Resident memory of a process (VmRSS), in bytes; 0 where /proc does not say.
 size_t resident_bytes(pid_t pid) {
@@ -209,8 +216,10 @@ size_t resident_bytes(pid_t pid) {
 // kept result itself: before, each request built its own copy of the body and held it until the
 // last byte left, so 64 slow readers of a 25 MB result held 3 GB.
 TEST(Http, SlowReadersOfALargeResultShareItsBody) {
-  std::string toml = ops_config(http_without_viewer() + "[streams.cam0]\nbudget_ms = 60000\ncompute = \"filter\"\n");
-  toml.replace(toml.find("kind = \"cpu\""), 12, "kind = \"copy\"");  // the body's size is the point, not the filter
+  std::string toml =
+      ops_config(http_without_viewer() + "[streams.cam0]\nbudget_ms = 60000\ncompute = \"filter\"\n");
+  toml.replace(toml.find("kind = \"cpu\""), 12,
+               "kind = \"copy\"");  // the body's size is the point, not the filter
   FqdProcess fqd({"--config", write_temp_file("http_slow_readers.toml", toml)});
   ASSERT_FALSE(fqd.endpoint("http").empty());
   httplib::Client c = client(fqd);
@@ -218,8 +227,9 @@ TEST(Http, SlowReadersOfALargeResultShareItsBody) {
   const std::string mesh = testing::TempDir() + "/fq_slow_readers_grid.ply";
   ASSERT_TRUE(io::write_mesh(mesh, make_plane_grid(700, 700).view(), nullptr, 0).ok());
   EXPECT_EQ(c.Get("/streams/cam0/latest?wait_ms=0")->status, 204);  // now watched: the next result is kept
-  ASSERT_EQ(run_tool(FQPUB_PATH, {mesh, "--endpoint", fqd.endpoint("ingest"), "--stream", "cam0", "--count", "1",
-                                  "--quiet"}).status,
+  ASSERT_EQ(run_tool(FQPUB_PATH, {mesh, "--endpoint", fqd.endpoint("ingest"), "--stream", "cam0", "--count",
+                                  "1", "--quiet"})
+                .status,
             0);
   settled(fqd, 1);
   auto whole = c.Get("/streams/cam0/latest?after=0");
@@ -237,7 +247,8 @@ TEST(Http, SlowReadersOfALargeResultShareItsBody) {
   std::this_thread::sleep_for(std::chrono::seconds(2));  // the readers' requests reach their threads
   const size_t during = resident_bytes(fqd.pid());
   // Eight copies would add 8 × body; what the sockets hold is the kernel's, not resident.
-  EXPECT_LT(during, before + 2 * body) << "resident " << before << " -> " << during << " bytes, body " << body;
+  EXPECT_LT(during, before + 2 * body)
+      << "resident " << before << " -> " << during << " bytes, body " << body;
   // And a reader that reads gets the whole body.
   auto again = c.Get("/streams/cam0/latest?after=0");
   ASSERT_TRUE(again);

@@ -8,9 +8,9 @@
 #include <memory>
 #include <thread>
 
+#include "daemon/pipeline/work_queue.h"
 #include "daemon/stream/stage_metrics.h"
 #include "daemon/stream/stream.h"
-#include "daemon/pipeline/work_queue.h"
 
 namespace fq::daemon {
 namespace {

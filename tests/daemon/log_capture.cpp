@@ -12,11 +12,13 @@ void LogCapture::Sink::sink_it_(const spdlog::details::log_msg& msg) {
 
 size_t LogCapture::Sink::lines_with(const std::string& word) {
   std::lock_guard<std::mutex> lock(mutex_);
-  return static_cast<size_t>(
-      std::count_if(lines_.begin(), lines_.end(), [&](const std::string& l) { return l.find(word) != std::string::npos; }));
+  return static_cast<size_t>(std::count_if(
+      lines_.begin(), lines_.end(), [&](const std::string& l) { return l.find(word) != std::string::npos; }));
 }
 
-LogCapture::LogCapture() : sink_(std::make_shared<Sink>()) { spdlog::default_logger()->sinks().push_back(sink_); }
+LogCapture::LogCapture() : sink_(std::make_shared<Sink>()) {
+  spdlog::default_logger()->sinks().push_back(sink_);
+}
 
 LogCapture::~LogCapture() {
   auto& sinks = spdlog::default_logger()->sinks();

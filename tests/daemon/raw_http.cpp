@@ -59,7 +59,8 @@ bool RawConnection::closed_by_peer(std::chrono::milliseconds wait) {
   char buf[65536];
   while (std::chrono::steady_clock::now() < until) {
     pollfd p{fd_, POLLIN, 0};
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
     if (::poll(&p, 1, static_cast<int>(std::max<int64_t>(left.count(), 0))) <= 0) return false;
     const ssize_t n = ::recv(fd_, buf, sizeof buf, 0);
     if (n <= 0) return true;
@@ -72,9 +73,11 @@ int status_of(const std::string& response) {
   return std::atoi(response.c_str() + 9);
 }
 
-int get_status(int port, const std::string& path, std::chrono::milliseconds wait, const std::string& extra_headers) {
+int get_status(int port, const std::string& path, std::chrono::milliseconds wait,
+               const std::string& extra_headers) {
   RawConnection c(port);
-  if (!c.ok() || !c.send("GET " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n" + extra_headers + "\r\n"))
+  if (!c.ok() || !c.send("GET " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n" +
+                         extra_headers + "\r\n"))
     return 0;
   return status_of(c.receive(wait));
 }

@@ -28,12 +28,17 @@ TEST(ServiceFlags, OverridesRunAndUsageErrorsExit2) {
   const std::string config = write_temp_file("flags.toml", ops_config());
   // Before the flags existed, CLI11 ended this with "The following arguments were not
   // expected" and exit 109, which systemd's RestartPreventExitStatus=2 restarted in a loop.
-  FqdProcess fqd({"--config", config, "--engine", "cpu", "--http-listen", "127.0.0.1:0", "--log-format", "json"});
+  FqdProcess fqd(
+      {"--config", config, "--engine", "cpu", "--http-listen", "127.0.0.1:0", "--log-format", "json"});
   ASSERT_FALSE(fqd.endpoint("http").empty()) << "--http-listen did not open an HTTP listener";
   EXPECT_EQ(fqd.stop(), 0);
-  for (const std::vector<std::string>& bad :
-       {std::vector<std::string>{"--no-such-flag"}, {"--engine", "gpu"}, {"--http-listen", "8080"},
-        {"--log-format", "xml"}, {"--log-level", "loud"}, {"--shard", "3/3"}, {"stray"}}) {
+  for (const std::vector<std::string>& bad : {std::vector<std::string>{"--no-such-flag"},
+                                              {"--engine", "gpu"},
+                                              {"--http-listen", "8080"},
+                                              {"--log-format", "xml"},
+                                              {"--log-level", "loud"},
+                                              {"--shard", "3/3"},
+                                              {"stray"}}) {
     std::vector<std::string> args{"--config", config, "--check-config"};
     args.insert(args.end(), bad.begin(), bad.end());
     const ToolRun r = run_tool(FQD_PATH, args);
@@ -60,8 +65,9 @@ TEST(ServiceFlags, FirstLinesSayVersionAndWhatIsOff) {
   for (const char* off : {"HTTP off", "security off", "[stats] lines off"})
     EXPECT_NE(head.find(off), std::string::npos) << off << " not in\n" << head;
   const std::string text = read_text_file(log);
-  EXPECT_NE(text.find(built_with_cuda() ? "fqd: CUDA off: engine.kind = cpu" : "fqd: CUDA absent: this build"),
-            std::string::npos)
+  EXPECT_NE(
+      text.find(built_with_cuda() ? "fqd: CUDA off: engine.kind = cpu" : "fqd: CUDA absent: this build"),
+      std::string::npos)
       << text;
 }
 
@@ -85,13 +91,15 @@ TEST(ServiceFlags, JsonLogLinesParse) {
     EXPECT_TRUE(j.contains("time") && j.contains("level") && j.contains("msg")) << l;
     audit = audit || j.value("msg", "") == "cam\"0\\x5c sigma_s 1.5 -> 2 (control)";
   }
-  EXPECT_EQ(nlohmann::json::parse(lines[0]).at("msg").get<std::string>().rfind(version_line("fqd"), 0), 0u) << lines[0];
+  EXPECT_EQ(nlohmann::json::parse(lines[0]).at("msg").get<std::string>().rfind(version_line("fqd"), 0), 0u)
+      << lines[0];
   EXPECT_TRUE(audit) << read_text_file(log);
 }
 
 TEST(ServiceFlags, EveryControlAndReloadChangeIsAudited) {
   const std::string log = testing::TempDir() + "/fqd_audit.log";
-  const std::string config = write_temp_file("audit.toml", ops_config("[streams.cam0.filter]\nsigma_s = 1.5\n"));
+  const std::string config =
+      write_temp_file("audit.toml", ops_config("[streams.cam0.filter]\nsigma_s = 1.5\n"));
   FqdProcess fqd({"--config", config, "--log-level", "info"}, "", "2>'" + log + "'");
   ASSERT_FALSE(fqd.endpoint("control").empty());
   const ToolRun set = run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "set", "cam0", "sigma_s=3",
@@ -115,12 +123,14 @@ TEST(ServiceFlags, MostlyLateStreamWarns) {
   // result is over a 10 ms budget, while frames 333 ms apart find the engine free after a decode of
   // about 1 ms (not dropped stale).
   const std::string config = write_temp_file(
-      "late.toml", ops_config("[streams.cam0]\ncompute = \"filter\"\nbudget_ms = 10\n[stats]\ninterval_s = 2\n"));
+      "late.toml",
+      ops_config("[streams.cam0]\ncompute = \"filter\"\nbudget_ms = 10\n[stats]\ninterval_s = 2\n"));
   FqdProcess fqd({"--config", config, "--log-level", "info"}, "", "2>'" + log + "'");
   ASSERT_FALSE(fqd.endpoint("ingest").empty());
   ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam0", 12, 3).status, 0);
-  EXPECT_TRUE(eventually([&] { return read_text_file(log).find("results late in the last") != std::string::npos; }))
-      << read_text_file(log);
+  EXPECT_TRUE(eventually([&] {
+    return read_text_file(log).find("results late in the last") != std::string::npos;
+  })) << read_text_file(log);
   EXPECT_EQ(fqd.stop(), 0);
   const std::string text = read_text_file(log);
   const size_t at = text.find("stream cam0: ");
@@ -195,7 +205,8 @@ TEST(ServiceFlags, ShardKeepsTheStreamsThatHashToIt) {
   FqdProcess fqd({"--config", config, "--log-level", "info", "--shard", "fqd-1/3"}, "", "2>'" + log + "'");
   ASSERT_FALSE(fqd.endpoint("ingest").empty()) << read_text_file(log);
   EXPECT_EQ(fqd.stop(), 0);
-  EXPECT_NE(read_text_file(log).find("shard fqd-1/3: serves [" + mine + "]"), std::string::npos) << read_text_file(log);
+  EXPECT_NE(read_text_file(log).find("shard fqd-1/3: serves [" + mine + "]"), std::string::npos)
+      << read_text_file(log);
 }
 
 }  // namespace

@@ -28,8 +28,8 @@ std::map<std::string, double> samples(const std::string& text) {
 
 TEST(ServiceMetrics, RefusalsBuildBudgetEnginesQueuesAndProcess) {
   const std::string config = write_temp_file(
-      "service_metrics.toml",
-      ops_config("[caps]\nallowed_streams = [\"cam*\"]\n[http]\nlisten = \"127.0.0.1:0\"\n[streams.cam0]\nbudget_ms = 30000\n"));
+      "service_metrics.toml", ops_config("[caps]\nallowed_streams = [\"cam*\"]\n[http]\nlisten = "
+                                         "\"127.0.0.1:0\"\n[streams.cam0]\nbudget_ms = 30000\n"));
   FqdProcess fqd({"--config", config});
   ASSERT_FALSE(fqd.endpoint("http").empty());
   ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam0", 3).status, 0);
@@ -46,7 +46,9 @@ TEST(ServiceMetrics, RefusalsBuildBudgetEnginesQueuesAndProcess) {
     const std::string cam0 = "{stream=\"cam0\"}";
     return m["fq_frames_out_total" + cam0] + m["fq_superseded_total" + cam0] == 3 &&
            m["fq_refused_total{reason=\"not_allowed\"}"] == 2;
-  })) << "frames out " << m["fq_frames_out_total{stream=\"cam0\"}"] << ", refused " << m["fq_refused_total{reason=\"not_allowed\"}"];
+  })) << "frames out "
+      << m["fq_frames_out_total{stream=\"cam0\"}"] << ", refused "
+      << m["fq_refused_total{reason=\"not_allowed\"}"];
   for (const char* reason : {"bad_stream_id", "malformed", "too_many_streams", "unauthenticated"})
     EXPECT_EQ(m.count("fq_refused_total{reason=\"" + std::string(reason) + "\"}"), 1u) << reason;
   const std::string build = "fq_build_info{version=\"" + std::string(version_string()) + "\",cuda=\"" +
@@ -54,7 +56,8 @@ TEST(ServiceMetrics, RefusalsBuildBudgetEnginesQueuesAndProcess) {
   EXPECT_EQ(m[build], 1) << build;
   EXPECT_EQ(m["fq_stream_budget_seconds{stream=\"cam0\"}"], 30);
   EXPECT_GT(m["fq_engine_busy_seconds_total{engine=\"cpu\",index=\"0\"}"], 0);
-  EXPECT_EQ(m["fq_engine_frames_total{engine=\"cpu\",index=\"0\"}"], m["fq_frames_out_total{stream=\"cam0\"}"]);
+  EXPECT_EQ(m["fq_engine_frames_total{engine=\"cpu\",index=\"0\"}"],
+            m["fq_frames_out_total{stream=\"cam0\"}"]);
   for (const char* q : {"decode", "slots", "encode", "publish"})
     EXPECT_EQ(m.count("fq_queue_depth{queue=\"" + std::string(q) + "\"}"), 1u) << q;
   EXPECT_GT(m["process_cpu_seconds_total"], 0);

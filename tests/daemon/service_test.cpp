@@ -31,7 +31,8 @@ TEST(ConfigLookup, NoFileNeededFromAnyDirectory) {
   const std::string expected = std::filesystem::exists(daemon::kSystemConfigPath)
                                    ? std::string(daemon::kSystemConfigPath)
                                    : "built-in defaults";
-  const ToolRun r = run_tool("/bin/sh", {"-c", "cd / && unset FQ_CONFIG && exec " + shell_words(FQD_PATH, {"--check-config"})});
+  const ToolRun r = run_tool(
+      "/bin/sh", {"-c", "cd / && unset FQ_CONFIG && exec " + shell_words(FQD_PATH, {"--check-config"})});
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(r.output, expected + ": configuration is valid\n");
   const ToolRun bad = run_tool("/bin/sh", {"-c", "cd / && FQ_CONFIG=/no/such/fqd.toml exec " +
@@ -46,7 +47,8 @@ TEST(ConfigLookup, FqConfigServesFromAnotherDirectory) {
   ASSERT_FALSE(fqd.endpoint("ingest").empty()) << "fqd did not start from / with $FQ_CONFIG";
   ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam0", 2).status, 0);
   EXPECT_TRUE(eventually([&] {
-    const ToolRun r = run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "counters", "cam0", "--json"});
+    const ToolRun r =
+        run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "counters", "cam0", "--json"});
     return r.status == 0 && nlohmann::json::parse(r.output).at("streams").at(0).at("frames_out") == 2;
   }));
   EXPECT_EQ(fqd.stop(), 0);
@@ -55,7 +57,9 @@ TEST(ConfigLookup, FqConfigServesFromAnotherDirectory) {
 std::string sigma_s(const FqdProcess& fqd, const std::string& stream) {
   const ToolRun r = run_tool(FQCTL_PATH, {"--control", fqd.endpoint("control"), "params", stream});
   const size_t at = r.output.find("sigma_s = ");
-  return r.status != 0 || at == std::string::npos ? "?" : r.output.substr(at + 10, r.output.find('\n', at) - at - 10);
+  return r.status != 0 || at == std::string::npos
+             ? "?"
+             : r.output.substr(at + 10, r.output.find('\n', at) - at - 10);
 }
 
 TEST(Service, SighupReloadsStreamSettingsAndSurvivesABadFile) {
@@ -66,15 +70,17 @@ TEST(Service, SighupReloadsStreamSettingsAndSurvivesABadFile) {
   ASSERT_FALSE(fqd.endpoint("control").empty());
   EXPECT_EQ(sigma_s(fqd, "cam0"), "2.5");
 
-  write_temp_file("sighup.toml", ops_config("[streams.cam0.filter]\nsigma_s = 4\n[streams.cam9]\nbudget_ms = 50\n"));
+  write_temp_file("sighup.toml",
+                  ops_config("[streams.cam0.filter]\nsigma_s = 4\n[streams.cam9]\nbudget_ms = 50\n"));
   ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
   EXPECT_TRUE(eventually([&] { return sigma_s(fqd, "cam0") == "4"; })) << read_text_file(log);
   EXPECT_EQ(sigma_s(fqd, "cam9"), "1.5");  // newly configured stream, defaults' sigma_s
 
   write_temp_file("sighup.toml", "this is [not toml");
   ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
-  EXPECT_TRUE(eventually([&] { return read_text_file(log).find("not reloaded, settings unchanged") != std::string::npos; }))
-      << read_text_file(log);
+  EXPECT_TRUE(eventually([&] {
+    return read_text_file(log).find("not reloaded, settings unchanged") != std::string::npos;
+  })) << read_text_file(log);
   EXPECT_TRUE(fqd.alive());
   EXPECT_EQ(sigma_s(fqd, "cam0"), "4");
   EXPECT_EQ(fqd.stop(), 0);
@@ -95,9 +101,11 @@ TEST(Service, SighupAppliesCapsAccessAndLogLevelLiveOrRefusesNamingTheSetting) {
   const std::string log = testing::TempDir() + "/fqd_sighup_live.log";
   const std::string t1 = "0123456789abcdef-first", t2 = "0123456789abcdef-second";
   const std::string http = http_without_viewer() + "token_file = \"";
-  auto config = [&](const std::string& level, const std::string& allowed, int idle, const std::string& token) {
-    std::string text = ops_config("[caps]\nallowed_streams = [\"" + allowed + "\"]\nstream_idle_s = " +
-                                  std::to_string(idle) + "\n" + http + write_temp_file("live_token", token) + "\"\n");
+  auto config = [&](const std::string& level, const std::string& allowed, int idle,
+                    const std::string& token) {
+    std::string text = ops_config("[caps]\nallowed_streams = [\"" + allowed +
+                                  "\"]\nstream_idle_s = " + std::to_string(idle) + "\n" + http +
+                                  write_temp_file("live_token", token) + "\"\n");
     return "log_level = \"" + level + "\"\n" + text.substr(text.find('\n', text.find("log_level")) + 1);
   };
   const std::string file = write_temp_file("sighup_live.toml", config("warn", "cam*", 0, t1));
@@ -109,30 +117,36 @@ TEST(Service, SighupAppliesCapsAccessAndLogLevelLiveOrRefusesNamingTheSetting) {
   // Live: the allow-list, the idle time, the token and the log level.
   write_temp_file("sighup_live.toml", config("info", "other*", 1, t2));
   ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
-  EXPECT_TRUE(eventually([&] { return read_text_file(log).find("SIGHUP: reloaded") != std::string::npos; })) << read_text_file(log);
+  EXPECT_TRUE(eventually([&] { return read_text_file(log).find("SIGHUP: reloaded") != std::string::npos; }))
+      << read_text_file(log);
   EXPECT_EQ(http_status(fqd, "/streams", t1), "401");
   EXPECT_EQ(http_status(fqd, "/streams", t2), "200");
   ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam1", 1).status, 0);
   EXPECT_TRUE(eventually([&] {
-    const ToolRun m = run_tool("/usr/bin/curl", {"-s", "-H", "Authorization: Bearer " + t2, fqd.endpoint("http") + "/metrics"});
+    const ToolRun m = run_tool(
+        "/usr/bin/curl", {"-s", "-H", "Authorization: Bearer " + t2, fqd.endpoint("http") + "/metrics"});
     return m.output.find("fq_refused_total{reason=\"not_allowed\"} 1") != std::string::npos;
   }));
   EXPECT_FALSE(lists(fqd, "cam1"));
-  EXPECT_TRUE(eventually([&] { return !lists(fqd, "cam0"); })) << "cam0 did not expire after stream_idle_s = 1";
-  EXPECT_NE(read_text_file(log).find("stream 'cam0' expired"), std::string::npos) << "an info line after log_level = info";
+  EXPECT_TRUE(eventually([&] { return !lists(fqd, "cam0"); }))
+      << "cam0 did not expire after stream_idle_s = 1";
+  EXPECT_NE(read_text_file(log).find("stream 'cam0' expired"), std::string::npos)
+      << "an info line after log_level = info";
 
   // Restart-only: refused whole, naming it; the stream in the same file is not applied.
-  write_temp_file("sighup_live.toml",
-                  config("info", "other*", 1, t2) + "[threads]\ndecode = 3\n[streams.other1]\nbudget_ms = 50\n");
+  write_temp_file("sighup_live.toml", config("info", "other*", 1, t2) +
+                                          "[threads]\ndecode = 3\n[streams.other1]\nbudget_ms = 50\n");
   ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
   EXPECT_TRUE(eventually([&] {
-    return read_text_file(log).find("threads.decode changed, which takes effect only at a restart") != std::string::npos;
+    return read_text_file(log).find("threads.decode changed, which takes effect only at a restart") !=
+           std::string::npos;
   })) << read_text_file(log);
   EXPECT_FALSE(lists(fqd, "other1"));
   // Empty: refused.
   write_temp_file("sighup_live.toml", "# nothing here\n");
   ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
-  EXPECT_TRUE(eventually([&] { return read_text_file(log).find("has no settings") != std::string::npos; })) << read_text_file(log);
+  EXPECT_TRUE(eventually([&] { return read_text_file(log).find("has no settings") != std::string::npos; }))
+      << read_text_file(log);
   EXPECT_EQ(http_status(fqd, "/streams", t2), "200");
   EXPECT_EQ(fqd.stop(), 0);
 }
@@ -144,7 +158,8 @@ TEST(Service, SighupAfterTheFileWasRemovedKeepsRunning) {
   ASSERT_FALSE(fqd.endpoint("control").empty());
   std::filesystem::remove(config);
   ASSERT_EQ(kill(fqd.pid(), SIGHUP), 0);
-  EXPECT_TRUE(eventually([&] { return read_text_file(log).find("not reloaded") != std::string::npos; })) << read_text_file(log);
+  EXPECT_TRUE(eventually([&] { return read_text_file(log).find("not reloaded") != std::string::npos; }))
+      << read_text_file(log);
   EXPECT_TRUE(fqd.alive());
   EXPECT_EQ(fqd.stop(), 0);
 }
@@ -155,8 +170,9 @@ TEST(Service, StatsLogLinePerActiveStream) {
   FqdProcess fqd({"--config", config, "--log-level", "info"}, "", "2>'" + log + "'");
   ASSERT_FALSE(fqd.endpoint("ingest").empty());
   ASSERT_EQ(publish_fandisk(fqd.endpoint("ingest"), "cam0", 6).status, 0);
-  EXPECT_TRUE(eventually([&] { return read_text_file(log).find("[stats] stream=cam0 fps=") != std::string::npos; }))
-      << read_text_file(log);
+  EXPECT_TRUE(eventually([&] {
+    return read_text_file(log).find("[stats] stream=cam0 fps=") != std::string::npos;
+  })) << read_text_file(log);
   const std::string text = read_text_file(log);
   const size_t at = text.find("[stats] stream=cam0");
   const std::string line = text.substr(at, text.find('\n', at) - at);
@@ -182,7 +198,8 @@ TEST(ServiceConfig, HttpAndStatsKeysAreChecked) {
   daemon::DaemonConfig c;
   EXPECT_TRUE(c.http.listen.empty());  // no HTTP listener unless configured
   EXPECT_EQ(c.stats.interval_s, 60.0);
-  ASSERT_TRUE(daemon::parse_config("[http]\nlisten = \"[::1]:0\"\n[stats]\ninterval_s = 0\n", "t.toml", c).ok());
+  ASSERT_TRUE(
+      daemon::parse_config("[http]\nlisten = \"[::1]:0\"\n[stats]\ninterval_s = 0\n", "t.toml", c).ok());
   EXPECT_EQ(c.http.listen, "[::1]:0");
   EXPECT_EQ(c.stats.interval_s, 0.0);
   EXPECT_NE(config_error("[http]\nlisten = \"8080\"\n").find("http.listen"), std::string::npos);

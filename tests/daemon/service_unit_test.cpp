@@ -5,13 +5,13 @@
 #include <filesystem>
 #include <fstream>
 
-#include "daemon/control/late_warning.h"
-#include "daemon/pipeline/process_stats.h"
 #include "daemon/config/service_config.h"
+#include "daemon/control/late_warning.h"
 #include "daemon/control/settings_audit.h"
+#include "daemon/http/web_root.h"
+#include "daemon/pipeline/process_stats.h"
 #include "daemon/service/startup_report.h"
 #include "daemon/service/stream_shard.h"
-#include "daemon/http/web_root.h"
 
 namespace fq::daemon {
 namespace {
@@ -24,7 +24,8 @@ TEST(SettingsAudit, NamesEachChangedKeyWithOldAndNewValue) {
   after.budget_ms = 33;
   after.output.chunks = 4;
   const std::vector<std::string> changes = settings_changes(before, after);
-  const std::vector<std::string> expected{"mode qf+ -> bf", "sigma_s 1.5 -> 3", "budget_ms 100 -> 33", "chunks same -> 4"};
+  const std::vector<std::string> expected{"mode qf+ -> bf", "sigma_s 1.5 -> 3", "budget_ms 100 -> 33",
+                                          "chunks same -> 4"};
   EXPECT_EQ(changes, expected);
 }
 
@@ -40,9 +41,10 @@ TEST(LateWarning, OnlyWhenMostResultsOfTheIntervalWereLate) {
   before.late = 0;
   const auto w = late_warning(now, before, 60, 100);
   ASSERT_TRUE(w);
-  EXPECT_EQ(*w, "stream cam0: 9 of 9 results late in the last 60 s (budget 100 ms, receive->publish p99 300 ms, "
-                "engine p50 250 ms, wait p50 0 ms): the engine alone takes longer than the budget: raise "
-                "budget_ms, lower the sigmas or use a GPU engine");
+  EXPECT_EQ(*w,
+            "stream cam0: 9 of 9 results late in the last 60 s (budget 100 ms, receive->publish p99 300 ms, "
+            "engine p50 250 ms, wait p50 0 ms): the engine alone takes longer than the budget: raise "
+            "budget_ms, lower the sigmas or use a GPU engine");
   before.late = 5;  // 4 of 9: not mostly
   EXPECT_FALSE(late_warning(now, before, 60, 100));
   before = {};
@@ -76,7 +78,8 @@ TEST(StreamShard, Fnv1aAndParsing) {
   EXPECT_EQ(n, 3u);
   ASSERT_TRUE(parse_shard("fqd-eu-1/4", k, n).ok());
   EXPECT_EQ(k, 1u);
-  for (const char* bad : {"3/3", "1", "a/2", "1/0", "-1/2", "1/2x", "/2"}) EXPECT_FALSE(parse_shard(bad, k, n).ok()) << bad;
+  for (const char* bad : {"3/3", "1", "a/2", "1/0", "-1/2", "1/2x", "/2"})
+    EXPECT_FALSE(parse_shard(bad, k, n).ok()) << bad;
 }
 
 TEST(StreamShard, EveryStreamInExactlyOneShard) {
@@ -107,8 +110,9 @@ namespace {
 
 TEST(ProcessStats, ParsesProcStatAfterTheCommandName) {
   // A command name with spaces and a ')' of its own; fields as the kernel writes them.
-  std::string stat = "4242 (fq d) x) S 1 4242 4242 0 -1 4194560 1000 0 0 0 250 50 0 0 20 0 17 0 360000 "
-                     "123456789 2048";
+  std::string stat =
+      "4242 (fq d) x) S 1 4242 4242 0 -1 4194560 1000 0 0 0 250 50 0 0 20 0 17 0 360000 "
+      "123456789 2048";
   for (int i = 0; i < 27; ++i) stat += " 0";
   const ProcessStats s = parse_proc_stat(stat, 100, 4096, 1.7e9);
   ASSERT_TRUE(s.ok);
@@ -120,7 +124,8 @@ TEST(ProcessStats, ParsesProcStatAfterTheCommandName) {
   EXPECT_FALSE(parse_proc_stat("garbage", 100, 4096, 0).ok);
   EXPECT_TRUE(process_metrics_text(ProcessStats{}).empty());
   const std::string text = process_metrics_text(s);
-  EXPECT_NE(text.find("# TYPE process_cpu_seconds_total counter\nprocess_cpu_seconds_total 3\n"), std::string::npos)
+  EXPECT_NE(text.find("# TYPE process_cpu_seconds_total counter\nprocess_cpu_seconds_total 3\n"),
+            std::string::npos)
       << text;
 }
 
@@ -132,7 +137,8 @@ namespace {
 
 TEST(WebRoot, DefaultFindsTheViewerInstalledBesideFqd) {
   EXPECT_EQ(installed_web_root("/opt/fq/bin/fqd"), "/opt/fq/share/fq/web");
-  if (std::filesystem::exists("web/index.html")) GTEST_SKIP() << "run from a source tree: its web/ comes first";
+  if (std::filesystem::exists("web/index.html"))
+    GTEST_SKIP() << "run from a source tree: its web/ comes first";
   const std::filesystem::path prefix = std::filesystem::path(testing::TempDir()) / "web_root_prefix";
   std::filesystem::remove_all(prefix);
   std::filesystem::create_directories(prefix / "bin");

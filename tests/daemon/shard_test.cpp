@@ -42,8 +42,8 @@ class ShardTest : public testing::Test {
     for (size_t i = 0; i < assignment.size(); ++i) {
       Shard s;
       const std::string name = "shard" + std::to_string(i) + ".toml";
-      s.fqd = std::make_unique<FqdProcess>(std::vector<std::string>{
-          "--config", write_temp_file(name, shard_config(producer, assignment[i]))});
+      s.fqd = std::make_unique<FqdProcess>(
+          std::vector<std::string>{"--config", write_temp_file(name, shard_config(producer, assignment[i]))});
       ASSERT_FALSE(s.fqd->endpoint("publish").empty()) << "fqd " << i << " did not start";
       s.sub = zmq::socket_t(ctx_, zmq::socket_type::sub);
       s.sub.set(zmq::sockopt::subscribe, "");
@@ -90,7 +90,8 @@ TEST_F(ShardTest, TwoDaemonsShareFourStreamsEachServedByOneNoneLost) {
   ASSERT_EQ(warm.size(), kStreams.size()) << "a stream never got a result";
   // Let the warm-up results drain so that they are not mistaken for counted ones.
   const auto drain = std::chrono::steady_clock::now() + std::chrono::seconds(3);
-  receive_until([](size_t, const client::ReceivedResult&) {}, [&] { return std::chrono::steady_clock::now() > drain; });
+  receive_until([](size_t, const client::ReceivedResult&) {},
+                [&] { return std::chrono::steady_clock::now() > drain; });
 
   // Counted frames: one per stream at a time, each waited for, so nothing is superseded.
   // "s1x" is assigned to no fqd; its topic has the prefix "s1", which ZeroMQ delivers to the

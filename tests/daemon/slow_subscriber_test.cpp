@@ -31,7 +31,8 @@ TEST(DaemonSlowSubscriber, QueuesAreBoundedInBytesAndDropsAreCounted) {
                  "\n[defaults.filter]\nmethod = \"qf\"\n[defaults.output]\nposition_bits = 22\n"));
   FqdProcess fqd({"--config", config});
   ASSERT_TRUE(fqd.alive()) << "fqd did not start";
-  DaemonHarness h(daemon::BoundEndpoints{fqd.endpoint("ingest"), fqd.endpoint("publish"), fqd.endpoint("control"), ""});
+  DaemonHarness h(
+      daemon::BoundEndpoints{fqd.endpoint("ingest"), fqd.endpoint("publish"), fqd.endpoint("control"), ""});
 
   Mesh mesh = make_icosphere(7, 1.0f);  // 163,842 vertices
   add_gaussian_noise(mesh, 0.05, 3);
@@ -92,8 +93,8 @@ TEST(DaemonSlowSubscriber, QueuesAreBoundedInBytesAndDropsAreCounted) {
     // ZeroMQ stops offering results to a full subscriber until it has read, so a subscriber
     // that never reads overflows once.
     EXPECT_GE(c.subscriber_overflows(), 1u) << "the slow subscriber's overflow is counted";
-    std::printf("fqd RSS %zu -> peak %zu MiB over %llu results of %zu KiB; subscriber_overflows %llu\n", base / kMiB,
-                peak / kMiB, static_cast<unsigned long long>(kFrames), result_bytes / 1024,
+    std::printf("fqd RSS %zu -> peak %zu MiB over %llu results of %zu KiB; subscriber_overflows %llu\n",
+                base / kMiB, peak / kMiB, static_cast<unsigned long long>(kFrames), result_bytes / 1024,
                 static_cast<unsigned long long>(c.subscriber_overflows()));
   }
 }

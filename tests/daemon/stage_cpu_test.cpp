@@ -1,6 +1,8 @@
 // fqd's host CPU by stage: after frames went through, every stage's account has grown, all of
 // fqd's threads together used at least the stages' sum, /metrics carries both families, and
 // fqd's threads carry names that tell them from the embedding program's.
+#include "daemon/pipeline/stage_cpu.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,7 +11,6 @@
 #include <string>
 
 #include "daemon/pipeline/daemon_threads.h"
-#include "daemon/pipeline/stage_cpu.h"
 #include "tests/daemon/daemon_harness.h"
 
 namespace fq::test {
@@ -47,7 +48,8 @@ TEST(StageCpu, EveryStageIsChargedAndTheThreadsCoverThem) {
   EXPECT_GE(after.threads_seconds, staged);
   const std::string metrics = h.daemon()->service_metrics();
   for (const char* stage : {"ingest", "decode", "engine", "track_ids", "encode", "publish"})
-    EXPECT_NE(metrics.find("fq_stage_cpu_seconds_total{stage=\"" + std::string(stage) + "\"} "), std::string::npos)
+    EXPECT_NE(metrics.find("fq_stage_cpu_seconds_total{stage=\"" + std::string(stage) + "\"} "),
+              std::string::npos)
         << stage;
   EXPECT_NE(metrics.find("# TYPE fq_stage_cpu_seconds_total counter"), std::string::npos);
   EXPECT_NE(metrics.find("\nfq_cpu_seconds_total "), std::string::npos);
@@ -56,7 +58,8 @@ TEST(StageCpu, EveryStageIsChargedAndTheThreadsCoverThem) {
 TEST(DaemonThreads, NamedByRoleAndCountedAsFqds) {
   DaemonHarness h;
   const std::set<std::string> names = thread_names();
-  for (const char* role : {"fqd-ingest", "fqd-decode", "fqd-engine", "fqd-encode", "fqd-publish", "fqd-control"})
+  for (const char* role :
+       {"fqd-ingest", "fqd-decode", "fqd-engine", "fqd-encode", "fqd-publish", "fqd-control"})
     EXPECT_EQ(names.count(role), 1u) << role;
   const std::string zmq = std::to_string(daemon::kZmqThreadTag) + "/ZMQbg/";
   EXPECT_EQ(names.count(zmq + "IO/0"), 1u) << zmq << "IO/0";

@@ -308,7 +308,9 @@ TEST(DaemonStream, AMeshResultIsCutAsItsInputWas) {
   for (const zmq::message_t& m : r.chunks) views.emplace_back(m.data<char>(), m.size());
   Mesh back;
   std::vector<uint32_t> result_counts;
-  ASSERT_TRUE(wire::decode_frame(views, mesh.num_vertices(), wire::CodecOptions{}, back, nullptr, &result_counts).ok());
+  ASSERT_TRUE(
+      wire::decode_frame(views, mesh.num_vertices(), wire::CodecOptions{}, back, nullptr, &result_counts)
+          .ok());
   EXPECT_EQ(result_counts, counts);
   EXPECT_EQ(canonical_triangles(back), canonical_triangles(mesh));
 }

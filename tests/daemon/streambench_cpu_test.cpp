@@ -15,9 +15,26 @@ namespace fq::test {
 namespace {
 
 TEST(StreambenchCpu, JsonHasFqdsCpuByStageBesideTheFloor) {
-  const Child c = spawn(FQSTREAMBENCH_BIN, {"fandisk.ply", "--mesh-dir", FQ_DATA_DIR, "--engine", "copy", "--streams",
-                                            "2", "--fps", "20", "-d", "2", "--warmup", "0.5", "--chunks", "2",
-                                            "--phases", "spread", "--compute", "filter_and_cluster", "--json"});
+  const Child c = spawn(FQSTREAMBENCH_BIN, {"fandisk.ply",
+                                            "--mesh-dir",
+                                            FQ_DATA_DIR,
+                                            "--engine",
+                                            "copy",
+                                            "--streams",
+                                            "2",
+                                            "--fps",
+                                            "20",
+                                            "-d",
+                                            "2",
+                                            "--warmup",
+                                            "0.5",
+                                            "--chunks",
+                                            "2",
+                                            "--phases",
+                                            "spread",
+                                            "--compute",
+                                            "filter_and_cluster",
+                                            "--json"});
   const std::string out = read_all(c.out);
   ASSERT_EQ(wait_exit(c.pid), 0) << out;
   const nlohmann::json j = nlohmann::json::parse(out);
@@ -39,7 +56,8 @@ TEST(StreambenchCpu, JsonHasFqdsCpuByStageBesideTheFloor) {
   const double floor = fqd.at("floor_cpu_ms_per_frame").get<double>();
   EXPECT_GT(fqd.at("floor_decode_cpu_ms").get<double>(), 0);
   EXPECT_GT(fqd.at("floor_encode_cpu_ms").get<double>(), 0);
-  EXPECT_DOUBLE_EQ(floor, fqd.at("floor_decode_cpu_ms").get<double>() + fqd.at("floor_encode_cpu_ms").get<double>());
+  EXPECT_DOUBLE_EQ(floor,
+                   fqd.at("floor_decode_cpu_ms").get<double>() + fqd.at("floor_encode_cpu_ms").get<double>());
   EXPECT_DOUBLE_EQ(fqd.at("cpu_over_floor").get<double>(), cpu / floor);
   EXPECT_GT(j.at("bench").at("producers_cpu_ms_per_frame").get<double>(), 0);
   EXPECT_GT(j.at("bench").at("collector_cpu_ms_per_frame").get<double>(), 0);

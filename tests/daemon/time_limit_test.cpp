@@ -137,7 +137,8 @@ TEST(DaemonTimeLimit, SigtermWhileClusterIdsAreTrackedExitsWithinTheGrace) {
   const client::ReceivedResult probe = h.receive("probe");
   ASSERT_EQ(probe.header.status(), wire::OK) << probe.header.error();
   double engine_ms = 0;
-  for (const auto& t : probe.header.timings()) engine_ms += t.name() == "decode" || t.name() == "engine" ? t.ms() : 0.0;
+  for (const auto& t : probe.header.timings())
+    engine_ms += t.name() == "decode" || t.name() == "engine" ? t.ms() : 0.0;
   s.stream_id = "cam";
   s.overrides.set_track_ids(true);
   h.send(make_icosphere(7, 1.0f), s, 1);  // 163,842 vertices

@@ -37,7 +37,8 @@ std::vector<std::string> frame_parts(const std::string& stream, uint64_t sequenc
 
 // A producer's PUB (an XPUB, to see fqd's subscription arrive), bound on a free port.
 struct Producer {
-  Producer(zmq::context_t& ctx, const client::CurveClientOptions* curve) : socket(ctx, zmq::socket_type::xpub) {
+  Producer(zmq::context_t& ctx, const client::CurveClientOptions* curve)
+      : socket(ctx, zmq::socket_type::xpub) {
     socket.set(zmq::sockopt::linger, 0);
     socket.set(zmq::sockopt::xpub_verbose, 1);  // every subscription, also a repeated one
     if (curve) {
@@ -119,7 +120,8 @@ TEST(ZmqDoors, ProducersDroppedTogetherAllComeBack) {
   for (int round = 0; round < kRounds; ++round) {
     for (auto& p : producers) client::send_parts(p->socket, big);
     for (size_t i = 0; i < producers.size(); ++i)
-      ASSERT_TRUE(producers[i]->subscribed(milliseconds(30000))) << "producer " << i << " lost in round " << round;
+      ASSERT_TRUE(producers[i]->subscribed(milliseconds(30000)))
+          << "producer " << i << " lost in round " << round;
   }
   const std::string m = h.daemon()->service_metrics();
   EXPECT_EQ(metric_value(m, "fq_ingest_reconnects_total"), kRounds * 6.0) << m;
@@ -191,7 +193,8 @@ TEST(ZmqDoors, ASubscriberPastTheSubscriptionCapIsCutAndTheOthersKeepTheirResult
   h.sync_results();              // its subscriptions are in before the next result
   EXPECT_TRUE(result_on(*greedy, "t103", 1));
   greedy->set(zmq::sockopt::subscribe, "t116");  // one more: cut
-  EXPECT_TRUE(eventually([&] { return h.daemon()->registry().refusals().get(daemon::Refusal::kSubscriptions) == 1; }));
+  EXPECT_TRUE(eventually(
+      [&] { return h.daemon()->registry().refusals().get(daemon::Refusal::kSubscriptions) == 1; }));
   greedy->set(zmq::sockopt::rcvtimeo, 1000);
   client::FrameSpec t104;
   t104.stream_id = "t104";

@@ -99,8 +99,8 @@ TEST(SharpEdgeRecall, SmoothSphereHasNoCreaseAndOpenBordersAreSkipped) {
   EXPECT_EQ(sharp_edge_recall(sphere.view(), labels.data()).sharp_edges, 0u);
   // A plane's border edges have one triangle: no dihedral angle, never sharp.
   const Mesh plane = test::make_plane_grid(4, 4);
-  EXPECT_EQ(sharp_edge_recall(plane.view(), std::vector<uint32_t>(plane.num_vertices(), 0).data()).sharp_edges,
-            0u);
+  EXPECT_EQ(
+      sharp_edge_recall(plane.view(), std::vector<uint32_t>(plane.num_vertices(), 0).data()).sharp_edges, 0u);
 }
 
 TEST(SharpEdgeRecall, RefinedCubeFindsEveryCreaseSegment) {

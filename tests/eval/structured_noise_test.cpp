@@ -61,7 +61,8 @@ TEST(StructuredNoise, DepthNoiseIsSigmaFacingTheScannerAndFourTimesAtGrazing) {
   double s = 0;
   for (uint32_t v = 0; v < wall.num_vertices(); ++v) {
     EXPECT_EQ(noisy_wall.positions[3 * size_t(v)], wall.positions[3 * size_t(v)]);
-    const double d = (double(noisy_wall.positions[3 * size_t(v) + 2]) - wall.positions[3 * size_t(v) + 2]) / edge;
+    const double d =
+        (double(noisy_wall.positions[3 * size_t(v) + 2]) - wall.positions[3 * size_t(v) + 2]) / edge;
     s += d * d;
   }
   EXPECT_NEAR(std::sqrt(s / wall.num_vertices()), 0.4, 0.02);

@@ -42,7 +42,7 @@ TEST(SurfaceDistance, SlidingAlongThePlaneCostsNothingLiftingCostsTheHeight) {
 
 TEST(SurfaceDistance, PointsBeyondTheBorderMeasureToTheEdgeOrCorner) {
   const Mesh plane = make_plane_grid(10, 10);
-  const float pts[] = {-3.f, 5.f, 4.f,    // closest to the edge x = 0: distance 5
+  const float pts[] = {-3.f, 5.f,  4.f,   // closest to the edge x = 0: distance 5
                        13.f, 14.f, 0.f};  // closest to the corner (10, 10): distance 5
   const SurfaceDistance d = distance_to_surface(plane.view(), pts, 2);
   EXPECT_NEAR(d.max_over_diagonal, 5.0 / kPlaneDiag, 1e-6);
@@ -61,7 +61,8 @@ double brute_force_distance(const Mesh& mesh, const float* p) {
     const MeshView one{pos, 3, tri, 1};
     float diag2 = 0.f;  // undo the one-triangle mesh's own diagonal normalization
     for (int c = 0; c < 3; ++c) {
-      const float lo = std::min({pos[c], pos[3 + c], pos[6 + c]}), hi = std::max({pos[c], pos[3 + c], pos[6 + c]});
+      const float lo = std::min({pos[c], pos[3 + c], pos[6 + c]}),
+                  hi = std::max({pos[c], pos[3 + c], pos[6 + c]});
       diag2 += (hi - lo) * (hi - lo);
     }
     best = std::min(best, distance_to_surface(one, p, 1).max_over_diagonal * std::sqrt(double(diag2)));
@@ -81,8 +82,9 @@ TEST(SurfaceDistance, MatchesBruteForceNearAndFarFromASphere) {
       lo[c] = std::min(lo[c], sphere.positions[3 * v + c]);
       hi[c] = std::max(hi[c], sphere.positions[3 * v + c]);
     }
-  const double diag = std::sqrt(double(hi[0] - lo[0]) * (hi[0] - lo[0]) + double(hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                                double(hi[2] - lo[2]) * (hi[2] - lo[2]));
+  const double diag =
+      std::sqrt(double(hi[0] - lo[0]) * (hi[0] - lo[0]) + double(hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                double(hi[2] - lo[2]) * (hi[2] - lo[2]));
   for (int i = 0; i < 60; ++i) {
     const double fast = distance_to_surface(sphere.view(), &pts[3 * i], 1).max_over_diagonal * diag;
     EXPECT_NEAR(fast, brute_force_distance(sphere, &pts[3 * i]), 1e-5) << "point " << i;

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "clients/common/frame_sender.h"
+#include "io/mesh_io.h"
 #include "wire/frame_codec.h"
 #include "wire/header_codec.h"
-#include "io/mesh_io.h"
 
 namespace fs = std::filesystem;
 
@@ -33,13 +33,16 @@ int main(int argc, char** argv) {
       if (!fq::client::build_frame(m.view(), spec, uint64_t(n), parts).ok()) return 1;
       put(out / "headers" / ("frame" + std::to_string(n)), parts[1]);
       for (size_t i = 2; i < parts.size(); ++i)
-        put(out / "frame_decode" / ("chunk" + std::to_string(n) + "_" + std::to_string(i)), std::string(1, '\0') + parts[i]);
+        put(out / "frame_decode" / ("chunk" + std::to_string(n) + "_" + std::to_string(i)),
+            std::string(1, '\0') + parts[i]);
       ++n;
     }
   }
   for (uint32_t chunks : {1u, 3u}) {  // POSITIONS results, as fqd publishes them
     std::vector<std::string> parts;
-    if (!fq::wire::encode_positions(m.positions.data(), m.num_vertices(), chunks, fq::wire::CodecOptions{}, parts).ok())
+    if (!fq::wire::encode_positions(m.positions.data(), m.num_vertices(), chunks, fq::wire::CodecOptions{},
+                                    parts)
+             .ok())
       return 1;
     for (size_t i = 0; i < parts.size(); ++i)
       put(out / "frame_decode" / ("positions" + std::to_string(chunks) + "_" + std::to_string(i)),

@@ -51,11 +51,13 @@ TEST(FqfilterCli, HelpListsEveryTableRow) {
   ASSERT_EQ(help.exit_code, 0) << help.err;
   for (const fq::ParamRow& row : fq::param_table()) {
     if (!row.on(fq::kFqfilter)) continue;
-    EXPECT_NE(help.out.find("  " + row.flag() + " "), std::string::npos) << row.flag() << " missing from --help";
+    EXPECT_NE(help.out.find("  " + row.flag() + " "), std::string::npos)
+        << row.flag() << " missing from --help";
   }
-  EXPECT_NE(help.out.find("--mode TEXT:{qf+,qf,bf}=qf+"), std::string::npos) << "the default mode is shown as configs spell it";
-  const RunResult r = run_fqfilter({kFandisk, "--json", "--mode", "qf", "--cluster", "--cluster-geometry", "input",
-                                    "--sigma-b", "0.5", "--min-cluster-size", "3", "--constrained"},
+  EXPECT_NE(help.out.find("--mode TEXT:{qf+,qf,bf}=qf+"), std::string::npos)
+      << "the default mode is shown as configs spell it";
+  const RunResult r = run_fqfilter({kFandisk, "--json", "--mode", "qf", "--cluster", "--cluster-geometry",
+                                    "input", "--sigma-b", "0.5", "--min-cluster-size", "3", "--constrained"},
                                    dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json p = nlohmann::json::parse(r.out).at("params");
@@ -128,8 +130,8 @@ TEST(FqfilterCli, JsonOnFandisk) {
 TEST(FqfilterCli, DefaultRefinementAndNormalNoise) {
   fq::test::ScratchDir dir;
   const std::string noisy = dir.file("noisy.ply");
-  const std::vector<std::string> base = {kFandisk, "--engine", "cpu", "--threads", "2", "--noise", "0.3",
-                                         "--noise-direction", "normal", "--seed", "7", "--json"};
+  const std::vector<std::string> base = {kFandisk, "--engine",          "cpu",    "--threads", "2", "--noise",
+                                         "0.3",    "--noise-direction", "normal", "--seed",    "7", "--json"};
   std::vector<std::string> with_out = base;
   with_out.insert(with_out.end(), {"--noisy-out", noisy});
   std::vector<std::string> paper = base;
@@ -146,8 +148,8 @@ TEST(FqfilterCli, DefaultRefinementAndNormalNoise) {
   EXPECT_LT(a.at("metrics").at("output").at("mfne_rad").get<double>(),
             0.8 * b.at("metrics").at("output").at("mfne_rad").get<double>());
   // The noisy file, measured against the clean one, has the input error fqfilter reported.
-  const RunResult again = run_fqfilter({noisy, "--engine", "cpu", "--threads", "2", "--reference", kFandisk,
-                                        "--mode", "qf", "--json"}, dir);
+  const RunResult again = run_fqfilter(
+      {noisy, "--engine", "cpu", "--threads", "2", "--reference", kFandisk, "--mode", "qf", "--json"}, dir);
   ASSERT_EQ(again.exit_code, 0) << again.err;
   const nlohmann::json c = nlohmann::json::parse(again.out);
   EXPECT_NEAR(c.at("metrics").at("input").at("mfne_rad").get<double>(),
@@ -173,8 +175,8 @@ TEST(FqfilterCli, NoisyOutAtNoiseZeroIsTheInput) {
 // with the noise it estimated reported.
 TEST(FqfilterCli, FandiskAtNoiseTwoTenthsBeatsThePeers) {
   fq::test::ScratchDir dir;
-  const RunResult r = run_fqfilter({kFandisk, "--engine", "cpu", "--threads", "2", "--noise", "0.2", "--seed", "7",
-                                    "--json"}, dir);
+  const RunResult r = run_fqfilter(
+      {kFandisk, "--engine", "cpu", "--threads", "2", "--noise", "0.2", "--seed", "7", "--json"}, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_LE(j.at("metrics").at("output").at("mfne_rad").get<double>(), 0.11);
@@ -190,7 +192,8 @@ TEST(FqfilterCli, FandiskAtNoiseTwoTenthsBeatsThePeers) {
 // is filtered lightly (not returned untouched: no switch), and --known-noise filters it fully.
 TEST(FqfilterCli, CleanInputIsSaidToBeClean) {
   fq::test::ScratchDir dir;
-  const std::vector<std::string> base = {kFandisk, "--reference", kFandisk, "--engine", "cpu", "--threads", "2"};
+  const std::vector<std::string> base = {kFandisk, "--reference", kFandisk, "--engine",
+                                         "cpu",    "--threads",   "2"};
   const RunResult human = run_fqfilter(base, dir);
   ASSERT_EQ(human.exit_code, 0) << human.err;
   EXPECT_NE(human.out.find("input looks clean"), std::string::npos) << human.out;
@@ -218,8 +221,8 @@ TEST(FqfilterCli, CleanInputIsSaidToBeClean) {
 
 TEST(FqfilterCli, TargetClustersReportsThetaAndSharpEdgeRecall) {
   fq::test::ScratchDir dir;
-  const RunResult r = run_fqfilter({kFandisk, "--engine", "cpu", "--threads", "2", "--no-filter", "--target-clusters",
-                                    "30", "--reference", kFandisk, "--json"},
+  const RunResult r = run_fqfilter({kFandisk, "--engine", "cpu", "--threads", "2", "--no-filter",
+                                    "--target-clusters", "30", "--reference", kFandisk, "--json"},
                                    dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
@@ -308,8 +311,8 @@ TEST(FqfilterCli, SequenceFiltersAcrossFramesAndReportsFlicker) {
   fs::create_directories(in);
   for (int i = 0; i < 4; ++i) fs::copy_file(kFandisk, in / ("f" + std::to_string(i) + ".ply"));
   const auto run = [&](const char* temporal) {
-    const RunResult r = run_fqfilter({in.string(), "--sequence", "--noise", "0.2", "--temporal", temporal, "--json",
-                                      "--quiet", "--engine", "cpu", "--threads", "2"},
+    const RunResult r = run_fqfilter({in.string(), "--sequence", "--noise", "0.2", "--temporal", temporal,
+                                      "--json", "--quiet", "--engine", "cpu", "--threads", "2"},
                                      dir);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     std::vector<nlohmann::json> frames;
@@ -344,7 +347,8 @@ TEST(FqfilterCli, SequenceFiltersAcrossFramesAndReportsFlicker) {
       EXPECT_GT(t.at("surface_flicker").get<double>(), 0.0);
       EXPECT_GT(t.at("shading_flicker").get<double>(), 0.0);
     }
-    if (i > 0) EXPECT_GT(alone[i].at("temporal").at("flicker").get<double>(), 0.0) << "the baseline's flicker";
+    if (i > 0)
+      EXPECT_GT(alone[i].at("temporal").at("flicker").get<double>(), 0.0) << "the baseline's flicker";
     if (i >= 2) {
       stream_mfne += stream[i].at("metrics").at("output").at("mfne_rad").get<double>();
       alone_mfne += alone[i].at("metrics").at("output").at("mfne_rad").get<double>();

@@ -140,8 +140,8 @@ TEST_F(KeepFixture, DrcKeepsNormalsColoursAndUvsAndWarnsOnceAGroup) {
   const auto j = nlohmann::json::parse(r.out);
   std::string all;
   for (const auto& w : j["warnings"]) all += w.get<std::string>() + "\n";
-  for (const char* p : {"vertex property 'quality'", "face property 'red'", "face property 'texcoord'",
-                        "element 'edge'"})
+  for (const char* p :
+       {"vertex property 'quality'", "face property 'red'", "face property 'texcoord'", "element 'edge'"})
     EXPECT_NE(all.find(p), std::string::npos) << p << " in " << all;
   EXPECT_EQ(j["warnings"].size(), 4u) << all;  // nothing about normals, colours or uvs
   // Read back by Draco's decoder: the attributes are Draco's own, with the values fq wrote.
@@ -185,8 +185,9 @@ TEST_F(KeepFixture, PlyQuadsFilter) {
   for (int i = 0; i < kN; ++i)
     for (int j = 0; j < kN; ++j) s << i << " " << j << " " << 0.05 * std::sin(3 * i + j) << "\n";
   for (int i = 0; i + 1 < kN; ++i)
-    for (int j = 0; j + 1 < kN; ++j) s << "4 " << i * kN + j << " " << (i + 1) * kN + j << " " << (i + 1) * kN + j + 1
-                                       << " " << i * kN + j + 1 << "\n";
+    for (int j = 0; j + 1 < kN; ++j)
+      s << "4 " << i * kN + j << " " << (i + 1) * kN + j << " " << (i + 1) * kN + j + 1 << " "
+        << i * kN + j + 1 << "\n";
   fq::test::write_bytes(dir.file("quads.ply"), s.str());
   const RunResult r = run_fqfilter({dir.file("quads.ply"), dir.file("out.ply"), "--threads", "2"}, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;

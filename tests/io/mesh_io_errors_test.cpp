@@ -7,8 +7,8 @@
 
 #include "draco/compression/encode.h"
 #include "draco/point_cloud/point_cloud.h"
-#include "tests/io/io_test_util.h"
 #include "io/mesh_io.h"
+#include "tests/io/io_test_util.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq::io {
@@ -147,7 +147,8 @@ TEST(MeshIoErrors, DracoPointCloudIsNotATriangleMesh) {
   ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 12, 0);
   const int id = pc.AddAttribute(ga, true, 3);
   const float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-  for (int i = 0; i < 3; ++i) pc.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(i), p + std::ptrdiff_t{3} * i);
+  for (int i = 0; i < 3; ++i)
+    pc.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(i), p + std::ptrdiff_t{3} * i);
   draco::Encoder encoder;
   draco::EncoderBuffer buffer;
   ASSERT_TRUE(encoder.EncodePointCloudToBuffer(pc, &buffer).ok());

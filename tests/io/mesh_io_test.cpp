@@ -9,8 +9,8 @@
 #include <sstream>
 #include <vector>
 
-#include "io/cluster_colors.h"
 #include "draco/compression/decode.h"
+#include "io/cluster_colors.h"
 #include "tests/io/io_test_util.h"
 #include "tests/support/mesh_dir.h"
 #include "tests/support/test_meshes.h"

@@ -36,8 +36,8 @@ void write_textured_obj(const test::ScratchDir& dir) {
     obj << (i < 3 ? "usemtl red_paint\n" : "usemtl blue_paint\n");
     for (int j = 0; j + 1 < kN; ++j) {
       const int a = i * kN + j + 1, b = a + kN;
-      obj << "f " << a << "/" << a << "/1 " << b << "/" << b << "/2 " << b + 1 << "/" << b + 1 << "/1 " << a + 1
-          << "/" << a + 1 << "/2\n";
+      obj << "f " << a << "/" << a << "/1 " << b << "/" << b << "/2 " << b + 1 << "/" << b + 1 << "/1 "
+          << a + 1 << "/" << a + 1 << "/2\n";
     }
   }
   test::write_bytes(dir.file("grid.obj"), obj.str());
@@ -69,7 +69,8 @@ std::string diffuse_texture(const aiScene& scene, const std::string& material) {
   for (unsigned i = 0; i < scene.mNumMaterials; ++i) {
     aiString name, path;
     scene.mMaterials[i]->Get(AI_MATKEY_NAME, name);
-    if (material == name.C_Str() && scene.mMaterials[i]->GetTexture(aiTextureType_DIFFUSE, 0, &path) == AI_SUCCESS)
+    if (material == name.C_Str() &&
+        scene.mMaterials[i]->GetTexture(aiTextureType_DIFFUSE, 0, &path) == AI_SUCCESS)
       return path.C_Str();
   }
   return "";
@@ -101,7 +102,7 @@ void expect_corners_and_materials(const std::string& path) {
       }
     }
   }
-  EXPECT_EQ(triangles_of["red_paint"], 2 * 3 * (kN - 1)) << path;   // quads split in two
+  EXPECT_EQ(triangles_of["red_paint"], 2 * 3 * (kN - 1)) << path;  // quads split in two
   EXPECT_EQ(triangles_of["blue_paint"], 2 * 2 * (kN - 1)) << path;
   EXPECT_GT(normals_up, 0);
   EXPECT_GT(normals_tilted, 0);

@@ -7,8 +7,8 @@
 #include <chrono>
 #include <string>
 
-#include "kernels/cpu_engine.h"
 #include "core/parallel_for.h"
+#include "kernels/cpu_engine.h"
 #include "tests/kernels/frame_result_checks.h"
 #include "tests/support/test_meshes.h"
 

@@ -7,11 +7,11 @@
 
 #include "eval/noise.h"
 #include "eval/sharp_edge_recall.h"
+#include "io/mesh_io.h"
 #include "kernels/cluster_connect.h"
 #include "kernels/cluster_control.h"
 #include "kernels/cluster_forest.h"
 #include "kernels/cpu_engine.h"
-#include "io/mesh_io.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
@@ -128,8 +128,9 @@ TEST(KernelClusterTarget, FilteredGeometryKeepsTheOutputPositions) {
   filter_only.cluster = false;
   EXPECT_EQ(both.positions, run(m, filter_only).positions) << "clustering must not change the filter output";
   EXPECT_EQ(both.labels, only_labels.labels);
-  const bool has_cluster_pass = std::any_of(both.timings.begin(), both.timings.end(),
-                                            [](const PassTiming& t) { return t.name.starts_with("cluster."); });
+  const bool has_cluster_pass =
+      std::any_of(both.timings.begin(), both.timings.end(),
+                  [](const PassTiming& t) { return t.name.starts_with("cluster."); });
   EXPECT_TRUE(has_cluster_pass);
 }
 
@@ -142,7 +143,8 @@ TEST(KernelClusterTarget, ReleaseMemoryGivesBackTheExtraRuns) {
   CpuEngine engine(2);
   FrameResult out;
   ASSERT_TRUE(engine.process(m.view(), p, out).ok());
-  EXPECT_GE(engine.cluster_runs().bytes(), 2 * sizeof(float) * m.positions.size()) << "both runs kept for the next frame";
+  EXPECT_GE(engine.cluster_runs().bytes(), 2 * sizeof(float) * m.positions.size())
+      << "both runs kept for the next frame";
   engine.release_memory();
   EXPECT_EQ(engine.cluster_runs().bytes(), 0u);
   FrameResult again;

@@ -1,8 +1,6 @@
 // Quadric quick shift (kernels/cluster_math.h and the CPU stages): structural invariants
 // of the links and labels, monotonicity in theta, and cluster counts on a cube (one
 // cluster per face) and on the Stanford bunny (the paper's Table 3).
-#include "kernels/cluster_math.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,12 +8,13 @@
 #include <set>
 #include <string>
 
+#include "eval/noise.h"
+#include "io/mesh_io.h"
+#include "kernels/cluster_math.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/cpu_frame.h"
 #include "kernels/cpu_stages.h"
 #include "kernels/frame_prep.h"
-#include "io/mesh_io.h"
-#include "eval/noise.h"
 #include "tests/support/mesh_dir.h"
 #include "tests/support/test_meshes.h"
 
@@ -81,10 +80,12 @@ void expect_invariants(const StageRun& r, float sigma_d) {
     }
     ASSERT_TRUE(f.score[j] > f.score[k] || (f.score[j] == f.score[k] && j > k))
         << "link " << k << " -> " << j << " does not climb (score, index)";
-    ASSERT_LE(norm2(xyz(f.points[j]) - xyz(f.points[k])), 4.f * sigma_d * sigma_d * 1.0001f) << "link too long";
+    ASSERT_LE(norm2(xyz(f.points[j]) - xyz(f.points[k])), 4.f * sigma_d * sigma_d * 1.0001f)
+        << "link too long";
   }
   ASSERT_EQ(r.k, roots.size());
-  std::sort(roots.begin(), roots.end(), [&](uint32_t a, uint32_t b) { return f.grid.order[a] < f.grid.order[b]; });
+  std::sort(roots.begin(), roots.end(),
+            [&](uint32_t a, uint32_t b) { return f.grid.order[a] < f.grid.order[b]; });
   std::vector<uint32_t> label_of_root(n, ~0u);
   for (uint32_t l = 0; l < roots.size(); ++l) label_of_root[roots[l]] = l;  // compact, by input index
   std::vector<bool> used(r.k, false);

@@ -1,7 +1,5 @@
 // Broken and unusual meshes: each one either filters and clusters with an ok status and
 // all-finite output, or is refused with a clear kInvalidInput status. Never a crash.
-#include "kernels/cpu_engine.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,8 +7,9 @@
 #include <limits>
 #include <string>
 
-#include "kernels/frame_prep.h"
 #include "eval/noise.h"
+#include "kernels/cpu_engine.h"
+#include "kernels/frame_prep.h"
 #include "tests/support/param_values.h"
 #include "tests/support/test_meshes.h"
 
@@ -53,9 +52,7 @@ void expect_invalid_input(const MeshView& mesh, const std::string& needle) {
   EXPECT_TRUE(engine.process(good.view(), filter_and_cluster(), out).ok());
 }
 
-TEST(KernelDegenerateInput, EmptyMeshIsRefused) {
-  expect_invalid_input(MeshView{}, "no vertices");
-}
+TEST(KernelDegenerateInput, EmptyMeshIsRefused) { expect_invalid_input(MeshView{}, "no vertices"); }
 
 TEST(KernelDegenerateInput, PointCloudIsRefused) {
   Mesh cloud = test::make_icosphere(1);
@@ -119,7 +116,8 @@ TEST(KernelDegenerateInput, ExtremeScalesGiveTheScaledResult) {
     for (float& x : m.positions) x *= scale;
     const FrameResult got = expect_ok(m);
     EXPECT_EQ(got.labels, want.labels) << scale;
-    for (size_t i = 0; i < m.positions.size(); ++i) ASSERT_NEAR(got.positions[i] / scale, want.positions[i], 1e-5) << scale;
+    for (size_t i = 0; i < m.positions.size(); ++i)
+      ASSERT_NEAR(got.positions[i] / scale, want.positions[i], 1e-5) << scale;
   }
 }
 
@@ -141,7 +139,8 @@ TEST(KernelDegenerateInput, ZeroAreaFacesAreHarmless) {
   const FrameResult out = expect_ok(m);
   // The midpoint vertices touch only zero-area faces (no weight of their own); they are
   // moved by their neighbours' quadrics, so they end near the plane.
-  for (uint32_t v = first_added_vertex; v < m.num_vertices(); ++v) EXPECT_LT(std::fabs(vertex(out.positions, v).z), 0.5f);
+  for (uint32_t v = first_added_vertex; v < m.num_vertices(); ++v)
+    EXPECT_LT(std::fabs(vertex(out.positions, v).z), 0.5f);
 }
 
 // Coincident vertices with different indices (a triangle soup) are welded by the engine

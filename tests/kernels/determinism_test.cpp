@@ -1,12 +1,11 @@
 // Results do not depend on the thread count nor on what the engine processed before:
 // every per-vertex sum runs over neighbours in grid order, so positions and labels must be
 // bit-identical, not merely close.
-#include "kernels/cpu_engine.h"
-
 #include <gtest/gtest.h>
 
 #include <string>
 
+#include "kernels/cpu_engine.h"
 #include "tests/kernels/frame_result_checks.h"
 #include "tests/support/test_meshes.h"
 
@@ -35,7 +34,8 @@ std::vector<std::pair<std::string, Params>> modes() {
   bilateral.filtering.sigma_r = 1.5f;
   Params euclidean = quadric;
   euclidean.clustering.method = ClusterMethod::kEuclidean;
-  return {{"quadric", quadric}, {"constrained", constrained}, {"bilateral", bilateral}, {"euclidean", euclidean}};
+  return {
+      {"quadric", quadric}, {"constrained", constrained}, {"bilateral", bilateral}, {"euclidean", euclidean}};
 }
 
 TEST(KernelDeterminism, ThreadCountDoesNotChangeResults) {

@@ -1,8 +1,6 @@
 // Behaviour of the CPU engine's filters on meshes whose true surface is known: noise is
 // removed, sharp edges survive, clean meshes stay put. All lengths are in mean edges.
 // Numbers in comments were measured on this code (CpuEngine, 2 threads, x86-64).
-#include "kernels/cpu_engine.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,9 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "kernels/frame_prep.h"
 #include "eval/error_metrics.h"
 #include "eval/noise.h"
+#include "kernels/cpu_engine.h"
+#include "kernels/frame_prep.h"
 #include "tests/support/param_values.h"
 #include "tests/support/test_meshes.h"
 
@@ -141,7 +140,8 @@ TEST(KernelFilter, CleanCubeStaysOnItsSurfaceWithFlatFaces) {
     SCOPED_TRACE(test::mode_name(p.filtering.method));
     const std::vector<float> out = filtered(cube, p);
     double worst = 0.0;
-    for (uint32_t v = 0; v < cube.num_vertices(); ++v) worst = std::max(worst, distance_to_unit_cube(vertex(out, v)));
+    for (uint32_t v = 0; v < cube.num_vertices(); ++v)
+      worst = std::max(worst, distance_to_unit_cube(vertex(out, v)));
     EXPECT_LT(worst / me, 1e-3);
     const MfneResult m = mean_face_normal_error(cube.view(), out.data());
     EXPECT_LT(m.mean_radians * kRadToDeg, 0.5);
@@ -175,7 +175,8 @@ TEST(KernelFilter, ConstrainedModeDenoisesAlongNormals) {
   const Mesh noisy = noisy_copy(cube, 0.2, 1);
   const std::vector<float> out = filtered(noisy, p);
   EXPECT_LT(mfne_deg(cube, out), 0.5 * mfne_deg(cube, noisy.positions));
-  EXPECT_LT(rmse_over_diagonal(cube.view(), out.data()), rmse_over_diagonal(cube.view(), noisy.positions.data()));
+  EXPECT_LT(rmse_over_diagonal(cube.view(), out.data()),
+            rmse_over_diagonal(cube.view(), noisy.positions.data()));
 
   const Mesh plane = test::make_plane_grid(30, 30);
   const Mesh noisy_plane = noisy_copy(plane, 0.2, 1);
@@ -208,7 +209,8 @@ TEST(KernelFilter, ScaleAndTranslationInvariant) {
   const Mesh small = noisy_copy(test::make_cube(6), 0.2, 3);
   const float offset[3] = {1e4f, -2e4f, 5e3f};
   Mesh big = small;
-  for (size_t i = 0; i < big.positions.size(); ++i) big.positions[i] = big.positions[i] * 1000.f + offset[i % 3];
+  for (size_t i = 0; i < big.positions.size(); ++i)
+    big.positions[i] = big.positions[i] * 1000.f + offset[i % 3];
   Params p;
   p.cluster = true;
   CpuEngine engine(2);

@@ -63,7 +63,8 @@ TEST(KernelFramePlan, QfDiffusesThenUpdates) {
   p.filtering.sigma_s = 2.f;
   p.filtering.sigma_b = 0.6f;
   RunPlan r = plan_frame(p).runs[0];
-  EXPECT_EQ(names(r), (std::vector<std::string>{"grid", "base_quadrics", "neighbourhood_quadrics", "diffusion", "update"}));
+  EXPECT_EQ(names(r), (std::vector<std::string>{"grid", "base_quadrics", "neighbourhood_quadrics",
+                                                "diffusion", "update"}));
   EXPECT_FLOAT_EQ(r.grid_cell, 2.f);
   expect_extent(r.extent(P::kNeighbourhoodQuadrics), 0.6f, 1.2f);
   expect_extent(r.extent(P::kDiffusion), 2.f, 4.f);
@@ -96,15 +97,17 @@ TEST(KernelFramePlan, ClusteringOnTheInputIsOneRun) {
   ASSERT_EQ(plan.runs.size(), 1u);
   EXPECT_FALSE(plan.cluster_control);
   const RunPlan& r = plan.runs[0];
-  EXPECT_EQ(names(r), (std::vector<std::string>{"grid", "base_quadrics", "neighbourhood_quadrics", "diffusion", "noise",
-                                                "refine", "score", "link", "modes", "export_links"}));
+  EXPECT_EQ(names(r),
+            (std::vector<std::string>{"grid", "base_quadrics", "neighbourhood_quadrics", "diffusion", "noise",
+                                      "refine", "score", "link", "modes", "export_links"}));
   expect_extent(r.extent(P::kScore), 4.f, 8.f);
   expect_extent(r.extent(P::kLink), 4.f, 8.f);
   p.clustering.min_cluster_size = 10;  // connected clusters: the same run, then cluster control
   const FramePlan connected = plan_frame(p);
   EXPECT_TRUE(connected.cluster_control);
   ASSERT_EQ(connected.runs.size(), 1u);
-  EXPECT_EQ(connected.runs[0].params.clustering.min_cluster_size, 0u) << "the run's labels are the plain ones";
+  EXPECT_EQ(connected.runs[0].params.clustering.min_cluster_size, 0u)
+      << "the run's labels are the plain ones";
 }
 
 // A target count clusters the filtered mesh (auto geometry): the frame's filter, the
@@ -119,14 +122,16 @@ TEST(KernelFramePlan, FilteredGeometryAddsTheGeometryAndClusteringRuns) {
   ASSERT_EQ(plan.runs.size(), 3u);
   const RunPlan &frame = plan.runs[0], &geometry = plan.runs[1], &clusters = plan.runs[2];
   EXPECT_EQ(frame.role, RunRole::kFrame);
-  EXPECT_EQ(names(frame), (std::vector<std::string>{"grid", "base_quadrics", "neighbourhood_quadrics", "diffusion", "update"}));
+  EXPECT_EQ(names(frame), (std::vector<std::string>{"grid", "base_quadrics", "neighbourhood_quadrics",
+                                                    "diffusion", "update"}));
   EXPECT_EQ(geometry.role, RunRole::kGeometry);
   EXPECT_TRUE(geometry.params.filtering.constrained);
   expect_extent(geometry.extent(P::kUpdate), 0.75f, 1.5f);
   EXPECT_STREQ(geometry.timing_prefix(), "geometry.");
   EXPECT_EQ(clusters.role, RunRole::kClustering);
-  EXPECT_EQ(names(clusters), (std::vector<std::string>{"grid", "base_quadrics", "neighbourhood_quadrics", "diffusion",
-                                                       "score", "link", "modes", "export_links"}));
+  EXPECT_EQ(names(clusters),
+            (std::vector<std::string>{"grid", "base_quadrics", "neighbourhood_quadrics", "diffusion", "score",
+                                      "link", "modes", "export_links"}));
   EXPECT_FLOAT_EQ(clusters.grid_cell, 0.75f);
   expect_extent(clusters.sigma_b, 0.375f, 0.75f);
   expect_extent(clusters.sigma_s, 0.75f, 1.5f);
@@ -208,7 +213,8 @@ TEST(KernelEngineTemplate, BadParametersAreCheckedOnceAndRunNothing) {
 // The pass sequence the engine ran is the plan's, in its order, with the plan's names.
 TEST(KernelEngineTemplate, TheCpuEngineRunsThePlansPasses) {
   const Mesh& m = noisy_cube();
-  for (FilterMethod method : {FilterMethod::kQuadricRefined, FilterMethod::kQuadric, FilterMethod::kBilateral}) {
+  for (FilterMethod method :
+       {FilterMethod::kQuadricRefined, FilterMethod::kQuadric, FilterMethod::kBilateral}) {
     Params p;
     p.filtering.method = method;
     p.cluster = true;

@@ -75,7 +75,8 @@ TEST(KernelGridNearest, MatchesBruteForceAndTheHostIndexWherePointsLieOutsideThe
   // The last frame: a sphere of radius 10 (in mean edges, about 1 apart); the new frame's
   // layout covers only the middle of it, so a third of the points are clamped into its edge cells.
   const std::vector<Vec3> points = sphere_points(1200, 10.f, 1);
-  const GridLayout layout = choose_grid_layout({-6.f, -6.f, -6.f}, {6.f, 6.f, 6.f}, 1.f, uint32_t(points.size()));
+  const GridLayout layout =
+      choose_grid_layout({-6.f, -6.f, -6.f}, {6.f, 6.f, 6.f}, 1.f, uint32_t(points.size()));
   const LaidOutGrid grid = lay_out(points, layout);
   std::vector<float> flat;
   for (const Vec3& p : points) flat.insert(flat.end(), {p.x, p.y, p.z});
@@ -85,9 +86,10 @@ TEST(KernelGridNearest, MatchesBruteForceAndTheHostIndexWherePointsLieOutsideThe
   std::mt19937 rng(2);
   std::normal_distribution<float> jitter(0.f, 0.7f);
   std::vector<Vec3> queries;
-  for (const Vec3& p : sphere_points(600, 10.f, 3)) queries.push_back(p + Vec3{jitter(rng), jitter(rng), jitter(rng)});
-  queries.push_back({30.f, 0.f, 0.f});    // outside the layout, nothing within reach
-  queries.push_back({0.f, 0.f, 0.f});     // inside, nothing within reach
+  for (const Vec3& p : sphere_points(600, 10.f, 3))
+    queries.push_back(p + Vec3{jitter(rng), jitter(rng), jitter(rng)});
+  queries.push_back({30.f, 0.f, 0.f});     // outside the layout, nothing within reach
+  queries.push_back({0.f, 0.f, 0.f});      // inside, nothing within reach
   queries.push_back({1e30f, 1e30f, 0.f});  // far beyond any cell
   const float reach = 3.f;
   int outside = 0, found = 0;
@@ -121,7 +123,8 @@ TEST(KernelGridNearest, AnEmptyGridOrNoReachFindsNothing) {
   const std::vector<Vec3> points = {{1.f, 1.f, 1.f}};
   const LaidOutGrid grid = lay_out(points, choose_grid_layout({0.f, 0.f, 0.f}, {2.f, 2.f, 2.f}, 1.f, 1));
   EXPECT_EQ(nearest_in_grid(grid.view, {1.5f, 1.f, 1.f}, 0.4f, 0.5f), kNoNearest) << "beyond reach";
-  EXPECT_EQ(nearest_in_grid(grid.view, {1.5f, 1.f, 1.f}, 0.6f, 0.f), 0u) << "a first radius of 0 starts at reach";
+  EXPECT_EQ(nearest_in_grid(grid.view, {1.5f, 1.f, 1.f}, 0.6f, 0.f), 0u)
+      << "a first radius of 0 starts at reach";
 }
 
 // nearest_in_grid_boxes against nearest_in_grid, query by query, with the reaches and first
@@ -142,11 +145,13 @@ int expect_boxes_agree(const LaidOutGrid& grid, const std::vector<Vec3>& queries
 
 TEST(KernelGridNearestBoxes, GivesTheSpheresAnswersOnASurfaceAndOutsideTheLayout) {
   const std::vector<Vec3> points = sphere_points(1200, 10.f, 1);
-  const LaidOutGrid grid = lay_out(points, choose_grid_layout({-6.f, -6.f, -6.f}, {6.f, 6.f, 6.f}, 1.f, 1200));
+  const LaidOutGrid grid =
+      lay_out(points, choose_grid_layout({-6.f, -6.f, -6.f}, {6.f, 6.f, 6.f}, 1.f, 1200));
   std::mt19937 rng(4);
   std::normal_distribution<float> jitter(0.f, 0.7f);
   std::vector<Vec3> queries;
-  for (const Vec3& p : sphere_points(800, 10.f, 5)) queries.push_back(p + Vec3{jitter(rng), jitter(rng), jitter(rng)});
+  for (const Vec3& p : sphere_points(800, 10.f, 5))
+    queries.push_back(p + Vec3{jitter(rng), jitter(rng), jitter(rng)});
   queries.push_back({30.f, 0.f, 0.f});
   queries.push_back({0.f, 0.f, 0.f});
   queries.push_back({1e30f, 1e30f, 0.f});
@@ -177,7 +182,8 @@ TEST(KernelGridNearestBoxes, GivesTheSpheresAnswersOnTiesAndWhereTheBudgetRunsOu
   std::vector<Vec3> piles;
   for (uint32_t i = 0; i < 2000; ++i) piles.push_back({float(i % 4) * 0.7f, 1.f + 1e-4f * float(i % 7), 1.f});
   piles.push_back({3.f, 3.f, 3.f});
-  const LaidOutGrid crowded = lay_out(piles, choose_grid_layout({0.f, 0.f, 0.f}, {4.f, 4.f, 4.f}, 0.5f, 2001));
+  const LaidOutGrid crowded =
+      lay_out(piles, choose_grid_layout({0.f, 0.f, 0.f}, {4.f, 4.f, 4.f}, 0.5f, 2001));
   std::vector<Vec3> near_piles(40);
   for (int i = 0; i < 40; ++i) near_piles[i] = {0.1f * float(i), 1.2f, 1.1f + 0.05f * float(i % 5)};
   expect_boxes_agree(crowded, near_piles, 0.25f, {0.2f, 1.f, 4.f});

@@ -111,14 +111,16 @@ Cloud clustered_cloud(uint32_t n, uint32_t seed) {
 TEST(KernelGrid, UniformCloudsMatchBruteForce) {
   for (uint32_t seed : {1u, 2u, 3u}) {
     const Cloud c = uniform_cloud(1500, 10.f, seed);
-    for (float radius : {0.3f, 1.f, 2.5f}) expect_matches_brute_force(c, 1.f, radius, "uniform seed " + std::to_string(seed));
+    for (float radius : {0.3f, 1.f, 2.5f})
+      expect_matches_brute_force(c, 1.f, radius, "uniform seed " + std::to_string(seed));
   }
 }
 
 TEST(KernelGrid, ClusteredCloudsWithEmptyRegionsMatchBruteForce) {
   for (uint32_t seed : {11u, 12u, 13u}) {
     const Cloud c = clustered_cloud(1500, seed);
-    for (float radius : {0.2f, 0.7f, 3.f}) expect_matches_brute_force(c, 0.7f, radius, "clustered seed " + std::to_string(seed));
+    for (float radius : {0.2f, 0.7f, 3.f})
+      expect_matches_brute_force(c, 0.7f, radius, "clustered seed " + std::to_string(seed));
   }
 }
 

@@ -5,9 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cmath>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <numeric>
 #include <random>
@@ -37,12 +37,14 @@ TEST(KernelNearestVertex, MatchesBruteForce) {
     float best = 1e30f;
     for (uint32_t i = 0; i < 500; ++i) {
       float d2 = 0;
-      for (int k = 0; k < 3; ++k) d2 += (pts[3 * i + k] - queries[3 * q + k]) * (pts[3 * i + k] - queries[3 * q + k]);
+      for (int k = 0; k < 3; ++k)
+        d2 += (pts[3 * i + k] - queries[3 * q + k]) * (pts[3 * i + k] - queries[3 * q + k]);
       best = std::min(best, d2);
     }
     ASSERT_NE(got[q], NearestVertexIndex::kNone);
     float d2 = 0;
-    for (int k = 0; k < 3; ++k) d2 += (pts[3 * got[q] + k] - queries[3 * q + k]) * (pts[3 * got[q] + k] - queries[3 * q + k]);
+    for (int k = 0; k < 3; ++k)
+      d2 += (pts[3 * got[q] + k] - queries[3 * q + k]) * (pts[3 * got[q] + k] - queries[3 * q + k]);
     EXPECT_FLOAT_EQ(d2, best) << "query " << q;
   }
   EXPECT_EQ(index.nearest({100.f, 0.f, 0.f}, 1.f), NearestVertexIndex::kNone) << "beyond max_radius";
@@ -79,8 +81,10 @@ TEST(KernelFrameMatcher, GivesTheNearestVertexIndexAnswers) {
       matcher.nearest_all(asked, reach, got, 2);
       EXPECT_EQ(got, want) << "outlier " << outlier << " reach " << reach;
       const auto none = std::count(got.begin(), got.end(), FrameMatcher::kNone);
-      if (reach < 0.05f) EXPECT_GT(none, 0) << "some queries have nothing within a short reach";
-      else EXPECT_EQ(none, 0);
+      if (reach < 0.05f)
+        EXPECT_GT(none, 0) << "some queries have nothing within a short reach";
+      else
+        EXPECT_EQ(none, 0);
     }
   }
 }
@@ -109,7 +113,8 @@ TEST(KernelFrameMatcher, KeepsTheGridWhereTheCellGrewThreeSteps) {
   matcher.nearest_all(asked, 0.32f, got, 2);
   EXPECT_EQ(got, want);
   std::vector<float> outside = queries;
-  for (size_t i = 0; i < outside.size(); ++i) outside[i] *= 1.f + 0.5f * float(i / 3 % 2);  // every other point 0.5 out
+  for (size_t i = 0; i < outside.size(); ++i)
+    outside[i] *= 1.f + 0.5f * float(i / 3 % 2);  // every other point 0.5 out
   FrameMatcher asked_outside;
   asked_outside.build(outside.data(), 3000, 0.04f);
   index.nearest_all(outside.data(), 3000, 2.f, want, 2);
@@ -146,7 +151,8 @@ TEST(KernelLabelTracking, PermutedJitteredCopyGetsTheSameIds) {
   const Mesh sphere = test::make_icosphere(3);
   Frame a{sphere.positions, {}};
   const uint32_t k = 7;
-  for (uint32_t v = 0; v < sphere.num_vertices(); ++v) a.labels.push_back(uint32_t((sphere.positions[3 * v] + 1.f) * 3.49f));
+  for (uint32_t v = 0; v < sphere.num_vertices(); ++v)
+    a.labels.push_back(uint32_t((sphere.positions[3 * v] + 1.f) * 3.49f));
   LabelTracker tracker;
   TrackingOptions o;
   o.cell = 0.1f;
@@ -156,7 +162,8 @@ TEST(KernelLabelTracking, PermutedJitteredCopyGetsTheSameIds) {
   std::vector<uint32_t> source_of;
   Frame b = recaptured(a, k, 11, source_of);
   EXPECT_EQ(tracker.track(b.positions.data(), sphere.num_vertices(), b.labels, k, o), k);
-  for (uint32_t v = 0; v < b.labels.size(); ++v) ASSERT_EQ(b.labels[v], a.labels[source_of[v]]) << "vertex " << v;
+  for (uint32_t v = 0; v < b.labels.size(); ++v)
+    ASSERT_EQ(b.labels[v], a.labels[source_of[v]]) << "vertex " << v;
 }
 
 // Frames that made the matcher quadratic: one vertex a million units away (the grid's cell
@@ -182,7 +189,8 @@ TEST(KernelLabelTracking, AnOutlierOrACollapsedFrameIsMatchedWithoutAQuadraticSe
   const Mesh sphere = test::make_icosphere(7);  // 163,842 vertices
   const uint32_t n = sphere.num_vertices(), k = 7;
   Frame a{sphere.positions, {}};
-  for (uint32_t v = 0; v < n; ++v) a.labels.push_back(uint32_t((sphere.positions[3 * size_t(v)] + 1.f) * 3.49f));
+  for (uint32_t v = 0; v < n; ++v)
+    a.labels.push_back(uint32_t((sphere.positions[3 * size_t(v)] + 1.f) * 3.49f));
   a.positions[0] = 1e6f;  // the outlier
   Mesh with_outlier = sphere;
   with_outlier.positions = a.positions;
@@ -197,21 +205,24 @@ TEST(KernelLabelTracking, AnOutlierOrACollapsedFrameIsMatchedWithoutAQuadraticSe
   Frame c{std::vector<float>(3 * size_t(n)), std::vector<uint32_t>(n)};
   for (uint32_t v = 0; v < n; ++v) {
     c.labels[v] = v % 4;
-    c.positions[3 * v + c.labels[v] % 3] = float(c.labels[v]);  // four points: (0,0,0) (1,0,0) (0,2,0) (0,0,3)
+    c.positions[3 * v + c.labels[v] % 3] =
+        float(c.labels[v]);  // four points: (0,0,0) (1,0,0) (0,2,0) (0,0,3)
   }
   const Frame d = recaptured(c, 4, 6, source_of);
   const double collapsed_ms = tracked_pair_ms(c, d, 4, 0.5f, ids);
   same = 0;
   for (uint32_t v = 0; v < n; ++v) same += ids[v] == c.labels[source_of[v]] ? 1u : 0u;
   EXPECT_EQ(same, n) << "each of the four points keeps its id";
-  std::printf("tracking 163,842 vertices: one outlier %.0f ms, four points %.0f ms\n", outlier_ms, collapsed_ms);
+  std::printf("tracking 163,842 vertices: one outlier %.0f ms, four points %.0f ms\n", outlier_ms,
+              collapsed_ms);
 }
 
 TEST(KernelLabelTracking, AnExpiredTokenLeavesTheFrameAndTheTrackerAsTheyWere) {
   const Mesh sphere = test::make_icosphere(3);
   const uint32_t k = 7;
   Frame a{sphere.positions, {}};
-  for (uint32_t v = 0; v < sphere.num_vertices(); ++v) a.labels.push_back(uint32_t((sphere.positions[3 * size_t(v)] + 1.f) * 3.49f));
+  for (uint32_t v = 0; v < sphere.num_vertices(); ++v)
+    a.labels.push_back(uint32_t((sphere.positions[3 * size_t(v)] + 1.f) * 3.49f));
   LabelTracker tracker;
   TrackingOptions o;
   o.cell = 0.1f;
@@ -222,13 +233,16 @@ TEST(KernelLabelTracking, AnExpiredTokenLeavesTheFrameAndTheTrackerAsTheyWere) {
   std::atomic<bool> stop{true};
   std::vector<uint32_t> ids = b.labels;
   uint32_t bound = 99;
-  const Status s = tracker.track_until(CancelToken(&stop), b.positions.data(), sphere.num_vertices(), ids, k, o, bound);
+  const Status s =
+      tracker.track_until(CancelToken(&stop), b.positions.data(), sphere.num_vertices(), ids, k, o, bound);
   EXPECT_EQ(s.code(), StatusCode::kCancelled);
   EXPECT_EQ(ids, b.labels) << "the engine's numbering, untouched";
   EXPECT_EQ(bound, 99u);
   // The next frame is matched with the first one, as if the stopped one had never come.
   stop = false;
-  ASSERT_TRUE(tracker.track_until(CancelToken(&stop), b.positions.data(), sphere.num_vertices(), ids, k, o, bound).ok());
+  ASSERT_TRUE(
+      tracker.track_until(CancelToken(&stop), b.positions.data(), sphere.num_vertices(), ids, k, o, bound)
+          .ok());
   for (uint32_t v = 0; v < ids.size(); ++v) ASSERT_EQ(ids[v], a.labels[source_of[v]]) << "vertex " << v;
 }
 
@@ -239,7 +253,8 @@ TEST(KernelLabelTracking, ARestartOrAFrameOfAnotherSizeIsTrackedAsByAFreshTracke
   const uint32_t k = 7;
   auto striped = [&](const Mesh& m) {
     Frame f{m.positions, {}};
-    for (uint32_t v = 0; v < m.num_vertices(); ++v) f.labels.push_back(uint32_t((m.positions[3 * size_t(v)] + 1.f) * 3.49f));
+    for (uint32_t v = 0; v < m.num_vertices(); ++v)
+      f.labels.push_back(uint32_t((m.positions[3 * size_t(v)] + 1.f) * 3.49f));
     return f;
   };
   std::vector<uint32_t> source_of;
@@ -295,9 +310,12 @@ TEST(KernelLabelTracking, SplitClusterKeepsItsIdOnTheLargerPart) {
   const uint32_t bound = tracker.track(grid.positions.data(), grid.num_vertices(), cur, 3, o);
   std::set<uint32_t> small;
   for (uint32_t v = 0; v < cur.size(); ++v) {
-    if (x_of(v) > 10) ASSERT_EQ(cur[v], 1u);
-    else if (x_of(v) >= 4) ASSERT_EQ(cur[v], 0u) << "the larger part keeps the id";
-    else small.insert(cur[v]);
+    if (x_of(v) > 10)
+      ASSERT_EQ(cur[v], 1u);
+    else if (x_of(v) >= 4)
+      ASSERT_EQ(cur[v], 0u) << "the larger part keeps the id";
+    else
+      small.insert(cur[v]);
   }
   ASSERT_EQ(small.size(), 1u);
   EXPECT_GT(*small.begin(), 1u) << "the smaller part gets an id the previous frame did not use";
@@ -339,7 +357,8 @@ TEST(KernelLabelTracking, VoteOutvotesOneFrameFlipsAndFollowsLastingChanges) {
   tracker.track(grid.positions.data(), n, f[0], 2, o);
   const uint32_t left = f[0][0], right = f[0][20];
   for (size_t t = 1; t < f.size(); ++t) tracker.track(grid.positions.data(), n, f[t], 2, o);
-  EXPECT_EQ(column_10(f[1]), std::set<uint32_t>{left}) << "a one-frame flip is outvoted (tie: the previous id)";
+  EXPECT_EQ(column_10(f[1]), std::set<uint32_t>{left})
+      << "a one-frame flip is outvoted (tie: the previous id)";
   EXPECT_EQ(column_10(f[2]), std::set<uint32_t>{left});
   EXPECT_EQ(column_10(f[4]), std::set<uint32_t>{left}) << "window right, left, left";
   EXPECT_EQ(column_10(f[5]), std::set<uint32_t>{right}) << "two frames of three: the change holds";
@@ -383,8 +402,8 @@ double mean_persistence(int rings, int vote_frames, bool tracked) {
     o.num_triangles = m.num_triangles();
     if (tracked) tracker.track(m.positions.data(), m.num_vertices(), ids, r.num_clusters, o);
     if (t > 0)
-      sum += label_persistence(prev.positions.data(), prev_ids.data(), prev.num_vertices(), m.positions.data(),
-                               ids.data(), m.num_vertices(), o.cell);
+      sum += label_persistence(prev.positions.data(), prev_ids.data(), prev.num_vertices(),
+                               m.positions.data(), ids.data(), m.num_vertices(), o.cell);
     prev = m;
     prev_ids = ids;
   }
@@ -402,8 +421,8 @@ TEST(KernelLabelTracking, EngineLabelsPersistAcrossCaptures) {
   EXPECT_GE(sticky, 0.9);
   EXPECT_GT(voted, ids_only);
   EXPECT_GE(voted, 0.9) << "the defaults";
-  RecordProperty("persistence", std::to_string(raw) + " " + std::to_string(ids_only) + " " + std::to_string(sticky) +
-                                    " " + std::to_string(voted));
+  RecordProperty("persistence", std::to_string(raw) + " " + std::to_string(ids_only) + " " +
+                                    std::to_string(sticky) + " " + std::to_string(voted));
 }
 
 }  // namespace

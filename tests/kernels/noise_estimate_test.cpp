@@ -1,13 +1,14 @@
 // The noise estimate (kernels/noise_estimate.h) on surfaces whose noise and detail are known:
 // a plane's residual is its noise, white noise correlates between neighbours as the fits'
 // weights predict, and smooth detail that a quadratic cannot follow is not taken for noise.
+#include "kernels/noise_estimate.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 #include <vector>
 
-#include "kernels/noise_estimate.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
@@ -72,7 +73,7 @@ TEST(KernelNoiseEstimate, WhiteNoiseCorrelatesAsTheWeightsPredict) {
 
 TEST(KernelNoiseEstimate, SmoothDetailIsNotTakenForNoise) {
   const NoiseEstimate clean = estimate(grid_frame(80, 0.0, bumps, 4));
-  EXPECT_GT(clean.residual, 0.01f);  // the quadratics cannot follow the bumps...
+  EXPECT_GT(clean.residual, 0.01f);                  // the quadratics cannot follow the bumps...
   EXPECT_GT(clean.correlation, kDetailCorrelation);  // ...but neighbours agree on them
   EXPECT_EQ(clean.noise, 0.f);
   const NoiseEstimate noisy = estimate(grid_frame(80, 0.1, bumps, 5));

@@ -3,9 +3,6 @@
 // stays usable afterwards.
 #include "core/params.h"
 
-#include "core/param_table.h"
-#include "tests/support/param_values.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,7 +10,9 @@
 #include <set>
 #include <string>
 
+#include "core/param_table.h"
 #include "kernels/cpu_engine.h"
+#include "tests/support/param_values.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
@@ -31,7 +30,8 @@ Params clustering_params() {
 void expect_rejected(const Params& p, const std::string& name) {
   const Status s = validate(p);
   EXPECT_EQ(s.code(), StatusCode::kInvalidArgument) << name;
-  EXPECT_NE(s.message().find(name), std::string::npos) << "message '" << s.message() << "' does not name " << name;
+  EXPECT_NE(s.message().find(name), std::string::npos)
+      << "message '" << s.message() << "' does not name " << name;
 }
 
 TEST(KernelParams, DefaultsAreValid) {

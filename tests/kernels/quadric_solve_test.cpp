@@ -32,7 +32,8 @@ Quadric planes(std::initializer_list<std::pair<Vec3, Vec3>> normal_point, Vec3 o
 }
 
 TEST(KernelQuadricSolve, ThreeOrthogonalPlanesMeetAtTheirCorner) {
-  const Quadric q = planes({{{1, 0, 0}, {1, 0, 0}}, {{0, 1, 0}, {0, 2, 0}}, {{0, 0, 1}, {0, 0, -0.5f}}}, {0, 0, 0});
+  const Quadric q =
+      planes({{{1, 0, 0}, {1, 0, 0}}, {{0, 1, 0}, {0, 2, 0}}, {{0, 0, 1}, {0, 0, -0.5f}}}, {0, 0, 0});
   expect_vec_near(minimizer_step(q, 0.f), {1, 2, -0.5f}, kTol);
 }
 
@@ -66,8 +67,9 @@ TEST(KernelQuadricSolve, TikhonovStepSolvesTheRegularizedSystem) {
   for (int k = 0; k < 100; ++k) {
     Quadric q = zero_quadric();
     for (int p = 0; p < 4; ++p) {
-      add_scaled(q, plane_quadric(normalized_or_zero({u(rng), u(rng), u(rng)}), {u(rng), u(rng), u(rng)}, {0, 0, 0}),
-                 0.1f + std::fabs(u(rng)));
+      add_scaled(
+          q, plane_quadric(normalized_or_zero({u(rng), u(rng), u(rng)}), {u(rng), u(rng), u(rng)}, {0, 0, 0}),
+          0.1f + std::fabs(u(rng)));
     }
     const float eps = 0.05f, reg = eps * trace_a(q) / 3.f;
     const Vec3 step = minimizer_step(q, eps);
@@ -102,7 +104,8 @@ TEST(KernelQuadricSolve, NearlyParallelPlanesGiveABoundedStep) {
   // The eigenvalue cut (eps = 0) and the Tikhonov pull (eps > 0) both keep the step
   // near the planes instead.
   const float a = 1e-4f;
-  const Quadric q = planes({{{0, 0, 1}, {0, 0, 1}}, {{std::sin(a), 0, std::cos(a)}, {0, 0, 1.1f}}}, {0, 0, 0});
+  const Quadric q =
+      planes({{{0, 0, 1}, {0, 0, 1}}, {{std::sin(a), 0, std::cos(a)}, {0, 0, 1.1f}}}, {0, 0, 0});
   for (float eps : {0.f, 0.05f}) {
     const Vec3 step = minimizer_step(q, eps);
     ASSERT_TRUE(is_finite(step));

@@ -10,11 +10,11 @@
 
 #include "eval/error_metrics.h"
 #include "eval/noise.h"
+#include "io/mesh_io.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/frame_prep.h"
 #include "kernels/refine_math.h"
 #include "kernels/refine_plan.h"
-#include "io/mesh_io.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
@@ -59,10 +59,13 @@ TEST(KernelRefine, NormalFilterKeepsTheCubesCreaseSharp) {
   const uint32_t m = static_cast<uint32_t>(f.tris.size() / 3);
   std::vector<TriangleGeom> geom(m);
   std::vector<Vec3> n(m), next(m);
-  for (uint32_t t = 0; t < m; ++t) n[t] = (geom[t] = triangle_geom(f.x[f.tris[3 * t]], f.x[f.tris[3 * t + 1]], f.x[f.tris[3 * t + 2]])).normal;
+  for (uint32_t t = 0; t < m; ++t)
+    n[t] =
+        (geom[t] = triangle_geom(f.x[f.tris[3 * t]], f.x[f.tris[3 * t + 1]], f.x[f.tris[3 * t + 2]])).normal;
   const Gaussian gs = Gaussian::with_sigma(0.5f), gr = Gaussian::with_sigma(0.35f);
   for (int it = 0; it < 3; ++it) {
-    for (uint32_t t = 0; t < m; ++t) next[t] = filtered_face_normal(f.view(), geom.data(), n.data(), t, gs, gr);
+    for (uint32_t t = 0; t < m; ++t)
+      next[t] = filtered_face_normal(f.view(), geom.data(), n.data(), t, gs, gr);
     n.swap(next);
   }
   // Faces across a crease differ by |n_i - n_j|^2 = 2: weight exp(-2 / (2 0.35^2)) = 3e-4 of
@@ -149,7 +152,7 @@ TEST(KernelRefine, PlanGrowsWithTheNoise) {
 TEST(KernelRefine, TangentialMovesBeyondTheNoiseAreCutBack) {
   const Vec3 out{1.f, 2.f, 3.f}, t{0.2f, 0.f, 0.f};
   EXPECT_EQ(limited_position(out, t, 0.04f, 0.05f).x, 1.f);  // within: kept
-  const Vec3 half = limited_position(out, t, 0.1f, 0.05f);    // twice the allowance: half kept
+  const Vec3 half = limited_position(out, t, 0.1f, 0.05f);   // twice the allowance: half kept
   EXPECT_NEAR(half.x, 1.f - 0.1f, 1e-6f);
   EXPECT_EQ(half.y, 2.f);
   EXPECT_NEAR(limited_position(out, t, 0.1f, 0.f).x, 0.8f, 1e-6f);  // no allowance: all of it undone
@@ -317,7 +320,8 @@ TEST(KernelRefine, ErrorRisesWithTheNoiseAndStaysUnderTheInputs) {
     SCOPED_TRACE(s);
     EXPECT_GT(e, last);
     EXPECT_LT(e, 0.5 * in);
-    EXPECT_LT(rmse_over_diagonal(clean.view(), out.positions.data()), rmse_over_diagonal(clean.view(), noisy.positions.data()));
+    EXPECT_LT(rmse_over_diagonal(clean.view(), out.positions.data()),
+              rmse_over_diagonal(clean.view(), noisy.positions.data()));
     last = e;
   }
 }
@@ -364,7 +368,8 @@ TEST(KernelRefine, ThreadCountDoesNotChangeTheBits) {
   ASSERT_TRUE(e1.process(m.view(), p, one).ok());
   ASSERT_TRUE(e3.process(m.view(), p, three).ok());
   ASSERT_EQ(one.positions.size(), three.positions.size());
-  EXPECT_EQ(std::memcmp(one.positions.data(), three.positions.data(), one.positions.size() * sizeof(float)), 0);
+  EXPECT_EQ(std::memcmp(one.positions.data(), three.positions.data(), one.positions.size() * sizeof(float)),
+            0);
 }
 
 }  // namespace

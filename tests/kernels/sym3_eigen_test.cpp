@@ -88,10 +88,10 @@ TEST(KernelSym3Eigen, RandomIndefinite) {
 }
 
 TEST(KernelSym3Eigen, DegenerateSpectra) {
-  expect_decomposes(Mat3{});                                        // zero
-  expect_decomposes(Mat3{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}});       // identity (triple)
-  expect_decomposes(Mat3{{{3, 0, 0}, {0, -2, 0}, {0, 0, 5e-7f}}});  // diagonal
-  expect_decomposes(outer_sum({{0.6f, 0.f, 0.8f}}));                // one plane: rank 1
+  expect_decomposes(Mat3{});                                           // zero
+  expect_decomposes(Mat3{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}});          // identity (triple)
+  expect_decomposes(Mat3{{{3, 0, 0}, {0, -2, 0}, {0, 0, 5e-7f}}});     // diagonal
+  expect_decomposes(outer_sum({{0.6f, 0.f, 0.8f}}));                   // one plane: rank 1
   expect_decomposes(outer_sum({{0.6f, 0.f, 0.8f}, {0.f, 1.f, 0.f}}));  // a line: rank 2
   expect_decomposes(outer_sum({{0.48f, 0.6f, 0.64f}, {0.48f, 0.6f, 0.64f}, {0.f, 0.8f, -0.6f}}));
 }

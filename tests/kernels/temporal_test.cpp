@@ -2,20 +2,21 @@
 // with fresh noise gets better than each frame alone; a moving one is not made worse; vertex
 // ids play no part; a scene cut restarts the history and leaves that frame as it was alone;
 // temporal 0 is the per-frame filter exactly.
+#include "kernels/temporal.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cmath>
 #include <atomic>
+#include <cmath>
 #include <numeric>
 #include <random>
 #include <vector>
 
+#include "core/cancel_token.h"
 #include "eval/error_metrics.h"
 #include "eval/noise.h"
-#include "core/cancel_token.h"
 #include "kernels/cpu_engine.h"
-#include "kernels/temporal.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {

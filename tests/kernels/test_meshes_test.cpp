@@ -29,7 +29,8 @@ bool closed_and_oriented(const Mesh& m) {
 double signed_volume6(const Mesh& m) {
   double v = 0.0;
   for (size_t t = 0; t < m.triangles.size(); t += 3) {
-    const Vec3 a = vertex(m, m.triangles[t]), b = vertex(m, m.triangles[t + 1]), c = vertex(m, m.triangles[t + 2]);
+    const Vec3 a = vertex(m, m.triangles[t]), b = vertex(m, m.triangles[t + 1]),
+               c = vertex(m, m.triangles[t + 2]);
     v += dot(a, cross(b, c));
   }
   return v;
@@ -43,7 +44,8 @@ TEST(KernelTestMeshes, PlaneGridCountsAndFlatness) {
   EXPECT_FLOAT_EQ(vertex(m, 19).x, 2.0f);
   EXPECT_FLOAT_EQ(vertex(m, 19).y, 1.5f);
   for (size_t t = 0; t < m.triangles.size(); t += 3) {  // every normal is +z
-    const Vec3 a = vertex(m, m.triangles[t]), b = vertex(m, m.triangles[t + 1]), c = vertex(m, m.triangles[t + 2]);
+    const Vec3 a = vertex(m, m.triangles[t]), b = vertex(m, m.triangles[t + 1]),
+               c = vertex(m, m.triangles[t + 2]);
     EXPECT_GT(cross(b - a, c - a).z, 0.f);
   }
 }

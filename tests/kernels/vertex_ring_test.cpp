@@ -2,6 +2,8 @@
 // bit: on a closed surface, a grid with a boundary, a non-manifold fin and triangles that repeat
 // a vertex (degenerate: a triangle listed once per corner, each time without the vertex itself);
 // with values of both signs, and all -0.0 (the value the blocks pad with: it must change nothing).
+#include "kernels/vertex_ring.h"
+
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -10,7 +12,6 @@
 #include <vector>
 
 #include "kernels/vertex_faces.h"
-#include "kernels/vertex_ring.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
@@ -79,7 +80,8 @@ void expect_same_ring_means(const Mesh& mesh, int threads, bool negative_zeros =
 /// The neighbours in v's slots of the table.
 uint32_t ring_size(const RingView& r, uint32_t v) {
   uint32_t count = 0;
-  for (uint32_t k = 2 * r.vf_offsets[v]; k < 2 * r.vf_offsets[v + 1]; ++k) count += r.corners[k] != RingView::kNoCorner;
+  for (uint32_t k = 2 * r.vf_offsets[v]; k < 2 * r.vf_offsets[v + 1]; ++k)
+    count += r.corners[k] != RingView::kNoCorner;
   return count;
 }
 
@@ -108,7 +110,8 @@ TEST(KernelVertexRing, CountsADegenerateTrianglesCornersAsTheFanDoes) {
   // corners per proper triangle, a twice from {a, a, b} and nothing from {b, b, b}.
   const uint32_t proper = (vf_offsets[b + 1] - vf_offsets[b]) - 4;
   EXPECT_EQ(ring_size(ring, b), 2 * proper + 2);
-  EXPECT_EQ(ring_size(ring, a), 2 * (vf_offsets[a + 1] - vf_offsets[a] - 2) + 2) << "a: b from {a, a, b} twice";
+  EXPECT_EQ(ring_size(ring, a), 2 * (vf_offsets[a + 1] - vf_offsets[a] - 2) + 2)
+      << "a: b from {a, a, b} twice";
 }
 
 }  // namespace

@@ -9,9 +9,7 @@ namespace fq::test {
 
 namespace {
 
-void add_vertex(Mesh& m, float x, float y, float z) {
-  m.positions.insert(m.positions.end(), {x, y, z});
-}
+void add_vertex(Mesh& m, float x, float y, float z) { m.positions.insert(m.positions.end(), {x, y, z}); }
 
 void add_triangle(Mesh& m, uint32_t a, uint32_t b, uint32_t c) {
   m.triangles.insert(m.triangles.end(), {a, b, c});
@@ -43,8 +41,8 @@ class CubeLattice {
 };
 
 // Midpoint vertex of edge (a, b), projected on the sphere, shared by both triangles.
-uint32_t midpoint(Mesh& m, std::map<std::pair<uint32_t, uint32_t>, uint32_t>& cache, uint32_t a,
-                  uint32_t b, float radius) {
+uint32_t midpoint(Mesh& m, std::map<std::pair<uint32_t, uint32_t>, uint32_t>& cache, uint32_t a, uint32_t b,
+                  float radius) {
   const auto key = std::minmax(a, b);
   if (auto it = cache.find(key); it != cache.end()) return it->second;
   const Vec3 p = 0.5f * (vertex(m, a) + vertex(m, b));
@@ -113,12 +111,12 @@ Mesh make_icosphere(int subdivisions, float radius) {
   const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
   const float s = radius / std::sqrt(1.0f + t * t);
   Mesh m;
-  const float v[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                          {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  const float v[12][3] = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                          {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
   for (const auto& p : v) add_vertex(m, s * p[0], s * p[1], s * p[2]);
-  m.triangles = {0, 11, 5, 0, 5, 1,  0, 1, 7,  0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4,
-                 11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4,  3, 4, 2,   3, 2, 6, 3, 6, 8,
-                 3, 8, 9,  4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7,   9, 8, 1};
+  m.triangles = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                 4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+                 6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
   for (int level = 0; level < subdivisions; ++level) {
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> cache;
     std::vector<uint32_t> coarse;

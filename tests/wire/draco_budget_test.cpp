@@ -1,12 +1,13 @@
 // The decoded-size budget read from a Draco chunk's header, before Draco allocates.
+#include "wire/draco_budget.h"
+
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "wire/draco_budget.h"
-#include "wire/frame_codec.h"
 #include "tests/wire/wire_test_meshes.h"
+#include "wire/frame_codec.h"
 
 namespace fq::wire {
 namespace {

@@ -2,10 +2,12 @@
 // codec's own chunks they must give what Draco gives, and on anything else (other layouts,
 // damaged bytes) either give what Draco gives or leave the chunk to Draco. Never a different
 // reading, never a chunk Draco refuses.
+#include "wire/draco_sequential_read.h"
+
 #include <draco/compression/decode.h>
 #include <draco/mesh/mesh.h>
-#include <draco/point_cloud/point_cloud.h>
 #include <draco/metadata/geometry_metadata.h>
+#include <draco/point_cloud/point_cloud.h>
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -14,12 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "tests/wire/wire_test_meshes.h"
 #include "wire/draco_sequential.h"
-#include "wire/draco_sequential_read.h"
 #include "wire/frame_chunk.h"
 #include "wire/frame_split.h"
 #include "wire/vertex_id_runs.h"
-#include "tests/wire/wire_test_meshes.h"
 
 namespace fq::wire::detail {
 namespace {
@@ -57,7 +58,8 @@ DracoReading read_with_draco(const std::string& bytes) {
     if (m.attribute(id)->num_components() != 1 || m.attribute(id)->data_type() != draco::DT_UINT32) return r;
     r.labels.resize(m.num_points());
     for (uint32_t p = 0; p < m.num_points(); ++p)
-      m.attribute(id)->ConvertValue<uint32_t>(m.attribute(id)->mapped_index(draco::PointIndex(p)), 1, &r.labels[p]);
+      m.attribute(id)->ConvertValue<uint32_t>(m.attribute(id)->mapped_index(draco::PointIndex(p)), 1,
+                                              &r.labels[p]);
   }
   r.ok = true;
   return r;
@@ -91,7 +93,9 @@ std::vector<std::string> own_chunks(const Mesh& mesh, uint32_t chunks, bool with
   std::vector<std::string> out;
   for (const Part& part : split_parts(view, box, chunks)) {
     out.emplace_back();
-    EXPECT_TRUE(write_sequential_chunk(view, with_labels ? labels.data() : nullptr, part, o, box, scratch, out.back()).ok());
+    EXPECT_TRUE(
+        write_sequential_chunk(view, with_labels ? labels.data() : nullptr, part, o, box, scratch, out.back())
+            .ok());
   }
   return out;
 }
@@ -178,7 +182,8 @@ bool expect_same_cloud(const std::string& bytes) {
   EXPECT_TRUE(by_draco.has_value()) << "the direct reader took a point cloud Draco refuses";
   if (by_draco) {
     EXPECT_EQ(by_draco->size(), ours.size());
-    EXPECT_EQ(0, std::memcmp(ours.data(), by_draco->data(), std::min(ours.size(), by_draco->size()) * sizeof(float)));
+    EXPECT_EQ(0, std::memcmp(ours.data(), by_draco->data(),
+                             std::min(ours.size(), by_draco->size()) * sizeof(float)));
   }
   return true;
 }
@@ -199,7 +204,8 @@ TEST(DracoSequentialRead, PointCloudsReadAsDracoReadsThem) {
     std::vector<float> out(3 * size_t(grid.num_vertices()));
     std::vector<int32_t> values;
     EXPECT_FALSE(read_sequential_point_cloud(bytes, grid.num_vertices() - 1, out.data(), values));
-    EXPECT_FALSE(read_sequential_point_cloud(bytes.substr(0, bytes.size() - 1), grid.num_vertices(), out.data(), values));
+    EXPECT_FALSE(read_sequential_point_cloud(bytes.substr(0, bytes.size() - 1), grid.num_vertices(),
+                                             out.data(), values));
     int taken = 0;
     for (int trial = 0; trial < 1000; ++trial) {
       std::string damaged = bytes;

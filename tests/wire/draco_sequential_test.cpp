@@ -2,6 +2,8 @@
 // hold it to Draco's own encoder: for the same chunk and options, draco::Encoder's bytes and
 // ours must be identical, in every index width, at several speeds, with and without labels,
 // for meshes and for the positions form's point clouds.
+#include "wire/draco_sequential.h"
+
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
 #include <draco/point_cloud/point_cloud.h>
@@ -11,10 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "wire/draco_sequential.h"
+#include "tests/wire/wire_test_meshes.h"
 #include "wire/frame_chunk.h"
 #include "wire/frame_split.h"
-#include "tests/wire/wire_test_meshes.h"
 
 namespace fq::wire::detail {
 namespace {
@@ -57,7 +58,8 @@ void expect_same_chunks(const Mesh& mesh, uint32_t chunks, const CodecOptions& o
     ASSERT_TRUE(write_sequential_chunk(view, l, parts[i], o, box, ours_scratch, ours).ok());
     ASSERT_EQ(ours.size(), by_draco.size());
     EXPECT_TRUE(ours == by_draco) << "first difference at byte "
-                                  << std::mismatch(ours.begin(), ours.end(), by_draco.begin()).first - ours.begin();
+                                  << std::mismatch(ours.begin(), ours.end(), by_draco.begin()).first -
+                                         ours.begin();
   }
   EXPECT_GT(compared, 0u);
 }
@@ -103,7 +105,8 @@ TEST(DracoSequential, PointCloudsAreDracos) {
       draco::GeometryAttribute ga;
       ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 3 * sizeof(float), 0);
       draco::PointAttribute* pos = pc.attribute(pc.AddAttribute(ga, true, n));
-      std::memcpy(pos->GetAddress(draco::AttributeValueIndex(0)), grid.positions.data(), 3 * sizeof(float) * n);
+      std::memcpy(pos->GetAddress(draco::AttributeValueIndex(0)), grid.positions.data(),
+                  3 * sizeof(float) * n);
       std::string by_draco, ours;
       ASSERT_TRUE(encode_on_grid(pc, draco::POINT_CLOUD_SEQUENTIAL_ENCODING, o, box, by_draco).ok());
       SequentialScratch scratch;
@@ -119,7 +122,7 @@ TEST(DracoSequential, QuantizerRoundsAsDraco) {
   const PositionQuantizer q(box, 4);  // 15 steps over [0, 2]
   EXPECT_EQ(q(0.f, 0), 0);
   EXPECT_EQ(q(2.f, 1), 15);
-  EXPECT_EQ(q(1.f, 2), 8);             // 7.5 rounds up, as floor(x + 0.5)
+  EXPECT_EQ(q(1.f, 2), 8);  // 7.5 rounds up, as floor(x + 0.5)
   EXPECT_EQ(q(2.f / 15.f * 2.49f, 0), 2);
   Box flat;  // a zero extent quantizes on a range of 1, as the codec hands Draco
   const PositionQuantizer f(flat, 4);

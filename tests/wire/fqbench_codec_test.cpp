@@ -30,9 +30,9 @@ std::string fqbench(const std::string& args) {
 
 TEST(FqbenchCodec, JsonHasOursAndTheFloorWithSaneValues) {
   int code = -1;
-  const std::string out = run(
-      fqbench("--codec '" + std::string(FQ_DATA_DIR) + "/fandisk.ply' --chunks 4 --threads 2 --speed 10 --repeat 3 --json"),
-      code);
+  const std::string out = run(fqbench("--codec '" + std::string(FQ_DATA_DIR) +
+                                      "/fandisk.ply' --chunks 4 --threads 2 --speed 10 --repeat 3 --json"),
+                              code);
   ASSERT_EQ(code, 0) << out;
   const nlohmann::json j = nlohmann::json::parse(out);
   EXPECT_EQ(j.at("vertices"), 6475);
@@ -40,9 +40,9 @@ TEST(FqbenchCodec, JsonHasOursAndTheFloorWithSaneValues) {
   EXPECT_EQ(j.at("chunks"), 4);
   EXPECT_EQ(j.at("threads"), 2);
   EXPECT_EQ(j.at("speed"), 10);
-  for (const char* key : {"encode_ms", "decode_ms", "floor_encode_ms", "floor_decode_ms", "encode_cpu_ms",
-                          "decode_cpu_ms", "floor_encode_cpu_ms", "floor_decode_cpu_ms", "result_encode_ms",
-                          "result_encode_cpu_ms"}) {
+  for (const char* key :
+       {"encode_ms", "decode_ms", "floor_encode_ms", "floor_decode_ms", "encode_cpu_ms", "decode_cpu_ms",
+        "floor_encode_cpu_ms", "floor_decode_cpu_ms", "result_encode_ms", "result_encode_cpu_ms"}) {
     const double ms = j.at(key).get<double>();
     EXPECT_TRUE(std::isfinite(ms) && ms > 0.0 && ms < 60000.0) << key << " = " << ms;
   }
@@ -62,7 +62,8 @@ TEST(FqbenchCodec, JsonHasOursAndTheFloorWithSaneValues) {
 TEST(FqbenchCodec, TableByDefaultAndAClearErrorForAMissingMesh) {
   int code = -1;
   const std::string table =
-      run(fqbench("--codec '" + std::string(FQ_DATA_DIR) + "/fandisk.ply' --chunks 2 --threads 1 --repeat 1"), code);
+      run(fqbench("--codec '" + std::string(FQ_DATA_DIR) + "/fandisk.ply' --chunks 2 --threads 1 --repeat 1"),
+          code);
   EXPECT_EQ(code, 0);
   EXPECT_NE(table.find("| encode wall ms |"), std::string::npos) << table;
   EXPECT_NE(table.find("| decode wall ms |"), std::string::npos) << table;

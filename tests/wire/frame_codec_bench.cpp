@@ -12,8 +12,8 @@
 
 #include "common/sample_stats.h"
 #include "common/tool_main.h"
-#include "wire/frame_codec.h"
 #include "tests/wire/wire_test_meshes.h"
+#include "wire/frame_codec.h"
 
 namespace {
 
@@ -46,8 +46,8 @@ bool decode(const std::string& form, const std::vector<std::string_view>& chunks
   return fq::wire::decode_positions(chunks, m.num_vertices(), o, out.positions).ok();
 }
 
-void bench(const std::string& name, const std::string& form, const fq::Mesh& m, const fq::wire::CodecOptions& o,
-           const std::vector<uint32_t>& chunk_counts, int repeats) {
+void bench(const std::string& name, const std::string& form, const fq::Mesh& m,
+           const fq::wire::CodecOptions& o, const std::vector<uint32_t>& chunk_counts, int repeats) {
   for (uint32_t chunks : chunk_counts) {
     std::vector<double> enc_ms, dec_ms, enc_cpu, dec_cpu;
     size_t bytes = 0;
@@ -69,8 +69,8 @@ void bench(const std::string& name, const std::string& form, const fq::Mesh& m, 
       dec_cpu.push_back(cpu_ms() - c0);
     }
     std::printf("| %s | %s | %u | %u | %u | %d | %d | %.1f | %.1f | %.1f | %.1f | %zu |\n", name.c_str(),
-                form.c_str(), m.num_vertices(), m.num_triangles(), chunks, o.threads, o.encode_speed, median(enc_ms),
-                median(enc_cpu), median(dec_ms), median(dec_cpu), bytes);
+                form.c_str(), m.num_vertices(), m.num_triangles(), chunks, o.threads, o.encode_speed,
+                median(enc_ms), median(enc_cpu), median(dec_ms), median(dec_cpu), bytes);
   }
 }
 

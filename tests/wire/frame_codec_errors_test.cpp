@@ -6,13 +6,13 @@
 #include <draco/point_cloud/point_cloud.h>
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <map>
 #include <memory>
-#include <limits>
 #include <string>
 
-#include "wire/frame_codec.h"
 #include "tests/wire/wire_test_meshes.h"
+#include "wire/frame_codec.h"
 
 namespace fq::wire {
 namespace {
@@ -114,7 +114,8 @@ TEST(FrameCodecErrors, PlainMeshCannotJoinAMultiChunkFrame) {
 
 /// A two-chunk frame of `m` whose second chunk is `m` again, carrying `runs` as its id runs and
 /// coded with Draco's sequential coder or edgebreaker.
-std::vector<std::string> frame_with_forged_runs(const Mesh& m, const std::vector<uint8_t>& runs, bool sequential) {
+std::vector<std::string> frame_with_forged_runs(const Mesh& m, const std::vector<uint8_t>& runs,
+                                                bool sequential) {
   std::vector<std::string> chunks = encode(m, 2);
   draco::Mesh dm;
   fill_draco_mesh(m, dm);
@@ -138,8 +139,9 @@ TEST(FrameCodecErrors, IdRunsNeedTheSequentialCoderAndOneIdPerPoint) {
   Status s = decode(frame_with_forged_runs(m, {0, n}, false), m.num_vertices(), out);
   EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
   EXPECT_NE(s.message().find("not sequentially coded"), std::string::npos) << s.message();
-  for (const std::vector<uint8_t>& bad : {std::vector<uint8_t>{0, uint8_t(n - 1)}, std::vector<uint8_t>{0, 0},
-                                          std::vector<uint8_t>{0, 0x80}, std::vector<uint8_t>{0xff, 0xff, 0xff, 0xff, 0x7f, 1}}) {
+  for (const std::vector<uint8_t>& bad :
+       {std::vector<uint8_t>{0, uint8_t(n - 1)}, std::vector<uint8_t>{0, 0}, std::vector<uint8_t>{0, 0x80},
+        std::vector<uint8_t>{0xff, 0xff, 0xff, 0xff, 0x7f, 1}}) {
     s = decode(frame_with_forged_runs(m, bad, true), m.num_vertices(), out);
     EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
     EXPECT_NE(s.message().find(kVertexIdRunsEntry), std::string::npos) << s.message();
@@ -278,7 +280,8 @@ TEST(FrameCodecErrors, NonFiniteCoordinateOrBadIndexIsNamed) {
       broken.positions[3 * size_t(v) + v % 3] = bad;
       const Status s = encode_frame(broken.view(), nullptr, 4, CodecOptions{}, out);
       EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
-      EXPECT_NE(s.message().find("vertex " + std::to_string(v) + " has a non-finite coordinate"), std::string::npos)
+      EXPECT_NE(s.message().find("vertex " + std::to_string(v) + " has a non-finite coordinate"),
+                std::string::npos)
           << s.message();
       EXPECT_TRUE(out.empty());
     }

@@ -10,8 +10,8 @@
 #include <string>
 #include <thread>
 
-#include "wire/frame_split.h"
 #include "tests/wire/wire_test_meshes.h"
+#include "wire/frame_split.h"
 
 namespace fq::wire {
 namespace {

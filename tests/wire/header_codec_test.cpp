@@ -85,8 +85,12 @@ TEST(HeaderCodec, ResultLabelsAreOnePerVertex) {
 TEST(HeaderCodec, AVersionOneResultIsRefusedNamingBothVersions) {
   // A result header as version 1 wrote it: version 1, status LATE and its `bool late = 13`,
   // which version 2 no longer has. The version, not the unknown field, is what is reported.
-  const std::string v1 = raw_varint_field(1, 1) + std::string("\x12\x03" "cam", 5) + raw_varint_field(8, 1) +
-                         raw_varint_field(13, 1);
+  const std::string v1 = raw_varint_field(1, 1) +
+                         std::string(
+                             "\x12\x03"
+                             "cam",
+                             5) +
+                         raw_varint_field(8, 1) + raw_varint_field(13, 1);
   ResultHeader out;
   const Status s = parse_result_header(v1, out);
   EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
@@ -136,7 +140,8 @@ TEST(HeaderCodec, WrongVersionRejected) {
     FrameHeader out;
     const Status s = parse_frame_header(h.SerializeAsString(), out);
     EXPECT_EQ(s.code(), StatusCode::kInvalidInput);
-    EXPECT_NE(s.message().find("wire version " + std::to_string(v) + " not supported (this build speaks version 2)"),
+    EXPECT_NE(s.message().find("wire version " + std::to_string(v) +
+                               " not supported (this build speaks version 2)"),
               std::string::npos)
         << s.message();
   }
@@ -180,7 +185,8 @@ TEST(HeaderCodec, ControlRequestNeedsARequest) {
   ASSERT_TRUE(parse_control_request(r.SerializeAsString(), out).ok());
   EXPECT_TRUE(out.set_params().has_compute());
   r.clear_version();  // version 0: a request without a version is refused too
-  EXPECT_NE(parse_control_request(r.SerializeAsString(), out).message().find("wire version 0"), std::string::npos);
+  EXPECT_NE(parse_control_request(r.SerializeAsString(), out).message().find("wire version 0"),
+            std::string::npos);
 }
 
 TEST(HeaderCodec, OverridesApplyOnlySetFields) {

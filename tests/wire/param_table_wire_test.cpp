@@ -54,7 +54,8 @@ TEST(ParamTableWire, EveryWireRowHasItsFieldAndEveryFieldARow) {
         EXPECT_TRUE(numbers.count(f->enum_type()->value(i)->number())) << f->enum_type()->value(i)->name();
   }
   for (int i = 0; i < d->field_count(); ++i)
-    EXPECT_TRUE(rows.count(d->field(i)->name())) << "ParamOverrides." << d->field(i)->name() << " has no table row";
+    EXPECT_TRUE(rows.count(d->field(i)->name()))
+        << "ParamOverrides." << d->field(i)->name() << " has no table row";
 }
 
 TEST(ParamTableWire, EachRowCrossesTheWireAlone) {
@@ -75,7 +76,8 @@ TEST(ParamTableWire, EachRowCrossesTheWireAlone) {
     ASSERT_TRUE(apply_overrides(via_bytes, got).ok()) << row.name;
     EXPECT_EQ(row.get(got), test::other_value(row)) << row.name;
     for (const ParamRow& other : param_table())
-      if (&other != &row) EXPECT_EQ(other.get(got), other.get(Params{})) << row.name << " changed " << other.name;
+      if (&other != &row)
+        EXPECT_EQ(other.get(got), other.get(Params{})) << row.name << " changed " << other.name;
   }
 }
 

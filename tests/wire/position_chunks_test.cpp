@@ -4,8 +4,8 @@
 #include <cmath>
 #include <string>
 
-#include "wire/frame_codec.h"
 #include "tests/wire/wire_test_meshes.h"
+#include "wire/frame_codec.h"
 
 namespace fq::wire {
 namespace {
@@ -81,7 +81,8 @@ TEST(PositionChunks, BadInputIsRefusedWithAMessage) {
   const Mesh m = test_wire::make_bumpy_grid(4, 4);
   EXPECT_EQ(encode_positions(m.positions.data(), m.num_vertices(), 0, CodecOptions{}, out).code(),
             StatusCode::kInvalidArgument);
-  EXPECT_EQ(encode_positions(m.positions.data(), 0, 1, CodecOptions{}, out).code(), StatusCode::kInvalidInput);
+  EXPECT_EQ(encode_positions(m.positions.data(), 0, 1, CodecOptions{}, out).code(),
+            StatusCode::kInvalidInput);
   Mesh bad = m;
   bad.positions[7] = NAN;
   const Status nan = encode_positions(bad.positions.data(), bad.num_vertices(), 2, CodecOptions{}, out);

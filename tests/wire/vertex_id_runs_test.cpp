@@ -41,16 +41,16 @@ TEST(VertexIdRuns, RejectsMalformedOrMismatchedRuns) {
   const auto decode = [&](const std::vector<uint8_t>& b, size_t count, uint32_t limit = 1u << 24) {
     return decode_id_runs(b.data(), b.size(), count, limit, ids);
   };
-  EXPECT_TRUE(decode({2, 3}, 3));               // 2, 3, 4
+  EXPECT_TRUE(decode({2, 3}, 3));  // 2, 3, 4
   EXPECT_EQ(ids, (std::vector<uint32_t>{2, 3, 4}));
-  EXPECT_FALSE(decode({2, 3}, 2));              // more ids than points
-  EXPECT_FALSE(decode({2, 3}, 4));              // fewer
-  EXPECT_FALSE(decode({2, 0}, 0));              // empty run
-  EXPECT_FALSE(decode({2}, 1));                 // truncated pair
-  EXPECT_FALSE(decode({0x80}, 1));              // truncated varint
-  EXPECT_FALSE(decode({0xff, 0xff, 0xff, 0xff, 0x1f, 1}, 1));  // more than 32 bits
+  EXPECT_FALSE(decode({2, 3}, 2));                               // more ids than points
+  EXPECT_FALSE(decode({2, 3}, 4));                               // fewer
+  EXPECT_FALSE(decode({2, 0}, 0));                               // empty run
+  EXPECT_FALSE(decode({2}, 1));                                  // truncated pair
+  EXPECT_FALSE(decode({0x80}, 1));                               // truncated varint
+  EXPECT_FALSE(decode({0xff, 0xff, 0xff, 0xff, 0x1f, 1}, 1));    // more than 32 bits
   EXPECT_FALSE(decode({0, 0xff, 0xff, 0xff, 0xff, 0x0f}, 100));  // a run far beyond the point count
-  EXPECT_FALSE(decode({9, 1}, 1, 9));           // id 9 at limit 9
+  EXPECT_FALSE(decode({9, 1}, 1, 9));                            // id 9 at limit 9
   EXPECT_TRUE(decode({8, 1}, 1, 9));
 }
 

@@ -1,7 +1,5 @@
 #include "tests/wire/wire_test_meshes.h"
 
-#include "wire/draco_budget.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -9,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "wire/draco_budget.h"
 
 namespace fq::test_wire {
 

@@ -69,7 +69,7 @@ int main() {
                  decoded.num_vertices(), decoded.num_triangles(), worst);
     return 1;
   }
-  std::printf("chunks %zu\nheader bytes %zu\nvertices %u\nround trip ok\n", chunks.size(), header_bytes.size(),
-              decoded.num_vertices());
+  std::printf("chunks %zu\nheader bytes %zu\nvertices %u\nround trip ok\n", chunks.size(),
+              header_bytes.size(), decoded.num_vertices());
   return 0;
 }
