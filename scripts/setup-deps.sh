@@ -36,7 +36,7 @@ test_packages=(
   python3-venv python3-setuptools python3-wheel   # pip install . (pyproject.toml) and its test
   patchelf   # pip install . and pip wheel: the module's libraries packaged in fq.libs/ (setup.py)
   python3-matplotlib   # the picture of python/examples/fq_vs_open3d.py
-  clang-tidy
+  clang-tidy clang-format   # scripts/tidy.sh and scripts/format.sh
   python3-zmq python3-protobuf   # clients/examples/consume.py and its test
   openssl curl   # the tests' self-signed certificate and TLS client
   python3-prometheus-client
