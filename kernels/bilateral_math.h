@@ -6,9 +6,9 @@
 
 #include <cstdint>
 
+#include "common/hd.h"
 #include "kernels/gaussian.h"
 #include "kernels/grid.h"
-#include "kernels/hd.h"
 #include "kernels/vec3.h"
 
 namespace fq {

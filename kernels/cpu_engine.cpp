@@ -98,12 +98,11 @@ void CpuEngine::run_pass(PassKind pass, const RunPlan& run, FrameResult& out) {
       break;
     case PassKind::kNoise: {
       const NoiseEstimate e = cpu::estimate_noise(f_, threads_);
-      out.noise_estimate = e.noise;
-      out.noise_residual = e.residual;
+      out.keep(e);
       break;
     }
     case PassKind::kRefine: {
-      const RefinePlan plan = run.refinement(out.noise_estimate);
+      const RefinePlan plan = run.refinement(out.estimate());
       cpu::refine_positions(f_, plan, threads_);
       out.filter_noise = plan.noise;
       break;

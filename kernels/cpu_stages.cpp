@@ -149,8 +149,10 @@ void refine_positions(CpuFrame& f, const RefinePlan& plan, int threads) {
   f.refine_e[0].resize(n);
   f.refine_e[1].resize(n);
   parallel_for(n, threads, [&](uint32_t v) {
-    f.refine_t[v] = tangential_move(xyz(f.points[v]), f.moved[v], vertex_normal(fan, f.moved.data(), v));
-    f.refine_e[0][v] = {norm2(f.refine_t[v]), face_turn(fan, f.points.data(), f.moved.data(), v)};
+    const Vec3 normal = vertex_normal(fan, f.moved.data(), v);
+    f.refine_t[v] = tangential_move(xyz(f.points[v]), f.moved[v], normal);
+    f.refine_e[0][v] =
+        slide_level(fan, f.points.data(), f.moved.data(), v, f.refine_t[v], normal, plan.noise_direction);
   });
   for (int pass = 0; pass < kEnergyPasses; ++pass) {
     const SlideLevel* in = f.refine_e[pass & 1].data();
@@ -159,8 +161,9 @@ void refine_positions(CpuFrame& f, const RefinePlan& plan, int threads) {
   }
   const SlideLevel* level = f.refine_e[kEnergyPasses & 1].data();
   parallel_for(n, threads, [&](uint32_t v) {
-    f.moved[v] = limited_position(f.moved[v], f.refine_t[v], level[v].energy,
-                                  plan.tangential_allowance * level[v].turn);
+    f.moved[v] =
+        limited_position(f.moved[v], f.refine_t[v], level[v].energy,
+                         slide_allowance(level[v], plan.tangential_allowance, plan.directional_allowance));
   });
 }
 

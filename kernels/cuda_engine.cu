@@ -243,12 +243,11 @@ void CudaEngine::enqueue_pass(PassKind pass, const RunPlan& run, FrameResult& ou
       break;
     case PassKind::kNoise: {
       const NoiseEstimate e = cuda::estimate_noise(f_, refine_, s);
-      out.noise_estimate = e.noise;
-      out.noise_residual = e.residual;
+      out.keep(e);
       break;
     }
     case PassKind::kRefine: {
-      const RefinePlan plan = run.refinement(out.noise_estimate);
+      const RefinePlan plan = run.refinement(out.estimate());
       cuda::refine_positions(f_, refine_, plan, s);
       out.filter_noise = plan.noise;
       break;

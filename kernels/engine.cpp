@@ -30,6 +30,24 @@ double FrameResult::total_ms() const {
   return t;
 }
 
+void FrameResult::keep(const NoiseEstimate& e) {
+  noise_estimate = e.noise;
+  noise_residual = e.residual;
+  noise_directional = e.directional;
+  noise_alignment = e.alignment;
+  noise_direction = e.direction;
+}
+
+NoiseEstimate FrameResult::estimate() const {
+  NoiseEstimate e;  // the correlations are not kept: no plan reads them
+  e.noise = noise_estimate;
+  e.residual = noise_residual;
+  e.directional = noise_directional;
+  e.alignment = noise_alignment;
+  e.direction = noise_direction;
+  return e;
+}
+
 bool valid_cuda_team(int team) {
   return team == CudaTuning::kTeamBySize || team == 0 || team == 1 || team == 2 || team == 4 || team == 8 ||
          team == 16 || team == 32;

@@ -51,6 +51,13 @@ struct FrameResult {
   /// rings cannot follow, mean edge lengths): noise_estimate is the share of it read as
   /// noise, the rest was read as the surface's detail.
   float noise_residual = 0.f;
+  /// "qf+": the estimate's directional part (kernels/noise_estimate.h, NoiseEstimate): the noise
+  /// along one direction shared by the frame (a range scan's line of sight; mean edge lengths, 0
+  /// where none stands out), that unit direction in the input's coordinates (zero without a
+  /// usable sample), and the RMS of n·d over the samples (how much of it lies along the normals).
+  float noise_directional = 0.f;
+  float noise_alignment = 0.f;
+  Vec3 noise_direction{0.f, 0.f, 0.f};
   /// Temporal filtering: the share of vertices that found a prior in the stream's last result,
   /// the mean pull towards it, and whether this frame reset the history (a scene cut).
   float prior_coverage = 0.f;
@@ -71,6 +78,9 @@ struct FrameResult {
   std::vector<PassTiming> timings;
 
   double total_ms() const;
+  /// "qf+": the estimate kept in the fields above (keep), and as the refinement reads it (estimate).
+  void keep(const NoiseEstimate& e);
+  NoiseEstimate estimate() const;
 };
 
 /// Buffers of the extra engine runs that cluster control makes (kernels/cluster_control.h): the

@@ -24,9 +24,8 @@ void reset_run_outputs(FrameResult& out) {
   out.theta = 0.f;
   out.link_parent.clear();
   out.link_p.clear();
-  out.noise_estimate = 0.f;
+  out.keep(NoiseEstimate{});
   out.filter_noise = 0.f;
-  out.noise_residual = 0.f;
   out.prior_coverage = 0.f;
   out.prior_share = 0.f;
   out.history_reset = false;

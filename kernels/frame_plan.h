@@ -76,7 +76,9 @@ struct RunPlan {
   /// "qf+": the noise the strengths come from is known before the estimate (known_noise > 0).
   bool refinement_known() const { return params.filtering.refine.known_noise > 0.f; }
   /// "qf+": the refinement for the frame's noise estimate (ignored when refinement_known()).
-  RefinePlan refinement(float estimate) const { return plan_refinement(params.filtering.refine, estimate); }
+  RefinePlan refinement(const NoiseEstimate& estimate) const {
+    return plan_refinement(params.filtering.refine, estimate);
+  }
   /// "" for the frame's run, "geometry." and "cluster." for the runs cluster control adds:
   /// the prefix of their passes in the frame's timings.
   const char* timing_prefix() const;

@@ -9,10 +9,10 @@
 
 #include <cstdint>
 
+#include "common/hd.h"
 #include "common/status.h"
 #include "core/mesh_checks.h"
 #include "core/mesh_view.h"
-#include "kernels/hd.h"
 #include "kernels/vec3.h"
 
 namespace fq {

@@ -15,8 +15,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "common/hd.h"
 #include "kernels/grid.h"
-#include "kernels/hd.h"
 #include "kernels/nearest_vertex.h"
 #include "kernels/vec3.h"
 

@@ -4,7 +4,7 @@
 // enough (a global frame would put c ~ coordinate^2 and lose the result to cancellation).
 #pragma once
 
-#include "kernels/hd.h"
+#include "common/hd.h"
 #include "kernels/vec3.h"
 
 namespace fq {

@@ -11,7 +11,7 @@
 
 #include <cmath>
 
-#include "kernels/hd.h"
+#include "common/hd.h"
 #include "kernels/quadric.h"
 #include "kernels/sym3_eigen.h"
 #include "kernels/vec3.h"

@@ -18,8 +18,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "common/hd.h"
 #include "kernels/gaussian.h"
-#include "kernels/hd.h"
 #include "kernels/sym3_eigen.h"
 #include "kernels/triangle_math.h"
 #include "kernels/vec3.h"
@@ -232,13 +232,17 @@ FQ_HD T ring_mean(const FanView& m, const T* e, uint32_t v) {
   return (1.f / count) * sum;
 }
 
-/// Step 3's two per-vertex quantities, made local levels together by the same ring_mean passes.
+/// Step 3's per-vertex quantities, made local levels together by the same ring_mean passes.
 struct SlideLevel {
   float energy;  ///< |t|², the squared tangential move
   float turn;    ///< how far the filter turned the vertex's triangles (face_turn)
+  float across;  ///< 1 − (n·d)²: the share of a displacement along the noise's direction d that lies
+                 ///< in the tangent plane (0 without a direction)
 };
-FQ_HD SlideLevel operator+(SlideLevel a, SlideLevel b) { return {a.energy + b.energy, a.turn + b.turn}; }
-FQ_HD SlideLevel operator*(float s, SlideLevel a) { return {s * a.energy, s * a.turn}; }
+FQ_HD SlideLevel operator+(SlideLevel a, SlideLevel b) {
+  return {a.energy + b.energy, a.turn + b.turn, a.across + b.across};
+}
+FQ_HD SlideLevel operator*(float s, SlideLevel a) { return {s * a.energy, s * a.turn, s * a.across}; }
 
 /// Step 3, second part. Mean over v's triangles of (1 − n_in·n_out)/2: 0 where the filter left
 /// every triangle's orientation alone, ≈ θ²/4 for triangles turned by θ, 1 for a triangle the
@@ -261,13 +265,27 @@ FQ_HD float face_turn(const FanView& m, const Point4* in, const Vec3* out, uint3
 /// ring_mean passes that make a vertex's tangential energy and turn local levels (two rings).
 constexpr int kEnergyPasses = 2;
 
+/// Step 3's quantities of vertex v before their ring means: its tangential move t (normal n of
+/// the result) and `direction`, the unit direction of the frame's directional noise or zero.
+FQ_HD SlideLevel slide_level(const FanView& m, const Point4* in, const Vec3* out, uint32_t v, Vec3 t, Vec3 n,
+                             Vec3 direction) {
+  const float nd = dot(n, direction);
+  return {norm2(t), face_turn(m, in, out, v), fmaxf(0.f, norm2(direction) - nd * nd)};
+}
+
+/// The squared slide the noise explains at a vertex of local `level`: `per_turn` (refine_plan.h,
+/// kSlidePerTurn σ²) per unit of turn, plus the directional noise's own tangential variance,
+/// σ_d² (`directional`) times the share of its direction within the tangent plane.
+FQ_HD float slide_allowance(const SlideLevel& level, float per_turn, float directional) {
+  return per_turn * level.turn + directional * level.across;
+}
+
 /// Step 3. The result `out` of vertex v with its tangential move `t` scaled by g = min(1,
 /// allowance / energy): `energy` is the local mean of |t|² (ring_mean, twice), `allowance` the
-/// part the noise explains (refine_plan.h: the slide allowed per unit of turn, times the local
-/// turn). Where the vertices slid no more than that, the slide undoes noise and stays; where they
-/// slid more (an irregular triangulation pulled towards regular triangles, or detail the filter
-/// hardly turned), only that share of it stays (the Wiener gain of the slide: signal over signal
-/// plus noise).
+/// part the noise explains (slide_allowance). Where the vertices slid no more than that, the slide undoes
+/// noise and stays; where they slid more (an irregular triangulation pulled towards regular triangles, or
+/// detail the filter hardly turned), only that share of it stays (the Wiener gain of the slide: signal over
+/// signal plus noise).
 FQ_HD Vec3 limited_position(Vec3 out, Vec3 t, float energy, float allowance) {
   allowance = fmaxf(allowance, 0.f);  // below 0 (rounding) the division would give -inf * 0
   const float g = energy > allowance ? allowance / energy : 1.f;

@@ -26,6 +26,8 @@
 
 #include "core/params.h"
 #include "kernels/gaussian.h"
+#include "kernels/noise_estimate.h"
+#include "kernels/vec3.h"
 
 namespace fq {
 
@@ -50,6 +52,11 @@ struct RefinePlan {
   Gaussian gs, gr;             ///< the normal filter's spatial and range kernels
   float tangential_step;       ///< share of the move to the 1-ring mean per vertex update
   float tangential_allowance;  ///< squared tangential move kept per unit of turn (kSlidePerTurn σ²)
+  /// The frame's directional noise (noise_estimate.h): its variance σ_d² (× strength²), the
+  /// squared tangential move it explains where its direction lies in the tangent plane, and its
+  /// unit direction (zero: none found, or a noise given).
+  float directional_allowance;
+  Vec3 noise_direction;
 };
 
 constexpr float kRoundsPerNoise2 = 16.f;    ///< rounds = 1 + 16σ²
@@ -76,11 +83,30 @@ constexpr float kShareFullFrom = 0.05f;
 constexpr float kSlidePerTurn = 100.f;
 constexpr float kMinRange = 1e-4f;  ///< the range at σ = 0 (a Gaussian needs σ > 0)
 
-/// The plan for a frame whose estimated noise is `estimate` (mean edges; ignored when the
-/// parameters give the noise).
-inline RefinePlan plan_refinement(const RefineParams& r, float estimate) {
-  const float s = r.strength * (r.known_noise > 0.f ? r.known_noise : estimate);
+/// The normal noise the strengths follow when it is estimated: σ̂, or the directional noise's
+/// part along the normals (σ_d × the RMS of n·d) where that is larger (noise along one direction
+/// scatters the vertices within the surface too, which disturbs the fits σ̂ is read from).
+inline float normal_noise(const NoiseEstimate& e) { return std::fmax(e.noise, e.directional * e.alignment); }
+
+/// The directional noise's RMS part within the tangent planes, σ_d √(1 − RMS(n·d)²): what it
+/// slides vertices by. Noise along the normals of a frame seen head-on is directional noise
+/// along its normal, with no part within the surface.
+inline float tangential_noise(const NoiseEstimate& e) {
+  return e.directional * std::sqrt(std::fmax(0.f, 1.f - e.alignment * e.alignment));
+}
+
+/// The plan for a frame whose estimated noise is `estimate` (its noise ignored when the
+/// parameters give the noise). Directional noise also lets the vertex update slide further: its
+/// tangential share grows by the share of the noise that lies within the surface, q = σ_t² /
+/// (σ_t² + σ_n²) (σ_t = tangential_noise), up to twice the share at q → 1, and the slide
+/// allowance holds the directional noise's tangential variance at each vertex.
+inline RefinePlan plan_refinement(const RefineParams& r, const NoiseEstimate& estimate) {
+  const float s = r.strength * (r.known_noise > 0.f ? r.known_noise : normal_noise(estimate));
   const float range = s > 0.f ? kRangeScale * std::pow(s, kRangeExponent) : 0.f;
+  // A noise given is white noise of that σ: no directional part.
+  const float sd = r.known_noise > 0.f ? 0.f : estimate.directional, sn = normal_noise(estimate);
+  const float st = r.known_noise > 0.f ? 0.f : tangential_noise(estimate);
+  const float directional_share = st > 0.f ? st * st / (st * st + sn * sn) : 0.f;
   RefinePlan p;
   p.noise = s;
   p.rounds = passes_of(1.f + kRoundsPerNoise2 * s * s);
@@ -89,9 +115,16 @@ inline RefinePlan plan_refinement(const RefineParams& r, float estimate) {
   p.gs = Gaussian::with_sigma(kNormalSigmaS);
   // A clean frame (σ = 0) weights only normals within 1e-4 of the face's own: nothing moves.
   p.gr = Gaussian::with_sigma(std::fmax(range, kMinRange));
-  p.tangential_step = kTangentialStep * std::fmin(1.f, s / kShareFullFrom);
+  p.tangential_step = kTangentialStep * (1.f + directional_share) * std::fmin(1.f, s / kShareFullFrom);
   p.tangential_allowance = kSlidePerTurn * s * s;
+  p.directional_allowance = r.strength * r.strength * sd * sd;
+  p.noise_direction = sd > 0.f ? estimate.direction : Vec3{0.f, 0.f, 0.f};
   return p;
+}
+
+/// The plan for white noise of `estimate` (mean edges) alone.
+inline RefinePlan plan_refinement(const RefineParams& r, float estimate) {
+  return plan_refinement(r, NoiseEstimate::white_noise(estimate));
 }
 
 }  // namespace fq

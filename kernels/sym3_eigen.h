@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "kernels/hd.h"
+#include "common/hd.h"
 
 namespace fq {
 

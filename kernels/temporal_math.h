@@ -18,7 +18,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "kernels/hd.h"
+#include "common/hd.h"
 #include "kernels/vec3.h"
 
 namespace fq {

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "kernels/hd.h"
+#include "common/hd.h"
 #include "kernels/quadric.h"
 #include "kernels/vec3.h"
 

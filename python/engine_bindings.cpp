@@ -3,6 +3,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <array>
 #include <string>
 
 #include "core/params.h"
@@ -36,6 +37,11 @@ pyb::dict filter_info(const Mesh& mesh, const Params& p, const FrameResult& r) {
   return pyb::dict(
       "mean_edge"_a = r.mean_edge, "noise_estimate"_a = qf_plus ? pyb::cast(r.noise_estimate) : none,
       "noise_residual"_a = qf_plus ? pyb::cast(r.noise_residual) : none,
+      "noise_directional"_a = qf_plus ? pyb::cast(r.noise_directional) : none,
+      "noise_direction"_a = qf_plus ? pyb::cast(std::array<float, 3>{r.noise_direction.x, r.noise_direction.y,
+                                                                     r.noise_direction.z})
+                                    : none,
+      "noise_alignment"_a = qf_plus ? pyb::cast(r.noise_alignment) : none,
       "filtered_for"_a = qf_plus ? pyb::cast(r.filter_noise) : none, "moved_mean"_a = moved.mean,
       "moved_p99"_a = moved.p99, "moved_max"_a = moved.max, "welded_vertices"_a = r.welded_vertices);
 }

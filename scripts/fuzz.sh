@@ -14,11 +14,11 @@ flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefin
 CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DFQ_CUDA=OFF -DFQ_BUILD_TESTS=OFF -DFQ_FUZZ=ON -DCMAKE_CXX_FLAGS="$flags" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
-cmake --build "$build" -j "$jobs" --target fuzz_headers fuzz_frame_decode fuzz_config fuzz_make_seeds
+cmake --build "$build" -j "$jobs" --target fuzz_headers fuzz_frame_decode fuzz_config fuzz_symbol_decode fuzz_make_seeds
 mkdir -p "$build/seeds" "$build/artifacts"
 ASAN_OPTIONS=detect_leaks=0 "$build/tests/fuzz/fuzz_make_seeds" "$root/data/fandisk.ply" "$root/configs/fqd.toml" "$build/seeds"
 status=0
-for target in headers frame_decode config; do
+for target in headers frame_decode config symbol_decode; do
   corpus="$build/corpus/$target"
   mkdir -p "$corpus"
   log="$build/fuzz_$target.log"

@@ -1,8 +1,11 @@
-// Unsigned LEB128 varints, as Draco writes them (EncodeVarint) and as the id runs use them.
+// Unsigned LEB128 varints, as Draco writes them (EncodeVarint) and as the id runs use them;
+// get_varint also reads connectivity indices on the device (kernels/cuda/chunk_decode.cu).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+
+#include "common/hd.h"
 
 namespace fq::wire::detail {
 
@@ -18,7 +21,7 @@ inline uint8_t* put_varint(uint32_t v, uint8_t* at) {
 
 /// Reads one varint of at most `max_bytes` bytes (5: any 32-bit value) at data[pos] into `v`;
 /// false at the end of `size` bytes, on a longer one, or on bits past 32.
-inline bool get_varint(const uint8_t* data, size_t size, size_t& pos, uint32_t& v, int max_bytes = 5) {
+FQ_HD bool get_varint(const uint8_t* data, size_t size, size_t& pos, uint32_t& v, int max_bytes = 5) {
   v = 0;
   for (int shift = 0; shift < 7 * max_bytes && shift < 35; shift += 7) {
     if (pos >= size) return false;

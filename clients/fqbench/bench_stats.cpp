@@ -1,11 +1,29 @@
 #include "clients/fqbench/bench_stats.h"
 
+#include <chrono>
+#include <ctime>
+
 #include "common/sample_stats.h"
 
 namespace fq::bench {
 
 Spread spread_of(const std::vector<double>& v) {
   return {median(v), percentile(v, 0.1), percentile(v, 0.9), static_cast<int>(v.size())};
+}
+
+double cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
+}
+
+void time_step(const std::function<bool()>& step, bool& ok, std::vector<double>& wall,
+               std::vector<double>& cpu) {
+  const double c0 = cpu_ms();
+  const auto t0 = std::chrono::steady_clock::now();
+  ok = step() && ok;
+  wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  cpu.push_back(cpu_ms() - c0);
 }
 
 bool is_host_or_transfer(const std::string& pass) {

@@ -1,6 +1,7 @@
 // Median and spread of repeated timings, and the per-pass collection of a run of frames.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -31,6 +32,15 @@ class PassSamples {
   std::vector<std::string> names_;
   std::map<std::string, std::vector<double>> samples_;
 };
+
+/// CPU time of the whole process (all threads), in ms: the work done, less sensitive than wall
+/// time to other jobs on a shared machine.
+double cpu_ms();
+
+/// Runs `step` (false: it failed, and so `ok` becomes false) and appends its wall and CPU ms
+/// to `wall` and `cpu`.
+void time_step(const std::function<bool()>& step, bool& ok, std::vector<double>& wall,
+               std::vector<double>& cpu);
 
 /// Host-side passes and transfers, which "device" leaves out.
 bool is_host_or_transfer(const std::string& pass);

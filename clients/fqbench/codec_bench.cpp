@@ -5,11 +5,8 @@
 #include "clients/fqbench/codec_bench.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
-#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
@@ -24,24 +21,6 @@
 
 namespace fq::bench {
 namespace {
-
-/// CPU time of the whole process (all threads), in ms: the work done, less sensitive than wall
-/// time to other jobs on a shared machine.
-double cpu_ms() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
-}
-
-/// Wall and CPU ms of one step, appended to `wall` and `cpu`.
-void time_step(const std::function<bool()>& step, bool& ok, std::vector<double>& wall,
-               std::vector<double>& cpu) {
-  const double c0 = cpu_ms();
-  const auto t0 = std::chrono::steady_clock::now();
-  ok = step() && ok;
-  wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-  cpu.push_back(cpu_ms() - c0);
-}
 
 size_t total_bytes(const std::vector<std::string>& parts) {
   size_t n = 0;

@@ -3,7 +3,8 @@
 // rows of Tables 2 and 3, with the paper's figure, the speed-up, host<->device transfers
 // (pinned) and the CPU engine's time on the same row. Prints a markdown table.
 // With --codec MESH it times the frame codec against plain Draco instead (codec_bench.h), with
-// --track-ids FRAMES the host step of temporal track A (track_bench.h).
+// --codec-device MESH the device decode against the host reader (codec_device_bench.h, CUDA
+// builds), with --track-ids FRAMES the host step of temporal track A (track_bench.h).
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <chrono>
@@ -18,12 +19,14 @@
 #include "clients/fqbench/bench_rows.h"
 #include "clients/fqbench/bench_stats.h"
 #include "clients/fqbench/codec_bench.h"
+#include "clients/fqbench/codec_device_bench.h"
 #include "clients/fqbench/neighbour_stats.h"
 #include "clients/fqbench/track_bench.h"
 #include "common/tool_main.h"
 #include "io/mesh_io.h"
 #include "kernels/cpu_engine.h"
 #include "kernels/engine.h"
+#include "kernels/fq_features.h"
 
 namespace {
 
@@ -192,6 +195,16 @@ int run(int argc, char** argv) {
   add_ranged(app, "--speed", codec.speed, "codec mode: Draco encoding = decoding speed", 0, 10);
   add_ranged(app, "--bits", codec.position_bits, "codec mode: position quantization bits", 1, 30);
   app.add_flag("--json", codec.json, "codec mode: print one JSON object instead of a table");
+  CodecDeviceBenchOptions device_codec;
+  auto* device_codec_opt =
+      app.add_option("--codec-device", device_codec.mesh,
+                     "device codec mode: time the device decode of MESH's sequential chunks against the "
+                     "host reader on the same chunks (CUDA builds), instead of the engine rows");
+  app.add_option("--chunk-counts", device_codec.chunks,
+                 "device codec mode: one row per chunk count (default: fqpub's for the mesh, 1, 16, 64, 256)")
+      ->check(CLI::Range(1u, 256u));
+  add_ranged(app, "--host-threads", device_codec.host_threads, "device codec mode: the host reader's threads",
+             1, 256);
   TrackBenchOptions track;
   auto* track_opt =
       app.add_option("--track-ids", track.frames_dir,
@@ -208,6 +221,16 @@ int run(int argc, char** argv) {
     track.mesh_dir = o.mesh_dir;
     track.repeat = o.repeat;
     return run_track_bench(track);
+  }
+  if (*device_codec_opt) {
+    device_codec.mesh_dir = o.mesh_dir;
+    device_codec.repeat = o.repeat;
+#if FQ_WITH_CUDA
+    return run_codec_device_bench(device_codec);
+#else
+    std::fprintf(stderr, "fqbench: --codec-device needs the CUDA build\n");
+    return 3;
+#endif
   }
   if (*codec_opt) {
     codec.mesh_dir = o.mesh_dir;

@@ -55,6 +55,9 @@ Status run_engine(const Options& o, Engine& engine, const MeshView& view, FrameR
     report.noise_estimate = result.noise_estimate;
     report.filter_noise = result.filter_noise;
     report.noise_residual = result.noise_residual;
+    report.noise_directional = result.noise_directional;
+    report.noise_direction = {result.noise_direction.x, result.noise_direction.y, result.noise_direction.z};
+    report.noise_alignment = result.noise_alignment;
   }
   if (o.sequence) {  // also at --temporal 0: the per-frame baseline's flicker
     report.prior_coverage = result.prior_coverage;

@@ -31,13 +31,17 @@ nlohmann::json noise_json(const FileReport& r) {
   if (!r.noise_estimate || !r.filter_noise) return nullptr;
   const RefinePlan plan = plan_refinement(RefineParams{*r.filter_noise, 1.f}, 0.f);
   auto passes = [](Passes p) { return p.count > 0 ? p.count - 1 + p.last : 0.f; };
-  return {{"estimated", *r.noise_estimate},
-          {"residual", r.noise_residual ? nlohmann::json(*r.noise_residual) : nlohmann::json(nullptr)},
-          {"filtered_for", *r.filter_noise},
-          {"looks_clean", *r.noise_estimate < kLooksCleanBelow},
-          {"rounds", passes(plan.rounds)},
-          {"normal_passes", passes(plan.normal_passes)},
-          {"vertex_passes", passes(plan.vertex_passes)}};
+  return {
+      {"estimated", *r.noise_estimate},
+      {"residual", r.noise_residual ? nlohmann::json(*r.noise_residual) : nlohmann::json(nullptr)},
+      {"directional", r.noise_directional ? nlohmann::json(*r.noise_directional) : nlohmann::json(nullptr)},
+      {"direction", r.noise_direction},
+      {"alignment", r.noise_alignment},
+      {"filtered_for", *r.filter_noise},
+      {"looks_clean", *r.noise_estimate < kLooksCleanBelow},
+      {"rounds", passes(plan.rounds)},
+      {"normal_passes", passes(plan.normal_passes)},
+      {"vertex_passes", passes(plan.vertex_passes)}};
 }
 
 /// The noise fqfilter added (--noise, --noise-kind, --seed); "direction" is the kind's old
@@ -223,11 +227,20 @@ void print_human(const FileReport& r, std::ostream& os) {
     if (r.noise_residual && *r.noise_residual > 0.f)
       os << " (of a residual " << *r.noise_residual << ": the rest read as the surface's detail)";
     os << "\n";
+    if (r.noise_directional && *r.noise_directional > 0.f) {
+      const float along_normals = *r.noise_directional * r.noise_alignment;
+      os << "  directional noise: " << *r.noise_directional << " mean edges along (" << r.noise_direction[0]
+         << ", " << r.noise_direction[1] << ", " << r.noise_direction[2]
+         << "), one direction for the whole mesh (a range sensor's line of sight): " << along_normals
+         << " of it along the normals" << (along_normals > *r.noise_estimate ? ", filtered for" : "")
+         << "; its slides within the surface undone\n";
+    }
     const bool estimated = r.params.filtering.refine.known_noise == 0.f;
-    if (estimated && *r.noise_estimate < kLooksCleanBelow)
+    const float read = *r.filter_noise / std::fmax(r.params.filtering.refine.strength, 1e-6f);
+    if (estimated && *r.noise_estimate < kLooksCleanBelow && read < kLooksCleanBelow)
       os << "  input looks clean: filtered lightly (--known-noise 0.1 filters it as 0.1 mean edges of "
             "noise)\n";
-    else if (estimated && *r.noise_estimate < kReadsLightBelow && r.params.filtering.refine.strength <= 1.f)
+    else if (estimated && read < kReadsLightBelow && r.params.filtering.refine.strength <= 1.f)
       os << "  read as light noise: filtered lightly; for noise this estimate does not see (a raw scan's "
             "correlated noise) --strength 3 filters as for three times the noise\n";
   }

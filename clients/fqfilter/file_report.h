@@ -1,6 +1,7 @@
 // What fqfilter measured for one mesh, printed as a table or as one JSON object.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <iosfwd>
 #include <nlohmann/json.hpp>
@@ -48,6 +49,11 @@ struct FileReport {
   std::optional<float> noise_estimate, filter_noise;
   /// "qf+": the residual the estimate was read from (the rest of it taken for detail).
   std::optional<float> noise_residual;
+  /// "qf+": noise along one direction the frame shares (mean edge lengths; 0: none found), its
+  /// unit direction and the RMS of n·d (kernels/noise_estimate.h, NoiseEstimate).
+  std::optional<float> noise_directional;
+  std::array<float, 3> noise_direction{};
+  float noise_alignment = 0.f;
   /// How far the filter moved the vertices (mean edge lengths); absent without filtering.
   std::optional<VertexMoves> moved;
   /// Coincident vertices (seam twins) filtered as one with their first copy (kernels/seam_weld.h).

@@ -65,10 +65,14 @@ __device__ void fit_ring_warp(const FanView& m, const Vec3* x, uint32_t v, WarpF
   int count = add_corners(m, v, v, fit.ring, 0, lane);
   const int first = count;
   for (int k = 0; k < first; ++k) count = add_corners(m, fit.ring[k], v, fit.ring, count, lane);
-  if (lane == 0) fit.count = count;
+  if (lane == 0) {
+    fit.count = count;
+    fit.first = first;
+  }
   if (count < kMinRing) return;
   const FitFrame frame = fit_frame(m, x, v, fit.ring, first);  // every lane alike
   if (!frame.ok) return;
+  if (lane == 0) fit.normal = frame.n;
   for (int k = lane; k < count; k += kWarp) w.q[k] = fit_point(frame, x[fit.ring[k]]);
   __syncwarp();
   // XᵀX's lower triangle: lane e < 21 sums entry (i, j) over the ring in order, as fit_ring.
@@ -114,7 +118,7 @@ __global__ void __launch_bounds__(tuning::kNoiseSampleBlock)
   const uint32_t v = blockIdx.x * stride;
   const int warp = threadIdx.x / kWarp, lane = threadIdx.x % kWarp;
   if (m.vf_offsets[v + 1] == m.vf_offsets[v]) {  // block-uniform
-    if (threadIdx.x == 0) out[blockIdx.x] = NoiseSample{NAN, NAN, NAN};
+    if (threadIdx.x == 0) out[blockIdx.x] = no_noise_sample();
     return;
   }
   const uint32_t u = sample_partner(m, v);
@@ -122,8 +126,11 @@ __global__ void __launch_bounds__(tuning::kNoiseSampleBlock)
   __syncthreads();
   if (warp != 0) return;
   const RingFit &fv = fits[0].fit, &fu = fits[1].fit;
-  NoiseSample s{NAN, NAN, NAN};
-  if (fv.ok) s.z_v = fv.z;
+  NoiseSample s = no_noise_sample();
+  if (fv.ok) {
+    s.z_v = fv.z;
+    keep_direction_terms(m, x, v, fv, s);
+  }
   if (fv.ok && fu.ok) {  // warp-uniform
     s.z_u = fu.z;
     s.white_correlation = white_correlation(white_covariance_warp(fv, fu, v, u, lane), fv, fu);

@@ -57,12 +57,13 @@ __global__ void partial_round_kernel(uint32_t n, const Vec3* before, float share
   if (v < n) x[v] = partial_position(before[v], x[v], share);
 }
 
-__global__ void tangential_move_kernel(uint32_t n, FanView fan, const Point4* in, const Vec3* x, Vec3* t,
-                                       SlideLevel* level) {
+__global__ void tangential_move_kernel(uint32_t n, FanView fan, const Point4* in, const Vec3* x,
+                                       Vec3 direction, Vec3* t, SlideLevel* level) {
   const uint64_t v = item_index();
   if (v >= n) return;
-  t[v] = tangential_move(xyz(in[v]), x[v], vertex_normal(fan, x, v));
-  level[v] = {norm2(t[v]), face_turn(fan, in, x, v)};
+  const Vec3 normal = vertex_normal(fan, x, v);
+  t[v] = tangential_move(xyz(in[v]), x[v], normal);
+  level[v] = slide_level(fan, in, x, v, t[v], normal, direction);
 }
 
 __global__ void ring_mean_kernel(uint32_t n, FanView fan, const SlideLevel* in, SlideLevel* out) {
@@ -70,9 +71,11 @@ __global__ void ring_mean_kernel(uint32_t n, FanView fan, const SlideLevel* in, 
   if (v < n) out[v] = ring_mean(fan, in, v);
 }
 
-__global__ void limit_kernel(uint32_t n, const Vec3* t, const SlideLevel* level, float allowance, Vec3* x) {
+__global__ void limit_kernel(uint32_t n, const Vec3* t, const SlideLevel* level, float per_turn,
+                             float directional, Vec3* x) {
   const uint64_t v = item_index();
-  if (v < n) x[v] = limited_position(x[v], t[v], level[v].energy, allowance * level[v].turn);
+  if (v < n)
+    x[v] = limited_position(x[v], t[v], level[v].energy, slide_allowance(level[v], per_turn, directional));
 }
 
 }  // namespace
@@ -126,12 +129,13 @@ void refine_positions(DeviceFrame& f, RefineBuffers& b, const RefinePlan& plan, 
   }
   Vec3* tangent = b.tangent.reserve(n);
   SlideLevel* energy[2] = {b.energy[0].reserve(n), b.energy[1].reserve(n)};
-  FQ_LAUNCH(tangential_move_kernel, n, s, n, fan, f.points.data(), f.moved.data(), tangent, energy[0]);
+  FQ_LAUNCH(tangential_move_kernel, n, s, n, fan, f.points.data(), f.moved.data(), plan.noise_direction,
+            tangent, energy[0]);
   for (int pass = 0; pass < kEnergyPasses; ++pass) {
     FQ_LAUNCH(ring_mean_kernel, n, s, n, fan, energy[pass & 1], energy[(pass + 1) & 1]);
   }
   FQ_LAUNCH(limit_kernel, n, s, n, tangent, energy[kEnergyPasses & 1], plan.tangential_allowance,
-            f.moved.data());
+            plan.directional_allowance, f.moved.data());
 }
 
 }  // namespace fq::cuda

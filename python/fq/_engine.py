@@ -70,8 +70,10 @@ def _describe(name: str, kind: str, default: Any, choices: list[str] | None, hel
 _INFO_ROW = ("return_info", "bool", False, None,
              "Also return a dict of what was done: ``noise_estimate`` (the noise read from the mesh, mean "
              "edges), ``noise_residual`` (the residual it was read from: the rest was taken for the "
-             "surface's detail), ``filtered_for`` (the noise the strengths came from; these three None "
-             "for modes other than qf+), ``moved_mean``, ``moved_p99`` and ``moved_max`` (how far "
+             "surface's detail), ``noise_directional``, ``noise_direction`` and ``noise_alignment`` (noise "
+             "along one direction the mesh shares, as a range scan's line of sight: mean edges, 0 where none "
+             "stands out; its unit direction; the RMS of n.d), ``filtered_for`` (the noise the strengths came "
+             "from; these six None for modes other than qf+), ``moved_mean``, ``moved_p99`` and ``moved_max`` (how far "
              "vertices moved, mean edges), ``welded_vertices`` (coincident vertices filtered as one with their "
              "twins: seams) and ``mean_edge`` (input units).")
 

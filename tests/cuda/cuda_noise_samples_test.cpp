@@ -51,6 +51,10 @@ bool same_value(float cpu, float gpu) {
   return std::fabs(cpu - gpu) <= 1e-4f * std::fmax(1.f, std::fabs(cpu));
 }
 
+bool same_vec(Vec3 cpu, Vec3 gpu) {
+  return same_value(cpu.x, gpu.x) && same_value(cpu.y, gpu.y) && same_value(cpu.z, gpu.z);
+}
+
 // Every sample of `m` (every vertex when stride is 1) on both sides; returns the usable ones.
 int expect_same_samples(const Mesh& m, const std::string& what) {
   SCOPED_TRACE(what);
@@ -71,7 +75,9 @@ int expect_same_samples(const Mesh& m, const std::string& what) {
   for (uint32_t k = 0; k < count; ++k) {
     const NoiseSample c = noise_sample(host, x.data(), k * stride), g = gpu[k];
     const bool same = same_value(c.z_v, g.z_v) && same_value(c.z_u, g.z_u) &&
-                      same_value(c.white_correlation, g.white_correlation);
+                      same_value(c.white_correlation, g.white_correlation) &&
+                      same_value(c.height, g.height) && same_vec(c.normal, g.normal) &&
+                      same_vec(c.slide, g.slide);
     if (!same && ++differing <= 5)
       ADD_FAILURE() << "sample " << k << " (vertex " << k * stride << "): host " << c.z_v << " " << c.z_u
                     << " " << c.white_correlation << ", device " << g.z_v << " " << g.z_u << " "

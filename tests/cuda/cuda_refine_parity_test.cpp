@@ -31,6 +31,9 @@ class CudaRefineParity : public CudaTest {};
 void expect_same_noise(const Parity& p) {
   EXPECT_NEAR(p.gpu.noise_estimate, p.cpu.noise_estimate, 1e-4f * std::fmax(p.cpu.noise_estimate, 1e-3f));
   EXPECT_NEAR(p.gpu.filter_noise, p.cpu.filter_noise, 1e-4f * std::fmax(p.cpu.filter_noise, 1e-3f));
+  EXPECT_NEAR(p.gpu.noise_directional, p.cpu.noise_directional,
+              1e-4f * std::fmax(p.cpu.noise_directional, 1e-3f));
+  EXPECT_NEAR(p.gpu.noise_alignment, p.cpu.noise_alignment, 1e-4f);
 }
 
 const std::initializer_list<CudaTuning> kDefault = {{CudaTuning::kTeamBySize, false}};
@@ -42,6 +45,22 @@ TEST_F(CudaRefineParity, NoisyCubeAndSphere) {
       Mesh noisy = m;
       add_gaussian_noise(noisy, s, 7);
       expect_parity_for_each(*cpu_, noisy.view(), Params{}, kDefault, expect_same_noise);
+    }
+  }
+}
+
+// Noise along one direction (eval/noise.h, depth): the directional estimate, its plan (a larger
+// tangential share, the slide allowance along the direction) and the result agree.
+TEST_F(CudaRefineParity, DepthNoiseAlongOneDirection) {
+  Mesh shapes[] = {make_icosphere(5), make_cube(16)};
+  for (Mesh& m : shapes) {
+    for (double s : {0.1, 0.2}) {
+      Mesh noisy = m;
+      add_depth_noise(noisy, s, 11);
+      expect_parity_for_each(*cpu_, noisy.view(), Params{}, kDefault, [](const Parity& p) {
+        expect_same_noise(p);
+        EXPECT_GT(p.cpu.noise_directional, 0.f);
+      });
     }
   }
 }
@@ -83,6 +102,10 @@ TEST_F(CudaRefineParity, RealMeshesWithNoise) {
       std::printf("  %s (%u vertices), noise %.2f:\n", file, mesh->num_vertices(), s);
       expect_parity_for_each(*cpu_, noisy.view(), Params{}, kDefault, expect_same_noise);
     }
+    Mesh depth = *mesh;
+    add_depth_noise(depth, 0.2, 7);
+    std::printf("  %s, depth noise 0.20:\n", file);
+    expect_parity_for_each(*cpu_, depth.view(), Params{}, kDefault, expect_same_noise);
   }
 }
 

@@ -1,29 +1,10 @@
 // The shared real meshes the "qf+" parity suites run on (FQ_MESH_DIR, tests/support/mesh_dir.h).
 #pragma once
 
-#include <gtest/gtest.h>
-
-#include <optional>
-
-#include "core/mesh_view.h"
-#include "io/mesh_io.h"
-#include "tests/support/mesh_dir.h"
+#include "tests/support/shared_meshes.h"
 
 namespace fq::test {
 
 inline constexpr const char* kRealMeshes[] = {"fandisk.ply", "bunny.ply", "igea.ply", "crane/crane_0060.drc"};
-
-/// `file` read from mesh_dir(): nothing where the file is not there (the test skips), and a
-/// failure of the test where it is there but does not read.
-inline std::optional<Mesh> read_real_mesh(const char* file) {
-  const auto path = find_mesh(file);
-  if (!path) return std::nullopt;
-  Mesh mesh;
-  if (const Status rs = io::read_mesh(*path, mesh); !rs.ok()) {
-    ADD_FAILURE() << file << ": " << rs.message();
-    return std::nullopt;
-  }
-  return mesh;
-}
 
 }  // namespace fq::test

@@ -44,7 +44,8 @@ TEST(KernelFramePlan, QfPlusAloneRunsNoNeighbourhoodPass) {
   expect_extent(r.sigma_n, 0.75f, 1.5f);
   expect_extent(r.sigma_d, 5.f, 10.f);
   EXPECT_FALSE(r.refinement_known());
-  EXPECT_EQ(r.refinement(0.1f).noise, plan_refinement(RefineParams{}, 0.1f).noise);
+  EXPECT_EQ(r.refinement(NoiseEstimate::white_noise(0.1f)).noise,
+            plan_refinement(RefineParams{}, 0.1f).noise);
   EXPECT_STREQ(r.timing_prefix(), "");
 }
 
@@ -54,7 +55,7 @@ TEST(KernelFramePlan, QfPlusWithAKnownNoiseIsPlannedWhole) {
   p.filtering.refine.strength = 2.f;
   const RunPlan r = plan_frame(p).runs[0];
   ASSERT_TRUE(r.refinement_known());
-  EXPECT_FLOAT_EQ(r.refinement(0.9f).noise, 0.4f) << "the estimate is ignored";
+  EXPECT_FLOAT_EQ(r.refinement(NoiseEstimate::white_noise(0.9f)).noise, 0.4f) << "the estimate is ignored";
 }
 
 TEST(KernelFramePlan, QfDiffusesThenUpdates) {

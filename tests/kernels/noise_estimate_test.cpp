@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "kernels/refine_plan.h"
 #include "tests/support/test_meshes.h"
 
 namespace fq {
@@ -20,15 +21,25 @@ struct Frame {
   FanView view() const { return {tris.data(), offsets.data(), faces.data()}; }
 };
 
+/// Where grid_frame's noise goes: along one unit direction (a range scan's line of sight; the
+/// default, z, is the plane's normal) or along each axis independently.
+struct NoiseAlong {
+  Vec3 direction{0.f, 0.f, 1.f};
+  bool every_axis = false;
+};
+
 // A plane grid of 1-unit edges, heights from `height(x, y)` plus white noise of `sigma` units.
-Frame grid_frame(int n, double sigma, double (*height)(double, double), uint32_t seed) {
+Frame grid_frame(int n, double sigma, double (*height)(double, double), uint32_t seed,
+                 NoiseAlong along = {}) {
   const Mesh m = test::make_plane_grid(n, n, 1.f);
   Frame f;
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, sigma);
+  auto draw = [&] { return float(sigma > 0 ? noise(rng) : 0.0); };
   for (uint32_t v = 0; v < m.num_vertices(); ++v) {
     const Vec3 p = test::vertex(m, v);
-    f.x.push_back({p.x, p.y, float(height(p.x, p.y) + (sigma > 0 ? noise(rng) : 0.0))});
+    const Vec3 on{p.x, p.y, float(height(p.x, p.y))};
+    f.x.push_back(along.every_axis ? on + Vec3{draw(), draw(), draw()} : on + draw() * along.direction);
   }
   f.tris = m.triangles;
   f.offsets.assign(m.num_vertices() + 1, 0);
@@ -97,6 +108,52 @@ TEST(KernelNoiseEstimate, TinyMeshesGiveNoSample) {
   const NoiseSample s = noise_sample(f.view(), f.x.data(), 0);
   EXPECT_TRUE(std::isnan(s.z_v));
   EXPECT_EQ(estimate(f).noise, 0.f);
+}
+
+// Noise along one direction d, 37° off the plane's normal here: it moves vertices within the
+// plane by 0.6 of itself, which the slides show, and along the normal by 0.8, which the fits show;
+// the estimate finds d, the noise along it and the share of it along the normal.
+TEST(KernelNoiseEstimate, NoiseAlongOneDirectionIsReadAlongIt) {
+  const Vec3 d{0.6f, 0.f, 0.8f};
+  for (double sigma : {0.05, 0.1, 0.2}) {
+    SCOPED_TRACE(sigma);
+    const NoiseEstimate e = estimate(grid_frame(80, sigma, flat, 7, {d}));
+    EXPECT_NEAR(e.directional, sigma, 0.25 * sigma);
+    EXPECT_GT(std::fabs(dot(e.direction, d)), 0.95f);
+    EXPECT_NEAR(e.alignment, 0.8f, 0.05f);
+    EXPECT_NEAR(e.noise, 0.8 * sigma, 0.2 * sigma);  // its part along the normal
+  }
+}
+
+// Noise along the normal of a frame seen head-on is noise along one direction, the normal, with
+// nothing of it within the surface; noise along every axis alike has no direction of its own (its
+// slides and residuals are independent). Neither is read as sliding vertices within the surface.
+TEST(KernelNoiseEstimate, NormalAndIsotropicNoiseSlideNothingAlongOneDirection) {
+  for (bool every_axis : {false, true}) {
+    SCOPED_TRACE(every_axis);
+    for (double (*height)(double, double) : {flat, bumps}) {
+      const NoiseEstimate e = estimate(grid_frame(80, 0.1, height, 8, {Vec3{0.f, 0.f, 1.f}, every_axis}));
+      EXPECT_LT(tangential_noise(e), 0.02f);
+      EXPECT_LE(normal_noise(e), e.noise);  // σ̂ sees all of the part along the normals
+      EXPECT_GT(e.noise, 0.05f);
+    }
+  }
+}
+
+// A clean height field sampled on a regular grid seen from above, as a range scan samples it:
+// every vertex's 1-ring mean lies straight below or above it (along the line of sight), so the
+// slides share one direction. Shape alone couples them to the residuals only weakly (a pure
+// sinusoid's curvature and its fits' residual both follow its height: 0.03 along z here, almost
+// none of it within the surface); noise along a slanted line of sight stands far above that.
+TEST(KernelNoiseEstimate, AScansSamplingAloneIsNotNoise) {
+  const NoiseEstimate clean = estimate(grid_frame(80, 0.0, bumps, 9));
+  EXPECT_LT(clean.directional, 0.04f);
+  EXPECT_LT(tangential_noise(clean), 0.01f);
+  const Vec3 slanted{0.6f, 0.f, 0.8f};
+  const NoiseEstimate depth = estimate(grid_frame(80, 0.1, bumps, 11, {slanted}));
+  EXPECT_NEAR(depth.directional, 0.1, 0.03);
+  EXPECT_GT(tangential_noise(depth), 0.04f);
+  EXPECT_GT(std::fabs(dot(depth.direction, slanted)), 0.9f);
 }
 
 }  // namespace

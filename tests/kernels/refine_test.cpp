@@ -343,6 +343,32 @@ TEST(KernelRefine, EstimateFindsTheNoiseAdded) {
   }
 }
 
+// Noise along one direction (eval/noise.h's depth noise, along z, growing at grazing angles) on a
+// sphere: the estimate reads it, and the filter then undoes the slides it made within the surface
+// (a larger tangential share, and the slides along it kept) instead of cutting them back as it
+// does for white noise of the same normal part (the noise given as known: white noise).
+TEST(KernelRefine, NoiseAlongOneDirectionIsSlidBack) {
+  const Mesh clean = test::make_icosphere(5);
+  CpuEngine engine(2);
+  for (double s : {0.1, 0.2}) {
+    Mesh noisy = clean;
+    add_depth_noise(noisy, s, 13);
+    FrameResult directional, white;
+    ASSERT_TRUE(engine.process(noisy.view(), Params{}, directional).ok());
+    Params as_white;
+    as_white.filtering.refine.known_noise = directional.filter_noise;
+    ASSERT_TRUE(engine.process(noisy.view(), as_white, white).ok());
+    SCOPED_TRACE(s);
+    EXPECT_GT(directional.noise_directional, 0.5 * s);
+    EXPECT_GT(std::fabs(directional.noise_direction.z), 0.9f);
+    EXPECT_EQ(white.filter_noise, directional.filter_noise);
+    EXPECT_LT(rmse_over_diagonal(clean.view(), directional.positions.data()),
+              0.9 * rmse_over_diagonal(clean.view(), white.positions.data()));
+    EXPECT_LT(mean_face_normal_error(clean.view(), directional.positions.data()).mean_radians,
+              mean_face_normal_error(clean.view(), white.positions.data()).mean_radians);
+  }
+}
+
 TEST(KernelRefine, RefinementBeatsThePapersFilterOnANoisyCube) {
   const Mesh clean = test::make_cube(12);
   Mesh noisy = clean;

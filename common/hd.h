@@ -1,5 +1,6 @@
-// Host+device marker for math written once and called by the CPU and the CUDA engine.
-// Empty for a plain C++ compiler; nvcc sees __host__ __device__.
+// Host+device marker for code written once and called on the CPU and on the GPU: the engines'
+// math (kernels/) and the frame codec's Draco decoding (wire/). Empty for a plain C++
+// compiler; nvcc sees __host__ __device__.
 #pragma once
 
 #if defined(__CUDACC__)
