@@ -50,16 +50,18 @@ TEST_F(CudaRefineParity, NoisyCubeAndSphere) {
 }
 
 // Noise along one direction (eval/noise.h, depth): the directional estimate, its plan (a larger
-// tangential share, the slide allowance along the direction) and the result agree.
+// tangential share, the slide allowance along the direction) and the result agree. The sphere
+// reads it; the cube does not (its faces see z head-on or edge-on: no vertex away from a crease
+// shows the noise both along its normal and within its plane), and both engines agree on that.
 TEST_F(CudaRefineParity, DepthNoiseAlongOneDirection) {
   Mesh shapes[] = {make_icosphere(5), make_cube(16)};
-  for (Mesh& m : shapes) {
+  for (int k = 0; k < 2; ++k) {
     for (double s : {0.1, 0.2}) {
-      Mesh noisy = m;
+      Mesh noisy = shapes[k];
       add_depth_noise(noisy, s, 11);
-      expect_parity_for_each(*cpu_, noisy.view(), Params{}, kDefault, [](const Parity& p) {
+      expect_parity_for_each(*cpu_, noisy.view(), Params{}, kDefault, [k](const Parity& p) {
         expect_same_noise(p);
-        EXPECT_GT(p.cpu.noise_directional, 0.f);
+        if (k == 0) EXPECT_GT(p.cpu.noise_directional, 0.f);
       });
     }
   }
