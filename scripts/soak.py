@@ -403,7 +403,8 @@ def soak(a, exe, plan, ep, fqd, seconds, tmp):
     t = Table()
     warm = samples[min(1, len(samples) - 1)]
     grew = final_rss - warm[1]
-    t.row("RSS after warm-up -> end", f"{warm[1]:.1f} -> {final_rss:.1f} MB (max {max(s[1] for s in samples):.1f})",
+    top = max([s[1] for s in samples] + [final_rss])
+    t.row("RSS after warm-up -> end", f"{warm[1]:.1f} -> {final_rss:.1f} MB (max {top:.1f})",
           grew <= a.rss_slack_mb, "flat", "GREW")
     if warm[2] is not None:
         g = [s[2] for s in samples if s[2] is not None]
