@@ -97,7 +97,7 @@ bool FrameSlots::take(FramePtr& out, std::vector<FramePtr>& stale, std::chrono::
     if (yield != nullptr) {
       yield->requested.store(false);
       const auto budget_ns = static_cast<int64_t>(f->settings.budget_ms * 1e6);
-      runs_.push_back({f->stream, yield, now, f->receive_ns + budget_ns + (now - wall_ns())});
+      runs_.push_back({f->stream, yield, now, f->receive_ns + budget_ns + (now - wall_ns()), {}});
     }
     out = std::move(f);
     review_runs(now);
@@ -107,21 +107,26 @@ bool FrameSlots::take(FramePtr& out, std::vector<FramePtr>& stale, std::chrono::
 }
 
 void FrameSlots::finish(YieldRequest* yield, double seconds, bool preempted) {
-  StreamPtr stream;  // released after the lock: the slots never end a stream under their lock
-  std::lock_guard<std::mutex> lock(mutex_);
-  const auto run = std::find_if(runs_.begin(), runs_.end(), [&](const Run& r) { return r.yield == yield; });
-  if (run == runs_.end()) return;
-  stream = std::move(run->stream);
-  SlotState& s = stream->slot;
-  usage_at(s, steady_ns());
-  s.usage_s += seconds;
-  // A stopped run says only that the frame costs at least this much.
-  if (preempted)
-    s.cost_s = std::max(s.cost_s, seconds);
-  else
-    s.cost_s = s.cost_s > 0 ? 0.7 * s.cost_s + 0.3 * seconds : seconds;
-  s.preempted = preempted;
-  runs_.erase(run);
+  // Released after the lock: the slots never end a stream under their lock.
+  StreamPtr stream, for_stream;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto run = std::find_if(runs_.begin(), runs_.end(), [&](const Run& r) { return r.yield == yield; });
+    if (run == runs_.end()) return;
+    stream = std::move(run->stream);
+    if (preempted) for_stream = run->for_stream.lock();
+    SlotState& s = stream->slot;
+    usage_at(s, steady_ns());
+    s.usage_s += seconds;
+    // A stopped run says only that the frame costs at least this much.
+    if (preempted)
+      s.cost_s = std::max(s.cost_s, seconds);
+    else
+      s.cost_s = s.cost_s > 0 ? 0.7 * s.cost_s + 0.3 * seconds : seconds;
+    s.preempted = preempted;
+    runs_.erase(run);
+  }
+  if (for_stream) for_stream->count(&StreamCounters::preempted_others);
 }
 
 void FrameSlots::charge(Stream& stream, double seconds) {
@@ -169,6 +174,7 @@ void FrameSlots::review_runs(int64_t now_ns) {
   }
   // The run to stop, if any, and when: the earliest stop that saves a waiting frame.
   Run* to_stop = nullptr;
+  const Stream* stop_for = nullptr;
   int64_t stop_at = 0;
   if (idle_takers_ == 0 && asked > engines_) {
     for (Run& r : runs_) {
@@ -178,6 +184,7 @@ void FrameSlots::review_runs(int64_t now_ns) {
         const int64_t at = stop_time(r, *w, now_ns, wall_to_steady);
         if (at >= 0 && (!to_stop || at < stop_at)) {
           to_stop = &r;
+          stop_for = w;
           stop_at = at;
         }
       }
@@ -188,6 +195,7 @@ void FrameSlots::review_runs(int64_t now_ns) {
       r.yield->requested.store(false);
       continue;
     }
+    r.for_stream = stop_for->slot.waiting->stream;  // the waiting frame holds its stream
     r.yield->after_ns.store(stop_at);
     r.yield->requested.store(true);
   }

@@ -32,6 +32,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -65,7 +66,8 @@ class FrameSlots {
             std::chrono::milliseconds wait = std::chrono::milliseconds::max(), YieldRequest* yield = nullptr);
 
   /// The run of `yield` (taken with it) is over after `seconds` on its engine: charged to its
-  /// stream, unregistered. `preempted`: the run was stopped by its yield request.
+  /// stream, unregistered. `preempted`: the run was stopped by its yield request, which is
+  /// counted on the stream the request was for (`preempted_others`).
   void finish(YieldRequest* yield, double seconds, bool preempted = false);
 
   /// Engines that take from the slots (the engine time there is to ask for).
@@ -93,6 +95,10 @@ class FrameSlots {
     YieldRequest* yield;
     int64_t start_ns;     ///< steady clock
     int64_t deadline_ns;  ///< the end of the frame's budget, steady clock
+    /// The waiting stream its last yield request was for: a stopped run is counted there
+    /// (`preempted_others`). Kept when the request is withdrawn, since a run that saw it due
+    /// still stops. Weak: a Run never keeps a stream alive, nor ends one under the lock.
+    std::weak_ptr<Stream> for_stream;
   };
 
   /// The slot's usage decayed to `now_ns` (steady clock).

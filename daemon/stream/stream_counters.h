@@ -23,6 +23,9 @@ namespace fq::daemon {
 //   half their vertices near the stream's last result. Not part of the sum.
 // - preempted: stopped so that another stream's waiting frame meets its budget
 //   (latency_policy.h); an error result is published, but not counted in errors.
+// - preempted_others: the other side of preempted, counted on the stream whose waiting frame
+//   a stop was for (the beneficiary), so that every stop says whom it served: over all
+//   streams, sum(preempted_others) == sum(preempted). Not part of the sum.
 // - memory_resets: what the stream keeps across frames (temporal history, cluster id track)
 //   dropped to keep fqd within caps.memory_budget_mb (memory_account.h). Not part of the sum.
 // - dropped_memory: frames that did not fit caps.memory_budget_mb once nothing else could go;
@@ -57,6 +60,9 @@ namespace fq::daemon {
   COUNTER(preempted, "fq_preempted_total",                                                                \
           "Frames stopped on the engine, unable to meet their budget, so that a lighter stream's frame "  \
           "could meet its own (not in fq_errors_total).")                                                 \
+  COUNTER(preempted_others, "fq_preempted_others_total",                                                  \
+          "Frames of other streams stopped on an engine so that a waiting frame of this stream, which "   \
+          "would have missed its budget behind them, could meet it.")                                     \
   COUNTER(refused, "fq_refused_frames_total",                                                             \
           "Frames under the stream's id from a producer without CURVE that failed to decode: dropped "    \
           "unanswered, not errors (also in fq_refused_total{reason=\"undecodable\"}).")                   \

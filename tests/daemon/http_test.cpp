@@ -91,8 +91,8 @@ TEST(Http, MetricsParseAndAgreeWithFqctl) {
   EXPECT_EQ(m.at("families").at("fq_frames_in"), "counter");
   EXPECT_EQ(m.at("families").at("fq_engine_info"), "gauge");
   const nlohmann::json& prom = m.at("streams").at("cam0");
-  for (const char* k :
-       {"frames_in", "frames_out", "superseded", "dropped_stale", "late", "errors", "bad_send_time"}) {
+  for (const char* k : {"frames_in", "frames_out", "superseded", "dropped_stale", "late", "errors",
+                        "bad_send_time", "preempted", "preempted_others"}) {
     EXPECT_EQ(prom.at(k), ctl.at(k)) << k;
     EXPECT_EQ(m.at("streams").at(odd).at(k), ctl_odd.at(k)) << k;
   }

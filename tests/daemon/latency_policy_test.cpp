@@ -153,6 +153,59 @@ TEST(FrameSlots, ARunIsStoppedOnlyWhenItMissesItsBudgetAndAWaitingFrameWouldMiss
   }
 }
 
+uint64_t preempted_others(const Scene& s, const std::string& stream) {
+  return s.streams.by_id.at(stream)->samples().counters.preempted_others;
+}
+
+// A run of "runner" that `light` asks to yield (the first case above), or, within its own
+// budget, that nobody does.
+std::unique_ptr<Scene> scene(double runner_budget_ms) {
+  auto s = std::make_unique<Scene>();
+  s->start(2.0, runner_budget_ms);
+  s->light_comes(500);
+  return s;
+}
+
+TEST(FrameSlots, AStoppedRunIsCountedOnTheStreamItWasStoppedFor) {
+  {
+    // Stopped for "light": the stop is light's, not the runner's.
+    auto s = scene(1000);
+    ASSERT_TRUE(s->run.requested);
+    s->slots.finish(&s->run, 0.15, true);
+    EXPECT_EQ(preempted_others(*s, "light"), 1u);
+    EXPECT_EQ(preempted_others(*s, "runner"), 0u);
+  }
+  {
+    // Asked to yield, but it ran to its end first: nothing was stopped, nothing is counted.
+    auto s = scene(1000);
+    ASSERT_TRUE(s->run.requested);
+    s->slots.finish(&s->run, 0.05, false);
+    EXPECT_EQ(preempted_others(*s, "light"), 0u);
+  }
+  {
+    // Withdrawn after it was seen due (light's frame went to another engine): the run still
+    // stops, and the stop is still light's.
+    auto s = scene(1000);
+    ASSERT_TRUE(s->run.requested);
+    FramePtr out;
+    std::vector<FramePtr> stale;
+    YieldRequest other;
+    ASSERT_TRUE(s->slots.take(out, stale, std::chrono::milliseconds::max(), &other));
+    ASSERT_EQ(out->stream_id, "light");
+    EXPECT_FALSE(s->run.requested);
+    s->slots.finish(&s->run, 0.15, true);
+    s->slots.finish(&other, 0.01);
+    EXPECT_EQ(preempted_others(*s, "light"), 1u);
+  }
+  {
+    // Never asked to yield (within its budget): a run stopped otherwise is nobody's preemption.
+    auto s = scene(3000);
+    ASSERT_FALSE(s->run.requested);
+    s->slots.finish(&s->run, 0.15, true);
+    EXPECT_EQ(preempted_others(*s, "light"), 0u);
+  }
+}
+
 TEST(FrameSlots, AnOlderFrameDecodedLateLosesToTheNewerOne) {
   Streams streams;
   FrameSlots slots;

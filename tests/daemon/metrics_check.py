@@ -11,7 +11,8 @@ import urllib.request
 from prometheus_client.parser import text_string_to_metric_families
 
 COUNTERS = ["frames_in", "frames_out", "superseded", "dropped_stale", "late", "errors", "time_limited",
-            "subscriber_overflows", "bad_send_time", "temporal_resets", "untracked", "preempted"]
+            "subscriber_overflows", "bad_send_time", "temporal_resets", "untracked", "preempted",
+            "preempted_others"]
 
 
 def main(url):
