@@ -60,8 +60,9 @@ TEST(KernelRefine, NormalFilterKeepsTheCubesCreaseSharp) {
   std::vector<TriangleGeom> geom(m);
   std::vector<Vec3> n(m), next(m);
   for (uint32_t t = 0; t < m; ++t)
-    n[t] =
-        (geom[t] = triangle_geom(f.x[f.tris[3 * t]], f.x[f.tris[3 * t + 1]], f.x[f.tris[3 * t + 2]])).normal;
+    n[t] = (geom[t] = triangle_geom(f.x[f.tris[3 * size_t(t)]], f.x[f.tris[3 * size_t(t) + 1]],
+                                    f.x[f.tris[3 * size_t(t) + 2]]))
+               .normal;
   const Gaussian gs = Gaussian::with_sigma(0.5f), gr = Gaussian::with_sigma(0.35f);
   for (int it = 0; it < 3; ++it) {
     for (uint32_t t = 0; t < m; ++t)
