@@ -101,11 +101,11 @@ inline float tangential_noise(const NoiseEstimate& e) {
 /// (σ_t² + σ_n²) (σ_t = tangential_noise), up to twice the share at q → 1, and the slide
 /// allowance holds the directional noise's tangential variance at each vertex.
 inline RefinePlan plan_refinement(const RefineParams& r, const NoiseEstimate& estimate) {
-  const float s = r.strength * (r.known_noise > 0.f ? r.known_noise : normal_noise(estimate));
-  const float range = s > 0.f ? kRangeScale * std::pow(s, kRangeExponent) : 0.f;
   // A noise given is white noise of that σ: no directional part.
-  const float sd = r.known_noise > 0.f ? 0.f : estimate.directional, sn = normal_noise(estimate);
-  const float st = r.known_noise > 0.f ? 0.f : tangential_noise(estimate);
+  const NoiseEstimate e = r.known_noise > 0.f ? NoiseEstimate::white_noise(r.known_noise) : estimate;
+  const float sn = normal_noise(e), sd = e.directional, st = tangential_noise(e);
+  const float s = r.strength * sn;
+  const float range = s > 0.f ? kRangeScale * std::pow(s, kRangeExponent) : 0.f;
   const float directional_share = st > 0.f ? st * st / (st * st + sn * sn) : 0.f;
   RefinePlan p;
   p.noise = s;
@@ -118,7 +118,7 @@ inline RefinePlan plan_refinement(const RefineParams& r, const NoiseEstimate& es
   p.tangential_step = kTangentialStep * (1.f + directional_share) * std::fmin(1.f, s / kShareFullFrom);
   p.tangential_allowance = kSlidePerTurn * s * s;
   p.directional_allowance = r.strength * r.strength * sd * sd;
-  p.noise_direction = sd > 0.f ? estimate.direction : Vec3{0.f, 0.f, 0.f};
+  p.noise_direction = sd > 0.f ? e.direction : Vec3{0.f, 0.f, 0.f};
   return p;
 }
 
