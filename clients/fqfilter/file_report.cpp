@@ -227,15 +227,20 @@ void print_human(const FileReport& r, std::ostream& os) {
     if (r.noise_residual && *r.noise_residual > 0.f)
       os << " (of a residual " << *r.noise_residual << ": the rest read as the surface's detail)";
     os << "\n";
+    const bool estimated = r.params.filtering.refine.known_noise == 0.f;
     if (r.noise_directional && *r.noise_directional > 0.f) {
       const float along_normals = *r.noise_directional * r.noise_alignment;
       os << "  directional noise: " << *r.noise_directional << " mean edges along (" << r.noise_direction[0]
          << ", " << r.noise_direction[1] << ", " << r.noise_direction[2]
          << "), one direction for the whole mesh (a range sensor's line of sight): " << along_normals
-         << " of it along the normals" << (along_normals > *r.noise_estimate ? ", filtered for" : "")
-         << "; its slides within the surface undone\n";
+         << " of it along the normals";
+      // As refine_plan.h plans it: a noise given is white noise, with no directional part.
+      if (estimated)
+        os << (along_normals > *r.noise_estimate ? ", filtered for" : "")
+           << "; its slides within the surface undone\n";
+      else
+        os << "; not used: --known-noise filters for white noise of that size\n";
     }
-    const bool estimated = r.params.filtering.refine.known_noise == 0.f;
     const float read = *r.filter_noise / std::fmax(r.params.filtering.refine.strength, 1e-6f);
     if (estimated && *r.noise_estimate < kLooksCleanBelow && read < kLooksCleanBelow)
       os << "  input looks clean: filtered lightly (--known-noise 0.1 filters it as 0.1 mean edges of "

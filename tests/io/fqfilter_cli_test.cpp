@@ -219,6 +219,27 @@ TEST(FqfilterCli, CleanInputIsSaidToBeClean) {
   EXPECT_LT(none.at("metrics").at("output").at("mfne_rad").get<double>(), 1e-3);
 }
 
+// Noise along one direction (a range scanner's depth noise): the report names it and says it was
+// filtered for and its slides undone, unless --known-noise gave the noise, which is filtered as white
+// noise (refine_plan.h): then the report says it was not used.
+TEST(FqfilterCli, DirectionalNoiseIsReportedAsUsedOnlyWhenEstimated) {
+  fq::test::ScratchDir dir;
+  const std::vector<std::string> base = {kFandisk, "--noise",   "0.2", "--noise-kind", "depth", "--engine",
+                                         "cpu",    "--threads", "2"};
+  const RunResult estimated = run_fqfilter(base, dir);
+  ASSERT_EQ(estimated.exit_code, 0) << estimated.err;
+  EXPECT_NE(estimated.out.find("directional noise: "), std::string::npos) << estimated.out;
+  EXPECT_NE(estimated.out.find("filtered for; its slides within the surface undone"), std::string::npos)
+      << estimated.out;
+  std::vector<std::string> given = base;
+  given.insert(given.end(), {"--known-noise", "0.2"});
+  const RunResult known = run_fqfilter(given, dir);
+  ASSERT_EQ(known.exit_code, 0) << known.err;
+  EXPECT_NE(known.out.find("directional noise: "), std::string::npos) << known.out;
+  EXPECT_EQ(known.out.find("slides within the surface undone"), std::string::npos) << known.out;
+  EXPECT_NE(known.out.find("not used: --known-noise"), std::string::npos) << known.out;
+}
+
 TEST(FqfilterCli, TargetClustersReportsThetaAndSharpEdgeRecall) {
   fq::test::ScratchDir dir;
   const RunResult r = run_fqfilter({kFandisk, "--engine", "cpu", "--threads", "2", "--no-filter",
