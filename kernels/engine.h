@@ -72,6 +72,9 @@ struct FrameResult {
   /// left (mean edges; 0 when track A did not look).
   bool ids_refused = false;
   float ids_residual = 0.f;
+  /// Track A: the mean share of the motion's wide estimate (kernels/temporal_math.h,
+  /// wide_share): near 1 where the motion is smooth over eight rings, low where it bends.
+  float ids_wide = 0.f;
   /// Vertices at the exact position of an earlier one (seam twins, kernels/seam_weld.h) that
   /// the frame was filtered without: each is given its first copy's result. 0: none.
   uint32_t welded_vertices = 0;

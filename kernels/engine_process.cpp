@@ -32,6 +32,7 @@ void reset_run_outputs(FrameResult& out) {
   out.temporal_track = TemporalTrack::kNone;
   out.ids_refused = false;
   out.ids_residual = 0.f;
+  out.ids_wide = 0.f;
 }
 
 void append_timings(const char* prefix, const FrameResult& from, FrameResult& to) {
@@ -127,6 +128,7 @@ Status Engine::run_own(const MeshView& mesh, const RunPlan& run, FrameResult& ou
     out.temporal_track = TemporalTrack::kIds;
     out.prior_coverage = 1.f;
     out.prior_share = ids.share;
+    out.ids_wide = ids.wide;
   }
   if (follows) {
     out.ids_refused = ids.refused;

@@ -63,10 +63,9 @@ struct TemporalScratch {
   std::vector<Vec3> x, motion, offset, spare;
   std::vector<uint32_t> match;
   std::vector<float> detail, level, spare_level, share, normals;
-  /// Track A's (kernels/temporal_ids.cpp): the coherence test's level, and quantities whose ring
-  /// means run together, one to a lane.
-  std::vector<float> spare_coherent;
+  /// Track A's (kernels/temporal_ids.cpp): quantities whose ring means run together, one to a lane.
   std::vector<Point4> packed, spare_packed;
+  std::vector<Vec3> wide;  ///< track A's narrow motion estimate, then the wide one's difference
 };
 
 /// The temporal step of one frame: `positions` (the frame's filtered result, input order, 3

@@ -47,6 +47,7 @@ void restart(const MeshView& mesh, uint64_t fingerprint, IdTrack& track) {
   track.averaged.assign(mesh.positions, mesh.positions + 3 * size_t(mesh.num_vertices));
   track.connectivity = fingerprint;
   track.vertices = mesh.num_vertices;
+  track.frames = 1;
 }
 
 // XXH64's round (Collet, xxHash): the lanes of a chunk carry no dependency on each other, so
@@ -73,25 +74,6 @@ uint64_t hash_indices(const uint32_t* t, size_t count, uint32_t chunk) {
   for (; i < count; ++i) h = mix(h ^ t[i]);
   for (uint64_t l : lane) h = mix(h ^ l);
   return h;
-}
-
-// The connectivity's tables in `topo`, built when it holds another one (`s` lends buffers).
-BlockRing keep_topology(const MeshView& mesh, uint64_t fingerprint, IdTopology& topo, TemporalScratch& s,
-                        int threads) {
-  const uint32_t n = mesh.num_vertices;
-  if (!topo.holds(fingerprint, n, mesh.num_triangles)) {
-    build_vertex_faces(mesh.triangles, mesh.num_triangles, n, topo.vf_offsets, topo.vf_faces);
-    const FanView fan{mesh.triangles, topo.vf_offsets.data(), topo.vf_faces.data()};
-    const RingView ring = build_vertex_ring(fan, n, s.ring_corners, threads);
-    build_block_ring(ring, n, topo.ring_rows, topo.ring_slots, topo.ring_inv_count, threads);
-    topo.white.resize(n);
-    parallel_for(n, threads, [&](uint32_t v) { topo.white[v] = ring_white(ring, v); });
-    ring_means(ring, topo.white, s.spare_level, kIdAgreementPasses, threads);
-    topo.fingerprint = fingerprint;
-    topo.vertices = n;
-    topo.triangles = mesh.num_triangles;
-  }
-  return BlockRing{topo.ring_rows.data(), topo.ring_slots.data(), topo.ring_inv_count.data(), n, n};
 }
 
 // The median of the n levels: the element n / 2 of their order, as std::nth_element places it.
@@ -133,6 +115,107 @@ float median_level(const std::vector<float>& level, uint32_t n, std::vector<floa
   const uint32_t low = bin_of(1u << 10);
   return std::bit_cast<float>(high << 21 | middle << 10 | low);
 }
+// The id displacement's smooth parts, from s.offset (the displacement d, mean edges): the narrow
+// motion m (kIdMotionPasses ring means) and the wide one m' (kIdWidePasses more). Leaves the
+// narrow rest d - m in s.offset, the pair (d - m, |d - m|²) in s.packed for the agreement's
+// ring means, and m' - m in s.wide. Each last pass is fused with what it leaves; every array
+// it reads has its ring pad set.
+void smooth_parts(const BlockRing& ring, uint32_t n, TemporalScratch& s, int threads) {
+  static_assert(kIdMotionPasses >= 2 && kIdWidePasses >= 2, "the last passes are fused, reading another array");
+  const auto each_block = [&](auto&& body) { for_ring_blocks(n, threads, body, kVertexGrain); };
+  const auto passes = [&](const Vec3* from, int count) {  // ping-pong through s.motion and s.spare
+    std::vector<Vec3>* to = &s.motion;
+    std::vector<Vec3>* other = &s.spare;
+    for (int p = 0; p < count; ++p) {
+      each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
+        Vec3 m[kRingBlock];
+        block_ring_means(ring, from, b, m);
+        std::copy(m, m + k, to->data() + v0);
+      });
+      from = to->data();
+      std::swap(to, other);
+    }
+    return from;
+  };
+  const Vec3* from = passes(s.offset.data(), kIdMotionPasses - 1);
+  each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
+    Vec3 m[kRingBlock];
+    block_ring_means(ring, from, b, m);
+    for (uint32_t j = 0; j < k; ++j) {
+      const uint32_t v = v0 + j;
+      const Vec3 r = s.offset[v] - m[j];
+      s.offset[v] = r;
+      s.wide[v] = m[j];
+      s.packed[v] = Point4{r.x, r.y, r.z, dot(r, r)};
+    }
+  });
+  from = passes(s.wide.data(), kIdWidePasses - 1);
+  each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
+    Vec3 m[kRingBlock];
+    block_ring_means(ring, from, b, m);
+    for (uint32_t j = 0; j < k; ++j) s.wide[v0 + j] = m[j] - s.wide[v0 + j];
+  });
+}
+
+// Sizes the step's arrays for n vertices, each with the pad its ring means read.
+void size_arrays(uint32_t n, TemporalScratch& s) {
+  set_ring_pad(s.level, n);
+  for (std::vector<Vec3>* f : {&s.offset, &s.motion, &s.spare, &s.wide}) set_ring_pad(*f, n);
+  for (std::vector<Point4>* f : {&s.packed, &s.spare_packed}) set_ring_pad(*f, n);
+}
+
+// IdTopology::wide_white: white_probe through smooth_parts, and the medians of the local levels
+// of the narrow rest and of the wide difference.
+float measure_wide_white(const BlockRing& ring, uint32_t n, TemporalScratch& s, int threads) {
+  size_arrays(n, s);
+  parallel_for(n, threads, [&](uint32_t v) { s.offset[v] = white_probe(v); }, kVertexGrain);
+  smooth_parts(ring, n, s, threads);
+  parallel_for(
+      n, threads,
+      [&](uint32_t v) { s.spare_packed[v] = Point4{s.packed[v].w, dot(s.wide[v], s.wide[v]), 0.f, 0.f}; },
+      kVertexGrain);
+  const auto each_block = [&](auto&& body) { for_ring_blocks(n, threads, body, kVertexGrain); };
+  static_assert(kIdAgreementPasses == 2, "two passes, as the step's levels");
+  each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
+    Point4 m[kRingBlock];
+    block_ring_means(ring, s.spare_packed.data(), b, m);
+    std::copy(m, m + k, s.packed.data() + v0);
+  });
+  s.spare_level.resize(n);
+  each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
+    Point4 m[kRingBlock];
+    block_ring_means(ring, s.packed.data(), b, m);
+    for (uint32_t j = 0; j < k; ++j) {
+      s.level[v0 + j] = m[j].x;
+      s.spare_level[v0 + j] = m[j].y;
+    }
+  });
+  const float rest = median_level(s.level, n, s.detail);
+  const float wide = median_level(s.spare_level, n, s.detail);
+  return rest > 0.f ? wide / rest : 0.f;
+}
+
+// The connectivity's tables in `topo`, built when it holds another one (`s` lends buffers).
+BlockRing keep_topology(const MeshView& mesh, uint64_t fingerprint, IdTopology& topo, TemporalScratch& s,
+                        int threads) {
+  const uint32_t n = mesh.num_vertices;
+  if (!topo.holds(fingerprint, n, mesh.num_triangles)) {
+    build_vertex_faces(mesh.triangles, mesh.num_triangles, n, topo.vf_offsets, topo.vf_faces);
+    const FanView fan{mesh.triangles, topo.vf_offsets.data(), topo.vf_faces.data()};
+    const RingView ring = build_vertex_ring(fan, n, s.ring_corners, threads);
+    build_block_ring(ring, n, topo.ring_rows, topo.ring_slots, topo.ring_inv_count, threads);
+    topo.white.resize(n);
+    parallel_for(n, threads, [&](uint32_t v) { topo.white[v] = ring_white(ring, v); });
+    ring_means(ring, topo.white, s.spare_level, kIdAgreementPasses, threads);
+    const BlockRing blocks{topo.ring_rows.data(), topo.ring_slots.data(), topo.ring_inv_count.data(), n, n};
+    topo.wide_white = measure_wide_white(blocks, n, s, threads);
+    topo.fingerprint = fingerprint;
+    topo.vertices = n;
+    topo.triangles = mesh.num_triangles;
+  }
+  return BlockRing{topo.ring_rows.data(), topo.ring_slots.data(), topo.ring_inv_count.data(), n, n};
+}
+
 }  // namespace
 
 uint64_t connectivity_fingerprint(const MeshView& mesh, int threads) {
@@ -181,10 +264,9 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
   const float unit = float(1.0 / mean_edge);
   const float* x = mesh.positions;
   float* a = track.averaged.data();
-  for (std::vector<float>* f : {&s.level, &s.spare_coherent}) set_ring_pad(*f, n);
-  for (std::vector<Vec3>* f : {&s.offset, &s.motion, &s.spare}) set_ring_pad(*f, n);
-  for (std::vector<Point4>* f : {&s.packed, &s.spare_packed}) set_ring_pad(*f, n);
+  size_arrays(n, s);
   s.share.resize(n);
+  s.spare_level.resize(n);
   averaged.resize(3 * size_t(n));
   const auto each_block = [&](auto&& body) { for_ring_blocks(n, threads, body, kVertexGrain); };
   parallel_for(
@@ -194,42 +276,22 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
         s.offset[v] = unit * Vec3{x[i] - a[i], x[i + 1] - a[i + 1], x[i + 2] - a[i + 2]};
       },
       kVertexGrain);
-  // The motion: kIdMotionPasses ring means of the offsets, the last of them fused with what
-  // the motion leaves (the non-smooth displacement, in place of the offset) and its square.
-  static_assert(kIdMotionPasses >= 1, "the last pass is fused with the rest");
-  const Vec3* from = s.offset.data();
-  std::vector<Vec3>* to = &s.motion;
-  std::vector<Vec3>* other = &s.spare;
-  for (int p = 0; p + 1 < kIdMotionPasses; ++p) {
-    each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
-      Vec3 m[kRingBlock];
-      block_ring_means(ring, from, b, m);
-      std::copy(m, m + k, to->data() + v0);
-    });
-    from = to->data();
-    std::swap(to, other);
-  }
-  each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
-    Vec3 m[kRingBlock];
-    block_ring_means(ring, from, b, m);
-    for (uint32_t j = 0; j < k; ++j) {
-      const uint32_t v = v0 + j;
-      const Vec3 r = s.offset[v] - m[j];
-      s.offset[v] = r;
-      s.packed[v] = Point4{r.x, r.y, r.z, dot(r, r)};
-    }
-  });
+  // The motion's two estimates: the narrow rest in s.offset (and packed with its square), the
+  // wide estimate's difference from the narrow one in s.wide.
+  smooth_parts(ring, n, s, threads);
   // The local level (kIdAgreementPasses ring means of the square) beside the coherence test:
-  // the square of the rest's ring mean, then its ring means, one pass behind. Each pass's ring
-  // means run together, one quantity to a lane: the rest and its square, then the level and
-  // the coherence test's square.
+  // the square of the rest's ring mean, then its ring means, one pass behind, and the wide
+  // difference's local level as well. Each pass's ring means run together, one quantity to a
+  // lane: the rest and its square; then the level, the coherence test's square and the wide
+  // difference's square; then the last two.
   static_assert(kIdAgreementPasses == 2, "the level's and the coherence test's passes are fused in pairs");
   each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
     Point4 m[kRingBlock];
     block_ring_means(ring, s.packed.data(), b, m);
     for (uint32_t j = 0; j < k; ++j) {
       const Vec3 c = xyz(m[j]);
-      s.spare_packed[v0 + j] = Point4{m[j].w, dot(c, c), 0.f, 0.f};
+      const Vec3 w = s.wide[v0 + j];
+      s.spare_packed[v0 + j] = Point4{m[j].w, dot(c, c), dot(w, w), 0.f};
     }
   });
   each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
@@ -237,7 +299,7 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
     block_ring_means(ring, s.spare_packed.data(), b, m);
     for (uint32_t j = 0; j < k; ++j) {
       s.level[v0 + j] = m[j].x;
-      s.spare_coherent[v0 + j] = m[j].y;
+      s.packed[v0 + j] = Point4{m[j].y, m[j].z, 0.f, 0.f};
     }
   });
   const float typical = median_level(s.level, n, s.detail);
@@ -248,14 +310,23 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
     return step;
   }
   // The averaged input, which the track keeps for the next frame (it read its offsets above).
+  // Each vertex's motion is the narrow estimate plus the share of the wide one's difference
+  // that its noise allows (wide_share); what is left of the displacement is averaged out.
   const float edge = float(mean_edge);
+  const float wide_white = track.topology.wide_white;
+  const float weight = history_weight(strength, track.frames);
+  track.frames = track.frames < kIdFramesCounted ? track.frames + 1 : kIdFramesCounted;
   each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
-    float coherent[kRingBlock];
-    block_ring_means(ring, s.spare_coherent.data(), b, coherent);
+    Point4 m[kRingBlock];
+    block_ring_means(ring, s.packed.data(), b, m);  // the coherence test's level, the wide one's
     for (uint32_t j = 0; j < k; ++j) {
       const uint32_t v = v0 + j;
-      s.share[v] = id_share(s.level[v], typical, strength) * noise_part(coherent[j], s.level[v], white[v]);
-      const Vec3 back = (s.share[v] * edge) * s.offset[v];  // x - share * (non-smooth part), input units
+      const float noise = noise_part(m[j].x, s.level[v], white[v]);
+      const float wide = wide_share(m[j].y, wide_white * noise * s.level[v]);
+      s.spare_level[v] = wide;
+      s.share[v] = id_share(s.level[v], typical, weight) * noise;
+      const Vec3 rest = s.offset[v] - wide * s.wide[v];
+      const Vec3 back = (s.share[v] * edge) * rest;  // x - share * (non-smooth part), input units
       const size_t i = 3 * size_t(v);
       averaged[i] = a[i] = x[i] - back.x;
       averaged[i + 1] = a[i + 1] = x[i + 1] - back.y;
@@ -263,8 +334,13 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
     }
   });
   double total = 0.0;
-  for (uint32_t v = 0; v < n; ++v) total += s.share[v];  // in order: the report is reproducible
+  double wide_total = 0.0;
+  for (uint32_t v = 0; v < n; ++v) {  // in order: the report is reproducible
+    total += s.share[v];
+    wide_total += s.spare_level[v];
+  }
   step.share = float(total / n);
+  step.wide = float(wide_total / n);
   step.ran = true;
   return step;
 }

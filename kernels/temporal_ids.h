@@ -6,7 +6,8 @@
 // filtered surface towards the last one (kernels/temporal.h, "track B", which needs no ids).
 //
 // The ids are not trusted blindly: the displacement d = x_t - a_{t-1} between the raw frame and
-// the last averaged input is split into its smooth part (ring means: the motion) and the rest
+// the last averaged input is split into its smooth part (ring means: the motion, over four
+// rings and, as far as the noise says the motion is that smooth, over eight) and the rest
 // (the two frames' noise, and wherever an id does not follow the surface). A vertex takes
 // strength x the share of the rest that its local level allows; where the rest is far above
 // the frame's typical level (an id that slid, a tracking error) the frame stays alone; where
@@ -28,7 +29,8 @@ struct TemporalHistory;
 /// What the step reads that depends on the connectivity alone, built on the first frame of a
 /// connectivity that the step averages and kept while the fingerprint holds: the vertex ->
 /// triangles table (the result's normals), the ring table in blocks (kernels/vertex_ring.h,
-/// BlockRing) and the white-noise share of the coherence test, smoothed as the test smooths it.
+/// BlockRing), the white-noise share of the coherence test, smoothed as the test smooths it, and
+/// that of the wide motion estimate.
 /// About 94 bytes a vertex on a closed triangle mesh, crane's (two triangles a vertex: 4 + 24
 /// for the fans; 4 × the widest ring of a block of four, some 14, and 4 + 1 for the rings; 4
 /// for the white share), beside the 12 of `averaged`; IdTrack::bytes() counts them.
@@ -38,6 +40,10 @@ struct IdTopology {
   std::vector<uint32_t> vf_offsets, vf_faces, ring_rows, ring_slots;
   std::vector<float> ring_inv_count;
   std::vector<float> white;  ///< per vertex, after kIdAgreementPasses ring means
+  /// What white noise leaves in the wide motion estimate's difference from the narrow one, per
+  /// unit of what it leaves in the narrow rest (the medians of their local levels, measured
+  /// on white_probe): the noise the difference should show where the motion is smooth.
+  float wide_white = 0.f;
 
   bool holds(uint64_t f, uint32_t n, uint32_t m) const {
     return !white.empty() && fingerprint == f && vertices == n && triangles == m;
@@ -54,6 +60,7 @@ struct IdTrack {
   std::vector<float> averaged;  ///< a_{t-1}: 3 floats a vertex, input order and units
   uint64_t connectivity = 0;    ///< connectivity_fingerprint of the frame it came from
   uint32_t vertices = 0;        ///< that frame's vertex count
+  uint32_t frames = 0;          ///< frames averaged into it since the track restarted (history_weight)
   IdTopology topology;          ///< keyed by its own fingerprint: a refused frame leaves it valid
 
   bool empty() const { return averaged.empty(); }
@@ -61,6 +68,7 @@ struct IdTrack {
     averaged.clear();
     connectivity = 0;
     vertices = 0;
+    frames = 0;
     topology.clear();
   }
   /// Bytes the track holds (its buffers' capacities), for the memory it costs a stream.
@@ -78,6 +86,7 @@ struct IdStep {
   bool refused = false;  ///< same connectivity, but the ids did not follow a smooth motion
   float share = 0.f;     ///< mean weight of the last averaged input over all vertices
   float residual = 0.f;  ///< typical RMS of the non-smooth part of the id displacement (mean edges)
+  float wide = 0.f;      ///< mean share of the wide motion estimate over all vertices (wide_share)
 };
 
 /// The track-A step of a frame: when `track` holds an averaged input of the same connectivity

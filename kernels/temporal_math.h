@@ -63,8 +63,6 @@ FQ_HD bool scene_cut(float coverage) { return coverage < kMinPriorCoverage; }
 /// unit normal n: signed, along n.
 FQ_HD float prior_detail(Vec3 x, Vec3 m, Vec3 p, Vec3 n) { return dot(n, p - (x + m)); }
 
-}  // namespace fq
-
 // Track A (kernels/temporal_ids.h): the frame's input averaged with the last averaged input
 // through the vertex ids, once the ids are shown to follow a smooth motion.
 
@@ -72,6 +70,11 @@ FQ_HD float prior_detail(Vec3 x, Vec3 m, Vec3 p, Vec3 n) { return dot(n, p - (x 
 /// 60 vertices, so the two frames' noise leaves an eighth of itself in the motion; a ring mean
 /// reproduces a locally affine motion, so rotations and stretches pass whole).
 constexpr int kIdMotionPasses = 4;
+/// Ring means past kIdMotionPasses that make the motion's wide estimate: where the id
+/// displacement is as smooth over eight rings as noise allows (wide_share), the wide estimate
+/// is the motion, and the noise the narrow one would leave in it, smooth over a few rings and
+/// so what a viewer sees as the surface breathing, is averaged out too.
+constexpr int kIdWidePasses = 4;
 /// Ring means of the squared non-smooth displacement that make a vertex's local level.
 constexpr int kIdAgreementPasses = 2;
 /// A vertex's level may be this many times the frame's typical level (its median) before the
@@ -105,6 +108,44 @@ FQ_HD float noise_part(float coherent, float level, float white) {
   return r < 0.f ? 0.f : (r > 1.f ? 1.f : r);
 }
 
+/// A probe of white noise at vertex v: three components of ±1 (unit variance), from v's bits
+/// alone, so the share of white noise the motion's two footprints keep (IdTopology::wide_white)
+/// is measured the same way on every machine and for any thread count.
+FQ_HD Vec3 white_probe(uint32_t v) {
+  uint64_t x = uint64_t(v) * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL;  // SplitMix64's step and finaliser
+  x ^= x >> 30;
+  x *= 0xbf58476d1ce4e5b9ULL;
+  x ^= x >> 27;
+  x *= 0x94d049bb133111ebULL;
+  x ^= x >> 31;
+  const auto sign = [x](int bit) { return (x >> bit) & 1u ? 1.f : -1.f; };
+  return Vec3{sign(0), sign(1), sign(2)};
+}
+
+/// Past this many frames a track's count stops (history_weight is the strength long before).
+constexpr uint32_t kIdFramesCounted = 1u << 20;
+/// The most a vertex takes of the last averaged input when it holds `frames` frames: the stream's
+/// `strength`, or less while the track is young. A still surface seen k times with independent
+/// noise is best estimated by the mean of the k views, in which the last averaged input (the
+/// mean of k − 1) weighs (k − 1) / k; the recursive average reaches its own weight after
+/// 1 / (1 − strength) frames, and until then that mean is the better one (at strength 0.75 the
+/// second frame's average keeps 0.63 of the noise's variance with weight 0.75, 0.5 with 1/2).
+FQ_HD float history_weight(float strength, uint32_t frames) {
+  const float running = frames > 0 ? float(frames) / float(frames + 1) : 0.f;
+  return running < strength ? running : strength;
+}
+
+/// The share g of the wide motion estimate's difference δ from the narrow one that a vertex
+/// takes into its motion m + g δ. δ is the two footprints' noise (variance E, `expected`) plus
+/// b, what the wide estimate misses where the motion bends within eight rings (a limb, a fast
+/// non-rigid motion; the narrow one follows it), and the narrow estimate's noise is the wide
+/// one's minus δ's, so the motion's squared error is the narrow one's − 2 g E + g² (E + b²): least at
+/// g = E / (E + b²). With b² read as what the local level of δ² (`level`) holds beyond E, that
+/// is min(1, E / level): the whole wide estimate where δ looks like noise, less as it bends.
+FQ_HD float wide_share(float level, float expected) { return level > expected ? expected / level : 1.f; }
+
 /// Whether a frame whose typical level of non-smooth id displacement is `typical` (squared mean
 /// edges) has ids that follow the surface.
 FQ_HD bool ids_follow(float typical) { return typical <= kIdReach * kIdReach; }
+
+}  // namespace fq

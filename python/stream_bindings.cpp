@@ -46,7 +46,7 @@ class Stream {
     return pyb::dict("noise_estimate"_a = last_.noise_estimate, "prior_coverage"_a = last_.prior_coverage,
                      "prior_share"_a = last_.prior_share, "history_reset"_a = last_.history_reset,
                      "track"_a = temporal_track_name(last_.temporal_track),
-                     "ids_refused"_a = last_.ids_refused);
+                     "ids_refused"_a = last_.ids_refused, "ids_wide"_a = last_.ids_wide);
   }
 
  private:

@@ -65,6 +65,7 @@ Status run_engine(const Options& o, Engine& engine, const MeshView& view, FrameR
     report.history_reset = result.history_reset;
     report.temporal_track = temporal_track_name(result.temporal_track);
     report.ids_refused = result.ids_refused;
+    if (result.temporal_track == TemporalTrack::kIds) report.ids_wide = result.ids_wide;
   }
   if (o.params.cluster) {
     report.clusters = result.num_clusters;

@@ -104,6 +104,7 @@ nlohmann::json temporal_json(const FileReport& r) {
                       {"history_reset", r.history_reset},
                       {"track", r.temporal_track},
                       {"ids_refused", r.ids_refused},
+                      {"ids_wide", r.ids_wide ? nlohmann::json(*r.ids_wide) : nlohmann::json(nullptr)},
                       {"flicker", optional_json(r.flicker)},
                       {"flicker_normal", nullptr},
                       {"flicker_tangential", nullptr},
@@ -257,7 +258,7 @@ void print_human(const FileReport& r, std::ostream& os) {
   if (r.prior_coverage) {
     if (std::string_view(r.temporal_track) == "ids")
       os << std::setprecision(3) << "  temporal (ids): input averaged with the last, weight "
-         << *r.prior_share;
+         << *r.prior_share << ", wide motion share " << r.ids_wide.value_or(0.f);
     else
       os << std::setprecision(3) << "  temporal: " << *r.prior_coverage
          << " of vertices near the last result, pull " << *r.prior_share;

@@ -68,6 +68,7 @@ struct FileReport {
   /// ids were refused (same connectivity, but they did not follow a smooth motion).
   const char* temporal_track = "none";
   bool ids_refused = false;
+  std::optional<float> ids_wide;  ///< track A's mean share of the wide motion estimate
   std::optional<double> flicker;
   std::optional<FlickerParts> flicker_parts;
   /// --sequence with a reference: the result's surface seen from the clean frame's vertices

@@ -81,6 +81,8 @@ class Stream:
         track ``ids`` the mean weight of the last averaged input), ``history_reset`` (a scene
         cut), ``track`` (``'ids'``: the frame kept the last one's connectivity and its input was
         averaged through the vertex ids; ``'space'``: the result was pulled towards the last
-        one; ``'none'``) and ``ids_refused`` (same connectivity, but the ids did not follow a
-        smooth motion: track ``space`` ran)."""
+        one; ``'none'``), ``ids_refused`` (same connectivity, but the ids did not follow a
+        smooth motion: track ``space`` ran) and ``ids_wide`` (track ``ids``: the mean share of
+        the motion's eight-ring estimate, near 1 where the motion is smooth, low where it bends;
+        0 otherwise)."""
         return dict(self._stream.last)
