@@ -218,6 +218,12 @@ BlockRing keep_topology(const MeshView& mesh, uint64_t fingerprint, IdTopology& 
 
 }  // namespace
 
+Vec3 white_probe(uint32_t v) {
+  const uint64_t x = mix(uint64_t(v) * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL);  // SplitMix64
+  const auto sign = [x](int bit) { return (x >> bit) & 1u ? 1.f : -1.f; };
+  return Vec3{sign(0), sign(1), sign(2)};
+}
+
 uint64_t connectivity_fingerprint(const MeshView& mesh, int threads) {
   // Chunks hashed in parallel, then combined in order: the same value for any thread count.
   constexpr uint32_t kChunk = 1u << 14;

@@ -98,6 +98,11 @@ struct IdStep {
 IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_edge, float strength,
                         IdTrack& track, std::vector<float>& averaged, TemporalScratch& scratch, int threads);
 
+/// A probe of white noise at vertex v: three components of ±1 (unit variance), from v's bits
+/// alone, so the share of white noise the motion's two footprints keep (IdTopology::wide_white)
+/// is measured the same way on every machine and for any thread count.
+Vec3 white_probe(uint32_t v);
+
 /// After a frame that track A averaged: its result (`positions`, input order) becomes the
 /// history the spatial track follows should the connectivity change (keep_as_history). Reads
 /// the vertex table the track keeps for this connectivity (call it only after a step that ran).

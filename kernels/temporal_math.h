@@ -108,20 +108,6 @@ FQ_HD float noise_part(float coherent, float level, float white) {
   return r < 0.f ? 0.f : (r > 1.f ? 1.f : r);
 }
 
-/// A probe of white noise at vertex v: three components of ±1 (unit variance), from v's bits
-/// alone, so the share of white noise the motion's two footprints keep (IdTopology::wide_white)
-/// is measured the same way on every machine and for any thread count.
-FQ_HD Vec3 white_probe(uint32_t v) {
-  uint64_t x = uint64_t(v) * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL;  // SplitMix64's step and finaliser
-  x ^= x >> 30;
-  x *= 0xbf58476d1ce4e5b9ULL;
-  x ^= x >> 27;
-  x *= 0x94d049bb133111ebULL;
-  x ^= x >> 31;
-  const auto sign = [x](int bit) { return (x >> bit) & 1u ? 1.f : -1.f; };
-  return Vec3{sign(0), sign(1), sign(2)};
-}
-
 /// Past this many frames a track's count stops (history_weight is the strength long before).
 constexpr uint32_t kIdFramesCounted = 1u << 20;
 /// The most a vertex takes of the last averaged input when it holds `frames` frames: the stream's
