@@ -121,7 +121,8 @@ float median_level(const std::vector<float>& level, uint32_t n, std::vector<floa
 // ring means, and m' - m in s.wide. Each last pass is fused with what it leaves; every array
 // it reads has its ring pad set.
 void smooth_parts(const BlockRing& ring, uint32_t n, TemporalScratch& s, int threads) {
-  static_assert(kIdMotionPasses >= 2 && kIdWidePasses >= 2, "the last passes are fused, reading another array");
+  static_assert(kIdMotionPasses >= 2 && kIdWidePasses >= 2,
+                "the last passes are fused, reading another array");
   const auto each_block = [&](auto&& body) { for_ring_blocks(n, threads, body, kVertexGrain); };
   const auto passes = [&](const Vec3* from, int count) {  // ping-pong through s.motion and s.spare
     std::vector<Vec3>* to = &s.motion;
@@ -168,11 +169,14 @@ void size_arrays(uint32_t n, TemporalScratch& s) {
 // of the narrow rest and of the wide difference.
 float measure_wide_white(const BlockRing& ring, uint32_t n, TemporalScratch& s, int threads) {
   size_arrays(n, s);
-  parallel_for(n, threads, [&](uint32_t v) { s.offset[v] = white_probe(v); }, kVertexGrain);
+  parallel_for(
+      n, threads, [&](uint32_t v) { s.offset[v] = white_probe(v); }, kVertexGrain);
   smooth_parts(ring, n, s, threads);
   parallel_for(
       n, threads,
-      [&](uint32_t v) { s.spare_packed[v] = Point4{s.packed[v].w, dot(s.wide[v], s.wide[v]), 0.f, 0.f}; },
+      [&](uint32_t v) {
+        s.spare_packed[v] = Point4{s.packed[v].w, dot(s.wide[v], s.wide[v]), 0.f, 0.f};
+      },
       kVertexGrain);
   const auto each_block = [&](auto&& body) { for_ring_blocks(n, threads, body, kVertexGrain); };
   static_assert(kIdAgreementPasses == 2, "two passes, as the step's levels");

@@ -161,7 +161,8 @@ TEST(TemporalIds, AYoungTrackWeighsItsFramesAlike) {
 // ring means over the sphere), smooth over a few rings: what a viewer sees as the surface breathing.
 double band_error(const Mesh& clean, const std::vector<float>& p) {
   std::vector<uint32_t> vf_offsets, vf_faces;
-  build_vertex_faces(clean.triangles.data(), clean.num_triangles(), clean.num_vertices(), vf_offsets, vf_faces);
+  build_vertex_faces(clean.triangles.data(), clean.num_triangles(), clean.num_vertices(), vf_offsets,
+                     vf_faces);
   const FanView fan{clean.triangles.data(), vf_offsets.data(), vf_faces.data()};
   std::vector<Vec3> narrow(clean.num_vertices());
   for (uint32_t v = 0; v < narrow.size(); ++v)
@@ -220,7 +221,7 @@ TEST(TemporalIds, WhereTheMotionBendsTheNarrowEstimateFollowsIt) {
   const IdStep st = step(frame, track, out, s);
   ASSERT_TRUE(st.ran);
   EXPECT_LT(st.wide, 0.3) << "the motion bends";  // measured under 0.03
-  Mesh clean = frame;  // the frame's wave without its noise
+  Mesh clean = frame;                             // the frame's wave without its noise
   for (uint32_t v = 0; v < clean.num_vertices(); ++v) {
     const double phase = 2.0 * M_PI * (sphere.positions[3 * size_t(v)] / (10.0 * edge)) + 0.8;
     for (int k = 0; k < 3; ++k) clean.positions[3 * size_t(v) + k] = sphere.positions[3 * size_t(v) + k];
