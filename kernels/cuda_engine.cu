@@ -12,6 +12,7 @@
 #include "kernels/cuda/device_frame.cuh"
 #include "kernels/cuda/frame_checks.cuh"
 #include "kernels/cuda/host_staging.h"
+#include "kernels/cuda/id_pass.cuh"
 #include "kernels/cuda/launch.cuh"
 #include "kernels/cuda/link_export_pass.cuh"
 #include "kernels/cuda/passes.cuh"
@@ -53,6 +54,8 @@ class CudaEngine final : public Engine {
   std::string name() const override { return name_; }
   Status run_plan(const MeshView& mesh, const RunPlan& run, FrameResult& out) override;
   void temporal_step(const MeshView& mesh, const Params& params, FrameResult& out) override;
+  Status average_ids(const MeshView& mesh, uint64_t fingerprint, float strength, std::vector<float>& averaged,
+                     IdStep& step) override;
   void release_scratch() override;
 
  private:
@@ -77,6 +80,7 @@ class CudaEngine final : public Engine {
   cuda::DeviceFrame f_;
   cuda::RefineBuffers refine_;
   cuda::TemporalPass temporal_;    ///< the temporal step, and the device copies of histories it wrote
+  cuda::IdPass ids_;               ///< track A's step, and its device copies of tables and averages
   bool temporal_pending_ = false;  ///< the frame's own run took the step: temporal_step() finishes it
   std::string name_;
   int sm_count_ = 1;
@@ -108,6 +112,25 @@ void CudaEngine::temporal_step(const MeshView&, const Params& params, FrameResul
   out.timings.push_back({"temporal_host", ms_since(t)});
 }
 
+// Track A's per-vertex math on the device (kernels/cuda/id_pass.cuh); the host keeps the
+// stream's state, so the next frame may go to any engine.
+Status CudaEngine::average_ids(const MeshView& mesh, uint64_t fingerprint, float strength,
+                               std::vector<float>& averaged, IdStep& step) {
+  if (!usable_)
+    return {StatusCode::kInternal, "the CUDA engine is unusable after an earlier device fault: " + fault_};
+  FrameResult none;
+  try {
+    FQ_CUDA_CHECK(cudaSetDevice(device_.id));
+    step = ids_.step(mesh, fingerprint, history_->mean_edge, strength, history_->ids, averaged,
+                     temporal_scratch_, host_threads(), stream_.get());
+    return {};
+  } catch (const cuda::CudaError& e) {
+    return fail(e.what(), none);
+  } catch (const std::bad_alloc&) {
+    return fail("out of host memory (pinned staging)", none);
+  }
+}
+
 void CudaEngine::release_scratch() {
   // The frees must be made on this engine's device; the destructors log a failed free.
   if (cudaSetDevice(device_.id) != cudaSuccess) {
@@ -117,6 +140,7 @@ void CudaEngine::release_scratch() {
   f_ = cuda::DeviceFrame{};
   refine_ = cuda::RefineBuffers{};
   temporal_ = cuda::TemporalPass{};
+  ids_ = cuda::IdPass{};
   temporal_pending_ = false;
 }
 

@@ -158,6 +158,11 @@ class Engine {
   virtual void temporal_step(const MeshView& mesh, const Params& params, FrameResult& out) {
     follow_stream_history(mesh, params, out, host_threads());
   }
+  /// Track A's step (kernels/temporal_ids.h) of the stream's history on `mesh`, its averaged
+  /// input into `averaged`: by default average_with_ids on the host with host_threads(); the
+  /// CUDA engine runs its per-vertex math on the device. Ok, or the device's error.
+  virtual Status average_ids(const MeshView& mesh, uint64_t fingerprint, float strength,
+                             std::vector<float>& averaged, IdStep& step);
   /// Host threads of the steps process() runs on the host.
   virtual int host_threads() const;
   /// The engine's own scratch (host or device), given back by release_memory() and when a

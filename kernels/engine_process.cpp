@@ -43,6 +43,13 @@ void append_timings(const char* prefix, const FrameResult& from, FrameResult& to
 
 int Engine::host_threads() const { return hardware_threads(); }
 
+Status Engine::average_ids(const MeshView& mesh, uint64_t fingerprint, float strength,
+                           std::vector<float>& averaged, IdStep& step) {
+  step = average_with_ids(mesh, fingerprint, history_->mean_edge, strength, history_->ids, averaged,
+                          temporal_scratch_, host_threads());
+  return {};
+}
+
 Status Engine::process(const MeshView& mesh, const Params& params, FrameResult& out) {
   ++counts_.frames;
   reset_run_outputs(out);
@@ -106,12 +113,12 @@ Status Engine::run_own(const MeshView& mesh, const RunPlan& run, FrameResult& ou
   const bool follows = follows_history(run.params);
   if (follows) {
     const auto start = std::chrono::steady_clock::now();
-    ids = average_with_ids(mesh, connectivity_fingerprint(mesh, host_threads()), history_->mean_edge,
-                           run.params.filtering.temporal, history_->ids, id_input_, temporal_scratch_,
-                           host_threads());
+    FQ_RETURN_IF_ERROR(average_ids(mesh, connectivity_fingerprint(mesh, host_threads()),
+                                   run.params.filtering.temporal, id_input_, ids));
     id_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
   if (!ids.ran) {
+    if (follows) settle_history_normals(*history_, temporal_scratch_, host_threads());
     FQ_RETURN_IF_ERROR(run_once(mesh, run, out));
     FQ_RETURN_IF_ERROR(check_cancel());
     temporal_step(mesh, run.params, out);

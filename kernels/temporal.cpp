@@ -63,9 +63,25 @@ void keep_as_history(const FanView& fan, uint32_t n, const std::vector<float>& p
   vertex_normals(fan, n, positions.data(), s.spare, s.normals, threads);
   history.positions.assign(positions.begin(), positions.begin() + 3 * size_t(n));
   history.normals.swap(s.normals);
+  history.normals_pending = 0;
   history.mean_edge = mean_edge;
   history.stamp = next_history_stamp();  // the index is built when the next frame needs it
   ++history.frames;
+}
+
+void settle_history_normals(TemporalHistory& history, TemporalScratch& s, int threads) {
+  if (history.normals_pending == 0) return;
+  const IdTopology& t = history.ids.topology;
+  const uint32_t n = t.vertices;
+  if (t.fingerprint != history.normals_pending || t.triangles_kept.size() != 3 * size_t(t.triangles) ||
+      history.positions.size() != 3 * size_t(n)) {
+    history.clear();
+    return;
+  }
+  const CancelScope whole(nullptr);
+  const FanView fan{t.triangles_kept.data(), t.vf_offsets.data(), t.vf_faces.data()};
+  vertex_normals(fan, n, history.positions.data(), s.spare, history.normals, threads);
+  history.normals_pending = 0;
 }
 
 TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions, double mean_edge,

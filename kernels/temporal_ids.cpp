@@ -48,6 +48,7 @@ void restart(const MeshView& mesh, uint64_t fingerprint, IdTrack& track) {
   track.connectivity = fingerprint;
   track.vertices = mesh.num_vertices;
   track.frames = 1;
+  track.stamp = next_history_stamp();
 }
 
 // XXH64's round (Collet, xxHash): the lanes of a chunk carry no dependency on each other, so
@@ -147,7 +148,7 @@ void smooth_parts(const BlockRing& ring, uint32_t n, TemporalScratch& s, int thr
       const Vec3 r = s.offset[v] - m[j];
       s.offset[v] = r;
       s.wide[v] = m[j];
-      s.packed[v] = Point4{r.x, r.y, r.z, dot(r, r)};
+      s.packed[v] = rest_packed(r);
     }
   });
   from = passes(s.wide.data(), kIdWidePasses - 1);
@@ -205,6 +206,7 @@ BlockRing keep_topology(const MeshView& mesh, uint64_t fingerprint, IdTopology& 
   const uint32_t n = mesh.num_vertices;
   if (!topo.holds(fingerprint, n, mesh.num_triangles)) {
     build_vertex_faces(mesh.triangles, mesh.num_triangles, n, topo.vf_offsets, topo.vf_faces);
+    topo.triangles_kept.assign(mesh.triangles, mesh.triangles + 3 * size_t(mesh.num_triangles));
     const FanView fan{mesh.triangles, topo.vf_offsets.data(), topo.vf_faces.data()};
     const RingView ring = build_vertex_ring(fan, n, s.ring_corners, threads);
     build_block_ring(ring, n, topo.ring_rows, topo.ring_slots, topo.ring_inv_count, threads);
@@ -251,22 +253,47 @@ size_t IdTrack::bytes() const {
   const IdTopology& t = topology;
   return sizeof(float) * (averaged.capacity() + t.white.capacity() + t.ring_inv_count.capacity()) +
          sizeof(uint32_t) * (t.vf_offsets.capacity() + t.vf_faces.capacity() + t.ring_rows.capacity() +
-                             t.ring_slots.capacity());
+                             t.ring_slots.capacity() + t.triangles_kept.capacity());
+}
+
+bool begin_id_step(const MeshView& mesh, uint64_t fingerprint, double mean_edge, IdTrack& track,
+                   TemporalScratch& s, int threads) {
+  const uint32_t n = mesh.num_vertices;
+  if (track.empty() || track.connectivity != fingerprint || track.vertices != n || n == 0 ||
+      !(mean_edge > 0.0)) {
+    restart(mesh, fingerprint, track);
+    return false;
+  }
+  keep_topology(mesh, fingerprint, track.topology, s, threads);
+  return true;
+}
+
+IdStep finish_id_step(const MeshView& mesh, uint64_t fingerprint, const IdMath& math, IdTrack& track) {
+  IdStep step;
+  step.residual = std::sqrt(math.typical);
+  if (!ids_follow(math.typical)) {
+    step.refused = true;
+    restart(mesh, fingerprint, track);
+    return step;
+  }
+  track.frames = track.frames < kIdFramesCounted ? track.frames + 1 : kIdFramesCounted;
+  track.stamp = next_history_stamp();
+  const uint32_t n = mesh.num_vertices;
+  step.share = float(math.share_sum / n);
+  step.wide = float(math.wide_sum / n);
+  step.ran = true;
+  return step;
 }
 
 IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_edge, float strength,
                         IdTrack& track, std::vector<float>& averaged, TemporalScratch& s, int threads) {
   // Each loop's result is read by the next; the step is short: it runs whole.
   const CancelScope whole(nullptr);
+  if (!begin_id_step(mesh, fingerprint, mean_edge, track, s, threads)) return IdStep{};
   const uint32_t n = mesh.num_vertices;
-  IdStep step;
-  if (track.empty() || track.connectivity != fingerprint || track.vertices != n || n == 0 ||
-      !(mean_edge > 0.0)) {
-    restart(mesh, fingerprint, track);
-    return step;
-  }
-  const BlockRing ring = keep_topology(mesh, fingerprint, track.topology, s, threads);
-  const float* white = track.topology.white.data();
+  const IdTopology& topo = track.topology;
+  const BlockRing ring{topo.ring_rows.data(), topo.ring_slots.data(), topo.ring_inv_count.data(), n, n};
+  const float* white = topo.white.data();
   // The displacement from the last averaged input, in mean edges (a difference of nearby
   // points: floats keep their precision without an origin). Each loop below also does what
   // the ring means before it allow for its vertices: the sums are those of a loop per quantity.
@@ -298,11 +325,7 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
   each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
     Point4 m[kRingBlock];
     block_ring_means(ring, s.packed.data(), b, m);
-    for (uint32_t j = 0; j < k; ++j) {
-      const Vec3 c = xyz(m[j]);
-      const Vec3 w = s.wide[v0 + j];
-      s.spare_packed[v0 + j] = Point4{m[j].w, dot(c, c), dot(w, w), 0.f};
-    }
+    for (uint32_t j = 0; j < k; ++j) s.spare_packed[v0 + j] = level_inputs(m[j], s.wide[v0 + j]);
   });
   each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
     Point4 m[kRingBlock];
@@ -312,55 +335,47 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
       s.packed[v0 + j] = Point4{m[j].y, m[j].z, 0.f, 0.f};
     }
   });
-  const float typical = median_level(s.level, n, s.detail);
-  step.residual = std::sqrt(typical);
-  if (!ids_follow(typical)) {
-    step.refused = true;
-    restart(mesh, fingerprint, track);
-    return step;
-  }
+  IdMath math;
+  math.typical = median_level(s.level, n, s.detail);
+  if (!ids_follow(math.typical)) return finish_id_step(mesh, fingerprint, math, track);
   // The averaged input, which the track keeps for the next frame (it read its offsets above).
   // Each vertex's motion is the narrow estimate plus the share of the wide one's difference
   // that its noise allows (wide_share); what is left of the displacement is averaged out.
-  const float edge = float(mean_edge);
-  const float wide_white = track.topology.wide_white;
-  const float weight = history_weight(strength, track.frames);
-  track.frames = track.frames < kIdFramesCounted ? track.frames + 1 : kIdFramesCounted;
+  const IdBlend blend{id_history_weight(track, strength), math.typical, topo.wide_white, float(mean_edge)};
   each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
     Point4 m[kRingBlock];
     block_ring_means(ring, s.packed.data(), b, m);  // the coherence test's level, the wide one's
     for (uint32_t j = 0; j < k; ++j) {
       const uint32_t v = v0 + j;
-      const float noise = noise_part(m[j].x, s.level[v], white[v]);
-      const float wide = wide_share(m[j].y, wide_white * noise * s.level[v]);
-      s.spare_level[v] = wide;
-      s.share[v] = id_share(s.level[v], typical, weight) * noise;
-      const Vec3 rest = s.offset[v] - wide * s.wide[v];
-      const Vec3 back = (s.share[v] * edge) * rest;  // x - share * (non-smooth part), input units
+      const IdWeights w = blend.weights(m[j], s.level[v], white[v]);
+      s.spare_level[v] = w.wide;
+      s.share[v] = w.share;
+      const Vec3 back = blend.back(w, s.offset[v], s.wide[v]);  // input units
       const size_t i = 3 * size_t(v);
       averaged[i] = a[i] = x[i] - back.x;
       averaged[i + 1] = a[i + 1] = x[i + 1] - back.y;
       averaged[i + 2] = a[i + 2] = x[i + 2] - back.z;
     }
   });
-  double total = 0.0;
-  double wide_total = 0.0;
   for (uint32_t v = 0; v < n; ++v) {  // in order: the report is reproducible
-    total += s.share[v];
-    wide_total += s.spare_level[v];
+    math.share_sum += s.share[v];
+    math.wide_sum += s.spare_level[v];
   }
-  step.share = float(total / n);
-  step.wide = float(wide_total / n);
-  step.ran = true;
-  return step;
+  return finish_id_step(mesh, fingerprint, math, track);
+}
+
+float id_history_weight(const IdTrack& track, float strength) {
+  return history_weight(strength, track.frames);
 }
 
 void keep_averaged_result(const MeshView& mesh, const std::vector<float>& positions, double mean_edge,
-                          TemporalHistory& history, TemporalScratch& s, int threads) {
-  // The track keeps the connectivity's vertex -> triangles table: no build here.
-  const IdTopology& t = history.ids.topology;
-  const FanView fan{mesh.triangles, t.vf_offsets.data(), t.vf_faces.data()};
-  keep_as_history(fan, mesh.num_vertices, positions, mean_edge, history, s, threads);
+                          TemporalHistory& history, TemporalScratch&, int) {
+  history.positions.assign(positions.begin(), positions.begin() + 3 * size_t(mesh.num_vertices));
+  history.normals.clear();
+  history.normals_pending = history.ids.topology.fingerprint;
+  history.mean_edge = mean_edge;
+  history.stamp = next_history_stamp();  // the index is built when the next frame needs it
+  ++history.frames;
 }
 
 }  // namespace fq

@@ -38,6 +38,9 @@ struct IdTopology {
   uint64_t fingerprint = 0;  ///< the connectivity it was built for, with its counts (0, 0: none)
   uint32_t vertices = 0, triangles = 0;
   std::vector<uint32_t> vf_offsets, vf_faces, ring_rows, ring_slots;
+  /// The connectivity's triangles (3 indices each): the history's normals from them when
+  /// they are first read (settle_history_normals).
+  std::vector<uint32_t> triangles_kept;
   std::vector<float> ring_inv_count;
   std::vector<float> white;  ///< per vertex, after kIdAgreementPasses ring means
   /// What white noise leaves in the wide motion estimate's difference from the narrow one, per
@@ -61,7 +64,10 @@ struct IdTrack {
   uint64_t connectivity = 0;    ///< connectivity_fingerprint of the frame it came from
   uint32_t vertices = 0;        ///< that frame's vertex count
   uint32_t frames = 0;          ///< frames averaged into it since the track restarted (history_weight)
-  IdTopology topology;          ///< keyed by its own fingerprint: a refused frame leaves it valid
+  /// Which write of `averaged` this is (next_history_stamp, kernels/temporal.h), new whenever it
+  /// changes: an engine that keeps a copy on its device knows the copy by it. 0: none.
+  uint64_t stamp = 0;
+  IdTopology topology;  ///< keyed by its own fingerprint: a refused frame leaves it valid
 
   bool empty() const { return averaged.empty(); }
   void clear() {
@@ -69,6 +75,7 @@ struct IdTrack {
     connectivity = 0;
     vertices = 0;
     frames = 0;
+    stamp = 0;
     topology.clear();
   }
   /// Bytes the track holds (its buffers' capacities), for the memory it costs a stream.
@@ -98,14 +105,39 @@ struct IdStep {
 IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_edge, float strength,
                         IdTrack& track, std::vector<float>& averaged, TemporalScratch& scratch, int threads);
 
+// The step in three parts, for an engine that runs its per-vertex math on a device
+// (kernels/cuda/id_pass.cuh): average_with_ids is begin_id_step, the math, finish_id_step.
+
+/// The host part before the math: false where the step cannot run (a first frame, a new
+/// connectivity, a frame without a scale: `track` restarts from the raw frame); else true, with
+/// the connectivity's tables in track.topology (built on its first frame there, once).
+bool begin_id_step(const MeshView& mesh, uint64_t fingerprint, double mean_edge, IdTrack& track,
+                   TemporalScratch& scratch, int threads);
+
+/// What the math found, for finish_id_step.
+struct IdMath {
+  float typical = 0.f;     ///< the median of the vertices' local levels (squared mean edges)
+  double share_sum = 0.0;  ///< Σ of the vertices' weights of the last averaged input
+  double wide_sum = 0.0;   ///< Σ of their shares of the wide motion estimate
+};
+
+/// The host part after the math: ids that do not follow (ids_follow(typical)) restart `track`
+/// from the raw frame and the step is refused; else the track counts the frame (its averaged
+/// input, written by the math, gets a new stamp) and the step ran.
+IdStep finish_id_step(const MeshView& mesh, uint64_t fingerprint, const IdMath& math, IdTrack& track);
+
+/// The most a vertex takes of `track`'s last averaged input this frame (history_weight).
+float id_history_weight(const IdTrack& track, float strength);
+
 /// A probe of white noise at vertex v: three components of ±1 (unit variance), from v's bits
 /// alone, so the share of white noise the motion's two footprints keep (IdTopology::wide_white)
 /// is measured the same way on every machine and for any thread count.
 Vec3 white_probe(uint32_t v);
 
 /// After a frame that track A averaged: its result (`positions`, input order) becomes the
-/// history the spatial track follows should the connectivity change (keep_as_history). Reads
-/// the vertex table the track keeps for this connectivity (call it only after a step that ran).
+/// history the spatial track follows should the connectivity change, its normals pending
+/// (TemporalHistory::normals_pending) on the connectivity the track keeps (call it only after a
+/// step that ran).
 void keep_averaged_result(const MeshView& mesh, const std::vector<float>& positions, double mean_edge,
                           TemporalHistory& history, TemporalScratch& scratch, int threads);
 

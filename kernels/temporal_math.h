@@ -130,6 +130,44 @@ FQ_HD float history_weight(float strength, uint32_t frames) {
 /// is min(1, E / level): the whole wide estimate where δ looks like noise, less as it bends.
 FQ_HD float wide_share(float level, float expected) { return level > expected ? expected / level : 1.f; }
 
+/// The narrow rest r of a vertex's id displacement packed with its square, for the agreement's
+/// ring means (one quantity a lane).
+FQ_HD Point4 rest_packed(Vec3 r) { return Point4{r.x, r.y, r.z, dot(r, r)}; }
+
+/// The second pass's inputs at a vertex from the first pass's ring mean m of rest_packed: the
+/// level's running mean of r², the coherence test's square of the rest's ring mean, and the
+/// square of the wide estimate's difference w.
+FQ_HD Point4 level_inputs(Point4 m, Vec3 w) {
+  const Vec3 c = xyz(m);
+  return Point4{m.w, dot(c, c), dot(w, w), 0.f};
+}
+
+/// A vertex's weight of the last averaged input and its share of the wide estimate.
+struct IdWeights {
+  float share;
+  float wide;
+};
+
+/// The last step's per-vertex rule, with the frame's values: the history's weight
+/// (history_weight), the typical level, IdTopology::wide_white and the mean edge (input units).
+struct IdBlend {
+  float weight, typical, wide_white, edge;
+
+  /// From m, the ring mean of the second pass's (coherence square, wide square), the vertex's
+  /// local `level` and its white-noise share `white`.
+  FQ_HD IdWeights weights(Point4 m, float level, float white) const {
+    const float noise = noise_part(m.x, level, white);
+    return {id_share(level, typical, weight) * noise, wide_share(m.y, wide_white * noise * level)};
+  }
+  /// What the vertex moves back by (input units): its share of what is left of the displacement
+  /// once the motion (narrow estimate + the wide share of the difference `wide`) is out;
+  /// `offset` is the narrow rest.
+  FQ_HD Vec3 back(IdWeights w, Vec3 offset, Vec3 wide) const {
+    const Vec3 rest = offset - w.wide * wide;
+    return (w.share * edge) * rest;
+  }
+};
+
 /// Whether a frame whose typical level of non-smooth id displacement is `typical` (squared mean
 /// edges) has ids that follow the surface.
 FQ_HD bool ids_follow(float typical) { return typical <= kIdReach * kIdReach; }

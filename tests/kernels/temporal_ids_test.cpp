@@ -319,6 +319,45 @@ TEST(TemporalIds, TheEngineTakesTrackAWhileTheConnectivityHoldsAndTrackBWhenItCh
   EXPECT_EQ(r.temporal_track, TemporalTrack::kNone);
 }
 
+// Track A leaves the history's normals pending; track B, on the frame after, follows the
+// normals an eager computation gives: the same result as from a history whose normals were
+// computed at once from the averaged frame's result.
+TEST(TemporalIds, TrackBFollowsTheNormalsTrackALeftPending) {
+  const Mesh sphere = test::make_icosphere(3);
+  Params p;
+  p.filtering.temporal = 0.75f;
+  CpuEngine e(2);
+  TemporalHistory lazy;
+  e.set_history(&lazy);
+  FrameResult r;
+  ASSERT_TRUE(e.process(noisy(sphere, 1).view(), p, r).ok());
+  ASSERT_TRUE(e.process(noisy(sphere, 2).view(), p, r).ok());
+  ASSERT_EQ(r.temporal_track, TemporalTrack::kIds);
+  ASSERT_TRUE(lazy.normals.empty());
+  // The same history with its normals computed from the result over the sphere's fans.
+  TemporalHistory eager = lazy;
+  TemporalHistory orphan = lazy;
+  std::vector<uint32_t> vf_offsets, vf_faces;
+  build_vertex_faces(sphere.triangles.data(), sphere.num_triangles(), sphere.num_vertices(), vf_offsets,
+                     vf_faces);
+  TemporalScratch s;
+  keep_as_history(FanView{sphere.triangles.data(), vf_offsets.data(), vf_faces.data()}, sphere.num_vertices(),
+                  r.positions, r.mean_edge, eager, s, 2);
+  Mesh turned = noisy(sphere, 3);
+  std::swap(turned.triangles[0], turned.triangles[1]);
+  FrameResult from_lazy, from_eager;
+  ASSERT_TRUE(e.process(turned.view(), p, from_lazy).ok());
+  e.set_history(&eager);
+  ASSERT_TRUE(e.process(turned.view(), p, from_eager).ok());
+  EXPECT_EQ(from_lazy.temporal_track, TemporalTrack::kSpace);
+  EXPECT_GT(from_lazy.prior_share, 0.1f) << "it followed the history";
+  EXPECT_EQ(from_lazy.positions, from_eager.positions);
+  // A history whose connectivity the track no longer holds is not followed on stale tables.
+  orphan.ids.topology.clear();
+  settle_history_normals(orphan, s, 2);
+  EXPECT_TRUE(orphan.empty());
+}
+
 TEST(TemporalIds, AveragedFramesBeatFramesAlone) {
   const Mesh sphere = test::make_icosphere(4);
   CpuEngine alone(2), stream(2);
@@ -488,9 +527,13 @@ TEST(TemporalIds, TheStepGivesTheBytesOfItsLoopByLoopFormForAnyThreadCount) {
       EXPECT_TRUE(same_bits(st.share, ref.share)) << "frame " << t;
       EXPECT_TRUE(same_bits(st.residual, ref.residual)) << "frame " << t;
       EXPECT_TRUE(same_bits(st.wide, ref.wide)) << "frame " << t;
-      // The result (here the averaged input) becomes the spatial track's history, with the
-      // normals vertex_normal gives over the frame's fans.
+      // The result (here the averaged input) becomes the spatial track's history, its normals
+      // pending until track B reads them; then those vertex_normal gives over the frame's fans.
       keep_averaged_result(frame.view(), out, edge, history, s, threads);
+      EXPECT_TRUE(history.normals.empty()) << "pending";
+      EXPECT_EQ(history.normals_pending, history.ids.topology.fingerprint);
+      settle_history_normals(history, s, threads);
+      EXPECT_EQ(history.normals_pending, 0u);
       std::vector<uint32_t> vf_offsets, vf_faces;
       build_vertex_faces(frame.triangles.data(), frame.num_triangles(), frame.num_vertices(), vf_offsets,
                          vf_faces);
