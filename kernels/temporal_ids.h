@@ -30,10 +30,11 @@ struct TemporalHistory;
 /// connectivity that the step averages and kept while the fingerprint holds: the vertex ->
 /// triangles table (the result's normals), the ring table in blocks (kernels/vertex_ring.h,
 /// BlockRing), the white-noise share of the coherence test, smoothed as the test smooths it, and
-/// that of the wide motion estimate.
-/// About 94 bytes a vertex on a closed triangle mesh, crane's (two triangles a vertex: 4 + 24
-/// for the fans; 4 × the widest ring of a block of four, some 14, and 4 + 1 for the rings; 4
-/// for the white share), beside the 12 of `averaged`; IdTrack::bytes() counts them.
+/// that of the wide motion estimate; and the triangles, for the history's normals.
+/// About 118 bytes a vertex on a closed triangle mesh, crane's (two triangles a vertex: 4 + 24
+/// for the fans and 24 for the triangles; 4 × the widest ring of a block of four, some 14, and
+/// 4 + 1 for the rings; 4 for the white share), beside the 12 of `averaged`; IdTrack::bytes()
+/// counts them.
 struct IdTopology {
   uint64_t fingerprint = 0;  ///< the connectivity it was built for, with its counts (0, 0: none)
   uint32_t vertices = 0, triangles = 0;
