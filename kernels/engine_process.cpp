@@ -130,7 +130,7 @@ Status Engine::run_own(const MeshView& mesh, const RunPlan& run, FrameResult& ou
     FQ_RETURN_IF_ERROR(run_once(averaged, alone, out));
     FQ_RETURN_IF_ERROR(check_cancel());
     const auto start = std::chrono::steady_clock::now();
-    keep_averaged_result(mesh, out.positions, out.mean_edge, *history_, temporal_scratch_, host_threads());
+    keep_averaged_result(mesh, out.positions, out.mean_edge, *history_);
     id_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     out.temporal_track = TemporalTrack::kIds;
     out.prior_coverage = 1.f;

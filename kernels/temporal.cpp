@@ -92,6 +92,7 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
   const CancelScope whole(nullptr);
   const uint32_t n = mesh.num_vertices;
   TemporalStep step;
+  settle_history_normals(history, s, threads);  // where track A left them (Engine::run_own settles first)
   const bool follows = !history.empty() && n > 0 && mean_edge > 0.0;
   // The frame's vertex -> triangles table (for the ring means and the normals) and the index of
   // the last result (when the last frame's engine left none) are two serial builds that do not

@@ -369,7 +369,7 @@ float id_history_weight(const IdTrack& track, float strength) {
 }
 
 void keep_averaged_result(const MeshView& mesh, const std::vector<float>& positions, double mean_edge,
-                          TemporalHistory& history, TemporalScratch&, int) {
+                          TemporalHistory& history) {
   history.positions.assign(positions.begin(), positions.begin() + 3 * size_t(mesh.num_vertices));
   history.normals.clear();
   history.normals_pending = history.ids.topology.fingerprint;

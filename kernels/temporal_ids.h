@@ -140,6 +140,6 @@ Vec3 white_probe(uint32_t v);
 /// (TemporalHistory::normals_pending) on the connectivity the track keeps (call it only after a
 /// step that ran).
 void keep_averaged_result(const MeshView& mesh, const std::vector<float>& positions, double mean_edge,
-                          TemporalHistory& history, TemporalScratch& scratch, int threads);
+                          TemporalHistory& history);
 
 }  // namespace fq

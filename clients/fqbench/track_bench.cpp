@@ -88,7 +88,7 @@ void one_round(const TrackBenchOptions& o, const std::vector<Frame>& frames, boo
     double t_keep = 0.0;
     if (step.ran) {  // the run's result stands in for the averaged input: the same work
       const Clock::time_point t2 = Clock::now();
-      keep_averaged_result(mesh, averaged, edge, history, scratch, row.threads);
+      keep_averaged_result(mesh, averaged, edge, history);
       t_keep = ms_since(t2);
     }
     row.bytes_per_vertex = double(history.ids.bytes()) / mesh.num_vertices;

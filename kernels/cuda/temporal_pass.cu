@@ -205,6 +205,7 @@ TemporalStep TemporalPass::finish(const std::vector<float>& positions, double me
   parallel_copy(history.positions.data(), positions.data(), bytes);
   history.normals.resize(3 * size_t(n));
   parallel_copy(history.normals.data(), h_normals_.data(), bytes);
+  history.normals_pending = 0;
   history.mean_edge = mean_edge;
   history.stamp = next_history_stamp();
   ++history.frames;

@@ -529,7 +529,7 @@ TEST(TemporalIds, TheStepGivesTheBytesOfItsLoopByLoopFormForAnyThreadCount) {
       EXPECT_TRUE(same_bits(st.wide, ref.wide)) << "frame " << t;
       // The result (here the averaged input) becomes the spatial track's history, its normals
       // pending until track B reads them; then those vertex_normal gives over the frame's fans.
-      keep_averaged_result(frame.view(), out, edge, history, s, threads);
+      keep_averaged_result(frame.view(), out, edge, history);
       EXPECT_TRUE(history.normals.empty()) << "pending";
       EXPECT_EQ(history.normals_pending, history.ids.topology.fingerprint);
       settle_history_normals(history, s, threads);
