@@ -6,6 +6,7 @@
 #include <cub/block/block_scan.cuh>
 #include <utility>
 
+#include "kernels/cuda/copy_cache.h"
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/host_staging.h"
 #include "kernels/cuda/id_pass.cuh"
@@ -218,16 +219,16 @@ const Vec3* ring_passes(uint32_t n, const Ring& r, const Vec3* from, Vec3* const
 }  // namespace
 
 DeviceIdTopology& IdPass::topology_of(const IdTopology& topo, cudaStream_t s) {
-  DeviceIdTopology* oldest = &topologies_[0];
-  for (DeviceIdTopology& c : topologies_) {
-    if (c.fingerprint != 0 && c.fingerprint == topo.fingerprint && c.n == topo.vertices &&
-        c.m == topo.triangles) {
-      c.used = ++steps_;
-      return c;
-    }
-    if (c.used < oldest->used) oldest = &c;
-  }
-  DeviceIdTopology& c = *oldest;
+  bool held = false;
+  DeviceIdTopology& c = copy_holding(
+      topologies_,
+      [&](const DeviceIdTopology& k) {
+        return k.fingerprint != 0 && k.fingerprint == topo.fingerprint && k.n == topo.vertices &&
+               k.m == topo.triangles;
+      },
+      held);
+  c.used = ++steps_;
+  if (held) return c;
   c.fingerprint = 0;
   const size_t row_bytes = topo.ring_rows.size() * sizeof(uint32_t);
   const size_t slot_bytes = topo.ring_slots.size() * sizeof(uint32_t);
@@ -247,27 +248,25 @@ DeviceIdTopology& IdPass::topology_of(const IdTopology& topo, cudaStream_t s) {
   c.fingerprint = topo.fingerprint;
   c.n = topo.vertices;
   c.m = topo.triangles;
-  c.used = ++steps_;
   return c;
 }
 
 DeviceIdAverage& IdPass::average_of(const IdTrack& track, cudaStream_t s) {
-  DeviceIdAverage* oldest = &averages_[0];
-  for (DeviceIdAverage& c : averages_) {
-    if (c.stamp != 0 && c.stamp == track.stamp && c.n == track.vertices) {
-      c.used = ++steps_;
-      return c;
-    }
-    if (c.used < oldest->used) oldest = &c;
-  }
-  DeviceIdAverage& c = *oldest;
+  bool held = false;
+  DeviceIdAverage& c = copy_holding(
+      averages_,
+      [&](const DeviceIdAverage& k) {
+        return k.stamp != 0 && k.stamp == track.stamp && k.n == track.vertices;
+      },
+      held);
+  c.used = ++steps_;
+  if (held) return c;
   c.stamp = 0;
   c.n = track.vertices;
   const size_t bytes = 3 * size_t(c.n) * sizeof(float);
   upload_staged(track.averaged.data(), c.positions.reserve(3 * size_t(c.n)), bytes, h_upload_.reserve(bytes),
                 s);
   FQ_CUDA_CHECK(cudaStreamSynchronize(s));  // as above: the staging buffer is reused next
-  c.used = ++steps_;
   return c;
 }
 

@@ -3,6 +3,7 @@
 #include <cub/block/block_reduce.cuh>
 #include <utility>
 
+#include "kernels/cuda/copy_cache.h"
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/device_grid.cuh"
 #include "kernels/cuda/host_staging.h"
@@ -102,12 +103,12 @@ T* ring_means(const FanView& fan, T* a, T* b, int passes, uint32_t n, cudaStream
 }  // namespace
 
 DeviceHistory& TemporalPass::copy_of(const TemporalHistory& history, cudaStream_t s) {
-  DeviceHistory* oldest = &copies_[0];
-  for (DeviceHistory& c : copies_) {
-    if (!history.empty() && c.stamp != 0 && c.stamp == history.stamp) return c;
-    if (c.used < oldest->used) oldest = &c;
-  }
-  DeviceHistory& c = *oldest;
+  bool held = false;
+  DeviceHistory& c = copy_holding(
+      copies_,
+      [&](const DeviceHistory& k) { return !history.empty() && k.stamp != 0 && k.stamp == history.stamp; },
+      held);
+  if (held) return c;
   c.stamp = 0;
   c.n = static_cast<uint32_t>(history.positions.size() / 3);
   if (!history.empty() && c.n > 0) {  // written by another engine, or pushed out of this one's copies
