@@ -72,6 +72,10 @@ struct TemporalScratch {
   /// Track A's (kernels/temporal_ids.cpp): quantities whose ring means run together, one to a lane.
   std::vector<Point4> packed, spare_packed;
   std::vector<Vec3> wide;  ///< track A's narrow motion estimate, then the wide one's difference
+  /// Track A's rigid fit (kernels/rigid_motion.h): the last averaged positions, the ring means
+  /// of RigidInputs' three lanes (and their spares) and the narrow estimate's correction.
+  std::vector<Vec3> position, correction;
+  std::vector<Point4> rigid[6];
 };
 
 /// The temporal step of one frame: `positions` (the frame's filtered result, input order, 3

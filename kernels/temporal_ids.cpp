@@ -6,6 +6,7 @@
 
 #include "core/cancel_token.h"
 #include "core/parallel_for.h"
+#include "kernels/rigid_motion.h"
 #include "kernels/temporal.h"
 #include "kernels/temporal_math.h"
 #include "kernels/vertex_faces.h"
@@ -116,12 +117,36 @@ float median_level(const std::vector<float>& level, uint32_t n, std::vector<floa
   const uint32_t low = bin_of(1u << 10);
   return std::bit_cast<float>(high << 21 | middle << 10 | low);
 }
+// kIdMotionPasses (then kIdWidePasses) more ring means of the rigid fit's inputs, in s.rigid[0..2]
+// (through s.rigid[3..5]): the three lanes of one vertex summed side by side.
+void rigid_passes(const BlockRing& ring, uint32_t n, TemporalScratch& s, int count, int threads) {
+  for (int p = 0; p < count; ++p) {
+    for_ring_blocks(
+        n, threads,
+        [&](uint32_t b, uint32_t v0, uint32_t k) {
+          for (int lane = 0; lane < 3; ++lane) {
+            Point4 m[kRingBlock];
+            block_ring_means(ring, s.rigid[lane].data(), b, m);
+            std::copy(m, m + k, s.rigid[3 + lane].data() + v0);
+          }
+        },
+        kVertexGrain);
+    for (int lane = 0; lane < 3; ++lane) std::swap(s.rigid[lane], s.rigid[3 + lane]);
+  }
+}
+
+// The rigid correction at vertex v from the rigid lanes' ring means and the motion's.
+Vec3 rigid_at(const TemporalScratch& s, uint32_t v, Vec3 motion) {
+  return rigid_correction(RigidInputs{s.rigid[0][v], s.rigid[1][v], s.rigid[2][v]}, motion, s.position[v]);
+}
+
 // The id displacement's smooth parts, from s.offset (the displacement d, mean edges): the narrow
-// motion m (kIdMotionPasses ring means) and the wide one m' (kIdWidePasses more). Leaves the
-// narrow rest d - m in s.offset, the pair (d - m, |d - m|²) in s.packed for the agreement's
-// ring means, and m' - m in s.wide. Each last pass is fused with what it leaves; every array
-// it reads has its ring pad set.
-void smooth_parts(const BlockRing& ring, uint32_t n, TemporalScratch& s, int threads) {
+// motion m (kIdMotionPasses ring means) and the wide one m' (kIdWidePasses more), each with its
+// rigid correction where `rigid` (kernels/rigid_motion.h; s.rigid holds RigidInputs, s.position
+// the last averaged positions). Leaves the narrow rest d - m in s.offset, the pair (d - m,
+// |d - m|²) in s.packed for the agreement's ring means, and m' - m in s.wide. Each last pass is
+// fused with what it leaves; every array it reads has its ring pad set.
+void smooth_parts(const BlockRing& ring, uint32_t n, TemporalScratch& s, bool rigid, int threads) {
   static_assert(kIdMotionPasses >= 2 && kIdWidePasses >= 2,
                 "the last passes are fused, reading another array");
   const auto each_block = [&](auto&& body) { for_ring_blocks(n, threads, body, kVertexGrain); };
@@ -140,22 +165,30 @@ void smooth_parts(const BlockRing& ring, uint32_t n, TemporalScratch& s, int thr
     return from;
   };
   const Vec3* from = passes(s.offset.data(), kIdMotionPasses - 1);
+  if (rigid) rigid_passes(ring, n, s, kIdMotionPasses, threads);
   each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
     Vec3 m[kRingBlock];
     block_ring_means(ring, from, b, m);
     for (uint32_t j = 0; j < k; ++j) {
       const uint32_t v = v0 + j;
-      const Vec3 r = s.offset[v] - m[j];
+      const Vec3 c = rigid ? rigid_at(s, v, m[j]) : Vec3{0.f, 0.f, 0.f};
+      const Vec3 r = s.offset[v] - (m[j] + c);
       s.offset[v] = r;
       s.wide[v] = m[j];
+      s.correction[v] = c;
       s.packed[v] = rest_packed(r);
     }
   });
   from = passes(s.wide.data(), kIdWidePasses - 1);
+  if (rigid) rigid_passes(ring, n, s, kIdWidePasses, threads);
   each_block([&](uint32_t b, uint32_t v0, uint32_t k) {
     Vec3 m[kRingBlock];
     block_ring_means(ring, from, b, m);
-    for (uint32_t j = 0; j < k; ++j) s.wide[v0 + j] = m[j] - s.wide[v0 + j];
+    for (uint32_t j = 0; j < k; ++j) {
+      const uint32_t v = v0 + j;
+      const Vec3 c = rigid ? rigid_at(s, v, m[j]) : Vec3{0.f, 0.f, 0.f};
+      s.wide[v] = (m[j] + c) - (s.wide[v] + s.correction[v]);
+    }
   });
 }
 
@@ -164,6 +197,9 @@ void size_arrays(uint32_t n, TemporalScratch& s) {
   set_ring_pad(s.level, n);
   for (std::vector<Vec3>* f : {&s.offset, &s.motion, &s.spare, &s.wide}) set_ring_pad(*f, n);
   for (std::vector<Point4>* f : {&s.packed, &s.spare_packed}) set_ring_pad(*f, n);
+  for (std::vector<Point4>& f : s.rigid) set_ring_pad(f, n);
+  s.position.resize(n);
+  s.correction.resize(n);
 }
 
 // IdTopology::wide_white: white_probe through smooth_parts, and the medians of the local levels
@@ -172,7 +208,7 @@ float measure_wide_white(const BlockRing& ring, uint32_t n, TemporalScratch& s, 
   size_arrays(n, s);
   parallel_for(
       n, threads, [&](uint32_t v) { s.offset[v] = white_probe(v); }, kVertexGrain);
-  smooth_parts(ring, n, s, threads);
+  smooth_parts(ring, n, s, false, threads);  // white noise has no rotation to fit
   parallel_for(
       n, threads,
       [&](uint32_t v) {
@@ -228,6 +264,19 @@ Vec3 white_probe(uint32_t v) {
   const uint64_t x = mix(uint64_t(v) * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL);  // SplitMix64
   const auto sign = [x](int bit) { return (x >> bit) & 1u ? 1.f : -1.f; };
   return Vec3{sign(0), sign(1), sign(2)};
+}
+
+Vec3 id_origin(const MeshView& mesh) {
+  const uint32_t n = mesh.num_vertices;
+  if (n == 0) return Vec3{0.f, 0.f, 0.f};
+  float lo[3], hi[3];
+  for (int c = 0; c < 3; ++c) lo[c] = hi[c] = mesh.positions[c];
+  for (size_t i = 0; i < 3 * size_t(n); i += 3)
+    for (int c = 0; c < 3; ++c) {
+      lo[c] = std::fmin(lo[c], mesh.positions[i + c]);
+      hi[c] = std::fmax(hi[c], mesh.positions[i + c]);
+    }
+  return Vec3{0.5f * lo[0] + 0.5f * hi[0], 0.5f * lo[1] + 0.5f * hi[1], 0.5f * lo[2] + 0.5f * hi[2]};
 }
 
 uint64_t connectivity_fingerprint(const MeshView& mesh, int threads) {
@@ -306,16 +355,25 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
   s.spare_level.resize(n);
   averaged.resize(3 * size_t(n));
   const auto each_block = [&](auto&& body) { for_ring_blocks(n, threads, body, kVertexGrain); };
+  // The last averaged positions in mean edges from the frame's origin, for the rigid fit.
+  const Vec3 origin = id_origin(mesh);
   parallel_for(
       n, threads,
       [&](uint32_t v) {
         const size_t i = 3 * size_t(v);
-        s.offset[v] = unit * Vec3{x[i] - a[i], x[i + 1] - a[i + 1], x[i + 2] - a[i + 2]};
+        const Vec3 d = unit * Vec3{x[i] - a[i], x[i + 1] - a[i + 1], x[i + 2] - a[i + 2]};
+        const Vec3 p = unit * Vec3{a[i] - origin.x, a[i + 1] - origin.y, a[i + 2] - origin.z};
+        s.offset[v] = d;
+        s.position[v] = p;
+        const RigidInputs in = rigid_inputs(p, d);
+        s.rigid[0][v] = in.p;
+        s.rigid[1][v] = in.q0;
+        s.rigid[2][v] = in.q1;
       },
       kVertexGrain);
   // The motion's two estimates: the narrow rest in s.offset (and packed with its square), the
   // wide estimate's difference from the narrow one in s.wide.
-  smooth_parts(ring, n, s, threads);
+  smooth_parts(ring, n, s, true, threads);
   // The local level (kIdAgreementPasses ring means of the square) beside the coherence test:
   // the square of the rest's ring mean, then its ring means, one pass behind, and the wide
   // difference's local level as well. Each pass's ring means run together, one quantity to a

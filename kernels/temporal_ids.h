@@ -7,7 +7,8 @@
 //
 // The ids are not trusted blindly: the displacement d = x_t - a_{t-1} between the raw frame and
 // the last averaged input is split into its smooth part (ring means: the motion, over four
-// rings and, as far as the noise says the motion is that smooth, over eight) and the rest
+// rings and, as far as the noise says the motion is that smooth, over eight, each with the
+// rotation its neighbourhood's rigid fit adds, kernels/rigid_motion.h) and the rest
 // (the two frames' noise, and wherever an id does not follow the surface). A vertex takes
 // strength x the share of the rest that its local level allows; where the rest is far above
 // the frame's typical level (an id that slid, a tracking error) the frame stays alone; where
@@ -134,6 +135,13 @@ float id_history_weight(const IdTrack& track, float strength);
 /// alone, so the share of white noise the motion's two footprints keep (IdTopology::wide_white)
 /// is measured the same way on every machine and for any thread count.
 Vec3 white_probe(uint32_t v);
+
+/// The origin of the rigid fit's positions (kernels/rigid_motion.h): the middle of the frame's
+/// bounding box (input units; min and max do not depend on the order they are taken in, so both
+/// engines find the same). Products of positions from it keep their precision in floats: a
+/// neighbourhood's covariance is some ten square mean edges beside products of the frame's
+/// extent squared.
+Vec3 id_origin(const MeshView& mesh);
 
 /// After a frame that track A averaged: its result (`positions`, input order) becomes the
 /// history the spatial track follows should the connectivity change, its normals pending

@@ -67,8 +67,10 @@ FQ_HD float prior_detail(Vec3 x, Vec3 m, Vec3 p, Vec3 n) { return dot(n, p - (x 
 // through the vertex ids, once the ids are shown to follow a smooth motion.
 
 /// Ring means of the id displacement that make its smooth part, the motion (four rings: about
-/// 60 vertices, so the two frames' noise leaves an eighth of itself in the motion; a ring mean
-/// reproduces a locally affine motion, so rotations and stretches pass whole).
+/// 60 vertices, so the two frames' noise leaves an eighth of itself in the motion). A ring mean
+/// reproduces a motion affine along the surface; a rotation of a curved part it leaves short by
+/// the rotation of its shrinkage, which the rigid fit of each neighbourhood puts back
+/// (kernels/rigid_motion.h).
 constexpr int kIdMotionPasses = 4;
 /// Ring means past kIdMotionPasses that make the motion's wide estimate: where the id
 /// displacement is as smooth over eight rings as noise allows (wide_share), the wide estimate

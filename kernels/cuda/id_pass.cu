@@ -11,6 +11,7 @@
 #include "kernels/cuda/host_staging.h"
 #include "kernels/cuda/id_pass.cuh"
 #include "kernels/cuda/launch.cuh"
+#include "kernels/rigid_motion.h"
 #include "kernels/temporal_ids.h"
 #include "kernels/temporal_math.h"
 #include "kernels/vertex_ring.h"
@@ -56,42 +57,83 @@ __device__ T ring_mean_at(const Ring& r, const T* e, uint32_t v) {
   return scale(r.inv_count[v], sum);
 }
 
-// The displacement from the last averaged input, in mean edges; thread 0 sets the pads the
-// ring means read.
-__global__ void offset_kernel(uint32_t n, const float* x, const float* a, float unit, Vec3* offset, Vec3* m0,
-                              Vec3* m1, Vec3* wide, Point4* p0, Point4* p1) {
+/// RigidInputs' three lanes on the device, each an array of n + 1 Point4 (the pad last).
+struct RigidLanes {
+  Point4* lane[3];
+};
+
+// The displacement from the last averaged input, in mean edges, and the rigid fit's inputs
+// (the last averaged positions from `origin`, mean edges); thread 0 sets the pads the ring
+// means read.
+__global__ void offset_kernel(uint32_t n, const float* x, const float* a, float unit, Vec3 origin,
+                              Vec3* offset, Vec3* m0, Vec3* m1, Vec3* wide, Point4* p0, Point4* p1,
+                              Vec3* position, RigidLanes lanes, RigidLanes spare) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
   if (v == 0) {
     const Vec3 z{-0.f, -0.f, -0.f};
+    const Point4 z4{-0.f, -0.f, -0.f, -0.f};
     offset[n] = m0[n] = m1[n] = wide[n] = z;
-    p0[n] = p1[n] = Point4{-0.f, -0.f, -0.f, -0.f};
+    p0[n] = p1[n] = z4;
+    for (int k = 0; k < 3; ++k) lanes.lane[k][n] = spare.lane[k][n] = z4;
   }
   if (v >= n) return;
   const size_t i = 3 * size_t(v);
-  offset[v] = unit * Vec3{x[i] - a[i], x[i + 1] - a[i + 1], x[i + 2] - a[i + 2]};
+  const Vec3 d = unit * Vec3{x[i] - a[i], x[i + 1] - a[i + 1], x[i + 2] - a[i + 2]};
+  const Vec3 p = unit * Vec3{a[i] - origin.x, a[i + 1] - origin.y, a[i + 2] - origin.z};
+  offset[v] = d;
+  position[v] = p;
+  const RigidInputs in = rigid_inputs(p, d);
+  lanes.lane[0][v] = in.p;
+  lanes.lane[1][v] = in.q0;
+  lanes.lane[2][v] = in.q1;
 }
 
-__global__ void ring_kernel(uint32_t n, Ring r, const Vec3* in, Vec3* out) {
+// One ring mean of the displacement's smooth part and of the rigid fit's three lanes.
+__global__ void ring_kernel(uint32_t n, Ring r, const Vec3* in, Vec3* out, RigidLanes lin, RigidLanes lout) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
-  if (v < n) out[v] = ring_mean_at(r, in, v);
+  if (v >= n) return;
+  out[v] = ring_mean_at(r, in, v);
+  for (int k = 0; k < 3; ++k) lout.lane[k][v] = ring_mean_at(r, lin.lane[k], v);
 }
 
-// smooth_parts' narrow tail: the motion's last ring mean m, the rest d - m and its square.
-__global__ void narrow_kernel(uint32_t n, Ring r, const Vec3* from, Vec3* offset, Vec3* wide,
+// The rigid correction at v from the lanes' last ring mean, taken here from the pass before
+// (`lin`), and the motion's; the lanes' mean goes to `lout` where the passes go on.
+__device__ inline Vec3 rigid_at(const Ring& r, const RigidLanes& lin, Point4* const* lout,
+                                const Vec3* position, uint32_t v, Vec3 motion) {
+  RigidInputs in{ring_mean_at(r, lin.lane[0], v), ring_mean_at(r, lin.lane[1], v),
+                 ring_mean_at(r, lin.lane[2], v)};
+  if (lout != nullptr) {
+    lout[0][v] = in.p;
+    lout[1][v] = in.q0;
+    lout[2][v] = in.q1;
+  }
+  return rigid_correction(in, motion, position[v]);
+}
+
+// smooth_parts' narrow tail: the motion's last ring mean m and its rigid correction c, the rest
+// d - (m + c) and its square.
+__global__ void narrow_kernel(uint32_t n, Ring r, const Vec3* from, RigidLanes lin, RigidLanes lout,
+                              const Vec3* position, Vec3* offset, Vec3* wide, Vec3* correction,
                               Point4* packed) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
   if (v >= n) return;
   const Vec3 m = ring_mean_at(r, from, v);
-  const Vec3 rest = offset[v] - m;
+  const Vec3 c = rigid_at(r, lin, lout.lane, position, v, m);
+  const Vec3 rest = offset[v] - (m + c);
   offset[v] = rest;
   wide[v] = m;
+  correction[v] = c;
   packed[v] = rest_packed(rest);
 }
 
-// smooth_parts' wide tail: the wide estimate's difference from the narrow one.
-__global__ void wide_kernel(uint32_t n, Ring r, const Vec3* from, Vec3* wide) {
+// smooth_parts' wide tail: the wide estimate (with its rigid correction) less the narrow one.
+__global__ void wide_kernel(uint32_t n, Ring r, const Vec3* from, RigidLanes lin, const Vec3* position,
+                            const Vec3* correction, Vec3* wide) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
-  if (v < n) wide[v] = ring_mean_at(r, from, v) - wide[v];
+  if (v >= n) return;
+  const Vec3 m = ring_mean_at(r, from, v);
+  const Vec3 c = rigid_at(r, lin, nullptr, position, v, m);
+  wide[v] = (m + c) - (wide[v] + correction[v]);
 }
 
 __global__ void level_inputs_kernel(uint32_t n, Ring r, const Point4* packed, const Vec3* wide, Point4* out) {
@@ -205,13 +247,16 @@ __global__ void blend_kernel(uint32_t n, Ring r, const Point4* packed, const flo
   }
 }
 
-/// `passes` plain ring means from `from` through the two buffers; returns the last one written.
-const Vec3* ring_passes(uint32_t n, const Ring& r, const Vec3* from, Vec3* const buffers[2], int passes,
-                        cudaStream_t s) {
+/// `passes` ring means from `from` through the two buffers, and of the rigid lanes from `lanes`
+/// through `spare` beside them; returns the last one written, `lanes` and `spare` swapped as
+/// they end.
+const Vec3* ring_passes(uint32_t n, const Ring& r, const Vec3* from, Vec3* const buffers[2],
+                        RigidLanes& lanes, RigidLanes& spare, int passes, cudaStream_t s) {
   for (int p = 0; p < passes; ++p) {
     Vec3* to = buffers[p % 2];
-    FQ_LAUNCH(ring_kernel, n, s, n, r, from, to);
+    FQ_LAUNCH(ring_kernel, n, s, n, r, from, to, lanes, spare);
     from = to;
+    std::swap(lanes, spare);
   }
   return from;
 }
@@ -288,13 +333,24 @@ IdStep IdPass::step(const MeshView& mesh, uint64_t fingerprint, double mean_edge
   Point4* packed = packed_[0].reserve(n + 1);
   Point4* spare = packed_[1].reserve(n + 1);
   float* level = level_.reserve(n);
-  FQ_LAUNCH(offset_kernel, n, s, n, x, avg.positions.data(), float(1.0 / mean_edge), offset, buffers[0],
-            buffers[1], wide, packed, spare);
-  // smooth_parts: the narrow motion and its rest, then the wide estimate's difference.
-  const Vec3* from = ring_passes(n, ring, offset, buffers, kIdMotionPasses - 1, s);
-  FQ_LAUNCH(narrow_kernel, n, s, n, ring, from, offset, wide, packed);
-  from = ring_passes(n, ring, wide, buffers, kIdWidePasses - 1, s);
-  FQ_LAUNCH(wide_kernel, n, s, n, ring, from, wide);
+  Vec3* position = position_.reserve(n);
+  Vec3* correction = correction_.reserve(n);
+  RigidLanes lanes{}, lanes_spare{};
+  for (int k = 0; k < 3; ++k) {
+    lanes.lane[k] = rigid_[k].reserve(n + 1);
+    lanes_spare.lane[k] = rigid_[3 + k].reserve(n + 1);
+  }
+  FQ_LAUNCH(offset_kernel, n, s, n, x, avg.positions.data(), float(1.0 / mean_edge), id_origin(mesh), offset,
+            buffers[0], buffers[1], wide, packed, spare, position, lanes, lanes_spare);
+  // smooth_parts: the narrow motion and its rest, then the wide estimate's difference, each
+  // with its rigid correction; the lanes' ring means run beside the motion's, their last one
+  // of each estimate in the kernel that fits the rotation.
+  const Vec3* from = ring_passes(n, ring, offset, buffers, lanes, lanes_spare, kIdMotionPasses - 1, s);
+  FQ_LAUNCH(narrow_kernel, n, s, n, ring, from, lanes, lanes_spare, position, offset, wide, correction,
+            packed);
+  std::swap(lanes, lanes_spare);
+  from = ring_passes(n, ring, wide, buffers, lanes, lanes_spare, kIdWidePasses - 1, s);
+  FQ_LAUNCH(wide_kernel, n, s, n, ring, from, lanes, position, correction, wide);
   static_assert(kIdAgreementPasses == 2, "the level's and the coherence test's passes, as the host's");
   FQ_LAUNCH(level_inputs_kernel, n, s, n, ring, packed, wide, spare);
   FQ_LAUNCH(level_kernel, n, s, n, ring, spare, level, packed);

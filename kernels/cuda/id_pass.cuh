@@ -8,6 +8,9 @@
 // with NaN or infinite coordinates, which the run then rejects) refuses the ids on the device,
 // where the host's nth_element would pick some median.
 //
+// The motion's rigid correction (kernels/rigid_motion.h) runs beside its ring means: three
+// more lanes of four through the same passes, and the fit per vertex where each estimate ends.
+//
 // On the host, the step was some 1.2–2.2 ms of a 2.3–3.2 ms frame on crane (10K vertices, an
 // H200 host): sixteen passes over the vertices that a device runs in a few µs each.
 //
@@ -63,6 +66,8 @@ class IdPass {
   DeviceBuffer<float> x_;  ///< the raw frame
   DeviceBuffer<Vec3> offset_, motion_[2], wide_;
   DeviceBuffer<Point4> packed_[2];
+  DeviceBuffer<Vec3> position_, correction_;  ///< the rigid fit's (kernels/rigid_motion.h)
+  DeviceBuffer<Point4> rigid_[6];             ///< RigidInputs' three lanes, then their ring means
   DeviceBuffer<float> level_, partials_;
   DeviceBuffer<uint32_t> histogram_, select_;
   PinnedBuffer<unsigned char> h_upload_;
