@@ -88,37 +88,39 @@ __global__ void offset_kernel(uint32_t n, const float* x, const float* a, float 
   lanes.lane[2][v] = in.q1;
 }
 
-// One ring mean of the displacement's smooth part and of the rigid fit's three lanes.
+// One ring mean of the displacement's smooth part and of the rigid fit's three lanes, a thread
+// for each of the four at each vertex: a thread's gathers wait on memory one after another,
+// so four short chains beside each other finish sooner than one long one.
 __global__ void ring_kernel(uint32_t n, Ring r, const Vec3* in, Vec3* out, RigidLanes lin, RigidLanes lout) {
-  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
-  if (v >= n) return;
-  out[v] = ring_mean_at(r, in, v);
-  for (int k = 0; k < 3; ++k) lout.lane[k][v] = ring_mean_at(r, lin.lane[k], v);
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= 4 * n) return;
+  const uint32_t which = i / n, v = i - which * n;
+  if (which == 0)
+    out[v] = ring_mean_at(r, in, v);
+  else
+    lout.lane[which - 1][v] = ring_mean_at(r, lin.lane[which - 1], v);
 }
 
-// The rigid correction at v from the lanes' last ring mean, taken here from the pass before
-// (`lin`), and the motion's; the lanes' mean goes to `lout` where the passes go on.
-__device__ inline Vec3 rigid_at(const Ring& r, const RigidLanes& lin, Point4* const* lout,
-                                const Vec3* position, uint32_t v, Vec3 motion) {
-  RigidInputs in{ring_mean_at(r, lin.lane[0], v), ring_mean_at(r, lin.lane[1], v),
-                 ring_mean_at(r, lin.lane[2], v)};
-  if (lout != nullptr) {
-    lout[0][v] = in.p;
-    lout[1][v] = in.q0;
-    lout[2][v] = in.q1;
-  }
-  return rigid_correction(in, motion, position[v]);
+// One ring mean of the rigid fit's three lanes alone, a thread for each lane at each vertex.
+__global__ void lane_kernel(uint32_t n, Ring r, RigidLanes lin, RigidLanes lout) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= 3 * n) return;
+  const uint32_t which = i / n, v = i - which * n;
+  lout.lane[which][v] = ring_mean_at(r, lin.lane[which], v);
 }
 
-// smooth_parts' narrow tail: the motion's last ring mean m and its rigid correction c, the rest
-// d - (m + c) and its square.
-__global__ void narrow_kernel(uint32_t n, Ring r, const Vec3* from, RigidLanes lin, RigidLanes lout,
-                              const Vec3* position, Vec3* offset, Vec3* wide, Vec3* correction,
-                              Point4* packed) {
+__device__ inline Vec3 rigid_at(const RigidLanes& l, const Vec3* position, uint32_t v, Vec3 motion) {
+  return rigid_correction(RigidInputs{l.lane[0][v], l.lane[1][v], l.lane[2][v]}, motion, position[v]);
+}
+
+// smooth_parts' narrow tail: the motion's last ring mean m and its rigid correction c (from the
+// lanes' ring means, done), the rest d - (m + c) and its square.
+__global__ void narrow_kernel(uint32_t n, Ring r, const Vec3* from, RigidLanes rigid, const Vec3* position,
+                              Vec3* offset, Vec3* wide, Vec3* correction, Point4* packed) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
   if (v >= n) return;
   const Vec3 m = ring_mean_at(r, from, v);
-  const Vec3 c = rigid_at(r, lin, lout.lane, position, v, m);
+  const Vec3 c = rigid_at(rigid, position, v, m);
   const Vec3 rest = offset[v] - (m + c);
   offset[v] = rest;
   wide[v] = m;
@@ -127,12 +129,12 @@ __global__ void narrow_kernel(uint32_t n, Ring r, const Vec3* from, RigidLanes l
 }
 
 // smooth_parts' wide tail: the wide estimate (with its rigid correction) less the narrow one.
-__global__ void wide_kernel(uint32_t n, Ring r, const Vec3* from, RigidLanes lin, const Vec3* position,
+__global__ void wide_kernel(uint32_t n, Ring r, const Vec3* from, RigidLanes rigid, const Vec3* position,
                             const Vec3* correction, Vec3* wide) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
   if (v >= n) return;
   const Vec3 m = ring_mean_at(r, from, v);
-  const Vec3 c = rigid_at(r, lin, nullptr, position, v, m);
+  const Vec3 c = rigid_at(rigid, position, v, m);
   wide[v] = (m + c) - (wide[v] + correction[v]);
 }
 
@@ -254,7 +256,7 @@ const Vec3* ring_passes(uint32_t n, const Ring& r, const Vec3* from, Vec3* const
                         RigidLanes& lanes, RigidLanes& spare, int passes, cudaStream_t s) {
   for (int p = 0; p < passes; ++p) {
     Vec3* to = buffers[p % 2];
-    FQ_LAUNCH(ring_kernel, n, s, n, r, from, to, lanes, spare);
+    FQ_LAUNCH(ring_kernel, 4 * n, s, n, r, from, to, lanes, spare);
     from = to;
     std::swap(lanes, spare);
   }
@@ -344,12 +346,14 @@ IdStep IdPass::step(const MeshView& mesh, uint64_t fingerprint, double mean_edge
             buffers[0], buffers[1], wide, packed, spare, position, lanes, lanes_spare);
   // smooth_parts: the narrow motion and its rest, then the wide estimate's difference, each
   // with its rigid correction; the lanes' ring means run beside the motion's, their last one
-  // of each estimate in the kernel that fits the rotation.
+  // of each estimate before the kernel that fits the rotation.
   const Vec3* from = ring_passes(n, ring, offset, buffers, lanes, lanes_spare, kIdMotionPasses - 1, s);
-  FQ_LAUNCH(narrow_kernel, n, s, n, ring, from, lanes, lanes_spare, position, offset, wide, correction,
-            packed);
+  FQ_LAUNCH(lane_kernel, 3 * n, s, n, ring, lanes, lanes_spare);
   std::swap(lanes, lanes_spare);
+  FQ_LAUNCH(narrow_kernel, n, s, n, ring, from, lanes, position, offset, wide, correction, packed);
   from = ring_passes(n, ring, wide, buffers, lanes, lanes_spare, kIdWidePasses - 1, s);
+  FQ_LAUNCH(lane_kernel, 3 * n, s, n, ring, lanes, lanes_spare);
+  std::swap(lanes, lanes_spare);
   FQ_LAUNCH(wide_kernel, n, s, n, ring, from, lanes, position, correction, wide);
   static_assert(kIdAgreementPasses == 2, "the level's and the coherence test's passes, as the host's");
   FQ_LAUNCH(level_inputs_kernel, n, s, n, ring, packed, wide, spare);

@@ -1,5 +1,6 @@
 // Track A's step (kernels/temporal_ids.h) on the device: the per-vertex math of
-// average_with_ids, one thread a vertex, through the same ring table in blocks and the same
+// average_with_ids, one thread a vertex (the ring means of several quantities: one a quantity),
+// through the same ring table in blocks and the same
 // per-vertex rules (kernels/temporal_math.h), so that the averaged input is the host's bit for
 // bit (the file is built without fused multiply-adds, as the host's code has none). The host
 // keeps what is per connectivity (begin_id_step builds the tables once) and the decision on
