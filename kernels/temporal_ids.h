@@ -138,9 +138,12 @@ Vec3 white_probe(uint32_t v);
 
 /// The origin of the rigid fit's positions (kernels/rigid_motion.h): the middle of the frame's
 /// bounding box (input units; min and max do not depend on the order they are taken in, so both
-/// engines find the same). Products of positions from it keep their precision in floats: a
-/// neighbourhood's covariance is some ten square mean edges beside products of the frame's
-/// extent squared.
+/// engines find the same), so that products of positions stay as small as floats need: a
+/// neighbourhood's covariance is some ten square mean edges, taken as a difference of ring means
+/// of products up to the frame's half extent squared. By that arithmetic crane (up to 87 mean
+/// edges across) keeps some four of a float's seven digits of the covariance; a frame a
+/// thousand mean edges across keeps two or three: a rotation error of about 0.01 rad, some
+/// 0.005 mean edges of motion at a vertex.
 Vec3 id_origin(const MeshView& mesh);
 
 /// After a frame that track A averaged: its result (`positions`, input order) becomes the
