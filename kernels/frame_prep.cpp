@@ -36,7 +36,7 @@ double mean_edge_length(const MeshView& mesh, int threads) {
   return sum / (3.0 * mesh.num_triangles);
 }
 
-Status compute_normalization(const MeshView& mesh, Normalization& out, int threads) {
+void mesh_bounds(const MeshView& mesh, double lo[3], double hi[3], int threads) {
   // Min and max do not depend on the order of evaluation: per-chunk bounds are exact.
   struct Box {
     double lo[3], hi[3];
@@ -56,14 +56,22 @@ Status compute_normalization(const MeshView& mesh, Normalization& out, int threa
         }
       },
       kOneChunkAtATime);
-  Box all{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}};
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = kInf;
+    hi[k] = -kInf;
+  }
   for (const Box& b : boxes) {
     for (int k = 0; k < 3; ++k) {
-      all.lo[k] = std::min(all.lo[k], b.lo[k]);
-      all.hi[k] = std::max(all.hi[k], b.hi[k]);
+      lo[k] = std::min(lo[k], b.lo[k]);
+      hi[k] = std::max(hi[k], b.hi[k]);
     }
   }
-  return normalization_from(all.lo, all.hi, mean_edge_length(mesh, threads), out);
+}
+
+Status compute_normalization(const MeshView& mesh, Normalization& out, int threads) {
+  double lo[3], hi[3];
+  mesh_bounds(mesh, lo, hi, threads);
+  return normalization_from(lo, hi, mean_edge_length(mesh, threads), out);
 }
 
 Status normalization_from(const double lo[3], const double hi[3], double mean_edge, Normalization& out) {

@@ -39,6 +39,10 @@ struct Normalization {
 /// far outlier vertex) precision and the grid both degrade, so such frames are refused.
 inline constexpr double kMaxExtentInEdges = 1e6;
 
+/// The exact bounds of a mesh's positions (lo, hi per axis; +inf / -inf for no vertex), reduced
+/// over fixed chunks on `threads` threads: min and max do not depend on the order they are taken in.
+void mesh_bounds(const MeshView& mesh, double lo[3], double hi[3], int threads = 0);
+
 /// Bounding-box centre and mean edge length (over the three edges of every triangle, so
 /// interior edges of a closed mesh count once per side; a mesh whose edges all have zero
 /// length, or one spanning more than kMaxExtentInEdges, is rejected).

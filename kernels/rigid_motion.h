@@ -17,6 +17,8 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 
 #include "common/hd.h"
 #include "kernels/sym3_eigen.h"
@@ -32,6 +34,18 @@ struct RigidInputs {
   Point4 q0;  ///< x.x p.y, x.x p.z, x.y p.x, x.y p.y
   Point4 q1;  ///< x.y p.z, x.z p.x, x.z p.y, x.z p.z
 };
+
+/// A vertex's displacement d = x - a from the last averaged input and that input's position p
+/// from the frame's `origin`, both in mean edges (`unit` per input unit): what the step reads of
+/// vertex v of x and a (3 floats a vertex, input units), the same on both engines.
+struct IdPoint {
+  Vec3 d, p;
+};
+FQ_HD IdPoint id_point(const float* x, const float* a, uint32_t v, float unit, Vec3 origin) {
+  const size_t i = 3 * size_t(v);
+  return {unit * Vec3{x[i] - a[i], x[i + 1] - a[i + 1], x[i + 2] - a[i + 2]},
+          unit * Vec3{a[i] - origin.x, a[i + 1] - origin.y, a[i + 2] - origin.z}};
+}
 
 /// The ring means' inputs at a vertex at p (last averaged input) displaced by d.
 FQ_HD RigidInputs rigid_inputs(Vec3 p, Vec3 d) {

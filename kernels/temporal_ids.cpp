@@ -6,6 +6,7 @@
 
 #include "core/cancel_token.h"
 #include "core/parallel_for.h"
+#include "kernels/frame_prep.h"
 #include "kernels/rigid_motion.h"
 #include "kernels/temporal.h"
 #include "kernels/temporal_math.h"
@@ -266,17 +267,12 @@ Vec3 white_probe(uint32_t v) {
   return Vec3{sign(0), sign(1), sign(2)};
 }
 
-Vec3 id_origin(const MeshView& mesh) {
-  const uint32_t n = mesh.num_vertices;
-  if (n == 0) return Vec3{0.f, 0.f, 0.f};
-  float lo[3], hi[3];
-  for (int c = 0; c < 3; ++c) lo[c] = hi[c] = mesh.positions[c];
-  for (size_t i = 0; i < 3 * size_t(n); i += 3)
-    for (int c = 0; c < 3; ++c) {
-      lo[c] = std::fmin(lo[c], mesh.positions[i + c]);
-      hi[c] = std::fmax(hi[c], mesh.positions[i + c]);
-    }
-  return Vec3{0.5f * lo[0] + 0.5f * hi[0], 0.5f * lo[1] + 0.5f * hi[1], 0.5f * lo[2] + 0.5f * hi[2]};
+Vec3 id_origin(const MeshView& mesh, int threads) {
+  if (mesh.num_vertices == 0) return Vec3{0.f, 0.f, 0.f};
+  double lo[3], hi[3];
+  mesh_bounds(mesh, lo, hi, threads);  // the bounds are the coordinates' own floats
+  const auto mid = [&](int k) { return 0.5f * float(lo[k]) + 0.5f * float(hi[k]); };
+  return Vec3{mid(0), mid(1), mid(2)};
 }
 
 uint64_t connectivity_fingerprint(const MeshView& mesh, int threads) {
@@ -356,16 +352,14 @@ IdStep average_with_ids(const MeshView& mesh, uint64_t fingerprint, double mean_
   averaged.resize(3 * size_t(n));
   const auto each_block = [&](auto&& body) { for_ring_blocks(n, threads, body, kVertexGrain); };
   // The last averaged positions in mean edges from the frame's origin, for the rigid fit.
-  const Vec3 origin = id_origin(mesh);
+  const Vec3 origin = id_origin(mesh, threads);
   parallel_for(
       n, threads,
       [&](uint32_t v) {
-        const size_t i = 3 * size_t(v);
-        const Vec3 d = unit * Vec3{x[i] - a[i], x[i + 1] - a[i + 1], x[i + 2] - a[i + 2]};
-        const Vec3 p = unit * Vec3{a[i] - origin.x, a[i + 1] - origin.y, a[i + 2] - origin.z};
-        s.offset[v] = d;
-        s.position[v] = p;
-        const RigidInputs in = rigid_inputs(p, d);
+        const IdPoint at = id_point(x, a, v, unit, origin);
+        s.offset[v] = at.d;
+        s.position[v] = at.p;
+        const RigidInputs in = rigid_inputs(at.p, at.d);
         s.rigid[0][v] = in.p;
         s.rigid[1][v] = in.q0;
         s.rigid[2][v] = in.q1;

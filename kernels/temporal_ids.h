@@ -144,7 +144,7 @@ Vec3 white_probe(uint32_t v);
 /// edges across) keeps some four of a float's seven digits of the covariance; a frame a
 /// thousand mean edges across keeps two or three: a rotation error of about 0.01 rad, some
 /// 0.005 mean edges of motion at a vertex.
-Vec3 id_origin(const MeshView& mesh);
+Vec3 id_origin(const MeshView& mesh, int threads);
 
 /// After a frame that track A averaged: its result (`positions`, input order) becomes the
 /// history the spatial track follows should the connectivity change, its normals pending

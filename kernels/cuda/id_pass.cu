@@ -77,12 +77,10 @@ __global__ void offset_kernel(uint32_t n, const float* x, const float* a, float 
     for (int k = 0; k < 3; ++k) lanes.lane[k][n] = spare.lane[k][n] = z4;
   }
   if (v >= n) return;
-  const size_t i = 3 * size_t(v);
-  const Vec3 d = unit * Vec3{x[i] - a[i], x[i + 1] - a[i + 1], x[i + 2] - a[i + 2]};
-  const Vec3 p = unit * Vec3{a[i] - origin.x, a[i + 1] - origin.y, a[i + 2] - origin.z};
-  offset[v] = d;
-  position[v] = p;
-  const RigidInputs in = rigid_inputs(p, d);
+  const IdPoint at = id_point(x, a, v, unit, origin);
+  offset[v] = at.d;
+  position[v] = at.p;
+  const RigidInputs in = rigid_inputs(at.p, at.d);
   lanes.lane[0][v] = in.p;
   lanes.lane[1][v] = in.q0;
   lanes.lane[2][v] = in.q1;
@@ -342,8 +340,8 @@ IdStep IdPass::step(const MeshView& mesh, uint64_t fingerprint, double mean_edge
     lanes.lane[k] = rigid_[k].reserve(n + 1);
     lanes_spare.lane[k] = rigid_[3 + k].reserve(n + 1);
   }
-  FQ_LAUNCH(offset_kernel, n, s, n, x, avg.positions.data(), float(1.0 / mean_edge), id_origin(mesh), offset,
-            buffers[0], buffers[1], wide, packed, spare, position, lanes, lanes_spare);
+  FQ_LAUNCH(offset_kernel, n, s, n, x, avg.positions.data(), float(1.0 / mean_edge), id_origin(mesh, threads),
+            offset, buffers[0], buffers[1], wide, packed, spare, position, lanes, lanes_spare);
   // smooth_parts: the narrow motion and its rest, then the wide estimate's difference, each
   // with its rigid correction; the lanes' ring means run beside the motion's, their last one
   // of each estimate before the kernel that fits the rotation.

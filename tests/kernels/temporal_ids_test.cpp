@@ -538,7 +538,7 @@ bool reference_step(const Mesh& frame, double mean_edge, float strength, Referen
   const float unit = float(1.0 / mean_edge);
   const float* x = frame.positions.data();
   std::vector<Vec3> offset(n), position(n);
-  const Vec3 o = id_origin(frame.view());
+  const Vec3 o = id_origin(frame.view(), 2);
   for (uint32_t v = 0; v < n; ++v) {
     const float* a = &r.averaged[3 * size_t(v)];
     offset[v] =
