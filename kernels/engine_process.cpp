@@ -113,7 +113,7 @@ Status Engine::run_own(const MeshView& mesh, const RunPlan& run, FrameResult& ou
   const bool follows = follows_history(run.params);
   if (follows) {
     const auto start = std::chrono::steady_clock::now();
-    FQ_RETURN_IF_ERROR(average_ids(mesh, connectivity_fingerprint(mesh, host_threads()),
+    FQ_RETURN_IF_ERROR(average_ids(mesh, frame_connectivity(mesh, history_->ids, host_threads()),
                                    run.params.filtering.temporal, id_input_, ids));
     id_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 
 #include "core/cancel_token.h"
 #include "core/parallel_for.h"
@@ -292,6 +293,16 @@ uint64_t connectivity_fingerprint(const MeshView& mesh, int threads) {
   uint64_t h = mix(uint64_t(mesh.num_vertices) << 32 | 0x9e3779b9u) ^ mix(m);
   for (uint64_t p : part) h = mix(h ^ p);
   return h;
+}
+
+uint64_t frame_connectivity(const MeshView& mesh, const IdTrack& track, int threads) {
+  const IdTopology& t = track.topology;
+  const size_t indices = 3 * size_t(mesh.num_triangles);
+  if (t.fingerprint != 0 && t.vertices == mesh.num_vertices && t.triangles == mesh.num_triangles &&
+      t.triangles_kept.size() == indices &&
+      (indices == 0 || std::memcmp(t.triangles_kept.data(), mesh.triangles, indices * sizeof(uint32_t)) == 0))
+    return t.fingerprint;
+  return connectivity_fingerprint(mesh, threads);
 }
 
 size_t IdTrack::bytes() const {

@@ -11,6 +11,7 @@
 #include "kernels/cuda/host_staging.h"
 #include "kernels/cuda/id_pass.cuh"
 #include "kernels/cuda/launch.cuh"
+#include "kernels/cuda/launch_graph.cuh"
 #include "kernels/rigid_motion.h"
 #include "kernels/temporal_ids.h"
 #include "kernels/temporal_math.h"
@@ -33,6 +34,15 @@ constexpr uint32_t kNotFinite = 0x7f800000u >> 21;
 /// bits picked so far, whether a level was not an ordinary one, and the median found.
 struct Select {
   uint32_t rank, bits, broken, median;
+};
+
+/// What changes from frame to frame, which the recorded chain reads from device memory: the
+/// select's state (from the rank n / 2), the offsets' unit and origin, the blend's rules.
+struct IdFrame {
+  Select select;
+  float unit;
+  Vec3 origin;
+  IdBlend blend;
 };
 
 /// The ring table's pointers on the device (kernels/vertex_ring.h, BlockRing).
@@ -65,9 +75,9 @@ struct RigidLanes {
 // The displacement from the last averaged input, in mean edges, and the rigid fit's inputs
 // (the last averaged positions from `origin`, mean edges); thread 0 sets the pads the ring
 // means read.
-__global__ void offset_kernel(uint32_t n, const float* x, const float* a, float unit, Vec3 origin,
-                              Vec3* offset, Vec3* m0, Vec3* m1, Vec3* wide, Point4* p0, Point4* p1,
-                              Vec3* position, RigidLanes lanes, RigidLanes spare) {
+__global__ void offset_kernel(uint32_t n, const float* x, const float* a, const IdFrame* frame, Vec3* offset,
+                              Vec3* m0, Vec3* m1, Vec3* wide, Point4* p0, Point4* p1, Vec3* position,
+                              RigidLanes lanes, RigidLanes spare) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
   if (v == 0) {
     const Vec3 z{-0.f, -0.f, -0.f};
@@ -77,7 +87,7 @@ __global__ void offset_kernel(uint32_t n, const float* x, const float* a, float 
     for (int k = 0; k < 3; ++k) lanes.lane[k][n] = spare.lane[k][n] = z4;
   }
   if (v >= n) return;
-  const IdPoint at = id_point(x, a, v, unit, origin);
+  const IdPoint at = id_point(x, a, v, frame->unit, frame->origin);
   offset[v] = at.d;
   position[v] = at.p;
   const RigidInputs in = rigid_inputs(at.p, at.d);
@@ -222,13 +232,13 @@ __global__ void pick_kernel(int stage, Select* sel, uint32_t* bins) {
 // The last loop of average_with_ids: the weights, the averaged input (into a, the track's
 // copy, and out), and the per-block sums of the weights; nothing where the ids are refused.
 __global__ void blend_kernel(uint32_t n, Ring r, const Point4* packed, const float* level, const float* white,
-                             const Vec3* offset, const Vec3* wide, const Select* sel, IdBlend blend,
-                             const float* x, float* a, float* partials) {
+                             const Vec3* offset, const Vec3* wide, const IdFrame* frame, const float* x,
+                             float* a, float* partials) {
   using Reduce = cub::BlockReduce<float, kBlendBlock>;
   __shared__ typename Reduce::TempStorage temp;
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
-  IdBlend b = blend;
-  b.typical = __uint_as_float(sel->median);
+  IdBlend b = frame->blend;
+  b.typical = __uint_as_float(frame->select.median);
   IdWeights w{0.f, 0.f};
   if (v < n && ids_follow(b.typical)) {
     w = b.weights(ring_mean_at(r, packed, v), level[v], white[v]);
@@ -335,50 +345,84 @@ IdStep IdPass::step(const MeshView& mesh, uint64_t fingerprint, double mean_edge
   float* level = level_.reserve(n);
   Vec3* position = position_.reserve(n);
   Vec3* correction = correction_.reserve(n);
-  RigidLanes lanes{}, lanes_spare{};
-  for (int k = 0; k < 3; ++k) {
-    lanes.lane[k] = rigid_[k].reserve(n + 1);
-    lanes_spare.lane[k] = rigid_[3 + k].reserve(n + 1);
-  }
-  FQ_LAUNCH(offset_kernel, n, s, n, x, avg.positions.data(), float(1.0 / mean_edge), id_origin(mesh, threads),
-            offset, buffers[0], buffers[1], wide, packed, spare, position, lanes, lanes_spare);
-  // smooth_parts: the narrow motion and its rest, then the wide estimate's difference, each
-  // with its rigid correction; the lanes' ring means run beside the motion's, their last one
-  // of each estimate before the kernel that fits the rotation.
-  const Vec3* from = ring_passes(n, ring, offset, buffers, lanes, lanes_spare, kIdMotionPasses - 1, s);
-  FQ_LAUNCH(lane_kernel, 3 * n, s, n, ring, lanes, lanes_spare);
-  std::swap(lanes, lanes_spare);
-  FQ_LAUNCH(narrow_kernel, n, s, n, ring, from, lanes, position, offset, wide, correction, packed);
-  from = ring_passes(n, ring, wide, buffers, lanes, lanes_spare, kIdWidePasses - 1, s);
-  FQ_LAUNCH(lane_kernel, 3 * n, s, n, ring, lanes, lanes_spare);
-  std::swap(lanes, lanes_spare);
-  FQ_LAUNCH(wide_kernel, n, s, n, ring, from, lanes, position, correction, wide);
-  static_assert(kIdAgreementPasses == 2, "the level's and the coherence test's passes, as the host's");
-  FQ_LAUNCH(level_inputs_kernel, n, s, n, ring, packed, wide, spare);
-  FQ_LAUNCH(level_kernel, n, s, n, ring, spare, level, packed);
-  // The typical level: median_level's element n / 2, bin by bin.
+  Point4* rigid[6];
+  for (int k = 0; k < 6; ++k) rigid[k] = rigid_[k].reserve(n + 1);
   uint32_t* bins = histogram_.reserve(kBins);
-  Select* sel = reinterpret_cast<Select*>(select_.reserve(sizeof(Select) / sizeof(uint32_t)));
-  const Select start{n / 2, 0u, 0u, 0u};
-  Select* h_sel = reinterpret_cast<Select*>(h_select_.reserve(sizeof(Select) / sizeof(uint32_t)));
-  std::memcpy(h_sel, &start, sizeof start);
-  FQ_CUDA_CHECK(cudaMemcpyAsync(sel, h_sel, sizeof(Select), cudaMemcpyHostToDevice, s));
-  FQ_CUDA_CHECK(cudaMemsetAsync(bins, 0, kBins * sizeof(uint32_t), s));
-  const unsigned histogram_blocks = std::min<unsigned>((n + 1023) / 1024, 64);
-  for (int stage = 0; stage < 3; ++stage) {
-    FQ_LAUNCH(histogram_kernel, launch_shape(histogram_blocks, 256), s, n, level, stage, sel, bins);
-    FQ_LAUNCH(pick_kernel, launch_shape(1, kPickThreads), s, stage, sel, bins);
-  }
+  constexpr size_t kFrameWords = (sizeof(IdFrame) + sizeof(uint32_t) - 1) / sizeof(uint32_t);
+  IdFrame* frame = reinterpret_cast<IdFrame*>(frame_.reserve(kFrameWords));
   const unsigned blocks = (n + kBlendBlock - 1) / kBlendBlock;
   float* partials = partials_.reserve(2 * size_t(blocks));
-  const IdBlend blend{id_history_weight(track, strength), 0.f, track.topology.wide_white, float(mean_edge)};
-  FQ_LAUNCH(blend_kernel, launch_shape(blocks, kBlendBlock), s, n, ring, packed, level, topo.white.data(),
-            offset, wide, sel, blend, x, avg.positions.data(), partials);
   float* h_averaged = h_averaged_.reserve(3 * size_t(n));
   float* h_partials = h_partials_.reserve(2 * size_t(blocks));
-  FQ_CUDA_CHECK(cudaMemcpyAsync(h_averaged, avg.positions.data(), bytes, cudaMemcpyDeviceToHost, s));
-  FQ_CUDA_CHECK(cudaMemcpyAsync(h_partials, partials, 2 * blocks * sizeof(float), cudaMemcpyDeviceToHost, s));
-  FQ_CUDA_CHECK(cudaMemcpyAsync(h_sel, sel, sizeof(Select), cudaMemcpyDeviceToHost, s));
+  Select* h_sel = reinterpret_cast<Select*>(h_select_.reserve(sizeof(Select) / sizeof(uint32_t)));
+  // This frame's values, read by the chain: uploaded before it runs.
+  const IdFrame now{
+      Select{n / 2, 0u, 0u, 0u}, float(1.0 / mean_edge), id_origin(mesh, threads),
+      IdBlend{id_history_weight(track, strength), 0.f, track.topology.wide_white, float(mean_edge)}};
+  auto* h_frame = reinterpret_cast<IdFrame*>(h_frame_.reserve(kFrameWords));
+  std::memcpy(h_frame, &now, sizeof now);
+  FQ_CUDA_CHECK(cudaMemcpyAsync(frame, h_frame, sizeof(IdFrame), cudaMemcpyHostToDevice, s));
+  const IdChainKey key{n,
+                       {x,
+                        avg.positions.data(),
+                        ring.rows,
+                        ring.slots,
+                        ring.inv_count,
+                        topo.white.data(),
+                        offset,
+                        buffers[0],
+                        buffers[1],
+                        wide,
+                        packed,
+                        spare,
+                        level,
+                        position,
+                        correction,
+                        rigid[0],
+                        rigid[1],
+                        rigid[2],
+                        rigid[3],
+                        rigid[4],
+                        rigid[5],
+                        bins,
+                        frame,
+                        partials,
+                        h_averaged,
+                        h_partials,
+                        h_sel}};
+  chains_.run(key, s, [&] {
+    RigidLanes lanes{{rigid[0], rigid[1], rigid[2]}}, lanes_spare{{rigid[3], rigid[4], rigid[5]}};
+    FQ_LAUNCH(offset_kernel, n, s, n, x, avg.positions.data(), frame, offset, buffers[0], buffers[1], wide,
+              packed, spare, position, lanes, lanes_spare);
+    // smooth_parts: the narrow motion and its rest, then the wide estimate's difference, each
+    // with its rigid correction; the lanes' ring means run beside the motion's, their last one
+    // of each estimate before the kernel that fits the rotation.
+    const Vec3* from = ring_passes(n, ring, offset, buffers, lanes, lanes_spare, kIdMotionPasses - 1, s);
+    FQ_LAUNCH(lane_kernel, 3 * n, s, n, ring, lanes, lanes_spare);
+    std::swap(lanes, lanes_spare);
+    FQ_LAUNCH(narrow_kernel, n, s, n, ring, from, lanes, position, offset, wide, correction, packed);
+    from = ring_passes(n, ring, wide, buffers, lanes, lanes_spare, kIdWidePasses - 1, s);
+    FQ_LAUNCH(lane_kernel, 3 * n, s, n, ring, lanes, lanes_spare);
+    std::swap(lanes, lanes_spare);
+    FQ_LAUNCH(wide_kernel, n, s, n, ring, from, lanes, position, correction, wide);
+    static_assert(kIdAgreementPasses == 2, "the level's and the coherence test's passes, as the host's");
+    FQ_LAUNCH(level_inputs_kernel, n, s, n, ring, packed, wide, spare);
+    FQ_LAUNCH(level_kernel, n, s, n, ring, spare, level, packed);
+    // The typical level: median_level's element n / 2, bin by bin.
+    FQ_CUDA_CHECK(cudaMemsetAsync(bins, 0, kBins * sizeof(uint32_t), s));
+    const unsigned histogram_blocks = std::min<unsigned>((n + 1023) / 1024, 64);
+    for (int stage = 0; stage < 3; ++stage) {
+      FQ_LAUNCH(histogram_kernel, launch_shape(histogram_blocks, 256), s, n, level, stage, &frame->select,
+                bins);
+      FQ_LAUNCH(pick_kernel, launch_shape(1, kPickThreads), s, stage, &frame->select, bins);
+    }
+    FQ_LAUNCH(blend_kernel, launch_shape(blocks, kBlendBlock), s, n, ring, packed, level, topo.white.data(),
+              offset, wide, frame, x, avg.positions.data(), partials);
+    FQ_CUDA_CHECK(cudaMemcpyAsync(h_averaged, avg.positions.data(), bytes, cudaMemcpyDeviceToHost, s));
+    FQ_CUDA_CHECK(
+        cudaMemcpyAsync(h_partials, partials, 2 * blocks * sizeof(float), cudaMemcpyDeviceToHost, s));
+    FQ_CUDA_CHECK(cudaMemcpyAsync(h_sel, &frame->select, sizeof(Select), cudaMemcpyDeviceToHost, s));
+  });
   FQ_CUDA_CHECK(cudaStreamSynchronize(s));
   Select found;
   std::memcpy(&found, h_sel, sizeof found);

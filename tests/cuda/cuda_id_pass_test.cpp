@@ -13,8 +13,10 @@
 #include <vector>
 
 #include "eval/noise.h"
+#include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/id_pass.cuh"
 #include "kernels/cuda/stream.cuh"
+#include "kernels/cuda_engine.h"
 #include "kernels/frame_prep.h"
 #include "kernels/temporal.h"
 #include "tests/support/test_meshes.h"
@@ -98,6 +100,45 @@ TEST_F(CudaIdPass, AveragesAsTheHostDoesFrameAfterFrame) {
     ran += host.frames > 1 ? 1 : 0;
   }
   EXPECT_EQ(ran, 7) << "every frame after the first averaged";
+}
+
+// The step's launches are recorded once and replayed (launch_graph.cuh): each replay reads its
+// own frame's values (a mean edge and an origin that change every frame), not the first's.
+TEST_F(CudaIdPass, ReplaysItsRecordedLaunchesWithEachFramesValues) {
+  const Mesh sphere = make_icosphere(5, 10.f);
+  const double edge = mean_edge_length(sphere.view(), 2);
+  IdTrack host, device;
+  for (int t = 0; t < 6; ++t) {
+    SCOPED_TRACE("frame " + std::to_string(t));
+    const Mesh frame = wave_frame(sphere, edge, t, 0.2 * edge, 300 + t, 3.f * float(t * edge));
+    expect_same_step(frame, edge * (1.0 + 0.03 * t), host, device);
+  }
+  EXPECT_EQ(host.frames, 6u);
+  EXPECT_EQ(pass_.chains_recorded(), 1u) << "one stream of one size: recorded once";
+}
+
+// A launch that fails while the step's chain is being recorded is thrown as the CUDA error, and
+// the next frame records the chain again and runs as the host's (nothing of the failed
+// recording is kept, and the stream is out of capture).
+TEST_F(CudaIdPass, ALaunchFailingWhileRecordedIsThrownAndTheNextFrameRuns) {
+  const Mesh sphere = make_icosphere(4, 10.f);
+  const double edge = mean_edge_length(sphere.view(), 2);
+  IdTrack host, device;
+  expect_same_step(wave_frame(sphere, edge, 0, 0.2 * edge, 40), edge, host, device);
+  const Mesh failing = wave_frame(sphere, edge, 1, 0.2 * edge, 41);
+  const uint64_t f = connectivity_fingerprint(failing.view(), 2);
+  std::vector<float> out;
+  cuda_fail_next_launch_for_testing();
+  EXPECT_THROW(pass_.step(failing.view(), f, edge, 0.75f, device, out, device_scratch_, 2, stream_->get()),
+               cuda::CudaError);
+  EXPECT_EQ(pass_.chains_recorded(), 0u);
+  EXPECT_EQ(device.frames, 1u) << "the failed frame left the track as it was";
+  for (int t = 2; t < 5; ++t) {
+    SCOPED_TRACE("frame " + std::to_string(t));
+    expect_same_step(wave_frame(sphere, edge, t, 0.2 * edge, 40 + t), edge, host, device);
+  }
+  EXPECT_EQ(pass_.chains_recorded(), 1u);
+  EXPECT_EQ(cudaStreamQuery(stream_->get()), cudaSuccess);
 }
 
 // Ids that do not follow the surface (positions scattered over several mean edges) are refused

@@ -102,6 +102,28 @@ TEST(TemporalIds, FingerprintFollowsTheTrianglesNotThePositionsNorTheThreads) {
   EXPECT_NE(connectivity_fingerprint(c.view(), 2), h);
 }
 
+// The engine's fingerprint of a frame compares the track's kept triangles instead of hashing
+// them: always the frame's own hash, whether the triangles are the kept ones or not.
+TEST(TemporalIds, FrameConnectivityIsTheFramesFingerprintWithOrWithoutTheTracksTables) {
+  const Mesh sphere = test::make_icosphere(3);
+  const uint64_t h = connectivity_fingerprint(sphere.view(), 1);
+  IdTrack track;
+  EXPECT_EQ(frame_connectivity(sphere.view(), track, 2), h) << "no tables yet: hashed";
+  TemporalScratch s;
+  std::vector<float> out;
+  step(noisy(sphere, 1), track, out, s, &sphere);
+  ASSERT_TRUE(step(noisy(sphere, 2), track, out, s, &sphere).ran);
+  ASSERT_EQ(track.topology.fingerprint, h) << "the tables are held";
+  EXPECT_EQ(frame_connectivity(noisy(sphere, 3).view(), track, 2), h);
+  Mesh turned = sphere;  // the same counts, one triangle's corners turned
+  std::rotate(turned.triangles.end() - 3, turned.triangles.end() - 2, turned.triangles.end());
+  const uint64_t t = connectivity_fingerprint(turned.view(), 1);
+  ASSERT_NE(t, h);
+  EXPECT_EQ(frame_connectivity(turned.view(), track, 2), t);
+  const Mesh smaller = test::make_icosphere(2);
+  EXPECT_EQ(frame_connectivity(smaller.view(), track, 2), connectivity_fingerprint(smaller.view(), 1));
+}
+
 TEST(TemporalIds, TheFirstFrameAndANewConnectivityRestartTheTrack) {
   const Mesh sphere = test::make_icosphere(3);
   IdTrack track;
