@@ -1,10 +1,11 @@
-#include "kernels/cuda/launch_graph.cuh"
-
 #include "kernels/cuda/cuda_check.cuh"
+#include "kernels/cuda/launch_graph.cuh"
 
 namespace fq::cuda {
 
-void begin_chain(cudaStream_t s) { FQ_CUDA_CHECK(cudaStreamBeginCapture(s, cudaStreamCaptureModeThreadLocal)); }
+void begin_chain(cudaStream_t s) {
+  FQ_CUDA_CHECK(cudaStreamBeginCapture(s, cudaStreamCaptureModeThreadLocal));
+}
 
 cudaGraph_t end_chain(cudaStream_t s) {
   cudaGraph_t graph = nullptr;
