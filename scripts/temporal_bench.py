@@ -20,6 +20,8 @@ per frame.
 Sequences (--only picks some):
   crane        ../shared/meshes/crane frames 0..N-1, noise 0.1 and 0.2 (a real capture)
   crane_fast   every 4th crane frame (4x the motion: the ghosting test), noise 0.2
+  crane_shuffled crane frames with their vertices renumbered differently every frame, the same
+               triangles otherwise (track B on crane's own surfaces), noise 0.2
   crane_remesh crane frames with their vertices renumbered and about 5 % of edges flipped,
                differently every frame (no vertex id means anything), noise 0.2; flicker
                measured through the known renumbering
@@ -54,11 +56,11 @@ def parse_args():
     p.add_argument("--frames", type=int, default=60, help="frames per sequence")
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--temporal", type=float, default=None, help="temporal strength (default: fqfilter's)")
-    p.add_argument("--only", default="crane,crane_fast,crane_remesh,twist,static")
+    p.add_argument("--only", default="crane,crane_fast,crane_shuffled,crane_remesh,twist,static")
     p.add_argument("--threads", type=int, default=0)
     p.add_argument("--json", help="write every number here")
     p.add_argument("--plot", help="MFNE, flicker and SF per frame, per-frame vs temporal (PNG)")
-    p.add_argument("--quick", action="store_true", help="6 frames of two sequences (the smoke test)")
+    p.add_argument("--quick", action="store_true", help="6 frames of three sequences (the smoke test)")
     return p.parse_args()
 
 
@@ -148,21 +150,24 @@ def build_sequences(fq, args, work):
     if "crane_fast" in wanted:
         count = min(n, 175 // 4 + 1)
         out.append(Sequence("crane_fast", link_frames("crane_fast", [crane(4 * i) for i in range(count)]), 0.2, count))
-    if "crane_remesh" in wanted:
-        folder = os.path.join(work, "crane_remesh")
+    for name, flipped in (("crane_shuffled", 0.0), ("crane_remesh", 0.05)):
+        if name not in wanted:
+            continue
+        folder = os.path.join(work, name)
         os.makedirs(folder)
         rng = np.random.default_rng(args.seed)
         perms = []
         for i in range(n):
             V, F = fq.read_mesh(crane(i))
             V, F = np.asarray(V, np.float64), np.asarray(F, np.int64)
-            F = flip_edges(V, F, 0.05, rng)
+            if flipped > 0:
+                F = flip_edges(V, F, flipped, rng)
             perm = rng.permutation(len(V))  # new vertex j is old vertex perm[j]
             inverse = np.empty_like(perm)
             inverse[perm] = np.arange(len(perm))
             fq.write_mesh(os.path.join(folder, f"f{i:04d}.ply"), V[perm], inverse[F].astype(np.uint32))
             perms.append(perm)
-        out.append(Sequence("crane_remesh", folder, 0.2, n, perms, [crane(i) for i in range(n)]))
+        out.append(Sequence(name, folder, 0.2, n, perms, [crane(i) for i in range(n)]))
     if "twist" in wanted:
         folder = os.path.join(work, "twist")
         os.makedirs(folder)
@@ -255,7 +260,7 @@ def summarize(mfne, rmse, flick, surface, ms):
 def main():
     args = parse_args()
     if args.quick:
-        args.frames, args.only = 6, "crane,static"
+        args.frames, args.only = 6, "crane,crane_shuffled,static"
     wanted = args.only.split(",")
     needed = [os.path.join(args.meshes, "crane", "crane_0000.drc")] if any(w.startswith("crane") for w in wanted) else []
     needed += [os.path.join(args.meshes, f) for w, f in (("twist", "armadillo.ply"), ("static", "bunny.ply"))
