@@ -142,10 +142,9 @@ int run_track_bench(const TrackBenchOptions& o) {
       o.frames_dir.c_str(), frames.size(), frames[0].mesh.num_vertices(), frames[0].mesh.num_triangles(),
       o.noise, double(o.strength), o.repeat);
   std::printf(
-      "| threads | fingerprint (hashed) | connectivity (engine's) | average_with_ids | keep_averaged_result "
-      "| "
-      "track A step | ran / refused | track bytes / vertex | digest "
-      "|\n|---:|---:|---:|---:|---:|---:|---|---:|---|\n");
+      "| threads | fingerprint (hashed) | connectivity (engine's) | average_with_ids | "
+      "keep_averaged_result | track A step | ran / refused | track bytes / vertex | digest |\n"
+      "|---:|---:|---:|---:|---:|---:|---|---:|---|\n");
   bool mismatched = false;
   for (int t : threads) {
     Row row;
