@@ -298,8 +298,7 @@ uint64_t connectivity_fingerprint(const MeshView& mesh, int threads) {
 uint64_t frame_connectivity(const MeshView& mesh, const IdTrack& track, int threads) {
   const IdTopology& t = track.topology;
   const size_t indices = 3 * size_t(mesh.num_triangles);
-  if (t.fingerprint != 0 && t.vertices == mesh.num_vertices && t.triangles == mesh.num_triangles &&
-      t.triangles_kept.size() == indices &&
+  if (t.holds(t.fingerprint, mesh.num_vertices, mesh.num_triangles) && t.triangles_kept.size() == indices &&
       (indices == 0 || std::memcmp(t.triangles_kept.data(), mesh.triangles, indices * sizeof(uint32_t)) == 0))
     return t.fingerprint;
   return connectivity_fingerprint(mesh, threads);

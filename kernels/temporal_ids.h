@@ -90,10 +90,11 @@ struct IdTrack {
 uint64_t connectivity_fingerprint(const MeshView& mesh, int threads);
 
 /// connectivity_fingerprint(mesh) for the frame of a stream with `track`: the fingerprint of
-/// the track's tables when the frame has their counts and triangles (compared as they are, an
-/// exact test at memory speed: 14-26 µs on crane's 20K triangles where hashing them took 40-57,
-/// an H200 host's CPU, `fqbench --track-ids`), else the hash. The tables are built for the fingerprint that
-/// begin_id_step is given, which every caller computes from the frame's own triangles.
+/// the track's tables when it holds them for the frame's counts and triangles (compared as they
+/// are, an exact test at memory speed: 14-26 µs on crane's 20K triangles where hashing them took
+/// 40-57, an H200 host's CPU, `fqbench --track-ids`), else the hash. The tables are built for
+/// the fingerprint that begin_id_step is given, which every caller computes from the frame's
+/// own triangles.
 uint64_t frame_connectivity(const MeshView& mesh, const IdTrack& track, int threads);
 
 /// What one frame's track-A step did.
