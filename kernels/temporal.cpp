@@ -63,6 +63,7 @@ void keep_as_history(const FanView& fan, uint32_t n, const std::vector<float>& p
   vertex_normals(fan, n, positions.data(), s.spare, s.normals, threads);
   history.positions.assign(positions.begin(), positions.begin() + 3 * size_t(n));
   history.normals.swap(s.normals);
+  history.motion.clear();
   history.normals_pending = 0;
   history.mean_edge = mean_edge;
   history.stamp = next_history_stamp();  // the index is built when the next frame needs it
@@ -133,6 +134,16 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
         s.offset[v] = s.match[v] == FrameMatcher::kNone ? Vec3{0.f, 0.f, 0.f} : prior_at(s.match[v]) - s.x[v];
       });
     };
+    if (history.motion.size() == history.positions.size()) {  // the prediction, from x
+      look_up();
+      parallel_for(n, threads, [&](uint32_t v) {
+        const uint32_t q = s.match[v];
+        const bool found = q != FrameMatcher::kNone;
+        s.motion[v] =
+            predicted_motion(found, found ? at(history.motion.data(), q) : Vec3{0.f, 0.f, 0.f}, unit);
+      });
+      ring_means(ring, s.motion, s.spare, kMotionPasses, threads);
+    }
     for (int it = 0; it < kMotionIterations; ++it) {
       look_up();
       s.motion = s.offset;
@@ -173,6 +184,16 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
     }
   }
   keep_as_history(fan, n, positions, mean_edge, history, s, threads);
+  if (follows && !step.reset) {  // the motion found, for the next frame's prediction
+    history.motion.resize(3 * size_t(n));
+    const float edge = float(mean_edge);
+    parallel_for(n, threads, [&](uint32_t v) {
+      const Vec3 m = edge * s.motion[v];
+      history.motion[3 * size_t(v)] = m.x;
+      history.motion[3 * size_t(v) + 1] = m.y;
+      history.motion[3 * size_t(v) + 2] = m.z;
+    });
+  }
   return step;
 }
 

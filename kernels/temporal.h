@@ -23,6 +23,10 @@ namespace fq {
 struct TemporalHistory {
   std::vector<float> positions;  ///< the last result, 3 floats a vertex, input units
   std::vector<float> normals;    ///< its unit area-weighted vertex normals (see normals_pending)
+  /// The motion the spatial track found for each vertex of `positions` to the history before it
+  /// (3 floats a vertex, input units; empty when its frame found none: a first frame, a scene
+  /// cut, a frame track A averaged). The next frame's motion estimate starts from it.
+  std::vector<float> motion;
   /// After a frame track A averaged, `normals` are left empty until track B first reads them
   /// (settle_history_normals): while the ids hold, no frame does, and the normals cost a track-A
   /// frame a pass over its triangles (0.15–0.2 ms of a crane frame on an H200 host) for nothing.
@@ -47,6 +51,7 @@ struct TemporalHistory {
   void clear() {
     positions.clear();
     normals.clear();
+    motion.clear();
     normals_pending = 0;
     frames = 0;
   }
@@ -88,7 +93,7 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
 
 /// The end of every frame's temporal step, and all of it for a frame that track A averaged:
 /// `positions` (the frame's result, input order, n vertices of `fan`) with its vertex normals
-/// become the history the spatial track follows next.
+/// become the history the spatial track follows next, without a motion (the caller sets it).
 void keep_as_history(const FanView& fan, uint32_t n, const std::vector<float>& positions, double mean_edge,
                      TemporalHistory& history, TemporalScratch& scratch, int threads);
 

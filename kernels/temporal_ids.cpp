@@ -434,6 +434,7 @@ void keep_averaged_result(const MeshView& mesh, const std::vector<float>& positi
                           TemporalHistory& history) {
   history.positions.assign(positions.begin(), positions.begin() + 3 * size_t(mesh.num_vertices));
   history.normals.clear();
+  history.motion.clear();
   history.normals_pending = history.ids.topology.fingerprint;
   history.mean_edge = mean_edge;
   history.stamp = next_history_stamp();  // the index is built when the next frame needs it

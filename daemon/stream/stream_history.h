@@ -27,7 +27,8 @@ inline constexpr uint64_t kHistoryIndexBytesPerVertex = 32;
 /// What a history holds in host memory: its vectors' capacity, track A's (its last averaged
 /// input and its connectivity's tables, IdTrack::bytes) and, once built, its index.
 inline uint64_t history_bytes(const TemporalHistory& h) {
-  uint64_t b = sizeof(float) * (h.positions.capacity() + h.normals.capacity()) + h.ids.bytes();
+  uint64_t b =
+      sizeof(float) * (h.positions.capacity() + h.normals.capacity() + h.motion.capacity()) + h.ids.bytes();
   if (h.index_stamp != 0) b += kHistoryIndexBytesPerVertex * (h.positions.size() / 3);
   return b;
 }

@@ -41,6 +41,17 @@ __global__ void offset_kernel(uint32_t n, GridView prior, const Vec3* x, const V
   offset[v] = j == kNoNearest ? Vec3{0.f, 0.f, 0.f} : xyz(prior.points[j]) - x[v];
 }
 
+// Each vertex's predicted motion: that of the prior vertex nearest to x (prior_motion in the
+// history's order and input units; unit: 1 / the frame's mean edge).
+__global__ void prediction_kernel(uint32_t n, GridView prior, const uint32_t* prior_order,
+                                  const Vec3* prior_motion, float unit, const Vec3* x, Vec3* motion) {
+  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  if (v >= n) return;
+  const uint32_t j = nearest_in_grid(prior, x[v], kPriorReach, kFirstRadius);
+  const bool found = j != kNoNearest;
+  motion[v] = predicted_motion(found, found ? prior_motion[prior_order[j]] : Vec3{0.f, 0.f, 0.f}, unit);
+}
+
 template <class T>
 __global__ void ring_mean_kernel(uint32_t n, FanView fan, const T* in, T* out) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
@@ -90,6 +101,13 @@ __global__ void normals_kernel(uint32_t n, FanView fan, const Vec3* x, const uin
   if (i < n) normals[i] = vertex_normal(fan, x, rank[i]);
 }
 
+// The motion found, in input order and units (edge: the frame's mean edge), for the next frame.
+__global__ void kept_motion_kernel(uint32_t n, const Vec3* motion, const uint32_t* rank, float edge,
+                                   Vec3* out) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) out[i] = edge * motion[rank[i]];
+}
+
 /// `passes` ring means of a (b the other buffer); returns the buffer that holds the last.
 template <class T>
 T* ring_means(const FanView& fan, T* a, T* b, int passes, uint32_t n, cudaStream_t s) {
@@ -111,11 +129,14 @@ DeviceHistory& TemporalPass::copy_of(const TemporalHistory& history, cudaStream_
   if (held) return c;
   c.stamp = 0;
   c.n = static_cast<uint32_t>(history.positions.size() / 3);
+  c.moving = false;
   if (!history.empty() && c.n > 0) {  // written by another engine, or pushed out of this one's copies
     const size_t bytes = 3 * size_t(c.n) * sizeof(float);
-    unsigned char* staging = h_upload_.reserve(2 * bytes);
+    c.moving = history.motion.size() == history.positions.size();
+    unsigned char* staging = h_upload_.reserve((c.moving ? 3 : 2) * bytes);
     upload_staged(history.positions.data(), c.positions.reserve(3 * size_t(c.n)), bytes, staging, s);
     upload_staged(history.normals.data(), c.normals.reserve(c.n), bytes, staging + bytes, s);
+    if (c.moving) upload_staged(history.motion.data(), c.motion.reserve(c.n), bytes, staging + 2 * bytes, s);
   }
   return c;
 }
@@ -147,7 +168,12 @@ void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const Tempo
       prior = grid_.view(prior_sorted_.data());
     }
     Vec3* buffers[2] = {motion_[0].reserve(n), motion_[1].reserve(n)};
-    const Vec3* motion = nullptr;  // none yet: the first lookups are from x
+    const Vec3* motion = nullptr;  // none: the first lookups are from x
+    if (target_->moving) {
+      FQ_LAUNCH(prediction_kernel, n, s, n, prior, grid_.order.data(), target_->motion.data(),
+                float(1.0 / norm.mean_edge), x, buffers[0]);
+      motion = ring_means(fan, buffers[0], buffers[1], kMotionPasses, n, s);
+    }
     for (int it = 0; it < kMotionIterations; ++it) {
       Vec3* offset = motion == buffers[0] ? buffers[1] : buffers[0];
       FQ_LAUNCH(offset_kernel, n, s, n, prior, x, motion, offset);
@@ -163,6 +189,8 @@ void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const Tempo
     FQ_LAUNCH(pull_kernel, launch_shape(partials_, kPullBlock), s, n, grid_.order.data(),
               target_->normals.data(), match, detail, local, strength, noise, covered, x,
               share_partials_.reserve(partials_));
+    FQ_LAUNCH(kept_motion_kernel, n, s, n, motion, f.grid.rank.data(), float(norm.mean_edge),
+              next_.motion.reserve(n));
   }
   FQ_LAUNCH(normals_kernel, n, s, n, fan, x, f.grid.rank.data(), next_.normals.reserve(n));
 }
@@ -178,10 +206,14 @@ void TemporalPass::keep(const DeviceFrame& f, cudaStream_t s) {
   if (prior_) {
     FQ_CUDA_CHECK(cudaMemcpyAsync(h_partials_.reserve(partials_), share_partials_.data(),
                                   partials_ * sizeof(float), cudaMemcpyDeviceToHost, s));
+    FQ_CUDA_CHECK(cudaMemcpyAsync(h_motion_.reserve(n), next_.motion.data(), n * sizeof(Vec3),
+                                  cudaMemcpyDeviceToHost, s));
   }
   // The result's buffers become the copy (the ones it replaces are the next frame's to write).
   std::swap(target_->positions, next_.positions);
   std::swap(target_->normals, next_.normals);
+  if (prior_) std::swap(target_->motion, next_.motion);
+  target_->moving = false;  // until finish() knows the frame was no scene cut
   target_->n = n;
 }
 
@@ -207,6 +239,14 @@ TemporalStep TemporalPass::finish(const std::vector<float>& positions, double me
   history.normals.resize(3 * size_t(n));
   parallel_copy(history.normals.data(), h_normals_.data(), bytes);
   history.normals_pending = 0;
+  // The motion found, for the next frame's prediction; none after a first frame or a scene cut.
+  target_->moving = prior_ && !step.reset;
+  if (target_->moving) {
+    history.motion.resize(3 * size_t(n));
+    parallel_copy(history.motion.data(), h_motion_.data(), bytes);
+  } else {
+    history.motion.clear();
+  }
   history.mean_edge = mean_edge;
   history.stamp = next_history_stamp();
   ++history.frames;

@@ -29,6 +29,8 @@ struct DeviceHistory {
   uint32_t n = 0;
   DeviceBuffer<float> positions;  ///< 3 floats a vertex, input units and the history's order
   DeviceBuffer<Vec3> normals;
+  DeviceBuffer<Vec3> motion;  ///< TemporalHistory::motion, when `moving`
+  bool moving = false;
 };
 
 class TemporalPass {
@@ -65,7 +67,7 @@ class TemporalPass {
   DeviceBuffer<float> detail_, level_[2];
   DeviceBuffer<uint32_t> covered_;      ///< vertices with a prior, 1 value
   DeviceBuffer<float> share_partials_;  ///< the pull's sum per block, summed on the host in order
-  PinnedBuffer<Vec3> h_normals_;
+  PinnedBuffer<Vec3> h_normals_, h_motion_;
   PinnedBuffer<uint32_t> h_covered_;
   PinnedBuffer<float> h_partials_;
   uint32_t partials_ = 0;

@@ -201,6 +201,19 @@ void expect_temporal_parity(Engine& cpu, TemporalHistory& reference, Engine& eng
   expect_parity(r, p);
   EXPECT_NEAR(r.gpu.prior_share, r.cpu.prior_share, 0.01f);
   EXPECT_FALSE(r.gpu.history_reset);
+  // The motion the next frame's estimate starts from (input units), as the CPU engine found it.
+  ASSERT_EQ(history.motion.size(), reference.motion.size());
+  ASSERT_EQ(history.motion.empty(), history.frames <= 1);
+  double worst = 0.0, sum = 0.0;
+  for (size_t i = 0; i < history.motion.size(); ++i) {
+    const double d = std::abs(double(history.motion[i]) - double(reference.motion[i])) / r.cpu.mean_edge;
+    worst = std::max(worst, d);
+    sum += d;
+  }
+  if (!history.motion.empty()) {
+    EXPECT_LT(worst, 0.05) << "mean edges";
+    EXPECT_LT(sum / double(history.motion.size()), 0.002) << "mean edges";
+  }
 }
 
 // A stream may move between engines (fqd hands its history to whichever runs the frame): the

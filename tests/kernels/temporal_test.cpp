@@ -135,6 +135,48 @@ TEST(Temporal, VertexIdsPlayNoPartInTheSpatialTrack) {
           << "vertex " << j;
 }
 
+// The mean x component of a history's motion, in units of `dx`.
+double mean_motion_x(const TemporalHistory& h, float dx) {
+  double sum = 0.0;
+  const size_t n = h.motion.size() / 3;
+  for (size_t v = 0; v < n; ++v) sum += h.motion[3 * v];
+  return sum / double(n) / double(dx);
+}
+
+TEST(Temporal, TheMotionAFrameFindsStartsTheNextFramesEstimate) {
+  // A sphere moving 1.5 mean edges a frame (its edges are about 0.08), renumbered every frame
+  // (track B); frame t maps onto frame t - 1 by -dx. From rest a lookup finds the nearest point
+  // of the last surface, along the normal, so the estimate holds the motion's normal part (a
+  // third of it over a sphere) and misses the rest (the aperture problem). Started from the
+  // last frame's motion, each frame's estimate keeps what the last found and adds to it: it
+  // grows towards the motion frame by frame (measured -0.32, -0.35, -0.38, -0.41, -0.45 dx),
+  // where each frame from rest would find the first frame's.
+  const Mesh sphere = test::make_icosphere(4);
+  const float dx = 0.12f;
+  CpuEngine stream(2);
+  TemporalHistory history;
+  stream.set_history(&history);
+  std::vector<double> found;
+  for (int t = 0; t < 6; ++t) {
+    std::vector<uint32_t> perm;
+    const Mesh frame = renumbered(noisy(translated(sphere, dx * float(t)), 20 + t), 30 + t, perm);
+    FrameResult r;
+    ASSERT_TRUE(stream.process(frame.view(), temporal_params(0.75f), r).ok());
+    EXPECT_EQ(r.temporal_track, TemporalTrack::kSpace);
+    if (t == 0) {
+      EXPECT_TRUE(history.motion.empty()) << "a first frame finds no motion";
+      continue;
+    }
+    ASSERT_EQ(history.motion.size(), history.positions.size());
+    found.push_back(mean_motion_x(history, dx));
+  }
+  EXPECT_LT(found.front(), -0.25) << "the motion's normal part, from rest";
+  for (size_t k = 1; k < found.size(); ++k) {
+    EXPECT_LT(found[k], found[k - 1] - 0.01) << "frame " << k + 1 << " adds to the last one's motion";
+    EXPECT_GT(found[k], -1.05) << "frame " << k + 1 << " does not overshoot";
+  }
+}
+
 // The step runs whole under a caller's expired token (parallel_for skips the chunks of one, and
 // the step's serial code reads what its loops wrote): the same result as without one.
 TEST(Temporal, TheStepRunsWholeUnderAnExpiredToken) {
@@ -175,6 +217,9 @@ TEST(Temporal, ASceneCutRestartsTheHistoryAndLeavesTheFrameAlone) {
   stream.set_history(&history);
   FrameResult r;
   ASSERT_TRUE(stream.process(noisy(sphere, 1).view(), temporal_params(0.75f), r).ok());
+  std::vector<uint32_t> order;  // the same place, renumbered: track B, which finds a motion
+  ASSERT_TRUE(stream.process(renumbered(noisy(sphere, 3), 5, order).view(), temporal_params(0.75f), r).ok());
+  EXPECT_EQ(history.motion.size(), history.positions.size());
   // Five diameters away, renumbered: with the connectivity kept, track A would read the jump
   // as a motion its ids follow (kernels/temporal_ids.h); the spatial track sees a cut.
   std::vector<uint32_t> perm;
@@ -186,6 +231,7 @@ TEST(Temporal, ASceneCutRestartsTheHistoryAndLeavesTheFrameAlone) {
   EXPECT_EQ(cut.prior_coverage, 0.f);
   EXPECT_EQ(history.resets, 1u);
   EXPECT_EQ(history.frames, 1u) << "the cut frame starts the history again";
+  EXPECT_TRUE(history.motion.empty()) << "a cut finds no motion for the next frame to start from";
   EXPECT_EQ(cut.positions, single.positions);
 }
 
