@@ -142,12 +142,14 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
         s.motion[v] =
             predicted_motion(found, found ? at(history.motion.data(), q) : Vec3{0.f, 0.f, 0.f}, unit);
       });
-      ring_means(ring, s.motion, s.spare, kMotionPasses, threads);
+      ring_means(ring, s.motion, s.spare, kPredictionPasses, threads);
     }
-    for (int it = 0; it < kMotionIterations; ++it) {
+    s.lanes.resize(n);
+    for (int it = 0; it < kMotionIterations; ++it) {  // local ICP: match, fit, match again
       look_up();
-      s.motion = s.offset;
-      ring_means(ring, s.motion, s.spare, kMotionPasses, threads);
+      parallel_for(n, threads, [&](uint32_t v) { s.lanes[v] = motion_lanes(s.x[v], s.offset[v]); });
+      ring_means(ring, s.lanes, s.spare_lanes, kMotionPasses, threads);
+      parallel_for(n, threads, [&](uint32_t v) { s.motion[v] = fitted_motion(s.lanes[v], s.x[v]); });
     }
     look_up();
     const uint64_t covered = uint64_t(

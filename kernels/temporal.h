@@ -16,6 +16,7 @@
 #include "kernels/frame_matcher.h"
 #include "kernels/refine_math.h"
 #include "kernels/temporal_ids.h"
+#include "kernels/temporal_math.h"
 #include "kernels/vec3.h"
 
 namespace fq {
@@ -74,6 +75,8 @@ struct TemporalScratch {
   std::vector<Vec3> x, motion, offset, spare;
   std::vector<uint32_t> match;
   std::vector<float> detail, level, spare_level, share, normals;
+  /// Track B's rounds of the motion estimate: each vertex's offset and rigid fit inputs.
+  std::vector<MotionLanes> lanes, spare_lanes;
   /// Track A's (kernels/temporal_ids.cpp): quantities whose ring means run together, one to a lane.
   std::vector<Point4> packed, spare_packed;
   std::vector<Vec3> wide;  ///< track A's narrow motion estimate, then the wide one's difference

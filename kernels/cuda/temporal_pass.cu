@@ -1,6 +1,7 @@
 // The temporal step on the device: one thread per vertex, each calling the math of
 // kernels/temporal_math.h, refine_math.h and grid_nearest.h as kernels/temporal.cpp does.
 #include <cub/block/block_reduce.cuh>
+#include <type_traits>
 #include <utility>
 
 #include "kernels/cuda/copy_cache.h"
@@ -32,13 +33,21 @@ __global__ void prior_points_kernel(uint32_t n, const float* positions, Normaliz
   out[i] = {p.x, p.y, p.z, 0.f};
 }
 
-// Each vertex's offset to the prior vertex nearest to x + motion (none found: no offset).
-__global__ void offset_kernel(uint32_t n, GridView prior, const Vec3* x, const Vec3* motion, Vec3* offset) {
+// Each vertex's offset to the prior vertex nearest to x + motion (none found: no offset), as
+// the lanes of a round of the motion estimate.
+__global__ void offset_kernel(uint32_t n, GridView prior, const Vec3* x, const Vec3* motion,
+                              MotionLanes* lanes) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
   if (v >= n) return;
   const Vec3 q = motion != nullptr ? x[v] + motion[v] : x[v];
   const uint32_t j = nearest_in_grid(prior, q, kPriorReach, kFirstRadius);
-  offset[v] = j == kNoNearest ? Vec3{0.f, 0.f, 0.f} : xyz(prior.points[j]) - x[v];
+  lanes[v] = motion_lanes(x[v], j == kNoNearest ? Vec3{0.f, 0.f, 0.f} : xyz(prior.points[j]) - x[v]);
+}
+
+// Each vertex's motion from its lanes' ring means: the mean offset and its rigid correction.
+__global__ void fit_kernel(uint32_t n, const MotionLanes* mean, const Vec3* x, Vec3* motion) {
+  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  if (v < n) motion[v] = fitted_motion(mean[v], x[v]);
 }
 
 // Each vertex's predicted motion: that of the prior vertex nearest to x (prior_motion in the
@@ -50,6 +59,22 @@ __global__ void prediction_kernel(uint32_t n, GridView prior, const uint32_t* pr
   const uint32_t j = nearest_in_grid(prior, x[v], kPriorReach, kFirstRadius);
   const bool found = j != kNoNearest;
   motion[v] = predicted_motion(found, found ? prior_motion[prior_order[j]] : Vec3{0.f, 0.f, 0.f}, unit);
+}
+
+// ring_mean (kernels/refine_math.h) of one Point4 lane of elements 4 lanes apart.
+__device__ Point4 ring_mean_of_lane(const FanView& m, const Point4* e, uint32_t v) {
+  const auto at = [&](uint32_t u) { return e[4 * size_t(u)]; };
+  Point4 sum = at(v);
+  float count = 1.f;
+  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
+    const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[k]);
+    for (int c = 0; c < 3; ++c) {
+      if (tri[c] == v) continue;
+      sum = lane_sum(sum, at(tri[c]));
+      count += 1.f;
+    }
+  }
+  return lane_scale(1.f / count, sum);
 }
 
 template <class T>
@@ -108,11 +133,27 @@ __global__ void kept_motion_kernel(uint32_t n, const Vec3* motion, const uint32_
   if (i < n) out[i] = edge * motion[rank[i]];
 }
 
+// ring_mean_kernel for MotionLanes, a thread a lane of a vertex: the same additions in the same
+// order as the whole struct's (its sums are per component), with four times the threads; a
+// 64-byte element a thread left crane's 10K vertices to a third of the multiprocessors, waiting
+// on its loads.
+static_assert(sizeof(MotionLanes) == 4 * sizeof(Point4), "MotionLanes is four lanes");
+__global__ void lane_ring_mean_kernel(uint32_t n, FanView fan, const MotionLanes* in, MotionLanes* out) {
+  const uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
+  const uint32_t v = t >> 2;
+  if (v >= n) return;
+  const Point4* lanes = reinterpret_cast<const Point4*>(in) + (t & 3u);
+  reinterpret_cast<Point4*>(out)[t] = ring_mean_of_lane(fan, lanes, v);
+}
+
 /// `passes` ring means of a (b the other buffer); returns the buffer that holds the last.
 template <class T>
 T* ring_means(const FanView& fan, T* a, T* b, int passes, uint32_t n, cudaStream_t s) {
   for (int p = 0; p < passes; ++p) {
-    FQ_LAUNCH(ring_mean_kernel<T>, n, s, n, fan, a, b);
+    if constexpr (std::is_same_v<T, MotionLanes>)
+      FQ_LAUNCH(lane_ring_mean_kernel, 4 * n, s, n, fan, a, b);
+    else
+      FQ_LAUNCH(ring_mean_kernel<T>, n, s, n, fan, a, b);
     std::swap(a, b);
   }
   return a;
@@ -168,16 +209,19 @@ void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const Tempo
       prior = grid_.view(prior_sorted_.data());
     }
     Vec3* buffers[2] = {motion_[0].reserve(n), motion_[1].reserve(n)};
+    MotionLanes* lanes[2] = {lanes_[0].reserve(n), lanes_[1].reserve(n)};
     const Vec3* motion = nullptr;  // none: the first lookups are from x
     if (target_->moving) {
       FQ_LAUNCH(prediction_kernel, n, s, n, prior, grid_.order.data(), target_->motion.data(),
                 float(1.0 / norm.mean_edge), x, buffers[0]);
-      motion = ring_means(fan, buffers[0], buffers[1], kMotionPasses, n, s);
+      motion = ring_means(fan, buffers[0], buffers[1], kPredictionPasses, n, s);
     }
-    for (int it = 0; it < kMotionIterations; ++it) {
-      Vec3* offset = motion == buffers[0] ? buffers[1] : buffers[0];
-      FQ_LAUNCH(offset_kernel, n, s, n, prior, x, motion, offset);
-      motion = ring_means(fan, offset, offset == buffers[0] ? buffers[1] : buffers[0], kMotionPasses, n, s);
+    for (int it = 0; it < kMotionIterations; ++it) {  // local ICP: match, fit, match again
+      FQ_LAUNCH(offset_kernel, n, s, n, prior, x, motion, lanes[0]);
+      const MotionLanes* mean = ring_means(fan, lanes[0], lanes[1], kMotionPasses, n, s);
+      Vec3* fitted = motion == buffers[0] ? buffers[1] : buffers[0];
+      FQ_LAUNCH(fit_kernel, n, s, n, mean, x, fitted);
+      motion = fitted;
     }
     uint32_t* match = match_.reserve(n);
     float* detail = detail_.reserve(n);
