@@ -26,9 +26,21 @@ struct RingView {
 /// The ring table of the n vertices of `fan` into `corners`, on up to `threads` threads.
 RingView build_vertex_ring(const FanView& fan, uint32_t n, std::vector<uint32_t>& corners, int threads);
 
+/// Vertex v's slots of the table (`corners`: the whole table): what build_vertex_ring writes
+/// for it, and the CUDA engine's table kernel.
+FQ_HD void ring_slots(const FanView& fan, uint32_t v, uint32_t* corners) {
+  for (uint32_t k = fan.vf_offsets[v]; k < fan.vf_offsets[v + 1]; ++k) {
+    const uint32_t* tri = fan.tris + 3 * size_t(fan.vf_faces[k]);
+    uint32_t* slot = corners + 2 * size_t(k);
+    slot[0] = slot[1] = RingView::kNoCorner;
+    for (int c = 0; c < 3; ++c)
+      if (tri[c] != v) *slot++ = tri[c];
+  }
+}
+
 /// ring_mean(fan, e, v) through the table: the same additions in the same order.
 template <class T>
-T ring_mean(const RingView& r, const T* e, uint32_t v) {
+FQ_HD T ring_mean(const RingView& r, const T* e, uint32_t v) {
   T sum = e[v];
   float count = 1.f;
   for (uint32_t k = 2 * r.vf_offsets[v]; k < 2 * r.vf_offsets[v + 1]; ++k) {

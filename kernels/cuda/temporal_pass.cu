@@ -14,6 +14,7 @@
 #include "kernels/grid_nearest.h"
 #include "kernels/refine_math.h"
 #include "kernels/temporal_math.h"
+#include "kernels/vertex_ring.h"
 
 namespace fq::cuda {
 
@@ -61,26 +62,31 @@ __global__ void prediction_kernel(uint32_t n, GridView prior, const uint32_t* pr
   motion[v] = predicted_motion(found, found ? prior_motion[prior_order[j]] : Vec3{0.f, 0.f, 0.f}, unit);
 }
 
-// ring_mean (kernels/refine_math.h) of one Point4 lane of elements 4 lanes apart.
-__device__ Point4 ring_mean_of_lane(const FanView& m, const Point4* e, uint32_t v) {
+// ring_mean through the table (kernels/vertex_ring.h) of one Point4 lane of elements 4 lanes apart.
+__device__ Point4 ring_mean_of_lane(const RingView& r, const Point4* e, uint32_t v) {
   const auto at = [&](uint32_t u) { return e[4 * size_t(u)]; };
   Point4 sum = at(v);
   float count = 1.f;
-  for (uint32_t k = m.vf_offsets[v]; k < m.vf_offsets[v + 1]; ++k) {
-    const uint32_t* tri = m.tris + 3 * size_t(m.vf_faces[k]);
-    for (int c = 0; c < 3; ++c) {
-      if (tri[c] == v) continue;
-      sum = lane_sum(sum, at(tri[c]));
-      count += 1.f;
-    }
+  for (uint32_t k = 2 * r.vf_offsets[v]; k < 2 * r.vf_offsets[v + 1]; ++k) {
+    const uint32_t c = r.corners[k];
+    if (c == RingView::kNoCorner) continue;
+    sum = lane_sum(sum, at(c));
+    count += 1.f;
   }
   return lane_scale(1.f / count, sum);
 }
 
-template <class T>
-__global__ void ring_mean_kernel(uint32_t n, FanView fan, const T* in, T* out) {
+// The frame's ring table: the step's twenty-odd ring means then read each vertex's neighbours
+// directly instead of through its triangles (the same additions in the same order).
+__global__ void ring_table_kernel(uint32_t n, FanView fan, uint32_t* corners) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
-  if (v < n) out[v] = ring_mean(fan, in, v);
+  if (v < n) ring_slots(fan, v, corners);
+}
+
+template <class T>
+__global__ void ring_mean_kernel(uint32_t n, RingView ring, const T* in, T* out) {
+  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
+  if (v < n) out[v] = ring_mean(ring, in, v);
 }
 
 // The final match from x + motion, its detail o along the prior normal and o²; the vertices
@@ -138,22 +144,22 @@ __global__ void kept_motion_kernel(uint32_t n, const Vec3* motion, const uint32_
 // 64-byte element a thread left crane's 10K vertices to a third of the multiprocessors, waiting
 // on its loads.
 static_assert(sizeof(MotionLanes) == 4 * sizeof(Point4), "MotionLanes is four lanes");
-__global__ void lane_ring_mean_kernel(uint32_t n, FanView fan, const MotionLanes* in, MotionLanes* out) {
+__global__ void lane_ring_mean_kernel(uint32_t n, RingView ring, const MotionLanes* in, MotionLanes* out) {
   const uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
   const uint32_t v = t >> 2;
   if (v >= n) return;
   const Point4* lanes = reinterpret_cast<const Point4*>(in) + (t & 3u);
-  reinterpret_cast<Point4*>(out)[t] = ring_mean_of_lane(fan, lanes, v);
+  reinterpret_cast<Point4*>(out)[t] = ring_mean_of_lane(ring, lanes, v);
 }
 
 /// `passes` ring means of a (b the other buffer); returns the buffer that holds the last.
 template <class T>
-T* ring_means(const FanView& fan, T* a, T* b, int passes, uint32_t n, cudaStream_t s) {
+T* ring_means(const RingView& ring, T* a, T* b, int passes, uint32_t n, cudaStream_t s) {
   for (int p = 0; p < passes; ++p) {
     if constexpr (std::is_same_v<T, MotionLanes>)
-      FQ_LAUNCH(lane_ring_mean_kernel, 4 * n, s, n, fan, a, b);
+      FQ_LAUNCH(lane_ring_mean_kernel, 4 * n, s, n, ring, a, b);
     else
-      FQ_LAUNCH(ring_mean_kernel<T>, n, s, n, fan, a, b);
+      FQ_LAUNCH(ring_mean_kernel<T>, n, s, n, ring, a, b);
     std::swap(a, b);
   }
   return a;
@@ -195,6 +201,9 @@ void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const Tempo
   uint32_t* covered = covered_.reserve(1);
   FQ_CUDA_CHECK(cudaMemsetAsync(covered, 0, sizeof(uint32_t), s));
   if (prior_) {
+    uint32_t* corners = ring_corners_.reserve(6 * size_t(f.m));  // two slots a fan entry, 3 a triangle
+    FQ_LAUNCH(ring_table_kernel, n, s, n, fan, corners);
+    const RingView ring{f.vf_start.data(), corners};
     const uint32_t m = target_->n;
     GridView prior{};  // no points: no vertex finds a prior
     if (m > 0) {
@@ -214,11 +223,11 @@ void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const Tempo
     if (target_->moving) {
       FQ_LAUNCH(prediction_kernel, n, s, n, prior, grid_.order.data(), target_->motion.data(),
                 float(1.0 / norm.mean_edge), x, buffers[0]);
-      motion = ring_means(fan, buffers[0], buffers[1], kPredictionPasses, n, s);
+      motion = ring_means(ring, buffers[0], buffers[1], kPredictionPasses, n, s);
     }
     for (int it = 0; it < kMotionIterations; ++it) {  // local ICP: match, fit, match again
       FQ_LAUNCH(offset_kernel, n, s, n, prior, x, motion, lanes[0]);
-      const MotionLanes* mean = ring_means(fan, lanes[0], lanes[1], kMotionPasses, n, s);
+      const MotionLanes* mean = ring_means(ring, lanes[0], lanes[1], kMotionPasses, n, s);
       Vec3* fitted = motion == buffers[0] ? buffers[1] : buffers[0];
       FQ_LAUNCH(fit_kernel, n, s, n, mean, x, fitted);
       motion = fitted;
@@ -228,7 +237,7 @@ void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const Tempo
     float* level = level_[0].reserve(n);
     FQ_LAUNCH(detail_kernel, n, s, n, prior, grid_.order.data(), target_->normals.data(), x, motion, match,
               detail, level, covered);
-    const float* local = ring_means(fan, level, level_[1].reserve(n), kAgreementPasses, n, s);
+    const float* local = ring_means(ring, level, level_[1].reserve(n), kAgreementPasses, n, s);
     partials_ = (n + kPullBlock - 1) / kPullBlock;
     FQ_LAUNCH(pull_kernel, launch_shape(partials_, kPullBlock), s, n, grid_.order.data(),
               target_->normals.data(), match, detail, local, strength, noise, covered, x,

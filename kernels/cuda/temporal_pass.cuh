@@ -63,7 +63,8 @@ class TemporalPass {
   DeviceGrid grid_;  ///< over the history's points, in the frame's normalized units
   DeviceBuffer<Point4> prior_in_, prior_sorted_;
   DeviceBuffer<Vec3> motion_[2];
-  DeviceBuffer<MotionLanes> lanes_[2];  ///< each round's offsets and rigid fit inputs
+  DeviceBuffer<MotionLanes> lanes_[2];   ///< each round's offsets and rigid fit inputs
+  DeviceBuffer<uint32_t> ring_corners_;  ///< the frame's ring table (kernels/vertex_ring.h)
   DeviceBuffer<uint32_t> match_;
   DeviceBuffer<float> detail_, level_[2];
   DeviceBuffer<uint32_t> covered_;      ///< vertices with a prior, 1 value
