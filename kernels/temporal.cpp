@@ -123,19 +123,21 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
     s.x.resize(n);
     parallel_for(n, threads, [&](uint32_t v) { s.x[v] = normalized(&positions[3 * size_t(v)]); });
     s.motion.assign(n, Vec3{0.f, 0.f, 0.f});
-    s.offset.resize(n);
     s.match.resize(n);
+    s.lanes.resize(n);
     const float reach = float(kPriorReach * mean_edge);  // input units, as the index
-    // Each lookup from the last motion estimate; a vertex that finds none counts as no motion.
-    const auto look_up = [&] {
+    // Each lookup from the last motion estimate, handing record(v, offset) each vertex's offset
+    // to its match; a vertex that finds none counts as no motion.
+    const auto look_up = [&](auto&& record) {
       parallel_for(n, threads, [&](uint32_t v) {
         const Vec3 q = origin + float(mean_edge) * (s.x[v] + s.motion[v]);
         s.match[v] = history.index.nearest(q, reach);
-        s.offset[v] = s.match[v] == FrameMatcher::kNone ? Vec3{0.f, 0.f, 0.f} : prior_at(s.match[v]) - s.x[v];
+        record(v, s.match[v] == FrameMatcher::kNone ? Vec3{0.f, 0.f, 0.f} : prior_at(s.match[v]) - s.x[v]);
       });
     };
+    const auto match_only = [](uint32_t, Vec3) {};
     if (history.motion.size() == history.positions.size()) {  // the prediction, from x
-      look_up();
+      look_up(match_only);
       parallel_for(n, threads, [&](uint32_t v) {
         const uint32_t q = s.match[v];
         const bool found = q != FrameMatcher::kNone;
@@ -144,14 +146,12 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
       });
       ring_means(ring, s.motion, s.spare, kPredictionPasses, threads);
     }
-    s.lanes.resize(n);
     for (int it = 0; it < kMotionIterations; ++it) {  // local ICP: match, fit, match again
-      look_up();
-      parallel_for(n, threads, [&](uint32_t v) { s.lanes[v] = motion_lanes(s.x[v], s.offset[v]); });
+      look_up([&](uint32_t v, Vec3 offset) { s.lanes[v] = motion_lanes(s.x[v], offset); });
       ring_means(ring, s.lanes, s.spare_lanes, kMotionPasses, threads);
       parallel_for(n, threads, [&](uint32_t v) { s.motion[v] = fitted_motion(s.lanes[v], s.x[v]); });
     }
-    look_up();
+    look_up(match_only);
     const uint64_t covered = uint64_t(
         std::count_if(s.match.begin(), s.match.end(), [](uint32_t q) { return q != FrameMatcher::kNone; }));
     step.coverage = prior_coverage(covered, n);

@@ -91,15 +91,11 @@ struct MotionLanes {
   Point4 offset;  ///< xyz: the offset; w unused
 };
 
-FQ_HD Point4 lane_sum(Point4 a, Point4 b) { return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w}; }
-FQ_HD Point4 lane_scale(float s, Point4 a) { return {s * a.x, s * a.y, s * a.z, s * a.w}; }
 FQ_HD MotionLanes operator+(const MotionLanes& a, const MotionLanes& b) {
-  return {{lane_sum(a.fit.p, b.fit.p), lane_sum(a.fit.q0, b.fit.q0), lane_sum(a.fit.q1, b.fit.q1)},
-          lane_sum(a.offset, b.offset)};
+  return {{a.fit.p + b.fit.p, a.fit.q0 + b.fit.q0, a.fit.q1 + b.fit.q1}, a.offset + b.offset};
 }
 FQ_HD MotionLanes operator*(float s, const MotionLanes& a) {
-  return {{lane_scale(s, a.fit.p), lane_scale(s, a.fit.q0), lane_scale(s, a.fit.q1)},
-          lane_scale(s, a.offset)};
+  return {{s * a.fit.p, s * a.fit.q0, s * a.fit.q1}, s * a.offset};
 }
 
 /// A vertex's lanes from its position x and its offset to its prior vertex (none: zero).

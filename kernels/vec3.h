@@ -26,6 +26,8 @@ FQ_HD Vec3 cross(Vec3 a, Vec3 b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 FQ_HD float norm2(Vec3 a) { return dot(a, a); }
+FQ_HD Point4 operator+(Point4 a, Point4 b) { return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w}; }
+FQ_HD Point4 operator*(float s, Point4 a) { return {s * a.x, s * a.y, s * a.z, s * a.w}; }
 FQ_HD Vec3 xyz(Point4 p) { return {p.x, p.y, p.z}; }
 FQ_HD bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 

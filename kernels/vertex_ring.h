@@ -38,9 +38,10 @@ FQ_HD void ring_slots(const FanView& fan, uint32_t v, uint32_t* corners) {
   }
 }
 
-/// ring_mean(fan, e, v) through the table: the same additions in the same order.
-template <class T>
-FQ_HD T ring_mean(const RingView& r, const T* e, uint32_t v) {
+/// ring_mean(fan, e, v) through the table: the same additions in the same order. `e` is
+/// anything indexed by vertex: an array of T, or a Lane of an array of structs.
+template <class T, class Elements>
+FQ_HD T ring_mean_of(const RingView& r, const Elements& e, uint32_t v) {
   T sum = e[v];
   float count = 1.f;
   for (uint32_t k = 2 * r.vf_offsets[v]; k < 2 * r.vf_offsets[v + 1]; ++k) {
@@ -51,6 +52,19 @@ FQ_HD T ring_mean(const RingView& r, const T* e, uint32_t v) {
   }
   return (1.f / count) * sum;
 }
+
+template <class T>
+FQ_HD T ring_mean(const RingView& r, const T* e, uint32_t v) {
+  return ring_mean_of<T>(r, e, v);
+}
+
+/// Vertex u's T in an array of structs of kLanes T each, starting at `first` (one lane of them):
+/// the CUDA engine's ring means of a 64-byte struct run a thread a lane.
+template <class T, uint32_t kLanes>
+struct Lane {
+  const T* first;
+  FQ_HD T operator[](uint32_t u) const { return first[size_t(kLanes) * u]; }
+};
 
 /// Vertices whose ring sums run side by side (block_ring_means).
 inline constexpr uint32_t kRingBlock = 4;

@@ -52,19 +52,14 @@ struct Ring {
   const float* inv_count;
 };
 
-__device__ inline Vec3 add(Vec3 a, Vec3 b) { return a + b; }
-__device__ inline Point4 add(Point4 a, Point4 b) { return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w}; }
-__device__ inline Vec3 scale(float s, Vec3 a) { return s * a; }
-__device__ inline Point4 scale(float s, Point4 a) { return {s * a.x, s * a.y, s * a.z, s * a.w}; }
-
 /// block_ring_means' mean at vertex v (< n): v itself, then its block's rows in order (slot
 /// v mod kRingBlock of each; a missing one reads the pad, e[n] = -0.0), times 1 / count.
 template <class T>
 __device__ T ring_mean_at(const Ring& r, const T* e, uint32_t v) {
   const uint32_t b = v / kRingBlock, j = v % kRingBlock;
   T sum = e[v];
-  for (uint32_t row = r.rows[b]; row < r.rows[b + 1]; ++row) sum = add(sum, e[r.slots[kRingBlock * row + j]]);
-  return scale(r.inv_count[v], sum);
+  for (uint32_t row = r.rows[b]; row < r.rows[b + 1]; ++row) sum = sum + e[r.slots[kRingBlock * row + j]];
+  return r.inv_count[v] * sum;
 }
 
 /// RigidInputs' three lanes on the device, each an array of n + 1 Point4 (the pad last).

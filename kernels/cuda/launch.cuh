@@ -70,7 +70,40 @@ void launch(const char* name, const char* file, int line, void (*kernel)(Params.
          std::forward<Args>(args)...);
 }
 
+/// Launches `kernel`, a grid-stride kernel over `items` items that synchronizes its whole grid
+/// (cooperative_groups' grid.sync()), as a cooperative launch on `s`: blocks_for(items) blocks,
+/// or as many as the device holds at once when fewer (the barrier needs every block resident).
+/// Nothing for no items; a bad configuration (and the fail_next_launch() hook) throws CudaError.
+template <class... Params, class... Args>
+void launch_cooperative(const char* name, const char* file, int line, void (*kernel)(Params...),
+                        uint64_t items, cudaStream_t s, Args&&... args) {
+  if (items == 0) return;
+  const unsigned threads = block_size();
+  int device = 0, sms = 0, per_sm = 0;
+  check(cudaGetDevice(&device), name, file, line);
+  check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), name, file, line);
+  check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, kernel, int(threads), 0), name, file, line);
+  const uint64_t resident = uint64_t(per_sm) * uint64_t(sms);
+  const unsigned wanted = blocks_for(items);
+  cudaLaunchConfig_t config{};
+  config.gridDim = dim3(unsigned(wanted < resident ? wanted : resident));
+  config.blockDim = dim3(threads);
+  config.stream = s;
+  cudaLaunchAttribute cooperative{};
+  cooperative.id = cudaLaunchAttributeCooperative;
+  cooperative.val.cooperative = 1;
+  config.attrs = &cooperative;
+  config.numAttrs = 1;
+  check(cudaLaunchKernelEx(&config, kernel, std::forward<Args>(args)...), name, file, line);
+}
+
 }  // namespace fq::cuda
+
+/// FQ_LAUNCH_COOPERATIVE(kernel, items, stream, args...): launch_cooperative() with the kernel's
+/// name and the caller's file and line.
+#define FQ_LAUNCH_COOPERATIVE(kernel, items, s, ...)                                                     \
+  ::fq::cuda::launch_cooperative("cooperative launch of " #kernel, __FILE__, __LINE__, kernel, items, s, \
+                                 __VA_ARGS__)
 
 /// FQ_LAUNCH(kernel, items or shape, stream, args...): launch() with the kernel's name and the
 /// caller's file and line. An item count gets the per-item grid (and no launch for none); a

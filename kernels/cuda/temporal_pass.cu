@@ -1,7 +1,8 @@
 // The temporal step on the device: one thread per vertex, each calling the math of
 // kernels/temporal_math.h, refine_math.h and grid_nearest.h as kernels/temporal.cpp does.
+#include <cooperative_groups.h>
+
 #include <cub/block/block_reduce.cuh>
-#include <type_traits>
 #include <utility>
 
 #include "kernels/cuda/copy_cache.h"
@@ -34,21 +35,27 @@ __global__ void prior_points_kernel(uint32_t n, const float* positions, Normaliz
   out[i] = {p.x, p.y, p.z, 0.f};
 }
 
-// Each vertex's offset to the prior vertex nearest to x + motion (none found: no offset), as
-// the lanes of a round of the motion estimate.
+// A round's lanes at a vertex x moved by m: its offset to the prior vertex nearest to x + m
+// (none found: no offset).
+__device__ MotionLanes round_lanes(const GridView& prior, Vec3 x, Vec3 m) {
+  const uint32_t j = nearest_in_grid(prior, x + m, kPriorReach, kFirstRadius);
+  return motion_lanes(x, j == kNoNearest ? Vec3{0.f, 0.f, 0.f} : xyz(prior.points[j]) - x);
+}
+
+// The first round's lanes, from the predicted motion (none: from rest).
 __global__ void offset_kernel(uint32_t n, GridView prior, const Vec3* x, const Vec3* motion,
                               MotionLanes* lanes) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
   if (v >= n) return;
-  const Vec3 q = motion != nullptr ? x[v] + motion[v] : x[v];
-  const uint32_t j = nearest_in_grid(prior, q, kPriorReach, kFirstRadius);
-  lanes[v] = motion_lanes(x[v], j == kNoNearest ? Vec3{0.f, 0.f, 0.f} : xyz(prior.points[j]) - x[v]);
+  lanes[v] = round_lanes(prior, x[v], motion != nullptr ? motion[v] : Vec3{0.f, 0.f, 0.f});
 }
 
-// Each vertex's motion from its lanes' ring means: the mean offset and its rigid correction.
-__global__ void fit_kernel(uint32_t n, const MotionLanes* mean, const Vec3* x, Vec3* motion) {
+// A later round's lanes, from the motion fitted to the last round's ring means (`mean`): the
+// fit and the next lookup in one kernel, as neither reads another vertex.
+__global__ void refit_kernel(uint32_t n, GridView prior, const Vec3* x, const MotionLanes* mean,
+                             MotionLanes* lanes) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
-  if (v < n) motion[v] = fitted_motion(mean[v], x[v]);
+  if (v < n) lanes[v] = round_lanes(prior, x[v], fitted_motion(mean[v], x[v]));
 }
 
 // Each vertex's predicted motion: that of the prior vertex nearest to x (prior_motion in the
@@ -62,20 +69,6 @@ __global__ void prediction_kernel(uint32_t n, GridView prior, const uint32_t* pr
   motion[v] = predicted_motion(found, found ? prior_motion[prior_order[j]] : Vec3{0.f, 0.f, 0.f}, unit);
 }
 
-// ring_mean through the table (kernels/vertex_ring.h) of one Point4 lane of elements 4 lanes apart.
-__device__ Point4 ring_mean_of_lane(const RingView& r, const Point4* e, uint32_t v) {
-  const auto at = [&](uint32_t u) { return e[4 * size_t(u)]; };
-  Point4 sum = at(v);
-  float count = 1.f;
-  for (uint32_t k = 2 * r.vf_offsets[v]; k < 2 * r.vf_offsets[v + 1]; ++k) {
-    const uint32_t c = r.corners[k];
-    if (c == RingView::kNoCorner) continue;
-    sum = lane_sum(sum, at(c));
-    count += 1.f;
-  }
-  return lane_scale(1.f / count, sum);
-}
-
 // The frame's ring table: the step's twenty-odd ring means then read each vertex's neighbours
 // directly instead of through its triangles (the same additions in the same order).
 __global__ void ring_table_kernel(uint32_t n, FanView fan, uint32_t* corners) {
@@ -83,24 +76,22 @@ __global__ void ring_table_kernel(uint32_t n, FanView fan, uint32_t* corners) {
   if (v < n) ring_slots(fan, v, corners);
 }
 
-template <class T>
-__global__ void ring_mean_kernel(uint32_t n, RingView ring, const T* in, T* out) {
-  const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
-  if (v < n) out[v] = ring_mean(ring, in, v);
-}
-
-// The final match from x + motion, its detail o along the prior normal and o²; the vertices
-// with a match are counted (one atomic a warp: the count does not depend on their order).
+// The motion fitted to the last round's ring means (`mean`), kept in input order and units
+// for the next frame (order: grid -> input; edge: the frame's mean edge); the final match from
+// x + motion, its detail o along the prior normal and o²; the vertices with a match are counted
+// (one atomic a warp: the count does not depend on their order).
 __global__ void detail_kernel(uint32_t n, GridView prior, const uint32_t* prior_order,
-                              const Vec3* prior_normals, const Vec3* x, const Vec3* motion, uint32_t* match,
-                              float* detail, float* level, uint32_t* covered) {
+                              const Vec3* prior_normals, const Vec3* x, const MotionLanes* mean,
+                              const uint32_t* order, float edge, Vec3* kept, uint32_t* match, float* detail,
+                              float* level, uint32_t* covered) {
   const uint32_t v = blockIdx.x * blockDim.x + threadIdx.x;
   bool found = false;
   if (v < n) {
-    const uint32_t j = nearest_in_grid(prior, x[v] + motion[v], kPriorReach, kFirstRadius);
+    const Vec3 m = fitted_motion(mean[v], x[v]);
+    kept[order[v]] = edge * m;
+    const uint32_t j = nearest_in_grid(prior, x[v] + m, kPriorReach, kFirstRadius);
     found = j != kNoNearest;
-    const float o =
-        found ? prior_detail(x[v], motion[v], xyz(prior.points[j]), prior_normals[prior_order[j]]) : 0.f;
+    const float o = found ? prior_detail(x[v], m, xyz(prior.points[j]), prior_normals[prior_order[j]]) : 0.f;
     match[v] = j;
     detail[v] = o;
     level[v] = o * o;
@@ -132,37 +123,47 @@ __global__ void normals_kernel(uint32_t n, FanView fan, const Vec3* x, const uin
   if (i < n) normals[i] = vertex_normal(fan, x, rank[i]);
 }
 
-// The motion found, in input order and units (edge: the frame's mean edge), for the next frame.
-__global__ void kept_motion_kernel(uint32_t n, const Vec3* motion, const uint32_t* rank, float edge,
-                                   Vec3* out) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) out[i] = edge * motion[rank[i]];
-}
-
-// ring_mean_kernel for MotionLanes, a thread a lane of a vertex: the same additions in the same
-// order as the whole struct's (its sums are per component), with four times the threads; a
-// 64-byte element a thread left crane's 10K vertices to a third of the multiprocessors, waiting
-// on its loads.
+/// How a ring mean's input T splits into elements of a thread each: kLanes of E a vertex.
+template <class T>
+struct RingLanes {
+  using E = T;
+  static constexpr uint32_t kLanes = 1;
+};
+// MotionLanes a thread a lane: the same additions in the same order as the whole struct's (its
+// sums are per component), with four times the threads; a 64-byte element a thread left
+// crane's 10K vertices to a third of the multiprocessors, waiting on its loads.
+template <>
+struct RingLanes<MotionLanes> {
+  using E = Point4;
+  static constexpr uint32_t kLanes = 4;
+};
 static_assert(sizeof(MotionLanes) == 4 * sizeof(Point4), "MotionLanes is four lanes");
-__global__ void lane_ring_mean_kernel(uint32_t n, RingView ring, const MotionLanes* in, MotionLanes* out) {
-  const uint32_t t = blockIdx.x * blockDim.x + threadIdx.x;
-  const uint32_t v = t >> 2;
-  if (v >= n) return;
-  const Point4* lanes = reinterpret_cast<const Point4*>(in) + (t & 3u);
-  reinterpret_cast<Point4*>(out)[t] = ring_mean_of_lane(ring, lanes, v);
+
+// `passes` ring means of a (b the other buffer), in one launch: a pass over a frame of 10K
+// vertices takes a few microseconds, about what a launch costs, so each of the step's forty-odd
+// passes waited on its own launch; a barrier across the grid between passes costs less.
+// Grid-stride, so any n fits the grid a cooperative launch allows.
+template <class T>
+__global__ void ring_means_kernel(uint32_t n, RingView ring, T* a, T* b, int passes) {
+  using E = typename RingLanes<T>::E;
+  constexpr uint32_t kLanes = RingLanes<T>::kLanes;
+  const cooperative_groups::grid_group grid = cooperative_groups::this_grid();
+  const uint64_t items = uint64_t(kLanes) * n;
+  for (int p = 0; p < passes; ++p) {
+    const E* in = reinterpret_cast<const E*>(p % 2 == 0 ? a : b);
+    E* out = reinterpret_cast<E*>(p % 2 == 0 ? b : a);
+    for (uint64_t t = grid.thread_rank(); t < items; t += grid.num_threads())
+      out[t] = ring_mean_of<E>(ring, Lane<E, kLanes>{in + t % kLanes}, uint32_t(t / kLanes));
+    if (p + 1 < passes) grid.sync();
+  }
 }
 
 /// `passes` ring means of a (b the other buffer); returns the buffer that holds the last.
 template <class T>
 T* ring_means(const RingView& ring, T* a, T* b, int passes, uint32_t n, cudaStream_t s) {
-  for (int p = 0; p < passes; ++p) {
-    if constexpr (std::is_same_v<T, MotionLanes>)
-      FQ_LAUNCH(lane_ring_mean_kernel, 4 * n, s, n, ring, a, b);
-    else
-      FQ_LAUNCH(ring_mean_kernel<T>, n, s, n, ring, a, b);
-    std::swap(a, b);
-  }
-  return a;
+  if (passes <= 0) return a;
+  FQ_LAUNCH_COOPERATIVE(ring_means_kernel<T>, uint64_t(RingLanes<T>::kLanes) * n, s, n, ring, a, b, passes);
+  return passes % 2 == 0 ? a : b;
 }
 
 }  // namespace
@@ -225,25 +226,25 @@ void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const Tempo
                 float(1.0 / norm.mean_edge), x, buffers[0]);
       motion = ring_means(ring, buffers[0], buffers[1], kPredictionPasses, n, s);
     }
-    for (int it = 0; it < kMotionIterations; ++it) {  // local ICP: match, fit, match again
-      FQ_LAUNCH(offset_kernel, n, s, n, prior, x, motion, lanes[0]);
-      const MotionLanes* mean = ring_means(ring, lanes[0], lanes[1], kMotionPasses, n, s);
-      Vec3* fitted = motion == buffers[0] ? buffers[1] : buffers[0];
-      FQ_LAUNCH(fit_kernel, n, s, n, mean, x, fitted);
-      motion = fitted;
+    // Local ICP: match, fit, match again (each later round's lookup runs from the last fit).
+    FQ_LAUNCH(offset_kernel, n, s, n, prior, x, motion, lanes[0]);
+    MotionLanes* mean = ring_means(ring, lanes[0], lanes[1], kMotionPasses, n, s);
+    for (int it = 1; it < kMotionIterations; ++it) {
+      MotionLanes* spare = mean == lanes[0] ? lanes[1] : lanes[0];
+      FQ_LAUNCH(refit_kernel, n, s, n, prior, x, mean, spare);
+      mean = ring_means(ring, spare, mean, kMotionPasses, n, s);
     }
     uint32_t* match = match_.reserve(n);
     float* detail = detail_.reserve(n);
     float* level = level_[0].reserve(n);
-    FQ_LAUNCH(detail_kernel, n, s, n, prior, grid_.order.data(), target_->normals.data(), x, motion, match,
-              detail, level, covered);
+    FQ_LAUNCH(detail_kernel, n, s, n, prior, grid_.order.data(), target_->normals.data(), x, mean,
+              f.grid.order.data(), float(norm.mean_edge), next_.motion.reserve(n), match, detail, level,
+              covered);
     const float* local = ring_means(ring, level, level_[1].reserve(n), kAgreementPasses, n, s);
     partials_ = (n + kPullBlock - 1) / kPullBlock;
     FQ_LAUNCH(pull_kernel, launch_shape(partials_, kPullBlock), s, n, grid_.order.data(),
               target_->normals.data(), match, detail, local, strength, noise, covered, x,
               share_partials_.reserve(partials_));
-    FQ_LAUNCH(kept_motion_kernel, n, s, n, motion, f.grid.rank.data(), float(norm.mean_edge),
-              next_.motion.reserve(n));
   }
   FQ_LAUNCH(normals_kernel, n, s, n, fan, x, f.grid.rank.data(), next_.normals.reserve(n));
 }
