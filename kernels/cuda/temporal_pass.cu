@@ -1,5 +1,6 @@
-// The temporal step on the device: one thread per vertex, each calling the math of
-// kernels/temporal_math.h, refine_math.h and grid_nearest.h as kernels/temporal.cpp does.
+// The temporal step on the device: a thread per vertex (per lane of a vertex in the ring means
+// of the motion's lanes), each calling the math of kernels/temporal_math.h, refine_math.h and
+// grid_nearest.h as kernels/temporal.cpp does.
 #include <cooperative_groups.h>
 
 #include <cub/block/block_reduce.cuh>
@@ -226,7 +227,9 @@ void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const Tempo
                 float(1.0 / norm.mean_edge), x, buffers[0]);
       motion = ring_means(ring, buffers[0], buffers[1], kPredictionPasses, n, s);
     }
-    // Local ICP: match, fit, match again (each later round's lookup runs from the last fit).
+    // Local ICP: match, fit, match again (each later round's lookup runs from the last fit, and
+    // the detail kernel's from the final one).
+    static_assert(kMotionIterations >= 1, "the detail kernel fits the last round's means");
     FQ_LAUNCH(offset_kernel, n, s, n, prior, x, motion, lanes[0]);
     MotionLanes* mean = ring_means(ring, lanes[0], lanes[1], kMotionPasses, n, s);
     for (int it = 1; it < kMotionIterations; ++it) {
