@@ -1,7 +1,8 @@
 // The ring table and its blocks (kernels/vertex_ring.h) against ring_mean over the fan, bit for
 // bit: on a closed surface, a grid with a boundary, a non-manifold fin and triangles that repeat
 // a vertex (degenerate: a triangle listed once per corner, each time without the vertex itself);
-// with values of both signs, and all -0.0 (the value the blocks pad with: it must change nothing).
+// with values of both signs, and all -0.0 (the value the blocks pad with: it must change nothing);
+// and a mean of one lane of an array of structs (Lane) against that lane of the structs' mean.
 #include "kernels/vertex_ring.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include <random>
 #include <vector>
 
+#include "kernels/temporal_math.h"
 #include "kernels/vertex_faces.h"
 #include "tests/support/test_meshes.h"
 
@@ -112,6 +114,43 @@ TEST(KernelVertexRing, CountsADegenerateTrianglesCornersAsTheFanDoes) {
   EXPECT_EQ(ring_size(ring, b), 2 * proper + 2);
   EXPECT_EQ(ring_size(ring, a), 2 * (vf_offsets[a + 1] - vf_offsets[a] - 2) + 2)
       << "a: b from {a, a, b} twice";
+}
+
+// The CUDA engine's ring means of track B's 64-byte lanes run a thread a lane (Lane); each lane's
+// mean must be that lane of the whole struct's, bit for bit, for the two engines to agree.
+void expect_lane_means_as_the_structs(const Mesh& mesh) {
+  const uint32_t n = mesh.num_vertices();
+  std::vector<uint32_t> vf_offsets, vf_faces, corners;
+  build_vertex_faces(mesh.triangles.data(), mesh.triangles.size() / 3, n, vf_offsets, vf_faces);
+  const FanView fan{mesh.triangles.data(), vf_offsets.data(), vf_faces.data()};
+  const RingView ring = build_vertex_ring(fan, n, corners, 1);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  const auto p4 = [&] { return Point4{u(rng), u(rng), u(rng), u(rng)}; };
+  std::vector<MotionLanes> e(n);
+  for (MotionLanes& l : e) l = {{p4(), p4(), p4()}, p4()};
+  static_assert(sizeof(MotionLanes) == 4 * sizeof(Point4));
+  const auto* lanes = reinterpret_cast<const Point4*>(e.data());
+  for (uint32_t v = 0; v < n; ++v) {
+    const MotionLanes whole = ring_mean(ring, e.data(), v);
+    const auto* expected = reinterpret_cast<const Point4*>(&whole);
+    for (uint32_t k = 0; k < 4; ++k) {
+      const Point4 got = ring_mean_of<Point4>(ring, Lane<Point4, 4>{lanes + k}, v);
+      const Point4 want = expected[k];
+      ASSERT_EQ(bits(got.x), bits(want.x)) << "vertex " << v << " lane " << k;
+      ASSERT_EQ(bits(got.y), bits(want.y)) << "vertex " << v << " lane " << k;
+      ASSERT_EQ(bits(got.z), bits(want.z)) << "vertex " << v << " lane " << k;
+      ASSERT_EQ(bits(got.w), bits(want.w)) << "vertex " << v << " lane " << k;
+    }
+  }
+  // And a lane is not another: the test sees a wrong stride.
+  const Point4 first = ring_mean_of<Point4>(ring, Lane<Point4, 4>{lanes}, 0);
+  EXPECT_NE(bits(first.x), bits(ring_mean(ring, e.data(), 0).offset.x));
+}
+
+TEST(KernelVertexRing, AMeanOfOneLaneOfAStructIsThatLaneOfTheStructsMean) {
+  expect_lane_means_as_the_structs(make_icosphere(3));
+  expect_lane_means_as_the_structs(make_non_manifold_fin());
 }
 
 }  // namespace
