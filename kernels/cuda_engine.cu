@@ -5,8 +5,10 @@
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
+#include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "kernels/cuda/cuda_check.cuh"
 #include "kernels/cuda/device_frame.cuh"
@@ -401,6 +403,31 @@ unsigned grid_size(uint64_t items, uint64_t per_block) {
 }
 
 void fail_next_launch() { g_fail_next_launch.store(true); }
+
+uint64_t resident_blocks(const void* kernel, unsigned threads, const char* name, const char* file, int line) {
+  struct Known {
+    const void* kernel;
+    int device;
+    unsigned threads;
+    uint64_t blocks;
+  };
+  static std::mutex lock;
+  static std::vector<Known> known;  // a few cooperative kernels times the devices: a short list
+  int device = 0;
+  check(cudaGetDevice(&device), name, file, line);
+  {
+    const std::lock_guard<std::mutex> hold(lock);
+    for (const Known& k : known)
+      if (k.kernel == kernel && k.device == device && k.threads == threads) return k.blocks;
+  }
+  int sms = 0, per_sm = 0;
+  check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), name, file, line);
+  check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, kernel, int(threads), 0), name, file, line);
+  const uint64_t blocks = uint64_t(per_sm) * uint64_t(sms);
+  const std::lock_guard<std::mutex> hold(lock);
+  known.push_back({kernel, device, threads, blocks});  // a race may add a twin: the same value
+  return blocks;
+}
 
 }  // namespace cuda
 

@@ -70,6 +70,13 @@ void launch(const char* name, const char* file, int line, void (*kernel)(Params.
          std::forward<Args>(args)...);
 }
 
+/// The blocks of `threads` threads of `kernel` that the current device holds at once (its
+/// multiprocessors times the kernel's occupancy with no dynamic shared memory): asked of the
+/// runtime once per kernel, device and block size and kept, since the occupancy query costs
+/// microseconds and track B makes a handful of cooperative launches a frame. A failed query
+/// throws CudaError with `name`, `file` and `line`.
+uint64_t resident_blocks(const void* kernel, unsigned threads, const char* name, const char* file, int line);
+
 /// Launches `kernel`, a grid-stride kernel over `items` items that synchronizes its whole grid
 /// (cooperative_groups' grid.sync()), as a cooperative launch on `s`: blocks_for(items) blocks,
 /// or as many as the device holds at once when fewer (the barrier needs every block resident).
@@ -79,11 +86,7 @@ void launch_cooperative(const char* name, const char* file, int line, void (*ker
                         uint64_t items, cudaStream_t s, Args&&... args) {
   if (items == 0) return;
   const unsigned threads = block_size();
-  int device = 0, sms = 0, per_sm = 0;
-  check(cudaGetDevice(&device), name, file, line);
-  check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), name, file, line);
-  check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, kernel, int(threads), 0), name, file, line);
-  const uint64_t resident = uint64_t(per_sm) * uint64_t(sms);
+  const uint64_t resident = resident_blocks(reinterpret_cast<const void*>(kernel), threads, name, file, line);
   const unsigned wanted = blocks_for(items);
   cudaLaunchConfig_t config{};
   config.gridDim = dim3(unsigned(wanted < resident ? wanted : resident));
