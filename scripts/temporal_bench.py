@@ -28,6 +28,9 @@ Sequences (--only picks some):
   twist        armadillo twisted about its vertical axis by a bend that grows and shrinks over
                the sequence (a synthetic non-rigid motion held out from the tuning), noise 0.2
   static       bunny, the same clean frame N times with fresh noise each frame, noise 0.2
+  twist_shuffled, static_shuffled
+               twist and static with their vertices renumbered differently every frame (track
+               B on motions and surfaces held out from its design)
 
 Needs the fq Python module (--python: the build's python/ folder) to write the generated
 sequences and to read results back, and numpy.
@@ -150,15 +153,15 @@ def build_sequences(fq, args, work):
     if "crane_fast" in wanted:
         count = min(n, 175 // 4 + 1)
         out.append(Sequence("crane_fast", link_frames("crane_fast", [crane(4 * i) for i in range(count)]), 0.2, count))
-    for name, flipped in (("crane_shuffled", 0.0), ("crane_remesh", 0.05)):
-        if name not in wanted:
-            continue
+    def renumbered(name, sources, flipped):
+        """The frames `sources` with their vertices renumbered (and a share `flipped` of edges
+        flipped) differently every frame: track B's sequence of the same surfaces."""
         folder = os.path.join(work, name)
         os.makedirs(folder)
         rng = np.random.default_rng(args.seed)
         perms = []
-        for i in range(n):
-            V, F = fq.read_mesh(crane(i))
+        for i, src in enumerate(sources):
+            V, F = fq.read_mesh(src)
             V, F = np.asarray(V, np.float64), np.asarray(F, np.int64)
             if flipped > 0:
                 F = flip_edges(V, F, flipped, rng)
@@ -167,8 +170,12 @@ def build_sequences(fq, args, work):
             inverse[perm] = np.arange(len(perm))
             fq.write_mesh(os.path.join(folder, f"f{i:04d}.ply"), V[perm], inverse[F].astype(np.uint32))
             perms.append(perm)
-        out.append(Sequence(name, folder, 0.2, n, perms, [crane(i) for i in range(n)]))
-    if "twist" in wanted:
+        return Sequence(name, folder, 0.2, len(sources), perms, list(sources))
+
+    for name, flipped in (("crane_shuffled", 0.0), ("crane_remesh", 0.05)):
+        if name in wanted:
+            out.append(renumbered(name, [crane(i) for i in range(n)], flipped))
+    if "twist" in wanted or "twist_shuffled" in wanted:
         folder = os.path.join(work, "twist")
         os.makedirs(folder)
         V, F = fq.read_mesh(os.path.join(args.meshes, "armadillo.ply"))
@@ -185,10 +192,15 @@ def build_sequences(fq, args, work):
             W[:, 0] = centre[0] + np.cos(a) * x - np.sin(a) * z
             W[:, 2] = centre[2] + np.sin(a) * x + np.cos(a) * z
             fq.write_mesh(os.path.join(folder, f"f{i:04d}.ply"), W, F)
-        out.append(Sequence("twist", folder, 0.2, n))
+        if "twist" in wanted:
+            out.append(Sequence("twist", folder, 0.2, n))
+        if "twist_shuffled" in wanted:
+            out.append(renumbered("twist_shuffled", [os.path.join(folder, f"f{i:04d}.ply") for i in range(n)], 0.0))
     if "static" in wanted:
         bunny = os.path.join(args.meshes, "bunny.ply")
         out.append(Sequence("static", link_frames("static", [bunny] * n), 0.2, n))
+    if "static_shuffled" in wanted:
+        out.append(renumbered("static_shuffled", [os.path.join(args.meshes, "bunny.ply")] * n, 0.0))
     return out
 
 
@@ -264,7 +276,7 @@ def main():
     wanted = args.only.split(",")
     needed = [os.path.join(args.meshes, "crane", "crane_0000.drc")] if any(w.startswith("crane") for w in wanted) else []
     needed += [os.path.join(args.meshes, f) for w, f in (("twist", "armadillo.ply"), ("static", "bunny.ply"))
-               if w in wanted]
+               if w in wanted or w + "_shuffled" in wanted]
     if missing := [p for p in needed if not os.path.exists(p)]:
         print(f"temporal_bench: skipped: no {missing[0]} (--meshes)")
         sys.exit(77)
