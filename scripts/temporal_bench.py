@@ -22,6 +22,9 @@ Sequences (--only picks some):
   crane_fast   every 4th crane frame (4x the motion: the ghosting test), noise 0.2
   crane_shuffled crane frames with their vertices renumbered differently every frame, the same
                triangles otherwise (track B on crane's own surfaces), noise 0.2
+  crane_shuffled_low, crane_fast_shuffled
+               crane_shuffled at noise 0.1, and every 4th crane frame shuffled (track B at
+               half the noise and at 4x the motion)
   crane_remesh crane frames with their vertices renumbered and about 5 % of edges flipped,
                differently every frame (no vertex id means anything), noise 0.2; flicker
                measured through the known renumbering
@@ -153,7 +156,7 @@ def build_sequences(fq, args, work):
     if "crane_fast" in wanted:
         count = min(n, 175 // 4 + 1)
         out.append(Sequence("crane_fast", link_frames("crane_fast", [crane(4 * i) for i in range(count)]), 0.2, count))
-    def renumbered(name, sources, flipped):
+    def renumbered(name, sources, flipped, noise=0.2):
         """The frames `sources` with their vertices renumbered (and a share `flipped` of edges
         flipped) differently every frame: track B's sequence of the same surfaces."""
         folder = os.path.join(work, name)
@@ -170,11 +173,16 @@ def build_sequences(fq, args, work):
             inverse[perm] = np.arange(len(perm))
             fq.write_mesh(os.path.join(folder, f"f{i:04d}.ply"), V[perm], inverse[F].astype(np.uint32))
             perms.append(perm)
-        return Sequence(name, folder, 0.2, len(sources), perms, list(sources))
+        return Sequence(name, folder, noise, len(sources), perms, list(sources))
 
     for name, flipped in (("crane_shuffled", 0.0), ("crane_remesh", 0.05)):
         if name in wanted:
             out.append(renumbered(name, [crane(i) for i in range(n)], flipped))
+    if "crane_shuffled_low" in wanted:  # the same at half the noise
+        out.append(renumbered("crane_shuffled_low", [crane(i) for i in range(n)], 0.0, 0.1))
+    if "crane_fast_shuffled" in wanted:
+        count = min(n, 175 // 4 + 1)
+        out.append(renumbered("crane_fast_shuffled", [crane(4 * i) for i in range(count)], 0.0))
     if "twist" in wanted or "twist_shuffled" in wanted:
         folder = os.path.join(work, "twist")
         os.makedirs(folder)
