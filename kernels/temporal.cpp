@@ -126,16 +126,19 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
     s.match.resize(n);
     s.lanes.resize(n);
     const float reach = float(kPriorReach * mean_edge);  // input units, as the index
-    // Each lookup from the last motion estimate, handing record(v, offset) each vertex's offset
-    // to its match; a vertex that finds none counts as no motion.
+    // Each lookup from the last motion estimate, then record(v) with the match in s.match[v].
     const auto look_up = [&](auto&& record) {
       parallel_for(n, threads, [&](uint32_t v) {
         const Vec3 q = origin + float(mean_edge) * (s.x[v] + s.motion[v]);
         s.match[v] = history.index.nearest(q, reach);
-        record(v, s.match[v] == FrameMatcher::kNone ? Vec3{0.f, 0.f, 0.f} : prior_at(s.match[v]) - s.x[v]);
+        record(v);
       });
     };
-    const auto match_only = [](uint32_t, Vec3) {};
+    const auto match_only = [](uint32_t) {};
+    // A vertex's offset to its match; one that finds none counts as no motion.
+    const auto offset_of = [&](uint32_t v) {
+      return s.match[v] == FrameMatcher::kNone ? Vec3{0.f, 0.f, 0.f} : prior_at(s.match[v]) - s.x[v];
+    };
     if (history.motion.size() == history.positions.size()) {  // the prediction, from x
       look_up(match_only);
       parallel_for(n, threads, [&](uint32_t v) {
@@ -147,7 +150,7 @@ TemporalStep follow_history(const MeshView& mesh, std::vector<float>& positions,
       ring_means(ring, s.motion, s.spare, kPredictionPasses, threads);
     }
     for (int it = 0; it < kMotionIterations; ++it) {  // local ICP: match, fit, match again
-      look_up([&](uint32_t v, Vec3 offset) { s.lanes[v] = motion_lanes(s.x[v], offset); });
+      look_up([&](uint32_t v) { s.lanes[v] = motion_lanes(s.x[v], offset_of(v)); });
       ring_means(ring, s.lanes, s.spare_lanes, kMotionPasses, threads);
       parallel_for(n, threads, [&](uint32_t v) { s.motion[v] = fitted_motion(s.lanes[v], s.x[v]); });
     }
