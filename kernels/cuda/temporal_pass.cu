@@ -28,6 +28,14 @@ constexpr float kFirstRadius = 0.5f;
 constexpr float kPriorCell = 1.f;
 /// Threads per block of the pull, fixed for its per-block sums.
 constexpr unsigned kPullBlock = 256;
+/// Threads per block of the step's per-vertex kernels (the lookups, the ring table, the
+/// normals). A lookup walks a few grid cells on its thread, so these kernels wait on their loads;
+/// crane's 10K vertices in blocks of the engine's 256 filled 40 of an H100's 132
+/// multiprocessors, in blocks of 64 they fill all of them.
+constexpr unsigned kVertexBlock = 64;
+
+/// The shape of a per-vertex kernel over n vertices (grid_size's bounds and test hook hold).
+LaunchShape vertex_shape(uint32_t n) { return launch_shape(grid_size(n, kVertexBlock), kVertexBlock); }
 
 __global__ void prior_points_kernel(uint32_t n, const float* positions, Normalization norm, Point4* out) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
@@ -204,7 +212,7 @@ void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const Tempo
   FQ_CUDA_CHECK(cudaMemsetAsync(covered, 0, sizeof(uint32_t), s));
   if (prior_) {
     uint32_t* corners = ring_corners_.reserve(6 * size_t(f.m));  // two slots a fan entry, 3 a triangle
-    FQ_LAUNCH(ring_table_kernel, n, s, n, fan, corners);
+    FQ_LAUNCH(ring_table_kernel, vertex_shape(n), s, n, fan, corners);
     const RingView ring{f.vf_start.data(), corners};
     const uint32_t m = target_->n;
     GridView prior{};  // no points: no vertex finds a prior
@@ -223,25 +231,25 @@ void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const Tempo
     MotionLanes* lanes[2] = {lanes_[0].reserve(n), lanes_[1].reserve(n)};
     const Vec3* motion = nullptr;  // none: the first lookups are from x
     if (target_->moving) {
-      FQ_LAUNCH(prediction_kernel, n, s, n, prior, grid_.order.data(), target_->motion.data(),
+      FQ_LAUNCH(prediction_kernel, vertex_shape(n), s, n, prior, grid_.order.data(), target_->motion.data(),
                 float(1.0 / norm.mean_edge), x, buffers[0]);
       motion = ring_means(ring, buffers[0], buffers[1], kPredictionPasses, n, s);
     }
     // Local ICP: match, fit, match again (each later round's lookup runs from the last fit, and
     // the detail kernel's from the final one).
     static_assert(kMotionIterations >= 1, "the detail kernel fits the last round's means");
-    FQ_LAUNCH(offset_kernel, n, s, n, prior, x, motion, lanes[0]);
+    FQ_LAUNCH(offset_kernel, vertex_shape(n), s, n, prior, x, motion, lanes[0]);
     MotionLanes* mean = ring_means(ring, lanes[0], lanes[1], kMotionPasses, n, s);
     for (int it = 1; it < kMotionIterations; ++it) {
       MotionLanes* spare = mean == lanes[0] ? lanes[1] : lanes[0];
-      FQ_LAUNCH(refit_kernel, n, s, n, prior, x, mean, spare);
+      FQ_LAUNCH(refit_kernel, vertex_shape(n), s, n, prior, x, mean, spare);
       mean = ring_means(ring, spare, mean, kMotionPasses, n, s);
     }
     uint32_t* match = match_.reserve(n);
     float* detail = detail_.reserve(n);
     float* level = level_[0].reserve(n);
-    FQ_LAUNCH(detail_kernel, n, s, n, prior, grid_.order.data(), target_->normals.data(), x, mean,
-              f.grid.order.data(), float(norm.mean_edge), next_.motion.reserve(n), match, detail, level,
+    FQ_LAUNCH(detail_kernel, vertex_shape(n), s, n, prior, grid_.order.data(), target_->normals.data(), x,
+              mean, f.grid.order.data(), float(norm.mean_edge), next_.motion.reserve(n), match, detail, level,
               covered);
     const float* local = ring_means(ring, level, level_[1].reserve(n), kAgreementPasses, n, s);
     partials_ = (n + kPullBlock - 1) / kPullBlock;
@@ -249,7 +257,7 @@ void TemporalPass::follow(DeviceFrame& f, const Normalization& norm, const Tempo
               target_->normals.data(), match, detail, local, strength, noise, covered, x,
               share_partials_.reserve(partials_));
   }
-  FQ_LAUNCH(normals_kernel, n, s, n, fan, x, f.grid.rank.data(), next_.normals.reserve(n));
+  FQ_LAUNCH(normals_kernel, vertex_shape(n), s, n, fan, x, f.grid.rank.data(), next_.normals.reserve(n));
 }
 
 void TemporalPass::keep(const DeviceFrame& f, cudaStream_t s) {
