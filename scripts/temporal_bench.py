@@ -149,13 +149,15 @@ def build_sequences(fq, args, work):
         return folder
 
     crane = lambda i: os.path.join(crane_dir, f"crane_{i:04d}.drc")  # noqa: E731
+    crane_frames = [crane(i) for i in range(n)]
+    fast_frames = [crane(4 * i) for i in range(min(n, 175 // 4 + 1))]  # every 4th of crane's 176
+    bunny = os.path.join(args.meshes, "bunny.ply")
     if "crane" in wanted:
-        folder = link_frames("crane", [crane(i) for i in range(n)])
+        folder = link_frames("crane", crane_frames)
         for noise in (0.1, 0.2):
             out.append(Sequence("crane", folder, noise, n))
     if "crane_fast" in wanted:
-        count = min(n, 175 // 4 + 1)
-        out.append(Sequence("crane_fast", link_frames("crane_fast", [crane(4 * i) for i in range(count)]), 0.2, count))
+        out.append(Sequence("crane_fast", link_frames("crane_fast", fast_frames), 0.2, len(fast_frames)))
     def renumbered(name, sources, flipped, noise=0.2):
         """The frames `sources` with their vertices renumbered (and a share `flipped` of edges
         flipped) differently every frame: track B's sequence of the same surfaces."""
@@ -177,12 +179,11 @@ def build_sequences(fq, args, work):
 
     for name, flipped in (("crane_shuffled", 0.0), ("crane_remesh", 0.05)):
         if name in wanted:
-            out.append(renumbered(name, [crane(i) for i in range(n)], flipped))
+            out.append(renumbered(name, crane_frames, flipped))
     if "crane_shuffled_low" in wanted:  # the same at half the noise
-        out.append(renumbered("crane_shuffled_low", [crane(i) for i in range(n)], 0.0, 0.1))
+        out.append(renumbered("crane_shuffled_low", crane_frames, 0.0, 0.1))
     if "crane_fast_shuffled" in wanted:
-        count = min(n, 175 // 4 + 1)
-        out.append(renumbered("crane_fast_shuffled", [crane(4 * i) for i in range(count)], 0.0))
+        out.append(renumbered("crane_fast_shuffled", fast_frames, 0.0))
     if "twist" in wanted or "twist_shuffled" in wanted:
         folder = os.path.join(work, "twist")
         os.makedirs(folder)
@@ -205,10 +206,9 @@ def build_sequences(fq, args, work):
         if "twist_shuffled" in wanted:
             out.append(renumbered("twist_shuffled", [os.path.join(folder, f"f{i:04d}.ply") for i in range(n)], 0.0))
     if "static" in wanted:
-        bunny = os.path.join(args.meshes, "bunny.ply")
         out.append(Sequence("static", link_frames("static", [bunny] * n), 0.2, n))
     if "static_shuffled" in wanted:
-        out.append(renumbered("static_shuffled", [os.path.join(args.meshes, "bunny.ply")] * n, 0.0))
+        out.append(renumbered("static_shuffled", [bunny] * n, 0.0))
     return out
 
 
